@@ -1,0 +1,100 @@
+#pragma once
+/// \file scene.hpp
+/// In-memory scene, format `lightsolver.scene/1` (docs/scene-format.md). Coordinates are kept
+/// in double precision here; backends re-centre them before converting to float.
+
+#include <glm/vec3.hpp>
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lightsolver/error.hpp"
+
+namespace lightsolver {
+
+struct PhotometricData;  // photometry.hpp
+
+/// Surface interaction model.
+struct Material {
+  enum class Type { Diffuse, Mirror, Glass, Glossy };
+  std::string name;
+  Type type = Type::Diffuse;
+  double reflectance = 0.5;    ///< Lambertian (diffuse, glossy) or specular (mirror) albedo
+  double ior = 1.52;           ///< glass refractive index
+  double transmittance = 1.0;  ///< glass internal transmittance of one pass
+  bool thin = false;           ///< glass modelled as one sheet (a pane of two interfaces)
+  double specular = 0.5;       ///< glossy lobe albedo
+  double roughness = 0.2;      ///< glossy lobe roughness, GGX alpha = roughness^2
+};
+
+/// Triangle mesh in world coordinates (metres), transform already applied.
+struct Mesh {
+  std::string name;
+  int material = 0;  ///< index into Scene::materials
+  std::vector<glm::dvec3> vertices;
+  std::vector<glm::u32vec3> triangles;
+};
+
+/// Light source. Fields not used by a type keep their defaults.
+struct Luminaire {
+  enum class Type { Point, Spot, Area, Directional, Photometric };
+  std::string name;
+  Type type = Type::Point;
+  double flux_lm = 0.0;              ///< emitted flux (directional: derived from illuminance_lx)
+  glm::dvec3 position{0.0};          ///< point, spot, photometric
+  glm::dvec3 direction{0, 0, -1};    ///< spot axis, directional beam (unit length)
+  double beam_angle_deg = 0.0;       ///< spot: full angle at 50 % of peak intensity
+  double field_angle_deg = 0.0;      ///< spot: full angle at 10 % of peak intensity
+  glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< area / directional parallelogram
+  double illuminance_lx = 0.0;       ///< directional: illuminance normal to the beam
+  /// Photometric: the distribution (shared, immutable) and the luminaire frame; `aim` is where
+  /// gamma = 0 points, `c0` where the C0 plane points (orthonormal to aim).
+  std::shared_ptr<const PhotometricData> photometry;
+  glm::dvec3 aim{0, 0, -1}, c0{1, 0, 0};
+};
+
+/// Where illuminance is reported.
+struct Target {
+  enum class Type { Surface, Grid };
+  std::string name;
+  Type type = Type::Surface;
+  int mesh = -1;                                   ///< surface: index into Scene::meshes
+  glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< grid rectangle
+  std::uint32_t nu = 1, nv = 1;                    ///< grid cells along edge1, edge2
+};
+
+/// Run settings (defaults as documented).
+struct Settings {
+  std::uint64_t photons = 1'000'000;
+  std::uint32_t max_bounces = 1000;
+  std::uint64_t seed = 1;
+  double confidence = 0.95;
+};
+
+/// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().
+struct Scene {
+  std::string source_file;  ///< for messages; empty for in-memory scenes
+  std::vector<Material> materials;
+  std::vector<Mesh> meshes;
+  std::vector<Luminaire> luminaires;
+  std::vector<Target> targets;
+  Settings settings;
+  Warnings warnings;  ///< remarks made while loading (dropped triangles…)
+
+  int find_material(const std::string& name) const;  ///< -1 when absent
+  int find_mesh(const std::string& name) const;      ///< -1 when absent
+  double total_flux_lm() const;                      ///< sum over luminaires
+};
+
+/// Flux of a directional luminaire: illuminance normal to the beam times the projected area.
+double directional_flux_lm(const Luminaire& l);
+
+/// Checks every value (ranges, NaN, references, areas); drops degenerate triangles with a
+/// warning. Throws InputError naming the field. Called by the loaders; call it yourself after
+/// building a Scene by hand.
+void validate(Scene& scene);
+
+}  // namespace lightsolver

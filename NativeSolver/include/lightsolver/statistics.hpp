@@ -1,0 +1,59 @@
+#pragma once
+/// \file statistics.hpp
+/// Illuminance estimates with confidence intervals, and the comparison operators of
+/// Avas & Fernández (Eq. 7-9) used by the optimizer.
+///
+/// Every photon carries the same power, so a tally is a count. Per photon path we know how many
+/// times it deposited on a bin (c_i); a bin keeps S = sum c_i and Q = sum c_i^2 over paths.
+/// The estimate is E = scale * S / N with scale = Phi_total / area, and its standard error comes
+/// from the sample variance of the per-path totals, (N Q - S^2) / (N^2 (N-1)), computed exactly
+/// in 128-bit integers. That stays honest when a path hits a bin many times (reflective rooms),
+/// where the binomial formula of the paper underestimates the variance.
+
+#include <cstdint>
+
+namespace lightsolver {
+
+/// One bin's integer tally.
+struct Tally {
+  std::uint64_t sum = 0;     ///< S: total deposits (= hits)
+  std::uint64_t sum_sq = 0;  ///< Q: sum over paths of (deposits of that path)^2
+};
+
+/// An estimate with its two-sided confidence interval (same unit as `mean`, e.g. lux).
+struct Estimate {
+  double mean = 0.0;
+  double sigma = 0.0;  ///< estimated standard deviation of `mean`
+  double ci_low = 0.0;
+  double ci_high = 0.0;
+  std::uint64_t hits = 0;
+};
+
+/// Two-sided standard-normal critical value: P(|Z| <= z) = confidence (0.95 -> 1.95996).
+double z_for_confidence(double confidence);
+
+/// Estimate from a tally over `paths` photon paths. `scale` converts a per-path mean deposit to
+/// the reported unit (lux: Phi_total / area). If no path deposited twice, the counts are
+/// binomial and the Wilson score interval is used; otherwise mean ± z·sigma (clamped at 0).
+Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double confidence);
+
+/// Outcome of comparing two estimates at a confidence level.
+enum class Relation { Greater, Less, Indistinguishable };
+
+/// Eq. 7-9: x >α y iff E(x) - E(y) > z·sqrt(σx² + σy²); <α symmetric; otherwise =α.
+Relation compare(const Estimate& x, const Estimate& y, double confidence);
+
+inline bool greater_alpha(const Estimate& x, const Estimate& y, double c) {
+  return compare(x, y, c) == Relation::Greater;
+}
+inline bool less_alpha(const Estimate& x, const Estimate& y, double c) {
+  return compare(x, y, c) == Relation::Less;
+}
+inline bool equal_alpha(const Estimate& x, const Estimate& y, double c) {
+  return compare(x, y, c) == Relation::Indistinguishable;
+}
+inline bool distinguishable_alpha(const Estimate& x, const Estimate& y, double c) {
+  return !equal_alpha(x, y, c);
+}
+
+}  // namespace lightsolver
