@@ -98,3 +98,13 @@ double directional_flux_lm(const Luminaire& l);
 void validate(Scene& scene);
 
 }  // namespace lightsolver
+
+namespace lightsolver {
+
+/// Spot profile: relative intensity (peak = 1) at `angle_rad` off the axis.
+double spot_relative_intensity(const Luminaire& spot, double angle_rad);
+
+/// Spot peak (on-axis) intensity in candela for the luminaire's flux.
+double spot_peak_intensity_cd(const Luminaire& spot);
+
+}  // namespace lightsolver

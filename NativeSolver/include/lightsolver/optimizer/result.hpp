@@ -1,0 +1,91 @@
+#pragma once
+/// \file result.hpp
+/// What an optimisation run reports: the ISOC with its members' estimates, the SIISOC,
+/// counters and a per-iteration history. Plain structs, easy to serialise; to_json() gives the
+/// documented JSON form (docs/optimization.md).
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "lightsolver/optimizer/domain.hpp"
+#include "lightsolver/optimizer/intention.hpp"
+#include "lightsolver/optimizer/isoc.hpp"
+#include "lightsolver/statistics.hpp"
+
+namespace lightsolver::optimizer {
+
+/// One ISOC member.
+struct ResultMember {
+  Configuration cells;                   ///< cell index per variable
+  std::vector<double> values;            ///< cell centre values, same order
+  std::uint64_t photons = 0;             ///< photon count of the estimates below
+  Estimate objective;                    ///< the estimate the ISOC holds
+  std::vector<Estimate> constraints;     ///< same order as Intention::constraints
+  std::vector<Feasibility> feasibility;  ///< verdict per constraint at `photons`
+};
+
+/// Count of ISOC updates per case, indexed by UpdateCase.
+using CaseCounts = std::array<std::uint64_t, 6>;
+
+/// Totals over the run.
+struct Counters {
+  std::uint64_t iterations = 0;     ///< VNS iterations done (a start's first descent is one)
+  std::uint64_t evaluations = 0;    ///< evaluator calls (each a photon trace)
+  std::uint64_t cache_hits = 0;     ///< look-ups answered by the tabu cache
+  std::uint64_t photons = 0;        ///< photons traced in all evaluations
+  std::uint64_t screened_out = 0;   ///< strategy A: dominated at n, never traced with N
+  std::uint64_t confirmations = 0;  ///< evaluations with N photons (precise)
+  std::uint64_t infeasible = 0;     ///< candidates kept out of the ISOC by their constraints
+  std::uint64_t refined = 0;        ///< strategy B: members re-evaluated with N at the end
+  CaseCounts cases{};               ///< ISOC updates per UpdateCase (refinement included)
+  double update_seconds = 0.0;      ///< evaluator: applying configurations to the scene
+  double trace_seconds = 0.0;       ///< evaluator: tracing
+  double other_seconds = 0.0;       ///< everything else (search, ISOC, callbacks)
+  double total_seconds = 0.0;       ///< wall time of the whole run
+};
+
+/// Statistics of one VNS iteration, handed to the progress callback.
+struct IterationStats {
+  std::uint64_t iteration = 0;  ///< 1-based over the whole run
+  std::uint32_t start = 0;      ///< 0-based multi-start index
+  std::uint32_t k = 0;          ///< shake radius used (0: the start's first descent)
+  double update_seconds = 0.0;  ///< this iteration's scene updates (evaluator-reported)
+  double trace_seconds = 0.0;   ///< this iteration's tracing (evaluator-reported)
+  double other_seconds = 0.0;   ///< this iteration's wall time minus the two above
+  std::uint64_t evaluations = 0;       ///< evaluator calls this iteration
+  std::uint64_t photons = 0;           ///< photons traced this iteration
+  std::uint64_t total_photons = 0;     ///< photons traced so far
+  std::size_t isoc_size = 0;           ///< after the iteration
+  Interval siisoc{};                   ///< after the iteration (meaningless when isoc_size = 0)
+  bool has_best = false;               ///< false while the ISOC is empty
+  Estimate best{};                     ///< the ISOC member with the best mean
+};
+
+/// Why the run stopped.
+enum class StopReason {
+  kIterationLimit,   ///< max_iterations reached
+  kEvaluationLimit,  ///< max_evaluations reached
+  kExhausted,        ///< every cell of the grid has been evaluated
+  kCancelled,        ///< cancel flag set or progress callback returned false
+};
+
+const char* to_string(StopReason r);
+
+/// The outcome of optimize().
+struct OptimizationResult {
+  Goal goal = Goal::kMaximize;
+  double confidence = 0.95;
+  std::vector<std::string> variable_names;
+  std::vector<ResultMember> isoc;  ///< best mean first; ties by cell index
+  Interval siisoc{};               ///< of the final ISOC (meaningless when it is empty)
+  Counters counters;
+  StopReason stop = StopReason::kIterationLimit;
+  std::vector<IterationStats> history;  ///< one entry per iteration (if requested)
+};
+
+/// JSON text ("lightsolver.optimization/1", described in docs/optimization.md).
+std::string to_json(const OptimizationResult& r, int indent = 2);
+
+}  // namespace lightsolver::optimizer

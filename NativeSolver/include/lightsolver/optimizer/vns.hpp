@@ -1,0 +1,82 @@
+#pragma once
+/// \file vns.hpp
+/// Variable Neighbourhood Search (Mladenović & Hansen 1997) over a discretised domain, with the
+/// ISOC of Sec. III-C, the tabu cache of Sec. IV-B and the adaptive photon counts of Sec. IV-A.
+///
+/// Usage:
+///   Domain d;  d.add_rectangle("lum0", 0, 6, 24, 0, 4, 16);
+///   Intention in = maximize_mean_illuminance("podium");
+///   MyEvaluator ev(scene, in);                 // implements Evaluator
+///   VnsOptions opt;  opt.seed = 7;  opt.max_iterations = 500;
+///   OptimizationResult r = optimize(d, in, ev, opt);
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "lightsolver/optimizer/domain.hpp"
+#include "lightsolver/optimizer/evaluator.hpp"
+#include "lightsolver/optimizer/intention.hpp"
+#include "lightsolver/optimizer/result.hpp"
+
+namespace lightsolver::optimizer {
+
+/// How photon counts are chosen (Sec. IV-A). Either way a cell is traced at most once per level.
+enum class PhotonStrategy {
+  /// A: every candidate is traced with n photons; only if its CI is not dominated by the
+  /// ISOC (it reaches or beats the SIISOC) is it traced again with N, and the N estimate is
+  /// what the ISOC sees. The ISOC holds N estimates only.
+  kConfirm,
+  /// B: the search runs on n-photon estimates; at the end every ISOC member is traced with N
+  /// and the ISOC is rebuilt from those estimates.
+  kRefineAtEnd,
+};
+
+/// Local search rule over the distance-1 neighbourhood.
+enum class LocalSearch {
+  kFirstImprovement,  ///< move to the first improving neighbour (random order from the seed)
+  kBestImprovement,   ///< trace every neighbour, move to the best
+};
+
+/// What to do with a candidate whose constraints are still "uncertain" with N photons.
+enum class UncertainPolicy {
+  kReject,  ///< default: a reported member meets every constraint at the run's confidence
+  kAccept,  ///< keep it (its verdicts say "uncertain" in the result)
+};
+
+/// Settings of a run. Defaults follow the paper where it gives numbers.
+struct VnsOptions {
+  std::uint64_t seed = 1;     ///< search randomness and evaluation seeds derive from it
+  double confidence = 0.95;   ///< level of the =α comparisons and feasibility verdicts
+  std::uint64_t screening_photons = 32768;       ///< n (0 or >= N: always trace with N)
+  std::uint64_t confirmation_photons = 2097152;  ///< N (paper: 2.66e6)
+  PhotonStrategy strategy = PhotonStrategy::kConfirm;
+  UncertainPolicy uncertain = UncertainPolicy::kReject;
+  std::uint64_t max_iterations = 1000;  ///< over all starts (paper: 1000)
+  std::uint64_t max_evaluations = 0;    ///< evaluator calls; 0 = no limit
+  std::uint32_t starts = 1;             ///< multi-start: the iteration budget is shared evenly
+  std::vector<Configuration> initial;   ///< starting cells for the first starts; others random
+  std::uint32_t kmax = 0;  ///< largest shake radius; 0 = max(1, largest variable size / 4)
+  LocalSearch local_search = LocalSearch::kFirstImprovement;
+  Neighbourhood neighbourhood = Neighbourhood::kAxis;
+  bool keep_history = true;  ///< fill OptimizationResult::history
+};
+
+/// Observation and cancellation. The callback runs after every iteration on the calling
+/// thread; returning false stops the run (StopReason::kCancelled). The flag is polled before
+/// every evaluation, so a cancel takes effect within one trace.
+struct Control {
+  std::function<bool(const IterationStats&)> progress;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// Runs the search. Throws std::invalid_argument on bad options (confidence outside (0, 1),
+/// N = 0, starts = 0, an initial configuration outside the domain, an empty domain) and
+/// whatever the evaluator throws. A cancelled run still returns the ISOC found so far
+/// (under strategy B it skips the refinement, and says so by StopReason::kCancelled).
+OptimizationResult optimize(const Domain& domain, const Intention& intention,
+                            Evaluator& evaluator, const VnsOptions& options,
+                            const Control& control = {});
+
+}  // namespace lightsolver::optimizer

@@ -1,0 +1,24 @@
+#pragma once
+/// \file scene_io.hpp
+/// Reading scene files (docs/scene-format.md) and mesh files (PLY, OBJ).
+
+#include <string>
+#include <vector>
+
+#include "lightsolver/scene.hpp"
+
+namespace lightsolver {
+
+/// Reads and validates a scene file. Mesh and photometric files are resolved relative to it.
+/// Throws InputError naming the file and field.
+Scene load_scene(const std::string& path);
+
+/// Parses a scene from JSON text. `file` is used in messages, `base_dir` resolves relative paths.
+Scene scene_from_json(const std::string& text, const std::string& file,
+                      const std::string& base_dir);
+
+/// Reads all triangles of a PLY or OBJ file (every mesh in it, concatenated). Throws InputError
+/// naming the file when it is missing, unreadable or has no triangles.
+Mesh load_mesh_file(const std::string& path);
+
+}  // namespace lightsolver

@@ -1,0 +1,73 @@
+#pragma once
+/// \file solver.hpp
+/// The direct problem: trace photons through a scene and report illuminance with confidence
+/// intervals. Stages: validate (done by the loaders) -> prepare -> trace -> results.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lightsolver/scene.hpp"
+#include "lightsolver/statistics.hpp"
+
+namespace lightsolver {
+
+/// Overrides of the scene's settings for one run, and how to run it.
+struct SolveOptions {
+  std::optional<std::uint64_t> photons;  ///< default: scene.settings.photons
+  std::optional<std::uint64_t> seed;     ///< default: scene.settings.seed
+  std::optional<double> confidence;      ///< default: scene.settings.confidence
+  int threads = 0;                       ///< 0: all cores
+  std::string backend = "auto";          ///< "auto", "embree" (and "vulkan" where built)
+  const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current batch
+};
+
+/// Called between batches with photons traced so far and the total; return false to cancel.
+using ProgressFn = std::function<bool(std::uint64_t done, std::uint64_t total)>;
+
+/// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
+/// grid / its area) and `cells` holds every cell, row by row (index = iv * nu + iu).
+struct TargetResult {
+  std::string name;
+  bool is_grid = false;
+  double area_m2 = 0.0;
+  Estimate estimate;  ///< lux
+  std::uint32_t nu = 0, nv = 0;
+  std::vector<Estimate> cells;
+  double min_lux = 0.0, max_lux = 0.0, uniformity = 0.0;  ///< grids: over cell means; U0 = min/mean
+};
+
+struct Results {
+  std::vector<TargetResult> targets;
+  std::uint64_t photons = 0;            ///< traced (== requested unless partial)
+  std::uint64_t photons_requested = 0;
+  bool partial = false;                 ///< stopped early by cancel or progress callback
+  double seconds = 0.0;
+  std::string backend;
+  double confidence = 0.95;
+  std::uint64_t seed = 0;
+  std::uint64_t ray_segments = 0;
+  std::uint64_t capped_paths = 0;       ///< paths still alive at max_bounces (bias, warned)
+  double total_flux_lm = 0.0;
+  Warnings warnings;
+};
+
+/// Runs the photon tracer. Deterministic: same scene, seed and photons give bit-identical
+/// results for any thread count. Throws InputError for bad options, std::runtime_error when a
+/// backend fails.
+Results solve(const Scene& scene, const SolveOptions& options = {},
+              const ProgressFn& progress = {});
+
+/// Results as JSON text, format `lightsolver.results/1` (docs/scene-format.md).
+std::string results_to_json(const Results& results);
+
+/// Human-readable table: target, lux, ± half-width, hits; grids with min/max/U0.
+std::string results_table(const Results& results);
+
+/// Library version ("0.1.0").
+const char* version();
+
+}  // namespace lightsolver

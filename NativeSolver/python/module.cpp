@@ -1,0 +1,327 @@
+// Python bindings: the same scenes and results as the CLI, numpy in and out, the GIL released
+// while tracing, progress callbacks and cancellation.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <memory>
+
+#include "lightsolver/scene_io.hpp"
+#include "lightsolver/solver.hpp"
+
+namespace py = pybind11;
+using namespace lightsolver;
+
+namespace {
+
+struct CancelToken {
+  std::shared_ptr<std::atomic<bool>> flag = std::make_shared<std::atomic<bool>>(false);
+  void cancel() { flag->store(true); }
+  bool cancelled() const { return flag->load(); }
+};
+
+glm::dvec3 vec3_arg(const std::vector<double>& v, const char* name) {
+  if (v.size() != 3) throw py::value_error(std::string(name) + ": expected 3 numbers");
+  return {v[0], v[1], v[2]};
+}
+
+Mesh mesh_from_numpy(const std::string& name, int material,
+                     py::array_t<double, py::array::c_style | py::array::forcecast> vertices,
+                     py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> tris) {
+  if (vertices.ndim() != 2 || vertices.shape(1) != 3) {
+    throw py::value_error("mesh \"" + name + "\": vertices must have shape (n, 3)");
+  }
+  if (tris.ndim() != 2 || tris.shape(1) != 3) {
+    throw py::value_error("mesh \"" + name + "\": triangles must have shape (m, 3)");
+  }
+  Mesh m;
+  m.name = name;
+  m.material = material;
+  auto v = vertices.unchecked<2>();
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) m.vertices.emplace_back(v(i, 0), v(i, 1), v(i, 2));
+  auto t = tris.unchecked<2>();
+  for (py::ssize_t i = 0; i < t.shape(0); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      if (t(i, k) < 0 || t(i, k) >= v.shape(0)) {
+        throw py::value_error("mesh \"" + name + "\": triangles[" + std::to_string(i) +
+                              "] has a vertex index out of range");
+      }
+    }
+    m.triangles.emplace_back(t(i, 0), t(i, 1), t(i, 2));
+  }
+  return m;
+}
+
+py::dict estimate_dict(const Estimate& e) {
+  py::dict d;
+  d["mean_lux"] = e.mean;
+  d["ci_low_lux"] = e.ci_low;
+  d["ci_high_lux"] = e.ci_high;
+  d["sigma_lux"] = e.sigma;
+  d["hits"] = e.hits;
+  return d;
+}
+
+py::dict target_dict(const TargetResult& t) {
+  py::dict d = estimate_dict(t.estimate);
+  d["name"] = t.name;
+  d["type"] = t.is_grid ? "grid" : "surface";
+  d["area_m2"] = t.area_m2;
+  if (!t.is_grid) return d;
+  d["cells_uv"] = py::make_tuple(t.nu, t.nv);
+  d["min_lux"] = t.min_lux;
+  d["max_lux"] = t.max_lux;
+  d["uniformity"] = t.uniformity;
+  const std::vector<py::ssize_t> shape{t.nv, t.nu};
+  py::array_t<double> lux(shape), lo(shape), hi(shape);
+  py::array_t<std::uint64_t> hits(shape);
+  for (std::size_t i = 0; i < t.cells.size(); ++i) {
+    lux.mutable_data()[i] = t.cells[i].mean;
+    lo.mutable_data()[i] = t.cells[i].ci_low;
+    hi.mutable_data()[i] = t.cells[i].ci_high;
+    hits.mutable_data()[i] = t.cells[i].hits;
+  }
+  d["cells_lux"] = lux;
+  d["cells_ci_low_lux"] = lo;
+  d["cells_ci_high_lux"] = hi;
+  d["cells_hits"] = hits;
+  return d;
+}
+
+py::dict results_dict(const Results& r) {
+  py::dict d;
+  d["format"] = "lightsolver.results/1";
+  d["photons"] = r.photons;
+  d["photons_requested"] = r.photons_requested;
+  d["partial"] = r.partial;
+  d["seconds"] = r.seconds;
+  d["backend"] = r.backend;
+  d["confidence"] = r.confidence;
+  d["seed"] = r.seed;
+  d["ray_segments"] = r.ray_segments;
+  d["total_flux_lm"] = r.total_flux_lm;
+  d["warnings"] = r.warnings;
+  py::list targets;
+  for (const auto& t : r.targets) targets.append(target_dict(t));
+  d["targets"] = targets;
+  return d;
+}
+
+py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
+                  std::optional<std::uint64_t> seed, std::optional<double> confidence,
+                  int threads, const std::string& backend, py::object progress,
+                  std::optional<CancelToken> cancel) {
+  Scene checked = scene;
+  validate(checked);
+  SolveOptions opt;
+  opt.photons = photons;
+  opt.seed = seed;
+  opt.confidence = confidence;
+  opt.threads = threads;
+  opt.backend = backend;
+  CancelToken token = cancel.value_or(CancelToken{});
+  opt.cancel = token.flag.get();
+  std::exception_ptr callback_error;
+  ProgressFn fn;
+  if (!progress.is_none()) {
+    fn = [&](std::uint64_t done, std::uint64_t total) {
+      py::gil_scoped_acquire gil;
+      try {
+        py::object keep = progress(done, total);
+        return keep.is_none() || keep.cast<bool>();
+      } catch (...) {
+        callback_error = std::current_exception();  // re-raised once tracing has stopped
+        return false;
+      }
+    };
+  }
+  Results r;
+  {
+    py::gil_scoped_release nogil;
+    r = lightsolver::solve(checked, opt, fn);
+  }
+  if (callback_error) std::rethrow_exception(callback_error);
+  return results_dict(r);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(lightsolver, m) {
+  m.doc() = "Photon-tracing illuminance solver: lux with confidence intervals";
+  m.attr("__version__") = version();
+  m.attr("SCENE_FORMAT") = "lightsolver.scene/1";
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(e.what());
+    }
+  });
+
+  py::class_<CancelToken>(m, "CancelToken", "Cancels a running solve() from any thread")
+      .def(py::init<>())
+      .def("cancel", &CancelToken::cancel)
+      .def_property_readonly("cancelled", &CancelToken::cancelled);
+
+  py::class_<Scene>(m, "Scene", "A scene in memory (see docs/scene-format.md)")
+      .def(py::init<>())
+      .def("add_material",
+           [](Scene& s, const std::string& name, const std::string& type,
+              std::optional<double> reflectance, double ior, double transmittance, bool thin,
+              double specular, double roughness) {
+             Material mat;
+             mat.name = name;
+             if (type == "diffuse") mat.type = Material::Type::Diffuse;
+             else if (type == "mirror") mat.type = Material::Type::Mirror;
+             else if (type == "glass") mat.type = Material::Type::Glass;
+             else if (type == "glossy") mat.type = Material::Type::Glossy;
+             else throw py::value_error("unknown material type \"" + type + "\"");
+             const double fallback = type == "mirror" ? 0.9 : type == "glossy" ? 0.0 : 0.5;
+             mat.reflectance = reflectance.value_or(fallback);
+             mat.ior = ior;
+             mat.transmittance = transmittance;
+             mat.thin = thin;
+             mat.specular = specular;
+             mat.roughness = roughness;
+             if (s.find_material(name) >= 0) throw py::value_error("duplicate material " + name);
+             s.materials.push_back(mat);
+           },
+           py::arg("name"), py::arg("type") = "diffuse", py::arg("reflectance") = py::none(),
+           py::arg("ior") = 1.52, py::arg("transmittance") = 1.0, py::arg("thin") = false,
+           py::arg("specular") = 0.5, py::arg("roughness") = 0.2)
+      .def("add_mesh",
+           [](Scene& s, const std::string& name, py::array vertices, py::array triangles,
+              const std::string& material) {
+             const int mat = s.find_material(material);
+             if (mat < 0) throw py::value_error("unknown material \"" + material + "\"");
+             if (s.find_mesh(name) >= 0) throw py::value_error("duplicate mesh " + name);
+             s.meshes.push_back(mesh_from_numpy(name, mat, vertices, triangles));
+           },
+           py::arg("name"), py::arg("vertices"), py::arg("triangles"), py::arg("material"))
+      .def("add_point_light",
+           [](Scene& s, const std::string& name, std::vector<double> position, double flux_lm) {
+             Luminaire l;
+             l.name = name;
+             l.type = Luminaire::Type::Point;
+             l.position = vec3_arg(position, "position");
+             l.flux_lm = flux_lm;
+             s.luminaires.push_back(l);
+           },
+           py::arg("name"), py::arg("position"), py::arg("flux_lm"))
+      .def("add_spot_light",
+           [](Scene& s, const std::string& name, std::vector<double> position,
+              std::vector<double> direction, double beam_angle_deg, double field_angle_deg,
+              double flux_lm) {
+             Luminaire l;
+             l.name = name;
+             l.type = Luminaire::Type::Spot;
+             l.position = vec3_arg(position, "position");
+             l.direction = vec3_arg(direction, "direction");
+             l.beam_angle_deg = beam_angle_deg;
+             l.field_angle_deg = field_angle_deg;
+             l.flux_lm = flux_lm;
+             s.luminaires.push_back(l);
+           },
+           py::arg("name"), py::arg("position"), py::arg("direction"), py::arg("beam_angle_deg"),
+           py::arg("field_angle_deg"), py::arg("flux_lm"))
+      .def("add_area_light",
+           [](Scene& s, const std::string& name, std::vector<double> corner,
+              std::vector<double> edge1, std::vector<double> edge2, double flux_lm) {
+             Luminaire l;
+             l.name = name;
+             l.type = Luminaire::Type::Area;
+             l.corner = vec3_arg(corner, "corner");
+             l.edge1 = vec3_arg(edge1, "edge1");
+             l.edge2 = vec3_arg(edge2, "edge2");
+             l.flux_lm = flux_lm;
+             s.luminaires.push_back(l);
+           },
+           py::arg("name"), py::arg("corner"), py::arg("edge1"), py::arg("edge2"),
+           py::arg("flux_lm"))
+      .def("add_directional_light",
+           [](Scene& s, const std::string& name, std::vector<double> direction,
+              std::vector<double> corner, std::vector<double> edge1, std::vector<double> edge2,
+              double illuminance_lx) {
+             Luminaire l;
+             l.name = name;
+             l.type = Luminaire::Type::Directional;
+             l.direction = vec3_arg(direction, "direction");
+             l.corner = vec3_arg(corner, "corner");
+             l.edge1 = vec3_arg(edge1, "edge1");
+             l.edge2 = vec3_arg(edge2, "edge2");
+             l.illuminance_lx = illuminance_lx;
+             s.luminaires.push_back(l);
+           },
+           py::arg("name"), py::arg("direction"), py::arg("corner"), py::arg("edge1"),
+           py::arg("edge2"), py::arg("illuminance_lx"))
+      .def("add_surface_target",
+           [](Scene& s, const std::string& name, const std::string& mesh) {
+             Target t;
+             t.name = name;
+             t.type = Target::Type::Surface;
+             t.mesh = s.find_mesh(mesh);
+             if (t.mesh < 0) throw py::value_error("unknown mesh \"" + mesh + "\"");
+             s.targets.push_back(t);
+           },
+           py::arg("name"), py::arg("mesh"))
+      .def("add_grid_target",
+           [](Scene& s, const std::string& name, std::vector<double> corner,
+              std::vector<double> edge1, std::vector<double> edge2,
+              std::pair<std::uint32_t, std::uint32_t> cells) {
+             Target t;
+             t.name = name;
+             t.type = Target::Type::Grid;
+             t.corner = vec3_arg(corner, "corner");
+             t.edge1 = vec3_arg(edge1, "edge1");
+             t.edge2 = vec3_arg(edge2, "edge2");
+             t.nu = cells.first;
+             t.nv = cells.second;
+             s.targets.push_back(t);
+           },
+           py::arg("name"), py::arg("corner"), py::arg("edge1"), py::arg("edge2"),
+           py::arg("cells"))
+      .def("validate", [](Scene& s) { validate(s); }, "Check values; drop degenerate triangles")
+      .def_property(
+          "photons", [](const Scene& s) { return s.settings.photons; },
+          [](Scene& s, std::uint64_t v) { s.settings.photons = v; })
+      .def_property(
+          "seed", [](const Scene& s) { return s.settings.seed; },
+          [](Scene& s, std::uint64_t v) { s.settings.seed = v; })
+      .def_property(
+          "confidence", [](const Scene& s) { return s.settings.confidence; },
+          [](Scene& s, double v) { s.settings.confidence = v; })
+      .def_property(
+          "max_bounces", [](const Scene& s) { return s.settings.max_bounces; },
+          [](Scene& s, std::uint32_t v) { s.settings.max_bounces = v; })
+      .def_property_readonly("warnings", [](const Scene& s) { return s.warnings; })
+      .def_property_readonly("mesh_names",
+                             [](const Scene& s) {
+                               std::vector<std::string> n;
+                               for (const auto& m : s.meshes) n.push_back(m.name);
+                               return n;
+                             })
+      .def_property_readonly("triangle_count",
+                             [](const Scene& s) {
+                               std::size_t n = 0;
+                               for (const auto& m : s.meshes) n += m.triangles.size();
+                               return n;
+                             })
+      .def_property_readonly("total_flux_lm", &Scene::total_flux_lm);
+
+  m.def("load_scene", &load_scene, py::arg("path"), "Read and validate a scene file");
+  m.def(
+      "scene_from_json",
+      [](const std::string& text, const std::string& base_dir) {
+        return scene_from_json(text, "<string>", base_dir);
+      },
+      py::arg("text"), py::arg("base_dir") = ".", "Parse scene JSON text");
+  m.def("solve", &solve_py, py::arg("scene"), py::arg("photons") = py::none(),
+        py::arg("seed") = py::none(), py::arg("confidence") = py::none(), py::arg("threads") = 0,
+        py::arg("backend") = "auto", py::arg("progress") = py::none(),
+        py::arg("cancel") = py::none(),
+        "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
+        "progress(done, total) may return False to stop; the result is then marked partial.");
+}

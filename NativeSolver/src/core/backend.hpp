@@ -1,0 +1,43 @@
+#pragma once
+// What a tracing backend (Embree on the CPU, Vulkan compute) does: trace a range of photon
+// paths and add their integer tallies. Because tallies are counts, the sum does not depend on
+// how a backend splits or orders the work.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/prepared_scene.hpp"
+#include "lightsolver/statistics.hpp"
+
+namespace lightsolver::detail {
+
+struct TallyBlock {
+  std::vector<Tally> bins;
+  std::uint64_t ray_segments = 0;
+  std::uint64_t capped_paths = 0;  // paths stopped by max_bounces while still alive
+
+  explicit TallyBlock(std::size_t n = 0) : bins(n) {}
+  void add(const TallyBlock& o) {
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+      bins[i].sum += o.bins[i].sum;
+      bins[i].sum_sq += o.bins[i].sum_sq;
+    }
+    ray_segments += o.ray_segments;
+    capped_paths += o.capped_paths;
+  }
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string name() const = 0;
+  /// Traces photon paths [first, first + count) with `seed`, adding into `out`
+  /// (out.bins.size() == scene bins). Runs in the caller's TBB arena.
+  virtual void trace(std::uint64_t first, std::uint64_t count, std::uint64_t seed,
+                     TallyBlock& out) = 0;
+};
+
+std::unique_ptr<Backend> make_embree_backend(const PreparedScene& scene);
+
+}  // namespace lightsolver::detail

@@ -1,0 +1,142 @@
+#include "core/prepared_scene.hpp"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <limits>
+
+namespace lightsolver::detail {
+namespace {
+
+// Centre of everything that has coordinates. Subtracting it in double before the float
+// conversion keeps millimetre precision for georeferenced models millions of metres out.
+glm::dvec3 scene_centre(const Scene& s) {
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  auto grow = [&](const glm::dvec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  };
+  for (const auto& m : s.meshes) {
+    for (const auto& v : m.vertices) grow(v);
+  }
+  for (const auto& l : s.luminaires) grow(l.type == Luminaire::Type::Area ||
+                                              l.type == Luminaire::Type::Directional
+                                          ? l.corner
+                                          : l.position);
+  for (const auto& t : s.targets) {
+    if (t.type == Target::Type::Grid) grow(t.corner);
+  }
+  return 0.5 * (lo + hi);
+}
+
+vec3 local(const glm::dvec3& p, const glm::dvec3& origin) { return vec3(p - origin); }
+
+PreparedMesh prepare_mesh(const Mesh& m, const glm::dvec3& origin, double& area_m2) {
+  PreparedMesh out;
+  out.material = m.material;
+  out.vertices.reserve(m.vertices.size() * 3 + 1);
+  for (const auto& v : m.vertices) {
+    const vec3 p = local(v, origin);
+    out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
+  }
+  out.vertices.push_back(0.0f);  // Embree may read 16 bytes at the last vertex
+  out.indices.reserve(m.triangles.size() * 3);
+  out.normals.reserve(m.triangles.size());
+  area_m2 = 0.0;
+  for (const auto& t : m.triangles) {
+    out.indices.insert(out.indices.end(), {t[0], t[1], t[2]});
+    const glm::dvec3 c =
+        glm::cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
+    area_m2 += 0.5 * glm::length(c);
+    out.normals.push_back(vec3(glm::normalize(c)));
+  }
+  return out;
+}
+
+PreparedGrid prepare_grid(const Target& t, const glm::dvec3& origin, std::uint32_t bin) {
+  PreparedGrid g;
+  const glm::dvec3 n = glm::normalize(glm::cross(t.edge1, t.edge2));
+  const glm::dvec3 du = glm::cross(t.edge2, n), dv = glm::cross(n, t.edge1);
+  g.corner = local(t.corner, origin);
+  g.normal = vec3(n);
+  g.du = vec3(du / glm::dot(t.edge1, du));
+  g.dv = vec3(dv / glm::dot(t.edge2, dv));
+  g.nu = t.nu;
+  g.nv = t.nv;
+  g.bin = bin;
+  return g;
+}
+
+PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin) {
+  PreparedLuminaire p;
+  p.type = l.type;
+  p.source = &l;
+  p.position = local(l.position, origin);
+  p.corner = local(l.corner, origin);
+  p.edge1 = vec3(l.edge1);
+  p.edge2 = vec3(l.edge2);
+  switch (l.type) {
+    case Luminaire::Type::Area:
+      p.axis = vec3(glm::normalize(glm::cross(l.edge1, l.edge2)));
+      break;
+    case Luminaire::Type::Spot:
+      p.half_beam_rad = static_cast<float>(glm::radians(0.5 * l.beam_angle_deg));
+      p.half_field_rad = static_cast<float>(glm::radians(0.5 * l.field_angle_deg));
+      p.cos_half_field = std::cos(p.half_field_rad);
+      p.axis = vec3(l.direction);
+      break;
+    case Luminaire::Type::Photometric:
+      p.axis = vec3(glm::normalize(l.aim));
+      p.c0 = vec3(glm::normalize(l.c0));
+      break;
+    default:
+      p.axis = vec3(l.direction);
+  }
+  return p;
+}
+
+}  // namespace
+
+PreparedScene prepare(const Scene& scene) {
+  PreparedScene out;
+  out.origin = scene_centre(scene);
+  out.materials = scene.materials;
+  out.max_bounces = scene.settings.max_bounces;
+  std::vector<double> mesh_area(scene.meshes.size());
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    out.meshes.push_back(prepare_mesh(scene.meshes[i], out.origin, mesh_area[i]));
+    out.triangle_count += scene.meshes[i].triangles.size();
+  }
+  for (const auto& t : scene.targets) {
+    if (t.type == Target::Type::Surface) {
+      PreparedMesh& m = out.meshes[t.mesh];
+      if (m.bin < 0) {  // two targets naming one mesh share its bin
+        m.bin = static_cast<std::int32_t>(out.bins.size());
+        out.bins.push_back({mesh_area[t.mesh]});
+      }
+      out.target_bin.push_back(static_cast<std::uint32_t>(m.bin));
+      continue;
+    }
+    const auto bin = static_cast<std::uint32_t>(out.bins.size());
+    const double area = glm::length(glm::cross(t.edge1, t.edge2));
+    out.bins.push_back({area});
+    out.bins.resize(out.bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
+    out.grids.push_back(prepare_grid(t, out.origin, bin));
+    out.target_bin.push_back(bin);
+  }
+  double cumulative = 0.0;
+  for (const auto& l : scene.luminaires) {
+    out.luminaires.push_back(prepare_luminaire(l, out.origin));
+    cumulative += l.flux_lm;
+    out.luminaire_cdf.push_back(cumulative);
+  }
+  out.total_flux_lm = cumulative;
+  if (cumulative > 0.0) {
+    for (auto& c : out.luminaire_cdf) c /= cumulative;
+    out.luminaire_cdf.back() = 1.0;
+  }
+  return out;
+}
+
+}  // namespace lightsolver::detail

@@ -1,0 +1,234 @@
+// Scene file reader: JSON -> Scene. Types and keys are checked here; value ranges and
+// cross-references are checked by validate(), shared with scenes built in memory.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/json_reader.hpp"
+#include "lightsolver/scene_io.hpp"
+
+namespace lightsolver {
+namespace {
+
+using detail::JsonNode;
+namespace fs = std::filesystem;
+
+constexpr const char* kFormat = "lightsolver.scene/1";
+
+Material read_material(const std::string& name, const JsonNode& n) {
+  Material m;
+  m.name = name;
+  const std::string type = n.at("type").string();
+  if (type == "diffuse") {
+    n.require_object({"type", "reflectance"});
+    m.type = Material::Type::Diffuse;
+    m.reflectance = n.number_or("reflectance", 0.5);
+  } else if (type == "mirror") {
+    n.require_object({"type", "reflectance"});
+    m.type = Material::Type::Mirror;
+    m.reflectance = n.number_or("reflectance", 0.9);
+  } else if (type == "glass") {
+    n.require_object({"type", "ior", "transmittance", "thin"});
+    m.type = Material::Type::Glass;
+    m.ior = n.number_or("ior", 1.52);
+    m.transmittance = n.number_or("transmittance", 1.0);
+    m.thin = n.boolean_or("thin", false);
+  } else if (type == "glossy") {
+    n.require_object({"type", "reflectance", "specular", "roughness"});
+    m.type = Material::Type::Glossy;
+    m.reflectance = n.number_or("reflectance", 0.0);
+    m.specular = n.number_or("specular", 0.5);
+    m.roughness = n.number_or("roughness", 0.2);
+  } else {
+    n.at("type").fail("unknown material type \"" + type +
+                      "\" (expected diffuse, mirror, glass or glossy)");
+  }
+  return m;
+}
+
+glm::dmat4 read_transform(const JsonNode& n) {
+  if (n.array_size() != 4) n.fail("expected a 4x4 matrix (4 rows of 4 numbers)");
+  glm::dmat4 m(1.0);
+  for (int r = 0; r < 4; ++r) {
+    const JsonNode row = n[r];
+    if (row.array_size() != 4) row.fail("expected a row of 4 numbers");
+    for (int c = 0; c < 4; ++c) m[c][r] = row[c].number();  // glm is column-major
+  }
+  if (m[0][3] != 0 || m[1][3] != 0 || m[2][3] != 0 || m[3][3] != 1) {
+    n[3].fail("the last row of an affine transform must be [0, 0, 0, 1]");
+  }
+  return m;
+}
+
+Mesh read_inline_geometry(const JsonNode& n) {
+  Mesh mesh;
+  const JsonNode v = n.at("vertices"), t = n.at("triangles");
+  mesh.vertices.resize(v.array_size());
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i] = v[i].vec3();
+  mesh.triangles.resize(t.array_size());
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const JsonNode tri = t[i];
+    if (tri.array_size() != 3) tri.fail("expected [i, j, k] (3 vertex indices)");
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t index = tri[k].unsigned_integer();
+      if (index >= mesh.vertices.size()) {
+        tri[k].fail("vertex index " + std::to_string(index) + " out of range (the mesh has " +
+                    std::to_string(mesh.vertices.size()) + " vertices)");
+      }
+      mesh.triangles[i][k] = static_cast<std::uint32_t>(index);
+    }
+  }
+  return mesh;
+}
+
+Mesh read_mesh(const JsonNode& n, const Scene& scene, const std::string& base_dir) {
+  n.require_object({"name", "material", "file", "vertices", "triangles", "transform"});
+  Mesh mesh;
+  if (n.has("file")) {
+    if (n.has("vertices") || n.has("triangles")) n.fail("give either \"file\" or inline geometry");
+    const std::string file = n.at("file").string();
+    mesh = load_mesh_file((fs::path(base_dir) / file).lexically_normal().string());
+  } else {
+    mesh = read_inline_geometry(n);
+  }
+  mesh.name = n.at("name").string();
+  const std::string material = n.at("material").string();
+  mesh.material = scene.find_material(material);
+  if (mesh.material < 0) n.at("material").fail("unknown material \"" + material + "\"");
+  if (n.has("transform")) {
+    const glm::dmat4 m = read_transform(n.at("transform"));
+    for (auto& p : mesh.vertices) p = glm::dvec3(m * glm::dvec4(p, 1.0));
+  }
+  return mesh;
+}
+
+Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
+  (void)base_dir;  // photometric files are resolved against it
+  Luminaire l;
+  l.name = n.at("name").string();
+  const std::string type = n.at("type").string();
+  if (type == "point") {
+    n.require_object({"name", "type", "flux_lm", "position"});
+    l.type = Luminaire::Type::Point;
+    l.position = n.at("position").vec3();
+  } else if (type == "spot") {
+    n.require_object({"name", "type", "flux_lm", "position", "direction", "beam_angle_deg",
+                      "field_angle_deg"});
+    l.type = Luminaire::Type::Spot;
+    l.position = n.at("position").vec3();
+    l.direction = n.at("direction").vec3();
+    l.beam_angle_deg = n.at("beam_angle_deg").number();
+    l.field_angle_deg = n.at("field_angle_deg").number();
+  } else if (type == "area") {
+    n.require_object({"name", "type", "flux_lm", "corner", "edge1", "edge2"});
+    l.type = Luminaire::Type::Area;
+  } else if (type == "directional") {
+    n.require_object({"name", "type", "illuminance_lx", "direction", "corner", "edge1", "edge2"});
+    l.type = Luminaire::Type::Directional;
+    l.direction = n.at("direction").vec3();
+    l.illuminance_lx = n.at("illuminance_lx").number();
+  } else if (type == "photometric") {
+    n.at("type").fail("photometric luminaires need the photometry module, not built yet");
+  } else {
+    n.at("type").fail("unknown luminaire type \"" + type +
+                      "\" (expected point, spot, area, directional or photometric)");
+  }
+  if (l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional) {
+    l.corner = n.at("corner").vec3();
+    l.edge1 = n.at("edge1").vec3();
+    l.edge2 = n.at("edge2").vec3();
+  }
+  if (l.type != Luminaire::Type::Directional) l.flux_lm = n.at("flux_lm").number();
+  return l;
+}
+
+Target read_target(const JsonNode& n, const Scene& scene) {
+  Target t;
+  t.name = n.at("name").string();
+  const std::string type = n.at("type").string();
+  if (type == "surface") {
+    n.require_object({"name", "type", "mesh"});
+    t.type = Target::Type::Surface;
+    const std::string mesh = n.at("mesh").string();
+    t.mesh = scene.find_mesh(mesh);
+    if (t.mesh < 0) n.at("mesh").fail("unknown mesh \"" + mesh + "\"");
+  } else if (type == "grid") {
+    n.require_object({"name", "type", "corner", "edge1", "edge2", "cells"});
+    t.type = Target::Type::Grid;
+    t.corner = n.at("corner").vec3();
+    t.edge1 = n.at("edge1").vec3();
+    t.edge2 = n.at("edge2").vec3();
+    const JsonNode cells = n.at("cells");
+    if (cells.array_size() != 2) cells.fail("expected [nu, nv]");
+    const std::uint64_t nu = cells[0].unsigned_integer(), nv = cells[1].unsigned_integer();
+    if (nu == 0 || nv == 0) cells.fail("a grid needs at least 1x1 cells");
+    if (nu * nv > 10'000'000ull) cells.fail("more than 10^7 cells in one grid");
+    t.nu = static_cast<std::uint32_t>(nu);
+    t.nv = static_cast<std::uint32_t>(nv);
+  } else {
+    n.at("type").fail("unknown target type \"" + type + "\" (expected surface or grid)");
+  }
+  return t;
+}
+
+Settings read_settings(const JsonNode& n) {
+  n.require_object({"photons", "max_bounces", "seed", "confidence"});
+  Settings s;
+  if (n.has("photons")) s.photons = n.at("photons").unsigned_integer();
+  if (n.has("max_bounces")) {
+    const std::uint64_t b = n.at("max_bounces").unsigned_integer();
+    if (b > 1'000'000) n.at("max_bounces").fail("must be <= 1000000");
+    s.max_bounces = static_cast<std::uint32_t>(b);
+  }
+  if (n.has("seed")) s.seed = n.at("seed").unsigned_integer();
+  s.confidence = n.number_or("confidence", s.confidence);
+  return s;
+}
+
+}  // namespace
+
+Scene scene_from_json(const std::string& text, const std::string& file,
+                      const std::string& base_dir) {
+  const nlohmann::json doc = detail::parse_json_text(text, file);
+  const JsonNode root(doc, "", file);
+  root.require_object({"format", "materials", "meshes", "luminaires", "targets", "settings",
+                       "optimization", "metadata"});
+  const std::string format = root.at("format").string();
+  if (format != kFormat) {
+    root.at("format").fail("unsupported format \"" + format + "\" (this solver reads \"" +
+                           kFormat + "\")");
+  }
+  Scene scene;
+  scene.source_file = file;
+  for (const auto& item : root.at("materials").object().items()) {
+    scene.materials.push_back(read_material(
+        item.key(), JsonNode(item.value(), "materials." + item.key(), file)));
+  }
+  const JsonNode meshes = root.at("meshes");
+  for (std::size_t i = 0; i < meshes.array_size(); ++i) {
+    scene.meshes.push_back(read_mesh(meshes[i], scene, base_dir));
+  }
+  const JsonNode luminaires = root.at("luminaires");
+  for (std::size_t i = 0; i < luminaires.array_size(); ++i) {
+    scene.luminaires.push_back(read_luminaire(luminaires[i], base_dir));
+  }
+  const JsonNode targets = root.at("targets");
+  for (std::size_t i = 0; i < targets.array_size(); ++i) {
+    scene.targets.push_back(read_target(targets[i], scene));
+  }
+  if (root.has("settings")) scene.settings = read_settings(root.at("settings"));
+  if (root.has("optimization")) root.at("optimization").object();  // read by the optimizer
+  validate(scene);
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open the scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path, "", "cannot read the scene file");
+  return scene_from_json(text.str(), path, fs::path(path).parent_path().string());
+}
+
+}  // namespace lightsolver

@@ -1,0 +1,74 @@
+#include "lightsolver/statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace lightsolver {
+
+double z_for_confidence(double confidence) {
+  if (!(confidence > 0.0 && confidence < 1.0)) {
+    throw std::invalid_argument("confidence must lie in (0, 1)");
+  }
+  // Solve erfc(z / sqrt 2) = 1 - confidence. erfc keeps full relative precision for confidence
+  // close to 1, which a formula on erf would lose. Bisection is plenty: this runs once per call
+  // site, and 200 halvings of [0, 40] reach double resolution.
+  const double tail = 1.0 - confidence;
+  double lo = 0.0, hi = 40.0;
+  for (int i = 0; i < 200 && hi - lo > 0.0; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    (std::erfc(mid / std::sqrt(2.0)) > tail ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+namespace {
+
+// Per-path sample variance of the mean, (N Q - S^2) / (N^2 (N - 1)), with an exact integer
+// numerator: the textbook Q/N - mean^2 cancels catastrophically when most paths deposit alike.
+double variance_of_mean(const Tally& t, std::uint64_t n) {
+  if (n < 2) return 0.0;
+  const unsigned __int128 nq = static_cast<unsigned __int128>(n) * t.sum_sq;
+  const unsigned __int128 s2 = static_cast<unsigned __int128>(t.sum) * t.sum;
+  const double numerator = nq > s2 ? static_cast<double>(nq - s2) : 0.0;  // >= 0 by Cauchy-Schwarz
+  const double nd = static_cast<double>(n);
+  return numerator / nd / nd / (nd - 1.0);
+}
+
+}  // namespace
+
+Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double confidence) {
+  Estimate e;
+  e.hits = t.sum;
+  if (paths == 0) return e;
+  const double z = z_for_confidence(confidence);
+  const double n = static_cast<double>(paths);
+  const double p = static_cast<double>(t.sum) / n;
+  e.mean = scale * p;
+  if (t.sum_sq == t.sum) {
+    // Each path deposited at most once (c_i in {0,1} <=> Q == S): binomial counts, for which
+    // the Wilson score interval keeps its coverage at small and zero counts.
+    const double z2n = z * z / n;
+    const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
+    const double half = z / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / n + 0.25 * z2n / n);
+    e.sigma = scale * std::sqrt(std::max(0.0, p * (1.0 - p)) / n);
+    e.ci_low = std::max(0.0, scale * (centre - half));
+    e.ci_high = scale * (centre + half);
+    return e;
+  }
+  e.sigma = scale * std::sqrt(variance_of_mean(t, paths));
+  e.ci_low = std::max(0.0, e.mean - z * e.sigma);
+  e.ci_high = e.mean + z * e.sigma;
+  return e;
+}
+
+Relation compare(const Estimate& x, const Estimate& y, double confidence) {
+  const double threshold = z_for_confidence(confidence) * std::hypot(x.sigma, y.sigma);
+  const double diff = x.mean - y.mean;
+  if (diff > threshold) return Relation::Greater;
+  if (-diff > threshold) return Relation::Less;
+  return Relation::Indistinguishable;
+}
+
+}  // namespace lightsolver
