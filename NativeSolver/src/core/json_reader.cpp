@@ -93,6 +93,11 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
     const auto pos = what.find("syntax error");
     throw InputError(file, "line " + std::to_string(line) + ", column " + std::to_string(column),
                      "malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
+    std::string what = e.what();
+    const auto pos = what.find("] ");
+    throw InputError(file, "", "malformed JSON: " +
+                                   (pos == std::string::npos ? what : what.substr(pos + 2)));
   }
 }
 

@@ -1,0 +1,151 @@
+#pragma once
+// Scenes for the closed-form tests, built in code so each test states its geometry exactly.
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "lightsolver/scene.hpp"
+#include "lightsolver/solver.hpp"
+
+namespace lightsolver::test {
+
+using glm::dvec3;
+
+inline int add_material(Scene& s, const std::string& name, Material::Type type, double refl) {
+  Material m;
+  m.name = name;
+  m.type = type;
+  m.reflectance = refl;
+  s.materials.push_back(m);
+  return static_cast<int>(s.materials.size() - 1);
+}
+
+// Parallelogram corner + s*e1 + t*e2 as two triangles; front = e1 x e2.
+inline Mesh quad_mesh(const std::string& name, int material, dvec3 corner, dvec3 e1, dvec3 e2) {
+  Mesh m;
+  m.name = name;
+  m.material = material;
+  m.vertices = {corner, corner + e1, corner + e1 + e2, corner + e2};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
+// Axis-aligned box [lo, hi] with faces whose fronts point INTO the box (a room), each face
+// split into n x n quads so walls share many edges (a watertightness test).
+inline Mesh room_mesh(const std::string& name, int material, dvec3 lo, dvec3 hi, int n = 1) {
+  Mesh m;
+  m.name = name;
+  m.material = material;
+  auto face = [&](dvec3 c, dvec3 e1, dvec3 e2) {
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const auto base = static_cast<std::uint32_t>(m.vertices.size());
+        const dvec3 p = c + (double(i) / n) * e1 + (double(j) / n) * e2;
+        const dvec3 a = e1 / double(n), b = e2 / double(n);
+        m.vertices.insert(m.vertices.end(), {p, p + a, p + a + b, p + b});
+        m.triangles.push_back({base, base + 1, base + 2});
+        m.triangles.push_back({base, base + 2, base + 3});
+      }
+    }
+  };
+  const dvec3 d = hi - lo;
+  const dvec3 X(d.x, 0, 0), Y(0, d.y, 0), Z(0, 0, d.z);
+  face(lo, X, Y);          // floor, front X x Y = +z
+  face(lo + Z, Y, X);      // ceiling, front -z
+  face(lo, Z, X);          // y = lo, front Z x X = +y
+  face(lo + Y, X, Z);      // y = hi, front -y
+  face(lo, Y, Z);          // x = lo, front Y x Z = +x
+  face(lo + X, Z, Y);      // x = hi, front -x
+  return m;
+}
+
+inline Luminaire point_light(dvec3 p, double flux_lm) {
+  Luminaire l;
+  l.name = "point";
+  l.type = Luminaire::Type::Point;
+  l.position = p;
+  l.flux_lm = flux_lm;
+  return l;
+}
+
+inline Target grid(const std::string& name, dvec3 corner, dvec3 e1, dvec3 e2, unsigned nu,
+                   unsigned nv) {
+  Target t;
+  t.name = name;
+  t.type = Target::Type::Grid;
+  t.corner = corner;
+  t.edge1 = e1;
+  t.edge2 = e2;
+  t.nu = nu;
+  t.nv = nv;
+  return t;
+}
+
+inline Target surface(const std::string& name, int mesh) {
+  Target t;
+  t.name = name;
+  t.type = Target::Type::Surface;
+  t.mesh = mesh;
+  return t;
+}
+
+// Solid angle of triangle abc seen from p (Van Oosterom & Strackee 1983).
+inline double triangle_solid_angle(dvec3 p, dvec3 a, dvec3 b, dvec3 c) {
+  a -= p;
+  b -= p;
+  c -= p;
+  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+  const double num = std::abs(glm::dot(a, glm::cross(b, c)));
+  const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  return 2.0 * std::atan2(num, den);
+}
+
+// Mean illuminance over parallelogram corner + s*e1 + t*e2 from an isotropic point source:
+// E = I * Omega / A, exact for a planar patch facing the source.
+inline double point_source_patch_lux(dvec3 src, double flux_lm, dvec3 c, dvec3 e1, dvec3 e2) {
+  const double omega = triangle_solid_angle(src, c, c + e1, c + e1 + e2) +
+                       triangle_solid_angle(src, c, c + e1 + e2, c + e2);
+  return flux_lm / (4.0 * std::numbers::pi) * omega / glm::length(glm::cross(e1, e2));
+}
+
+// Configuration factor from a point to a parallel a x b rectangle whose corner lies on the
+// point's normal at distance c (lighting-facts.md).
+inline double corner_factor_parallel(double a, double b, double c) {
+  const double X = a / c, Y = b / c;
+  const double sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
+  return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2.0 * std::numbers::pi);
+}
+
+// Signed corner rectangle: the rectangle from the foot point (0,0) to (x, y), sign by quadrant.
+inline double signed_corner(double x, double y, double c) {
+  if (x == 0.0 || y == 0.0) return 0.0;
+  const double s = (x > 0) == (y > 0) ? 1.0 : -1.0;
+  return s * corner_factor_parallel(std::abs(x), std::abs(y), c);
+}
+
+// Factor from a point to the parallel rectangle [x0,x1] x [y0,y1] (coordinates relative to the
+// point's foot), by adding and subtracting four corner rectangles.
+inline double parallel_rect_factor(double x0, double x1, double y0, double y1, double c) {
+  return signed_corner(x1, y1, c) - signed_corner(x0, y1, c) - signed_corner(x1, y0, c) +
+         signed_corner(x0, y0, c);
+}
+
+// Perpendicular planes, point on the line through a corner: a = edge along the planes'
+// intersection, depth = the rectangle's other edge, y = the point's distance to the
+// rectangle's plane (lighting-facts.md).
+inline double corner_factor_perpendicular(double a, double depth, double y) {
+  const double X = depth / a, Y = y / a, r = std::sqrt(X * X + Y * Y);
+  return (std::atan(1.0 / Y) - Y / r * std::atan(1.0 / r)) / (2.0 * std::numbers::pi);
+}
+
+// Confidence for closed-form checks: a 5-sigma two-sided interval, so a correct solver fails a
+// single check with probability 6e-7 (the seeds are fixed anyway) while a wrong one cannot hide.
+constexpr double kCheckConfidence = 0.9999994;
+
+// The backends every closed-form test runs on.
+inline std::vector<std::string> backends() { return {"embree"}; }
+
+}  // namespace lightsolver::test
