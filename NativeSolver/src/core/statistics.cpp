@@ -53,7 +53,8 @@ Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double
     const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
     const double half = z / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / n + 0.25 * z2n / n);
     e.sigma = scale * std::sqrt(std::max(0.0, p * (1.0 - p)) / n);
-    e.ci_low = std::max(0.0, scale * (centre - half));
+    // At zero hits centre == half analytically; rounding must not leave a positive bound.
+    e.ci_low = t.sum == 0 ? 0.0 : std::max(0.0, scale * (centre - half));
     e.ci_high = scale * (centre + half);
     return e;
   }

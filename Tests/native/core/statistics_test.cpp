@@ -1,0 +1,184 @@
+// Estimates, intervals and the comparison operators; the honesty of the intervals (coverage over
+// many seeds); determinism across thread counts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene_builders.hpp"
+
+namespace lightsolver::test {
+namespace {
+
+TEST(Statistics, CriticalValues) {
+  EXPECT_NEAR(z_for_confidence(0.90), 1.6448536269514722, 1e-12);
+  EXPECT_NEAR(z_for_confidence(0.95), 1.959963984540054, 1e-12);
+  EXPECT_NEAR(z_for_confidence(0.99), 2.5758293035489004, 1e-12);
+  EXPECT_NEAR(z_for_confidence(1 - 5.733e-7), 5.0, 1e-4);
+  EXPECT_THROW(z_for_confidence(1.0), std::invalid_argument);
+  EXPECT_THROW(z_for_confidence(0.0), std::invalid_argument);
+}
+
+TEST(Statistics, PerPathVarianceIsExact) {
+  // Four paths depositing 0, 1, 3, 0 times: S = 4, Q = 10. Sample variance of (0,1,3,0) is
+  // (10 - 16/4) / 3 = 2, so the variance of the mean is 2 / 4 = 0.5.
+  const Estimate e = make_estimate({4, 10}, 4, 2.0, 0.95);
+  EXPECT_DOUBLE_EQ(e.mean, 2.0);
+  EXPECT_DOUBLE_EQ(e.sigma, 2.0 * std::sqrt(0.5));
+  EXPECT_DOUBLE_EQ(e.ci_high, 2.0 + z_for_confidence(0.95) * e.sigma);
+  EXPECT_DOUBLE_EQ(e.ci_low, 0.0);  // clamped: illuminance is never negative
+  EXPECT_EQ(e.hits, 4u);
+}
+
+TEST(Statistics, HugeCountsKeepPrecision) {
+  // 5 * 10^11 paths each depositing exactly twice: S = 10^12, Q = 2 * 10^12, N Q = S^2.
+  const Estimate e = make_estimate({1'000'000'000'000ull, 2'000'000'000'000ull},
+                                   500'000'000'000ull, 1.0, 0.95);
+  EXPECT_DOUBLE_EQ(e.mean, 2.0);
+  EXPECT_EQ(e.sigma, 0.0);
+}
+
+TEST(Statistics, WilsonIntervalAtZeroAndFewHits) {
+  const double z = z_for_confidence(0.95);
+  const Estimate none = make_estimate({0, 0}, 1000, 100.0, 0.95);
+  EXPECT_EQ(none.mean, 0.0);
+  EXPECT_EQ(none.ci_low, 0.0);
+  EXPECT_NEAR(none.ci_high, 100.0 * z * z / (1000 + z * z), 1e-12);  // not a zero-width lie
+  const Estimate few = make_estimate({3, 3}, 1000, 100.0, 0.95);
+  EXPECT_GT(few.ci_low, 0.0);
+  EXPECT_LT(few.ci_low, few.mean);
+  EXPECT_GT(few.ci_high - few.mean, few.mean - few.ci_low);  // skewed like the binomial
+}
+
+TEST(Statistics, ComparisonOperatorsFollowEquations7To9) {
+  const double z = z_for_confidence(0.95);
+  Estimate a, b;
+  a.sigma = 3.0;
+  b.sigma = 4.0;  // combined sigma 5: the threshold is 5 z
+  a.mean = 100.0;
+  b.mean = 100.0 - 5.0 * z - 1e-9;
+  EXPECT_EQ(compare(a, b, 0.95), Relation::Greater);
+  EXPECT_EQ(compare(b, a, 0.95), Relation::Less);
+  EXPECT_TRUE(greater_alpha(a, b, 0.95));
+  EXPECT_TRUE(less_alpha(b, a, 0.95));
+  EXPECT_TRUE(distinguishable_alpha(a, b, 0.95));
+  b.mean = 100.0 - 5.0 * z + 1e-9;  // just inside: indistinguishable
+  EXPECT_EQ(compare(a, b, 0.95), Relation::Indistinguishable);
+  EXPECT_TRUE(equal_alpha(a, b, 0.95));
+  // CIs that overlap can still be distinguishable (Eq. 11 vs Eq. 9): 3z + 4z > 5z.
+  b.mean = 100.0 - 6.0 * z;
+  EXPECT_TRUE(greater_alpha(a, b, 0.95));
+  EXPECT_GT(b.mean + z * b.sigma, a.mean - z * a.sigma);
+  // A higher confidence widens the threshold.
+  EXPECT_EQ(compare(a, b, 0.999), Relation::Indistinguishable);
+}
+
+// Runs `seeds` small independent solves and counts how often the 95% interval holds `exact`.
+// A naive interval from the hit count alone (the paper's binomial/Poisson formula) is counted
+// too, to show why per-path variances are needed in reflective rooms.
+struct Coverage {
+  int honest = 0, naive = 0, runs = 0;
+};
+
+Coverage coverage(Scene s, std::uint64_t photons, double exact, int seeds) {
+  validate(s);
+  Coverage c;
+  const double z = z_for_confidence(0.95);
+  for (int seed = 1; seed <= seeds; ++seed) {
+    SolveOptions o;
+    o.photons = photons;
+    o.seed = 1000003ull * seed;
+    o.threads = 1;
+    const Results r = solve(s, o);
+    const TargetResult& t = r.targets[0];
+    const Estimate& e = t.is_grid ? t.cells[0] : t.estimate;
+    c.honest += e.ci_low <= exact && exact <= e.ci_high;
+    const double naive_sigma = e.mean / std::sqrt(std::max<double>(1.0, double(e.hits)));
+    c.naive += std::abs(e.mean - exact) <= z * naive_sigma;
+    ++c.runs;
+  }
+  return c;
+}
+
+TEST(CiHonesty, OnceHitTargetCovers95Percent) {
+  Scene s;
+  const dvec3 src(0, 0, 2), c(-0.2, -0.2, 0), e(0.4, 0, 0), f(0, 0.4, 0);
+  s.luminaires.push_back(point_light(src, 1000.0));
+  s.targets.push_back(grid("probe", c, e, f, 1, 1));
+  const Coverage cov = coverage(s, 4000, point_source_patch_lux(src, 1000.0, c, e, f), 1000);
+  // Binomial sd of the coverage over 1000 runs is 0.7%: [93%, 97%] is about +-2.9 sd.
+  EXPECT_GE(cov.honest, 930) << "coverage " << cov.honest / 10.0 << "%";
+  EXPECT_LE(cov.honest, 970) << "coverage " << cov.honest / 10.0 << "%";
+}
+
+TEST(CiHonesty, ReflectiveCubeCovers95PercentWhereHitCountsDoNot) {
+  Scene s;
+  add_material(s, "white", Material::Type::Diffuse, 0.9);
+  Mesh room = room_mesh("cube", 0, dvec3(0), dvec3(4), 1);
+  Mesh floor;  // the floor as its own target mesh: paths hit it again and again
+  floor.name = "floor";
+  floor.material = 0;
+  floor.vertices = room.vertices;
+  floor.triangles.assign(room.triangles.begin(), room.triangles.begin() + 2);
+  room.triangles.erase(room.triangles.begin(), room.triangles.begin() + 2);
+  s.meshes = {room, floor};
+  s.targets.push_back(surface("floor", 1));
+  s.luminaires.push_back(point_light(dvec3(2), 10'000.0));
+  const double exact = 10'000.0 / (96.0 * 0.1);  // each face of the cube: Phi / (S (1 - rho))
+  const Coverage cov = coverage(s, 2000, exact, 1000);
+  EXPECT_GE(cov.honest, 930) << "coverage " << cov.honest / 10.0 << "%";
+  EXPECT_LE(cov.honest, 970) << "coverage " << cov.honest / 10.0 << "%";
+  // Measured about 80%: more than 20 coverage-sd below 95%.
+  EXPECT_LT(cov.naive, 900) << "hit-count intervals should under-cover here: " << cov.naive;
+}
+
+TEST(Determinism, BitIdenticalForAnyThreadCount) {
+  Scene s;
+  add_material(s, "white", Material::Type::Diffuse, 0.7);
+  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(5, 4, 3), 3));
+  s.targets.push_back(surface("room", 0));
+  s.targets.push_back(grid("workplane", {0.5, 0.5, 0.8}, {4, 0, 0}, {0, 3, 0}, 8, 6));
+  s.luminaires.push_back(point_light({2.5, 2, 2.8}, 3000.0));
+  validate(s);
+  std::string reference;
+  for (int threads : {1, 2, 3, 0}) {
+    SolveOptions o;
+    o.photons = 300'000;
+    o.seed = 42;
+    o.threads = threads;
+    Results r = solve(s, o);
+    r.seconds = 0;  // the only field allowed to differ
+    const std::string json = results_to_json(r);
+    if (reference.empty()) reference = json;
+    EXPECT_EQ(json, reference) << "threads = " << threads;
+  }
+  SolveOptions other;
+  other.photons = 300'000;
+  other.seed = 43;
+  Results r = solve(s, other);
+  EXPECT_NE(r.targets[0].estimate.hits, 0u);
+  r.seconds = 0;
+  EXPECT_NE(results_to_json(r), reference) << "a different seed must give different photons";
+}
+
+TEST(Cancellation, StopsAtABatchBoundaryAndMarksPartial) {
+  Scene s;
+  s.luminaires.push_back(point_light({0, 0, 1}, 100.0));
+  s.targets.push_back(grid("g", {-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, 2, 2));
+  validate(s);
+  SolveOptions o;
+  o.photons = 10'000'000;
+  int calls = 0;
+  const Results r = solve(s, o, [&](std::uint64_t, std::uint64_t) { return ++calls < 3; });
+  EXPECT_TRUE(r.partial);
+  EXPECT_GT(r.photons, 0u);
+  EXPECT_LT(r.photons, 10'000'000u);
+  EXPECT_GT(r.targets[0].estimate.mean, 0.0);  // an unbiased estimate from what was traced
+  std::atomic<bool> cancel{true};
+  o.cancel = &cancel;
+  const Results none = solve(s, o);
+  EXPECT_TRUE(none.partial);
+  EXPECT_EQ(none.photons, 0u);
+}
+
+}  // namespace
+}  // namespace lightsolver::test
