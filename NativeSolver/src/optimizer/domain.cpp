@@ -33,8 +33,8 @@ void check_variable(const Variable& v, const std::vector<Variable>& existing) {
 
 std::uint64_t uniform_below(std::mt19937_64& rng, std::uint64_t n) {
   // Reject the top partial block of 2^64 so every residue is equally likely.
-  const std::uint64_t limit = std::numeric_limits<std::uint64_t>::max() -
-                              std::numeric_limits<std::uint64_t>::max() % n;
+  const std::uint64_t limit =
+      std::numeric_limits<std::uint64_t>::max() - std::numeric_limits<std::uint64_t>::max() % n;
   std::uint64_t r = rng();
   while (r >= limit) r = rng();
   return r % n;

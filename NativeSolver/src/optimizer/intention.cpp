@@ -52,9 +52,12 @@ Intention minimize_installed_flux(const std::string& grid, double min_mean_lux,
 
 const char* to_string(Feasibility f) {
   switch (f) {
-    case Feasibility::kMet: return "met";
-    case Feasibility::kUncertain: return "uncertain";
-    case Feasibility::kViolated: return "violated";
+    case Feasibility::kMet:
+      return "met";
+    case Feasibility::kUncertain:
+      return "uncertain";
+    case Feasibility::kViolated:
+      return "violated";
   }
   return "?";
 }

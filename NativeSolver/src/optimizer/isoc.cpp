@@ -26,22 +26,32 @@ void check_estimate(const Estimate& e) {
 
 std::string_view paper_case(UpdateCase c) {
   switch (c) {
-    case UpdateCase::kFirst: return "init";
-    case UpdateCase::kDiscarded: return "1";
-    case UpdateCase::kRejected: return "2a";
-    case UpdateCase::kReplaced: return "2b";
-    case UpdateCase::kJoined: return "2c";
-    case UpdateCase::kLeads: return "3";
+    case UpdateCase::kFirst:
+      return "init";
+    case UpdateCase::kDiscarded:
+      return "1";
+    case UpdateCase::kRejected:
+      return "2a";
+    case UpdateCase::kReplaced:
+      return "2b";
+    case UpdateCase::kJoined:
+      return "2c";
+    case UpdateCase::kLeads:
+      return "3";
   }
   return "?";
 }
 
 std::string_view to_string(Region r) {
   switch (r) {
-    case Region::kEmpty: return "empty";
-    case Region::kWorse: return "worse";
-    case Region::kOverlap: return "overlap";
-    case Region::kBetter: return "better";
+    case Region::kEmpty:
+      return "empty";
+    case Region::kWorse:
+      return "worse";
+    case Region::kOverlap:
+      return "overlap";
+    case Region::kBetter:
+      return "better";
   }
   return "?";
 }

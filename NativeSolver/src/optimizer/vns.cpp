@@ -29,9 +29,11 @@ void check_options(const Domain& d, const VnsOptions& o) {
 }
 
 std::uint32_t auto_kmax(const Domain& d) {
+  // Radius that reaches every cell from any cell: the cycle k = 1..kmax then ranges from the
+  // local ring to a global jump, so no basin is out of reach of the shake.
   std::uint32_t largest = 1;
   for (const Variable& v : d.variables()) largest = std::max(largest, v.size());
-  return std::max<std::uint32_t>(1, largest / 4);
+  return std::max<std::uint32_t>(1, largest - 1);
 }
 
 // Photons and time spent since the current iteration began.
@@ -79,7 +81,7 @@ class Search {
   std::uint32_t kmax_ = 1;
   std::mt19937_64 rng_;
   TabuCache cache_;
-  std::unordered_set<std::uint64_t> judged_;             // cells already offered (tabu)
+  std::unordered_set<std::uint64_t> judged_;                // cells already offered (tabu)
   std::unordered_map<std::uint64_t, std::uint64_t> level_;  // member -> photons of its estimate
   Isoc isoc_;
   Counters counters_;
@@ -108,10 +110,9 @@ const Evaluation* Search::evaluate(std::uint64_t cell, const Configuration& c,
   const EvaluationRequest req{c, values, cell, photons, evaluation_seed(opt_.seed, cell, photons)};
   Evaluation e = ev_.evaluate(req);
   if (e.constraints.size() != in_.constraints.size())
-    throw std::invalid_argument("optimize: the evaluator returned " +
-                                std::to_string(e.constraints.size()) +
-                                " constraint estimates, the intention has " +
-                                std::to_string(in_.constraints.size()));
+    throw std::invalid_argument(
+        "optimize: the evaluator returned " + std::to_string(e.constraints.size()) +
+        " constraint estimates, the intention has " + std::to_string(in_.constraints.size()));
   ++counters_.evaluations;
   counters_.photons += photons;
   counters_.update_seconds += e.update_seconds;
@@ -327,17 +328,20 @@ OptimizationResult Search::run() {
 
 const char* to_string(StopReason r) {
   switch (r) {
-    case StopReason::kIterationLimit: return "iteration_limit";
-    case StopReason::kEvaluationLimit: return "evaluation_limit";
-    case StopReason::kExhausted: return "exhausted";
-    case StopReason::kCancelled: return "cancelled";
+    case StopReason::kIterationLimit:
+      return "iteration_limit";
+    case StopReason::kEvaluationLimit:
+      return "evaluation_limit";
+    case StopReason::kExhausted:
+      return "exhausted";
+    case StopReason::kCancelled:
+      return "cancelled";
   }
   return "?";
 }
 
-OptimizationResult optimize(const Domain& domain, const Intention& intention,
-                            Evaluator& evaluator, const VnsOptions& options,
-                            const Control& control) {
+OptimizationResult optimize(const Domain& domain, const Intention& intention, Evaluator& evaluator,
+                            const VnsOptions& options, const Control& control) {
   check_options(domain, options);
   Search search(domain, intention, evaluator, options, control);
   return search.run();

@@ -18,11 +18,11 @@ using Configuration = std::vector<std::uint32_t>;
 
 /// One search variable.
 struct Variable {
-  std::string name;  ///< e.g. "luminaires[0].position.x" — the scene integration decides
-  double min = 0.0;  ///< range start (ignored when `levels` is set)
-  double max = 1.0;  ///< range end (ignored when `levels` is set)
-  std::uint32_t cells = 1;     ///< number of cells (ignored when `levels` is set)
-  bool periodic = false;       ///< the last cell neighbours the first (a full turn of an angle)
+  std::string name;         ///< e.g. "luminaires[0].position.x" — the scene integration decides
+  double min = 0.0;         ///< range start (ignored when `levels` is set)
+  double max = 1.0;         ///< range end (ignored when `levels` is set)
+  std::uint32_t cells = 1;  ///< number of cells (ignored when `levels` is set)
+  bool periodic = false;    ///< the last cell neighbours the first (a full turn of an angle)
   std::vector<double> levels;  ///< explicit values, one per cell (e.g. flux options), if set
 
   /// Number of cells.
@@ -50,8 +50,8 @@ class Domain {
                     bool periodic = false);
   /// A position on an axis-aligned rectangle: variables `name.x` (k cells) and `name.y`
   /// (m cells) in the rectangle's own coordinates; the scene integration maps them to 3-D.
-  Domain& add_rectangle(const std::string& name, double x0, double x1, std::uint32_t k,
-                        double y0, double y1, std::uint32_t m);
+  Domain& add_rectangle(const std::string& name, double x0, double x1, std::uint32_t k, double y0,
+                        double y1, std::uint32_t m);
   /// An angle in degrees; periodic when the range spans a full turn.
   Domain& add_angle(std::string name, double min_deg, double max_deg, std::uint32_t cells);
   /// A choice among explicit values (e.g. luminous flux options in lumens).

@@ -48,19 +48,19 @@ struct Counters {
 
 /// Statistics of one VNS iteration, handed to the progress callback.
 struct IterationStats {
-  std::uint64_t iteration = 0;  ///< 1-based over the whole run
-  std::uint32_t start = 0;      ///< 0-based multi-start index
-  std::uint32_t k = 0;          ///< shake radius used (0: the start's first descent)
-  double update_seconds = 0.0;  ///< this iteration's scene updates (evaluator-reported)
-  double trace_seconds = 0.0;   ///< this iteration's tracing (evaluator-reported)
-  double other_seconds = 0.0;   ///< this iteration's wall time minus the two above
-  std::uint64_t evaluations = 0;       ///< evaluator calls this iteration
-  std::uint64_t photons = 0;           ///< photons traced this iteration
-  std::uint64_t total_photons = 0;     ///< photons traced so far
-  std::size_t isoc_size = 0;           ///< after the iteration
-  Interval siisoc{};                   ///< after the iteration (meaningless when isoc_size = 0)
-  bool has_best = false;               ///< false while the ISOC is empty
-  Estimate best{};                     ///< the ISOC member with the best mean
+  std::uint64_t iteration = 0;      ///< 1-based over the whole run
+  std::uint32_t start = 0;          ///< 0-based multi-start index
+  std::uint32_t k = 0;              ///< shake radius used (0: the start's first descent)
+  double update_seconds = 0.0;      ///< this iteration's scene updates (evaluator-reported)
+  double trace_seconds = 0.0;       ///< this iteration's tracing (evaluator-reported)
+  double other_seconds = 0.0;       ///< this iteration's wall time minus the two above
+  std::uint64_t evaluations = 0;    ///< evaluator calls this iteration
+  std::uint64_t photons = 0;        ///< photons traced this iteration
+  std::uint64_t total_photons = 0;  ///< photons traced so far
+  std::size_t isoc_size = 0;        ///< after the iteration
+  Interval siisoc{};                ///< after the iteration (meaningless when isoc_size = 0)
+  bool has_best = false;            ///< false while the ISOC is empty
+  Estimate best{};                  ///< the ISOC member with the best mean
 };
 
 /// Why the run stopped.

@@ -47,8 +47,8 @@ enum class UncertainPolicy {
 
 /// Settings of a run. Defaults follow the paper where it gives numbers.
 struct VnsOptions {
-  std::uint64_t seed = 1;     ///< search randomness and evaluation seeds derive from it
-  double confidence = 0.95;   ///< level of the =α comparisons and feasibility verdicts
+  std::uint64_t seed = 1;    ///< search randomness and evaluation seeds derive from it
+  double confidence = 0.95;  ///< level of the =α comparisons and feasibility verdicts
   std::uint64_t screening_photons = 32768;       ///< n (0 or >= N: always trace with N)
   std::uint64_t confirmation_photons = 2097152;  ///< N (paper: 2.66e6)
   PhotonStrategy strategy = PhotonStrategy::kConfirm;
@@ -57,7 +57,7 @@ struct VnsOptions {
   std::uint64_t max_evaluations = 0;    ///< evaluator calls; 0 = no limit
   std::uint32_t starts = 1;             ///< multi-start: the iteration budget is shared evenly
   std::vector<Configuration> initial;   ///< starting cells for the first starts; others random
-  std::uint32_t kmax = 0;  ///< largest shake radius; 0 = max(1, largest variable size / 4)
+  std::uint32_t kmax = 0;  ///< largest shake radius; 0 = largest variable size − 1 (whole grid)
   LocalSearch local_search = LocalSearch::kFirstImprovement;
   Neighbourhood neighbourhood = Neighbourhood::kAxis;
   bool keep_history = true;  ///< fill OptimizationResult::history
@@ -75,8 +75,7 @@ struct Control {
 /// N = 0, starts = 0, an initial configuration outside the domain, an empty domain) and
 /// whatever the evaluator throws. A cancelled run still returns the ISOC found so far
 /// (under strategy B it skips the refinement, and says so by StopReason::kCancelled).
-OptimizationResult optimize(const Domain& domain, const Intention& intention,
-                            Evaluator& evaluator, const VnsOptions& options,
-                            const Control& control = {});
+OptimizationResult optimize(const Domain& domain, const Intention& intention, Evaluator& evaluator,
+                            const VnsOptions& options, const Control& control = {});
 
 }  // namespace lightsolver::optimizer
