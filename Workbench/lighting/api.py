@@ -1,0 +1,123 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Scripting API behind ``import lighting`` (headless and GUI).
+
+Every function takes a document (or an analysis object); without ``analysis`` the
+document's first Lighting analysis is used, and :func:`analyze` creates one with default
+settings when the document has none."""
+from __future__ import annotations
+
+from typing import Any, Callable, Optional, Tuple
+
+from lighting.messages import CheckError, Report
+from lighting.objects import analysis as analysis_mod
+
+
+def _analysis(doc_or_analysis: Any, analysis: Any = None, create: bool = False) -> Any:
+    if analysis is not None and not isinstance(analysis, str):
+        return analysis
+    proxy = getattr(doc_or_analysis, "Proxy", None)
+    if isinstance(proxy, analysis_mod.Analysis):
+        return doc_or_analysis
+    doc = doc_or_analysis
+    found = analysis_mod.find_analysis(doc, analysis)
+    if found is None:
+        if analysis is not None:
+            raise KeyError(f"No Lighting analysis named {analysis!r} in '{doc.Name}'")
+        if not create:
+            raise CheckError(_report("error", f"Document '{doc.Name}' has no Lighting analysis"))
+        from lighting.objects.factory import make_analysis
+
+        found = make_analysis(doc)
+    return found
+
+
+def _report(level: str, text: str) -> Report:
+    report = Report()
+    report.add(level, text)
+    return report
+
+
+def _console_log(level: str, text: str) -> None:
+    import FreeCAD
+
+    line = f"Lighting: {text}\n"
+    if level == "error":
+        FreeCAD.Console.PrintError(line)
+    elif level == "warning":
+        FreeCAD.Console.PrintWarning(line)
+    else:
+        FreeCAD.Console.PrintLog(line)
+
+
+def analyze(doc: Any, analysis: Any = None, photons: Optional[int] = None,
+            seed: Optional[int] = None, accuracy: Optional[float] = None,
+            output_dir: Optional[str] = None,
+            progress: Optional[Callable[[int, int], Any]] = None) -> Any:
+    """Check, export, solve and store the results of a lighting analysis.
+
+    Args:
+        doc: the FreeCAD document (or the analysis object itself).
+        analysis: an analysis object or its name/label; default: the document's first one
+            (created with defaults if there is none).
+        photons, seed, accuracy: if given, written to the analysis' Photons, Seed and
+            TargetAccuracy first (so the document and the scene file agree).
+        output_dir: where scene.json and results.json go (default: the analysis'
+            OutputDirectory, else '<document>_lighting/<analysis>' next to the file).
+        progress: ``progress(done, total)``; return False to cancel (partial results).
+
+    Returns:
+        :class:`lighting.AnalysisResult` (``.table()``, ``["Workplane"].mean_lux``...).
+
+    Raises:
+        CheckError (model not ready), SolverUnavailableError, SolverError, CancelledError.
+    """
+    from lighting.solver.machine import run_analysis
+
+    obj = _analysis(doc, analysis, create=True)
+    if photons is not None:
+        obj.Photons = int(photons)
+    if seed is not None:
+        obj.Seed = int(seed)
+    if accuracy is not None:
+        obj.TargetAccuracy = float(accuracy)
+    result = run_analysis(obj, output_dir, progress, _console_log)
+    obj.Document.recompute()
+    return result
+
+
+def check(doc: Any, analysis: Any = None, need_solver: bool = True) -> Report:
+    """The Check stage's report (never raises for model problems)."""
+    from lighting.solver.check import check_analysis
+
+    return check_analysis(_analysis(doc, analysis), need_solver=need_solver)
+
+
+def export_scene(doc: Any, analysis: Any = None, directory: Optional[str] = None,
+                 storage: Optional[str] = None) -> str:
+    """Write the analysis' scene file (docs/scene-format.md) and return its path, without
+    solving. ``storage``: "Inline", "PLY" or "Auto" (default: the analysis' MeshStorage).
+    Raises CheckError when the model cannot make a valid scene."""
+    from lighting.export.scene import build_scene, default_output_directory, write_scene
+
+    obj = _analysis(doc, analysis)
+    result = build_scene(obj)
+    if not result.report.ok:
+        raise CheckError(result.report)
+    path = write_scene(result, directory or default_output_directory(obj),
+                       storage or obj.MeshStorage)
+    obj.SceneFile = path
+    return path
+
+
+def results(doc: Any, analysis: Any = None) -> Optional[Any]:
+    """The results stored in the document (no solving), or None."""
+    from lighting.solver.store import load_from_document
+
+    return load_from_document(_analysis(doc, analysis))
+
+
+def solver_available() -> Tuple[bool, str]:
+    """(True, module path) if the native solver can be imported, else (False, reason)."""
+    from lighting.solver.run import solver_available as available
+
+    return available()

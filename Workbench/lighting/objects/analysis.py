@@ -1,0 +1,173 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Lighting analysis: a group holding solver settings, export settings and run results.
+
+It uses the luminaires, targets and placement domains in its group, plus those that belong
+to no analysis at all (so a simple model needs no drag and drop)."""
+from __future__ import annotations
+
+from typing import Any, Dict, List, Optional
+
+from lighting.objects import luminaire, placement_domain, target
+from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY, objects_of_type
+
+TYPE = "Lighting::Analysis"
+BACKENDS = ("auto", "embree", "vulkan")
+COLOR_MAPS = ("Rainbow", "Heat", "Grey")
+SCALE_MODES = ("Auto", "Fixed")
+MESH_STORAGE = ("Auto", "Inline", "PLY")
+_RO = READ_ONLY
+
+
+class Analysis(BaseProxy):
+    """Solver settings and results of one lighting calculation."""
+
+    TYPE = TYPE
+    PROPERTIES = {
+        # Solver
+        "Photons": Prop("App::PropertyInteger", "Solver",
+                        "Photon paths to trace (when TargetAccuracy is 0)", 200000),
+        "TargetAccuracy": Prop("App::PropertyFloat", "Solver",
+                               "Wanted relative half-width of every target's Em confidence "
+                               "interval (0.05 = +-5 %); 0 = trace exactly Photons. A pilot run "
+                               "with Photons estimates the count needed", 0.0),
+        "MaxPhotons": Prop("App::PropertyInteger", "Solver",
+                           "Upper limit on photons when TargetAccuracy is used", 20000000),
+        "Confidence": Prop("App::PropertyFloat", "Solver",
+                           "Two-sided confidence level of the intervals, in (0, 1)", 0.95),
+        "MaxBounces": Prop("App::PropertyInteger", "Solver",
+                           "Safety limit on interactions per path (Russian roulette ends paths "
+                           "without bias)", 1000),
+        "Seed": Prop("App::PropertyInteger", "Solver",
+                     "Random seed: same scene + seed + photons give identical results", 1),
+        "Backend": Prop("App::PropertyEnumeration", "Solver",
+                        "Tracing backend of the native solver", "auto", items=BACKENDS),
+        "Threads": Prop("App::PropertyInteger", "Solver", "Worker threads (0 = all cores)", 0),
+        # Export
+        "LinearDeflection": Prop("App::PropertyLength", "Export",
+                                 "Tessellation: largest distance between a curved surface and "
+                                 "its triangles", 10.0),
+        "AngularDeflection": Prop("App::PropertyAngle", "Export",
+                                  "Tessellation: largest angle between neighbouring triangles "
+                                  "of a curved surface", 28.5),
+        "MeshStorage": Prop("App::PropertyEnumeration", "Export",
+                            "Inline: triangles in the JSON; PLY: binary files next to it; "
+                            "Auto: PLY above 20000 triangles", "Auto", items=MESH_STORAGE),
+        "OutputDirectory": Prop("App::PropertyPath", "Export",
+                                "Folder for scene.json and results.json; empty = "
+                                "'<document>_lighting' next to the saved document"),
+        # Display
+        "ColorMap": Prop("App::PropertyEnumeration", "Display", "False-colour map",
+                         "Rainbow", items=COLOR_MAPS),
+        "ScaleMode": Prop("App::PropertyEnumeration", "Display",
+                          "Auto: scale from 0 to the largest result; Fixed: ScaleMin..ScaleMax",
+                          "Auto", items=SCALE_MODES),
+        "ScaleMinLux": Prop("App::PropertyFloat", "Display", "Illuminance at the bottom of the "
+                            "scale, lx (Fixed)", 0.0),
+        "ScaleMaxLux": Prop("App::PropertyFloat", "Display", "Illuminance at the top of the "
+                            "scale, lx (Fixed)", 1000.0),
+        "ShowLegend": Prop("App::PropertyBool", "Display", "Draw the colour legend in the 3D view",
+                           True),
+        # Results (read only)
+        "Status": Prop("App::PropertyString", "Results", "State of the last run", "not run", _RO),
+        "SceneFile": Prop("App::PropertyString", "Results", "Last exported scene file", "", _RO),
+        "ResultsFile": Prop("App::PropertyString", "Results", "Last results file", "", _RO),
+        "PhotonsTraced": Prop("App::PropertyFloat", "Results", "Photon paths of the last run",
+                              0.0, _RO),
+        "SolveSeconds": Prop("App::PropertyFloat", "Results", "Solver time, s", 0.0, _RO),
+        "Partial": Prop("App::PropertyBool", "Results", "The last run was cancelled early",
+                        False, _RO),
+        "SolverWarnings": Prop("App::PropertyStringList", "Results", "Warnings of the last run",
+                               None, _RO),
+        "ResultsJson": Prop("App::PropertyString", "Results",
+                            "The last results (lightsolver.results/1 JSON)", "", HIDDEN),
+    }
+
+    def onChanged(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
+        """Repaint the result colours when the display settings change (GUI only)."""
+        if prop in ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend"):
+            import FreeCAD
+
+            if FreeCAD.GuiUp and getattr(obj, "ViewObject", None) is not None:
+                from lighting.viewproviders import coloring
+
+                coloring.refresh(obj)
+
+
+def _in_some_analysis(obj: Any) -> bool:
+    return any(getattr(parent, "Proxy", None) is not None and isinstance(parent.Proxy, Analysis)
+               for parent in obj.InList)
+
+
+def members(analysis: Any, type_name: str) -> List[Any]:
+    """Objects of a Lighting type the analysis uses: those in its group, plus those in no
+    analysis at all."""
+    doc = analysis.Document
+    group = set(o.Name for o in analysis.Group)
+    return [o for o in objects_of_type(doc, type_name)
+            if o.Name in group or not _in_some_analysis(o)]
+
+
+def luminaires(analysis: Any) -> List[Any]:
+    """Luminaires used by the analysis."""
+    return members(analysis, luminaire.TYPE)
+
+
+def targets(analysis: Any) -> List[Any]:
+    """Targets used by the analysis."""
+    return members(analysis, target.TYPE)
+
+
+def placement_domains(analysis: Any) -> List[Any]:
+    """Placement domains used by the analysis."""
+    return members(analysis, placement_domain.TYPE)
+
+
+def find_analysis(doc: Any, name: Optional[str] = None) -> Optional[Any]:
+    """The analysis called ``name``, or the document's only/first analysis, or None."""
+    found = objects_of_type(doc, TYPE)
+    if name is not None:
+        found = [o for o in found if o.Name == name or o.Label == name]
+    return found[0] if found else None
+
+
+def settings(analysis: Any) -> Dict[str, Any]:
+    """The scene's ``settings`` object (docs/scene-format.md)."""
+    return {"photons": int(analysis.Photons), "max_bounces": int(analysis.MaxBounces),
+            "seed": int(analysis.Seed), "confidence": float(analysis.Confidence)}
+
+
+def check(analysis: Any) -> List[tuple]:
+    """Absurd solver and export settings: list of (level, text)."""
+    problems: List[tuple] = []
+    name = analysis.Label
+    if analysis.Photons < 1:
+        problems.append(("error", f"Analysis '{name}': Photons must be >= 1"))
+    elif analysis.Photons < 10000:
+        problems.append(("warning", f"Analysis '{name}': {analysis.Photons} photons give very "
+                                    "wide confidence intervals"))
+    if not (0.0 < analysis.Confidence < 1.0):
+        problems.append(("error", f"Analysis '{name}': Confidence must be in (0, 1) "
+                                  f"(got {analysis.Confidence:g})"))
+    if analysis.TargetAccuracy < 0.0 or analysis.TargetAccuracy >= 1.0:
+        problems.append(("error", f"Analysis '{name}': TargetAccuracy must be in [0, 1) "
+                                  f"(got {analysis.TargetAccuracy:g})"))
+    elif 0.0 < analysis.TargetAccuracy < 0.002:
+        problems.append(("warning", f"Analysis '{name}': TargetAccuracy "
+                                    f"{analysis.TargetAccuracy:g} needs a huge photon count"))
+    if analysis.TargetAccuracy > 0.0 and analysis.MaxPhotons < analysis.Photons:
+        problems.append(("error", f"Analysis '{name}': MaxPhotons must be >= Photons"))
+    if analysis.MaxBounces < 1:
+        problems.append(("error", f"Analysis '{name}': MaxBounces must be >= 1"))
+    if analysis.Seed < 0:
+        problems.append(("error", f"Analysis '{name}': Seed must be >= 0"))
+    deflection = float(analysis.LinearDeflection)
+    if deflection <= 0.0:
+        problems.append(("error", f"Analysis '{name}': LinearDeflection must be > 0"))
+    elif deflection > 500.0:
+        problems.append(("warning", f"Analysis '{name}': LinearDeflection {deflection:g} mm "
+                                    "makes curved surfaces very coarse"))
+    if not (0.0 < float(analysis.AngularDeflection) <= 90.0):
+        problems.append(("error", f"Analysis '{name}': AngularDeflection must be in (0, 90] deg"))
+    if analysis.ScaleMode == "Fixed" and analysis.ScaleMaxLux <= analysis.ScaleMinLux:
+        problems.append(("warning", f"Analysis '{name}': ScaleMaxLux must exceed ScaleMinLux"))
+    return problems

@@ -1,0 +1,141 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""make_* functions creating the Lighting objects (like FEM's ObjectsFem.py).
+
+They work headless; with the GUI up they attach the view providers. Lengths in the Python
+API are metres (``height_m``), flux in lumens (``flux_lm``)."""
+from __future__ import annotations
+
+from typing import Any, Iterable, Optional, Sequence, Tuple, Union
+
+import FreeCAD
+
+from lighting.units import M_TO_MM
+
+Vec = Union[FreeCAD.Vector, Sequence[float]]
+
+
+def _vec_mm(point_m: Vec) -> FreeCAD.Vector:
+    if isinstance(point_m, FreeCAD.Vector):
+        return point_m * M_TO_MM
+    x, y, z = point_m
+    return FreeCAD.Vector(x, y, z) * M_TO_MM
+
+
+def _attach_view(obj: Any, module: str, cls: str) -> None:
+    if FreeCAD.GuiUp and getattr(obj, "ViewObject", None) is not None:
+        import importlib
+
+        view_module = importlib.import_module(f"lighting.viewproviders.{module}")
+        getattr(view_module, cls)(obj.ViewObject)
+
+
+def _add_to_analysis(obj: Any, analysis: Optional[Any]) -> None:
+    if analysis is not None:
+        analysis.addObject(obj)
+
+
+def make_analysis(doc: Any, name: str = "LightingAnalysis", photons: Optional[int] = None,
+                  seed: Optional[int] = None) -> Any:
+    """Create a Lighting analysis (solver settings and results) in ``doc``."""
+    from lighting.objects.analysis import Analysis
+
+    obj = doc.addObject("App::DocumentObjectGroupPython", name)
+    Analysis(obj)
+    if photons is not None:
+        obj.Photons = int(photons)
+    if seed is not None:
+        obj.Seed = int(seed)
+    _attach_view(obj, "analysis", "ViewProviderAnalysis")
+    return obj
+
+
+def make_luminaire(doc: Any, position_m: Vec = (0.0, 0.0, 2.5), kind: str = "Area",
+                   flux_lm: float = 3000.0, maintenance_factor: float = 0.8,
+                   aim: Vec = (0.0, 0.0, -1.0), width_m: float = 0.6, length_m: float = 0.6,
+                   beam_angle_deg: float = 40.0, field_angle_deg: float = 70.0,
+                   name: str = "Luminaire", analysis: Optional[Any] = None) -> Any:
+    """Create a luminaire at ``position_m`` aimed along ``aim`` (default straight down).
+
+    ``kind`` is "Point", "Spot" or "Area"; ``flux_lm`` the initial flux, the exported flux is
+    ``flux_lm * maintenance_factor``."""
+    from lighting.objects.luminaire import LUMINAIRE_TYPES, Luminaire, rotation_for_aim
+
+    kind = kind.capitalize()
+    if kind not in LUMINAIRE_TYPES:
+        raise ValueError(f"luminaire kind must be one of {LUMINAIRE_TYPES} (got {kind!r})")
+    obj = doc.addObject("Part::FeaturePython", name)
+    Luminaire(obj)
+    obj.LuminaireType = kind
+    obj.FluxLumen = float(flux_lm)
+    obj.MaintenanceFactor = float(maintenance_factor)
+    obj.Width = width_m * M_TO_MM
+    obj.Length = length_m * M_TO_MM
+    obj.BeamAngle = beam_angle_deg
+    obj.FieldAngle = field_angle_deg
+    aim_vec = FreeCAD.Vector(*aim) if not isinstance(aim, FreeCAD.Vector) else aim
+    obj.Placement = FreeCAD.Placement(_vec_mm(position_m), rotation_for_aim(aim_vec))
+    _attach_view(obj, "luminaire", "ViewProviderLuminaire")
+    _add_to_analysis(obj, analysis)
+    return obj
+
+
+def make_face_target(doc: Any, faces: Iterable[Tuple[Any, Union[str, Sequence[str]]]],
+                     name: str = "Target", required_lux: float = 0.0,
+                     analysis: Optional[Any] = None) -> Any:
+    """Create a target over faces: ``faces`` is [(object, "Face3"), (object, ["Face1", ...])].
+    The target reports illuminance on the faces' outward side."""
+    from lighting.objects.target import Target
+
+    links = []
+    for obj, subs in faces:
+        links.append((obj, (subs,) if isinstance(subs, str) else tuple(subs)))
+    obj = doc.addObject("Part::FeaturePython", name)
+    Target(obj)
+    obj.TargetType = "Faces"
+    obj.References = links
+    obj.RequiredLux = float(required_lux)
+    _attach_view(obj, "target", "ViewProviderTarget")
+    _add_to_analysis(obj, analysis)
+    return obj
+
+
+def make_grid_target(doc: Any, base: Any, face: Optional[str] = None, height_m: float = 0.80,
+                     wall_band_m: float = 0.50, spacing_m: float = 0.0,
+                     required_lux: float = 0.0, required_uniformity: float = 0.0,
+                     name: str = "Workplane", analysis: Optional[Any] = None) -> Any:
+    """Create a calculation grid over a floor/slab/space ``base`` (or one of its faces) at
+    ``height_m``, leaving out ``wall_band_m``; ``spacing_m`` 0 = EN 12464-1 rule."""
+    from lighting.objects.target import Target
+
+    obj = doc.addObject("Part::FeaturePython", name)
+    Target(obj)
+    obj.TargetType = "Grid"
+    obj.Base = (base, [face] if face else [])
+    obj.WorkplaneHeight = height_m * M_TO_MM
+    obj.WallBand = wall_band_m * M_TO_MM
+    obj.Spacing = spacing_m * M_TO_MM
+    obj.RequiredLux = float(required_lux)
+    obj.RequiredUniformity = float(required_uniformity)
+    _attach_view(obj, "target", "ViewProviderTarget")
+    _add_to_analysis(obj, analysis)
+    return obj
+
+
+def make_placement_domain(doc: Any, base: Any, face: str, resolution_m: float = 0.6,
+                          max_luminaires: int = 4, offset_m: float = 0.05,
+                          edge_margin_m: float = 0.3, template: Optional[Any] = None,
+                          name: str = "PlacementDomain", analysis: Optional[Any] = None) -> Any:
+    """Create a placement domain on ``base.face`` (e.g. the ceiling's underside)."""
+    from lighting.objects.placement_domain import PlacementDomain
+
+    obj = doc.addObject("Part::FeaturePython", name)
+    PlacementDomain(obj)
+    obj.Base = (base, [face])
+    obj.Resolution = resolution_m * M_TO_MM
+    obj.MaxLuminaires = int(max_luminaires)
+    obj.MountingOffset = offset_m * M_TO_MM
+    obj.EdgeMargin = edge_margin_m * M_TO_MM
+    obj.Template = template
+    _attach_view(obj, "placement_domain", "ViewProviderPlacementDomain")
+    _add_to_analysis(obj, analysis)
+    return obj

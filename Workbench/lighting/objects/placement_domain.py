@@ -1,0 +1,140 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Placement domain: a face (e.g. the ceiling) where an optimizer may place luminaires.
+
+The domain samples candidate positions on a regular grid over the face (``Resolution``),
+``EdgeMargin`` away from its boundary and ``MountingOffset`` off the face along its outward
+normal. The export writes them to the scene's ``metadata.placement_domains`` (the solver
+ignores metadata; the optimizer will read them)."""
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, List
+
+import FreeCAD
+
+from lighting.geometry import face_index, face_normal, global_shape, is_planar
+from lighting.objects.base import BaseProxy, Prop, READ_ONLY
+from lighting.units import vec_m
+
+TYPE = "Lighting::PlacementDomain"
+MAX_CANDIDATES = 20000
+
+
+class PlacementDomain(BaseProxy):
+    """Candidate luminaire positions on one planar face."""
+
+    TYPE = TYPE
+    PROPERTIES = {
+        "Base": Prop("App::PropertyLinkSub", "Domain", "The planar face luminaires may be placed on"),
+        "Resolution": Prop("App::PropertyLength", "Domain", "Spacing of candidate positions", 600.0),
+        "EdgeMargin": Prop("App::PropertyLength", "Domain",
+                           "Smallest distance of a candidate from the face's boundary", 300.0),
+        "MountingOffset": Prop("App::PropertyLength", "Domain",
+                               "Distance of the luminaires from the face along its normal", 50.0),
+        "MaxLuminaires": Prop("App::PropertyInteger", "Domain",
+                              "How many luminaires may be placed on this face", 4),
+        "MinLuminaires": Prop("App::PropertyInteger", "Domain",
+                              "How many luminaires must at least be placed", 1),
+        "Template": Prop("App::PropertyLink", "Domain",
+                         "Luminaire whose type, flux and size placed luminaires copy"),
+        "CandidateCount": Prop("App::PropertyInteger", "Domain",
+                               "Number of candidate positions", 0, READ_ONLY),
+    }
+
+    def execute(self, obj: Any) -> None:
+        """Recompute the candidates and show them as points."""
+        import Part
+
+        try:
+            points, _ = candidates(obj)
+        except ValueError as exc:
+            FreeCAD.Console.PrintWarning(f"{exc}\n")
+            points = []
+        obj.CandidateCount = len(points)
+        obj.Shape = Part.makeCompound([Part.Vertex(p) for p in points]) if points else Part.Shape()
+        obj.Placement = FreeCAD.Placement()
+
+
+def domain_face(obj: Any) -> Any:
+    """The domain's face in global coordinates; ValueError if it is missing or not planar."""
+    link = obj.Base
+    if not link or link[0] is None:
+        raise ValueError(f"Placement domain '{obj.Label}' has no face")
+    base, subs = link[0], list(link[1] or [])
+    indices = [face_index(s) for s in subs if face_index(s) is not None]
+    shape = global_shape(base)
+    if not indices:
+        if len(shape.Faces) != 1:
+            raise ValueError(f"Placement domain '{obj.Label}': select one face of '{base.Label}'")
+        indices = [0]
+    if indices[0] >= len(shape.Faces):
+        raise ValueError(f"Placement domain '{obj.Label}': face {indices[0] + 1} of "
+                         f"'{base.Label}' no longer exists")
+    face = shape.Faces[indices[0]]
+    if not is_planar(face):
+        raise ValueError(f"Placement domain '{obj.Label}': the face must be planar")
+    return face
+
+
+def candidates(obj: Any) -> tuple:
+    """(list of candidate points in mm, outward unit normal of the face)."""
+    import Part
+
+    face = domain_face(obj)
+    normal = face_normal(face)
+    step = float(obj.Resolution)
+    if step <= 0.0:
+        raise ValueError(f"Placement domain '{obj.Label}': Resolution must be > 0")
+    margin = float(obj.EdgeMargin)
+    offset = normal * float(obj.MountingOffset)
+    u0, u1, v0, v1 = face.ParameterRange
+    # Plane parameters are lengths in mm; centre the lattice on the face.
+    nu = max(1, int(math.floor((u1 - u0) / step)) + 1)
+    nv = max(1, int(math.floor((v1 - v0) / step)) + 1)
+    if nu * nv > 4 * MAX_CANDIDATES:
+        raise ValueError(f"Placement domain '{obj.Label}': Resolution {step:g} mm is too fine")
+    su = u0 + 0.5 * ((u1 - u0) - (nu - 1) * step)
+    sv = v0 + 0.5 * ((v1 - v0) - (nv - 1) * step)
+    points: List[FreeCAD.Vector] = []
+    boundary = Part.Compound(face.Wires)
+    for i in range(nu):
+        for j in range(nv):
+            p = face.valueAt(su + i * step, sv + j * step)
+            if not face.isInside(p, 0.01, True):
+                continue
+            if margin > 0.0 and Part.Vertex(p).distToShape(boundary)[0] < margin:
+                continue
+            points.append(p + offset)
+            if len(points) >= MAX_CANDIDATES:
+                return points, normal
+    return points, normal
+
+
+def metadata_entry(obj: Any) -> Dict[str, Any]:
+    """The domain for the scene's ``metadata.placement_domains`` (metres)."""
+    points, normal = candidates(obj)
+    template = obj.Template
+    return {"name": obj.Name, "label": obj.Label, "max_luminaires": int(obj.MaxLuminaires),
+            "min_luminaires": int(obj.MinLuminaires),
+            "template": template.Name if template is not None else None,
+            "normal": [normal.x, normal.y, normal.z],
+            "candidates": [vec_m(p) for p in points]}
+
+
+def check(obj: Any) -> List[tuple]:
+    """Missing face, no candidates, impossible luminaire counts."""
+    problems: List[tuple] = []
+    try:
+        points, _ = candidates(obj)
+    except ValueError as exc:
+        return [("error", str(exc))]
+    if not points:
+        problems.append(("warning", f"Placement domain '{obj.Label}' has no candidate positions "
+                                    "(face smaller than the edge margin?)"))
+    if obj.MaxLuminaires < max(obj.MinLuminaires, 1):
+        problems.append(("error", f"Placement domain '{obj.Label}': MaxLuminaires must be >= "
+                                  "MinLuminaires and >= 1"))
+    elif points and obj.MaxLuminaires > len(points):
+        problems.append(("warning", f"Placement domain '{obj.Label}': MaxLuminaires "
+                                    f"({obj.MaxLuminaires}) exceeds its {len(points)} candidates"))
+    return problems

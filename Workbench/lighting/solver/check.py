@@ -1,0 +1,131 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Check stage: is the model ready for an analysis?
+
+Errors block the run (no luminaires, no targets, invalid values, luminaires inside solids,
+missing solver); warnings do not (open/leaky geometry, non-solid meshes, absurd values,
+luminaires far outside the model)."""
+from __future__ import annotations
+
+from typing import Any, List, Optional
+
+import FreeCAD
+
+from lighting.export import collect
+from lighting.geometry import global_placement, global_shape
+from lighting.messages import Report
+from lighting.objects import analysis as analysis_mod
+from lighting.objects import luminaire as luminaire_mod
+from lighting.objects import placement_domain as domain_mod
+from lighting.objects import target as target_mod
+from lighting.solver import run
+
+
+def _emitter_points(lum: Any) -> List[FreeCAD.Vector]:
+    """Points of the emitter to test against solids: the centre, and an area's corners."""
+    placement = global_placement(lum)
+    points = [placement.Base]
+    if lum.LuminaireType == "Area":
+        rot = placement.Rotation
+        hw, hl = float(lum.Width) / 2.0, float(lum.Length) / 2.0
+        for sx, sy in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            points.append(placement.Base + rot.multVec(FreeCAD.Vector(sx * hw * 0.99,
+                                                                      sy * hl * 0.99, 0)))
+    return points
+
+
+def _check_geometry(report: Report, exported: List[Any]) -> List[tuple]:
+    """Open shells, invalid shapes, non-solid meshes; returns (object, shape) pairs."""
+    shapes = []
+    for obj in exported:
+        if collect.is_mesh(obj):
+            mesh = obj.Mesh
+            if not mesh.isSolid():
+                report.add("warning", f"Mesh '{obj.Label}' is not closed (non-solid): light can "
+                                      "leak through its holes", obj.Name)
+            elif mesh.hasNonManifolds():
+                report.add("warning", f"Mesh '{obj.Label}' has non-manifold edges", obj.Name)
+            continue
+        try:
+            shape = global_shape(obj)
+        except Exception as exc:  # noqa: BLE001
+            report.add("warning", f"'{obj.Label}' has no usable shape ({exc})", obj.Name)
+            continue
+        try:
+            valid = shape.isValid()
+        except Exception:  # noqa: BLE001
+            valid = False
+        if not valid:
+            report.add("warning", f"'{obj.Label}' has an invalid shape; it may tessellate badly",
+                       obj.Name)
+        open_shells = [s for s in shape.Shells if not s.isClosed()]
+        in_solids = sum(len(s.Faces) for s in shape.Solids)
+        if open_shells:
+            report.add("warning", f"'{obj.Label}' has {len(open_shells)} open shell(s) (leaky "
+                                  "geometry): light can pass through the gaps", obj.Name)
+        elif in_solids < len(shape.Faces) and not shape.Solids:
+            report.add("info", f"'{obj.Label}' is a surface without volume (exported as a "
+                               "double-sided sheet)", obj.Name)
+        shapes.append((obj, shape))
+    return shapes
+
+
+def _check_luminaire_positions(report: Report, lums: List[Any], shapes: List[tuple]) -> None:
+    model_box = None
+    for _, shape in shapes:
+        if model_box is None:
+            model_box = FreeCAD.BoundBox(shape.BoundBox)
+        else:
+            model_box.add(shape.BoundBox)
+    for lum in lums:
+        points = _emitter_points(lum)
+        for obj, shape in shapes:
+            for solid in shape.Solids:
+                inside = [p for p in points if solid.BoundBox.isInside(p)
+                          and solid.isInside(p, 1e-3, False)]
+                if inside:
+                    report.add("error", f"Luminaire '{lum.Label}' is inside '{obj.Label}': its "
+                                        "light would be trapped; move it into the room",
+                               lum.Name)
+                    break
+            else:
+                continue
+            break
+        if model_box is not None and model_box.isValid():
+            box = FreeCAD.BoundBox(model_box)
+            box.enlarge(1000.0)
+            if not box.isInside(points[0]):
+                report.add("warning", f"Luminaire '{lum.Label}' is more than 1 m outside the "
+                                      "model", lum.Name)
+
+
+def check_analysis(analysis: Any, need_solver: bool = True,
+                   exported: Optional[List[Any]] = None) -> Report:
+    """All checks of an analysis; ``need_solver`` adds an error when ``lightsolver`` is
+    missing."""
+    report = Report()
+    report.extend(analysis_mod.check(analysis), analysis.Name)
+    lums = analysis_mod.luminaires(analysis)
+    tgts = analysis_mod.targets(analysis)
+    if not lums:
+        report.add("error", "No luminaires: add at least one (Lighting > Luminaire, or "
+                            "lighting.make_luminaire)")
+    if not tgts:
+        report.add("error", "No targets: select faces or a floor/space and add a target "
+                            "(Lighting > Target, or lighting.make_face_target / make_grid_target)")
+    for lum in lums:
+        report.extend(luminaire_mod.check(lum), lum.Name)
+    for tgt in tgts:
+        report.extend(target_mod.check(tgt), tgt.Name)
+    for domain in analysis_mod.placement_domains(analysis):
+        report.extend(domain_mod.check(domain), domain.Name)
+    if exported is None:
+        exported = collect.exported_objects(analysis.Document)
+    if not exported:
+        report.add("warning", "No visible geometry: luminaires light the targets in free space")
+    shapes = _check_geometry(report, exported)
+    _check_luminaire_positions(report, lums, shapes)
+    if need_solver:
+        ok, reason = run.solver_available()
+        if not ok:
+            report.add("error", reason)
+    return report

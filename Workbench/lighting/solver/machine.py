@@ -1,0 +1,231 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""One analysis run through the stages Check -> Prepare -> Solve -> Results.
+
+Check and Prepare read the document (main thread). Solve only touches files and the native
+module, so it may run on a worker thread (:meth:`AnalysisRun.start`) while the GUI polls
+``progress`` and stays responsive; Cancel sets a flag the progress callback returns to the
+solver and cancels its token. Results are applied on the main thread in one undo step, and
+only after the solver succeeded, so a failure never damages the document."""
+from __future__ import annotations
+
+import json
+import math
+import os
+import threading
+import time
+from typing import Any, Callable, Dict, Optional
+
+from lighting.export import scene as scene_mod
+from lighting.messages import CancelledError, CheckError, LightingError, Report, SolverError
+from lighting.solver import check as check_mod
+from lighting.solver import results as results_mod
+from lighting.solver import run, store
+
+STAGES = ("idle", "check", "prepare", "solve", "results", "done", "failed", "cancelled")
+#: Margin on the photon count estimated for a target accuracy.
+ACCURACY_SAFETY = 1.1
+
+ProgressFn = Callable[[int, int], Any]
+
+
+def photons_for_accuracy(data: Dict[str, Any], photons: int, accuracy: float) -> int:
+    """Photons needed so every target's Em CI half-width is ``accuracy`` x Em, estimated from
+    a run with ``photons`` photons (CI ~ 1/sqrt(N))."""
+    needed = photons
+    for tgt in data.get("targets", []):
+        mean = float(tgt.get("mean_lux", 0.0))
+        half = 0.5 * (float(tgt.get("ci_high_lux", 0.0)) - float(tgt.get("ci_low_lux", 0.0)))
+        if mean <= 0.0:
+            return 2 ** 62  # no light on a target: as many as allowed
+        relative = half / mean
+        needed = max(needed, int(math.ceil(photons * (relative / accuracy) ** 2 * ACCURACY_SAFETY)))
+    return needed
+
+
+class AnalysisRun:
+    """State and stages of one run. Create, then ``check()``, ``prepare()``, ``solve()`` (or
+    ``start()`` + poll ``finished``), then ``apply()``."""
+
+    def __init__(self, analysis: Any, output_dir: Optional[str] = None,
+                 log: Optional[Callable[[str, str], None]] = None) -> None:
+        self.analysis = analysis
+        self.output_dir = output_dir or scene_mod.default_output_directory(analysis)
+        self.log = log or (lambda level, text: None)
+        self.stage = "idle"
+        self.report = Report()
+        self.export: Optional[scene_mod.ExportResult] = None
+        self.scene_file = ""
+        self.results_file = ""
+        self.data: Optional[Dict[str, Any]] = None
+        self.error: Optional[BaseException] = None
+        self.done = 0
+        self.total = 0
+        self.started = 0.0
+        self._cancelled = False
+        self._token: Optional[Any] = None
+        self._thread: Optional[threading.Thread] = None
+        # Settings copied on the main thread; the worker never reads the document.
+        self._settings = {
+            "photons": int(analysis.Photons), "seed": int(analysis.Seed),
+            "confidence": float(analysis.Confidence), "threads": int(analysis.Threads),
+            "backend": str(analysis.Backend), "accuracy": float(analysis.TargetAccuracy),
+            "max_photons": int(analysis.MaxPhotons),
+        }
+
+    # -- stages --------------------------------------------------------------------------
+    def check(self, need_solver: bool = True) -> Report:
+        """Check stage; raises CheckError when there are errors."""
+        self.stage = "check"
+        store.set_status(self.analysis, "checking")
+        self.report = check_mod.check_analysis(self.analysis, need_solver=need_solver)
+        for message in self.report.messages:
+            self.log(message.level, message.text)
+        if not self.report.ok:
+            self.stage = "failed"
+            store.set_status(self.analysis, "check failed")
+            raise CheckError(self.report)
+        return self.report
+
+    def prepare(self, progress: Optional[Callable[[str], None]] = None) -> str:
+        """Prepare stage: export the scene file; returns its path."""
+        self.stage = "prepare"
+        store.set_status(self.analysis, "exporting")
+        self.export = scene_mod.build_scene(self.analysis, progress)
+        for message in self.export.report.messages:
+            self.log(message.level, message.text)
+        self.report.merge(self.export.report)
+        if not self.export.report.ok:
+            self.stage = "failed"
+            store.set_status(self.analysis, "export failed")
+            raise CheckError(self.export.report)
+        self.scene_file = scene_mod.write_scene(self.export, self.output_dir,
+                                                str(self.analysis.MeshStorage))
+        store.set_status(self.analysis, "exported")
+        self.log("info", f"Scene written: {self.scene_file} ({self.export.triangle_count} "
+                         f"triangles, {len(self.export.scene['meshes'])} meshes)")
+        return self.scene_file
+
+    def _progress(self, offset: int, outer: Optional[ProgressFn]) -> ProgressFn:
+        def callback(done: int, total: int) -> bool:
+            self.done = offset + int(done)
+            self.total = max(self.total, offset + int(total))
+            if outer is not None and outer(self.done, self.total) is False:
+                self._cancelled = True
+            return not self._cancelled
+        return callback
+
+    def _solve_once(self, photons: int, offset: int, outer: Optional[ProgressFn]) -> Dict[str, Any]:
+        s = self._settings
+        return results_mod.normalise(run.solve_file(
+            self.scene_file, photons, s["seed"], s["confidence"], s["threads"], s["backend"],
+            self._progress(offset, outer), self._token))
+
+    def solve(self, progress: Optional[ProgressFn] = None) -> Dict[str, Any]:
+        """Solve stage (blocking; safe on a worker thread). With a target accuracy, a pilot run
+        with ``Photons`` estimates the count needed and a second run traces it."""
+        self.stage = "solve"
+        self.started = time.monotonic()
+        s = self._settings
+        self._token = run.make_cancel_token()
+        self.total = s["photons"]
+        data = self._solve_once(s["photons"], 0, progress)
+        if s["accuracy"] > 0.0 and not self._cancelled and not data.get("partial"):
+            needed = min(photons_for_accuracy(data, s["photons"], s["accuracy"]),
+                         s["max_photons"])
+            if needed > s["photons"]:
+                self.log("info", f"Target accuracy {s['accuracy']:g}: tracing {needed} photons "
+                                 f"(pilot: {s['photons']})")
+                self.total = s["photons"] + needed
+                data = self._solve_once(needed, s["photons"], progress)
+                self._rewrite_photons(needed)
+        if self._cancelled and float(data.get("photons", 0)) <= 0:
+            raise CancelledError("The analysis was cancelled before any photon was traced")
+        self.data = data
+        self.results_file = os.path.join(os.path.dirname(self.scene_file),
+                                         scene_mod.RESULTS_FILE)
+        with open(self.results_file, "w", encoding="utf-8") as stream:
+            json.dump(data, stream, indent=1)
+        return data
+
+    def _rewrite_photons(self, photons: int) -> None:
+        """Make the scene file's settings match the final run, so the CLI reproduces it."""
+        with open(self.scene_file, encoding="utf-8") as stream:
+            scene = json.load(stream)
+        scene.setdefault("settings", {})["photons"] = int(photons)
+        with open(self.scene_file, "w", encoding="utf-8") as stream:
+            stream.write(scene_mod.dumps_scene(scene))
+
+    def apply(self) -> results_mod.AnalysisResult:
+        """Results stage (main thread): store the results in the document."""
+        if self.data is None:
+            raise LightingError("No results to apply: the solve stage did not finish")
+        self.stage = "results"
+        result = store.apply_to_document(self.analysis, self.data, self.scene_file,
+                                         self.results_file)
+        for warning in result.warnings:
+            self.log("warning", f"Solver: {warning}")
+        self.stage = "cancelled" if result.partial else "done"
+        return result
+
+    # -- worker thread -------------------------------------------------------------------
+    def start(self) -> None:
+        """Run :meth:`solve` on a worker thread; poll :attr:`finished`, then :meth:`apply`."""
+        def worker() -> None:
+            try:
+                self.solve()
+            except BaseException as exc:  # noqa: BLE001 - reported on the main thread
+                self.error = exc
+        self.stage = "solve"
+        self._thread = threading.Thread(target=worker, name="lightsolver", daemon=True)
+        self._thread.start()
+
+    @property
+    def finished(self) -> bool:
+        """True when the worker thread ended (or never started)."""
+        return self._thread is None or not self._thread.is_alive()
+
+    def wait(self, timeout: Optional[float] = None) -> bool:
+        """Join the worker thread; True if it ended."""
+        if self._thread is not None:
+            self._thread.join(timeout)
+        return self.finished
+
+    def cancel(self) -> None:
+        """Ask the solver to stop; it returns the photons traced so far (partial results)."""
+        self._cancelled = True
+        token = self._token
+        if token is not None and hasattr(token, "cancel"):
+            token.cancel()
+
+    @property
+    def cancelled(self) -> bool:
+        """True once :meth:`cancel` was called."""
+        return self._cancelled
+
+    def fail(self, exc: BaseException) -> str:
+        """Record a failure in the analysis' Status; returns the message for the user."""
+        self.stage = "cancelled" if isinstance(exc, CancelledError) else "failed"
+        text = str(exc) if isinstance(exc, LightingError) else f"{type(exc).__name__}: {exc}"
+        try:
+            store.set_status(self.analysis, "cancelled" if self.stage == "cancelled"
+                             else f"failed: {text.splitlines()[0][:200]}")
+        except Exception:  # noqa: BLE001 - the analysis may have been deleted meanwhile
+            pass
+        return text
+
+
+def run_analysis(analysis: Any, output_dir: Optional[str] = None,
+                 progress: Optional[ProgressFn] = None,
+                 log: Optional[Callable[[str, str], None]] = None) -> results_mod.AnalysisResult:
+    """All four stages synchronously (headless API). Raises a LightingError subclass."""
+    job = AnalysisRun(analysis, output_dir, log)
+    job.check()
+    job.prepare()
+    try:
+        job.solve(progress)
+    except (SolverError, CancelledError, run.SolverUnavailableError) as exc:
+        job.fail(exc)
+        raise
+    except Exception as exc:  # noqa: BLE001 - unexpected: keep the message
+        raise SolverError(job.fail(exc)) from exc
+    return job.apply()

@@ -1,0 +1,219 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Results: normalise the solver's output, keep it in the document, format the table."""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Tuple
+
+RESULTS_FORMAT = "lightsolver.results/1"
+
+
+def _float(value: Any, default: float = 0.0) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return default
+    return number if math.isfinite(number) else default
+
+
+def _flat(value: Any) -> List[float]:
+    """A numpy array (nv, nu) or nested/flat list as a flat row-by-row list of floats."""
+    if value is None:
+        return []
+    if hasattr(value, "ravel"):
+        return [float(x) for x in value.ravel()]
+    out: List[float] = []
+    for item in value:
+        if isinstance(item, (list, tuple)):
+            out.extend(float(x) for x in item)
+        else:
+            out.append(float(item))
+    return out
+
+
+def normalise(raw: Dict[str, Any]) -> Dict[str, Any]:
+    """The solver's results (Python API: numpy cell arrays; CLI: ``cells`` list) as a
+    JSON-ready dictionary in the CLI's ``lightsolver.results/1`` layout."""
+    out: Dict[str, Any] = {}
+    for key, value in raw.items():
+        if key == "targets":
+            continue
+        out[key] = value.tolist() if hasattr(value, "tolist") else value
+    out.setdefault("format", RESULTS_FORMAT)
+    targets = []
+    for tgt in raw.get("targets", []):
+        entry = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in tgt.items()
+                 if not k.startswith("cells_") or k == "cells_uv"}
+        if "cells_lux" in tgt:
+            lux = _flat(tgt.get("cells_lux"))
+            low = _flat(tgt.get("cells_ci_low_lux")) or lux
+            high = _flat(tgt.get("cells_ci_high_lux")) or lux
+            hits = _flat(tgt.get("cells_hits")) or [0.0] * len(lux)
+            entry["cells"] = [{"lux": a, "ci_low_lux": b, "ci_high_lux": c, "hits": int(d)}
+                              for a, b, c, d in zip(lux, low, high, hits)]
+        if "cells_uv" in entry:
+            entry["cells_uv"] = [int(x) for x in entry["cells_uv"]]
+        targets.append(entry)
+    out["targets"] = targets
+    return out
+
+
+@dataclass
+class TargetResult:
+    """Illuminance on one target (lux); grids add Emin, Emax, U0 and the cells."""
+
+    name: str
+    label: str
+    kind: str
+    mean_lux: float
+    ci_low_lux: float
+    ci_high_lux: float
+    sigma_lux: float = 0.0
+    hits: float = 0.0
+    area_m2: float = 0.0
+    min_lux: Optional[float] = None
+    max_lux: Optional[float] = None
+    uniformity: Optional[float] = None
+    min_ci_lux: Tuple[float, float] = (0.0, 0.0)
+    max_ci_lux: Tuple[float, float] = (0.0, 0.0)
+    cells_uv: Optional[Tuple[int, int]] = None
+    cells_lux: List[float] = field(default_factory=list)
+    cells_ci_low_lux: List[float] = field(default_factory=list)
+    cells_ci_high_lux: List[float] = field(default_factory=list)
+    cells_hits: List[float] = field(default_factory=list)
+    required_lux: float = 0.0
+    required_uniformity: float = 0.0
+
+    @property
+    def uniformity_ci(self) -> Tuple[float, float]:
+        """Conservative interval of U0 = Emin/Em from the intervals of Emin and Em."""
+        if self.uniformity is None or self.ci_high_lux <= 0.0:
+            return (0.0, 0.0)
+        low = self.min_ci_lux[0] / self.ci_high_lux
+        high = self.min_ci_lux[1] / self.ci_low_lux if self.ci_low_lux > 0 else float("inf")
+        return (low, high)
+
+    def passes(self) -> Optional[bool]:
+        """True/False against RequiredLux/RequiredUniformity; None when none is set."""
+        checks = []
+        if self.required_lux > 0.0:
+            checks.append(self.mean_lux >= self.required_lux)
+        if self.required_uniformity > 0.0 and self.uniformity is not None:
+            checks.append(self.uniformity >= self.required_uniformity)
+        return all(checks) if checks else None
+
+    @classmethod
+    def from_entry(cls, entry: Dict[str, Any], label: str = "",
+                   required: Tuple[float, float] = (0.0, 0.0)) -> "TargetResult":
+        """From a normalised ``targets[]`` entry."""
+        result = cls(name=str(entry.get("name", "")), label=label or str(entry.get("name", "")),
+                     kind=str(entry.get("type", "surface")),
+                     mean_lux=_float(entry.get("mean_lux")),
+                     ci_low_lux=_float(entry.get("ci_low_lux")),
+                     ci_high_lux=_float(entry.get("ci_high_lux")),
+                     sigma_lux=_float(entry.get("sigma_lux")), hits=_float(entry.get("hits")),
+                     area_m2=_float(entry.get("area_m2")),
+                     required_lux=required[0], required_uniformity=required[1])
+        cells = entry.get("cells") or []
+        if result.kind == "grid":
+            uv = entry.get("cells_uv") or [len(cells), 1]
+            result.cells_uv = (int(uv[0]), int(uv[1]))
+            result.cells_lux = [_float(c.get("lux")) for c in cells]
+            result.cells_ci_low_lux = [_float(c.get("ci_low_lux")) for c in cells]
+            result.cells_ci_high_lux = [_float(c.get("ci_high_lux")) for c in cells]
+            result.cells_hits = [_float(c.get("hits")) for c in cells]
+            result.min_lux = _float(entry.get("min_lux", min(result.cells_lux, default=0.0)))
+            result.max_lux = _float(entry.get("max_lux", max(result.cells_lux, default=0.0)))
+            mean = result.mean_lux
+            result.uniformity = _float(entry.get("uniformity",
+                                                 result.min_lux / mean if mean > 0 else 0.0))
+            if result.cells_lux:
+                i_min = min(range(len(result.cells_lux)), key=result.cells_lux.__getitem__)
+                i_max = max(range(len(result.cells_lux)), key=result.cells_lux.__getitem__)
+                result.min_ci_lux = (result.cells_ci_low_lux[i_min], result.cells_ci_high_lux[i_min])
+                result.max_ci_lux = (result.cells_ci_low_lux[i_max], result.cells_ci_high_lux[i_max])
+        return result
+
+
+@dataclass
+class AnalysisResult:
+    """What :func:`lighting.analyze` returns: per-target results and run facts."""
+
+    targets: List[TargetResult]
+    photons: float = 0.0
+    partial: bool = False
+    seconds: float = 0.0
+    backend: str = ""
+    confidence: float = 0.95
+    warnings: List[str] = field(default_factory=list)
+    scene_file: str = ""
+    results_file: str = ""
+    data: Dict[str, Any] = field(default_factory=dict)
+
+    def __getitem__(self, key: str) -> TargetResult:
+        """The target with this object name or label."""
+        for tgt in self.targets:
+            if key in (tgt.name, tgt.label):
+                return tgt
+        raise KeyError(key)
+
+    def table(self) -> str:
+        """The results table as text (see :func:`format_table`)."""
+        return format_table(self)
+
+    @classmethod
+    def from_data(cls, data: Dict[str, Any], labels: Optional[Dict[str, str]] = None,
+                  required: Optional[Dict[str, Tuple[float, float]]] = None,
+                  scene_file: str = "", results_file: str = "") -> "AnalysisResult":
+        """From a normalised results dictionary."""
+        labels = labels or {}
+        required = required or {}
+        targets = [TargetResult.from_entry(e, labels.get(e.get("name", ""), ""),
+                                           required.get(e.get("name", ""), (0.0, 0.0)))
+                   for e in data.get("targets", [])]
+        return cls(targets=targets, photons=_float(data.get("photons")),
+                   partial=bool(data.get("partial", False)), seconds=_float(data.get("seconds")),
+                   backend=str(data.get("backend", "")),
+                   confidence=_float(data.get("confidence"), 0.95),
+                   warnings=[str(w) for w in data.get("warnings", [])],
+                   scene_file=scene_file, results_file=results_file, data=data)
+
+    def to_json(self) -> str:
+        """The results in the CLI's JSON layout."""
+        return json.dumps(self.data, indent=1)
+
+
+def _ci(low: float, high: float) -> str:
+    return f"{low:.1f}-{high:.1f}"
+
+
+def format_table(result: AnalysisResult) -> str:
+    """Fixed-width text table: Em, Emin, Emax (lx) and U0 with their confidence intervals."""
+    level = f"{result.confidence * 100:g}%"
+    header = ("Target", "Type", "Em lx", f"Em {level} CI", "Emin lx", "Emin CI", "Emax lx",
+              "Emax CI", "U0", "U0 CI", "Check")
+    rows = [header]
+    for t in result.targets:
+        passed = t.passes()
+        verdict = "" if passed is None else ("pass" if passed else "FAIL")
+        if t.kind == "grid":
+            u_lo, u_hi = t.uniformity_ci
+            rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", _ci(t.ci_low_lux, t.ci_high_lux),
+                         f"{t.min_lux:.1f}", _ci(*t.min_ci_lux), f"{t.max_lux:.1f}",
+                         _ci(*t.max_ci_lux), f"{t.uniformity:.2f}", f"{u_lo:.2f}-{u_hi:.2f}",
+                         verdict))
+        else:
+            rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", _ci(t.ci_low_lux, t.ci_high_lux),
+                         "-", "-", "-", "-", "-", "-", verdict))
+    widths = [max(len(str(r[i])) for r in rows) for i in range(len(header))]
+    lines = ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    facts = f"{result.photons:.0f} photons, {result.seconds:.2f} s"
+    if result.backend:
+        facts += f", backend {result.backend}"
+    if result.partial:
+        facts += ", PARTIAL (cancelled)"
+    lines.append(facts)
+    return "\n".join(lines)
