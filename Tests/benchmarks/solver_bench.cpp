@@ -1,0 +1,108 @@
+// Photon throughput of the solver next to Embree's raw rtcIntersect1 rate for random rays on
+// the same scene, in the same run (ratios only mean something within one run on this noisy
+// shared machine). Results go to docs/BENCHMARKS.md.
+#include <benchmark/benchmark.h>
+#include <embree3/rtcore.h>
+#include <pmmintrin.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <xmmintrin.h>
+
+#include <limits>
+
+#include "bench_scenes.hpp"
+#include "core/backend.hpp"
+#include "core/prepared_scene.hpp"
+#include "embree/embree_scene.hpp"
+#include "lightsolver/rng.hpp"
+
+namespace lightsolver::bench {
+namespace {
+
+const Scene& scene_by_index(int i) {
+  static const Scene cornell = cornell_box();
+  static const Scene million = million_triangles();
+  return i == 0 ? cornell : million;
+}
+
+// Tracing alone (scene prepared and BVH built once, outside the timed loop), so the rate is
+// comparable with the raw-ray figure below.
+void BM_PhotonTracing(benchmark::State& state) {
+  const Scene& scene = scene_by_index(static_cast<int>(state.range(0)));
+  const detail::PreparedScene prepared = detail::prepare(scene);
+  auto backend = detail::make_embree_backend(prepared);
+  const auto n = static_cast<std::uint64_t>(state.range(1));
+  std::uint64_t photons = 0, segments = 0, seed = 1;
+  for (auto _ : state) {
+    detail::TallyBlock tallies(prepared.bins.size());
+    backend->trace(0, n, seed++, tallies);
+    photons += n;
+    segments += tallies.ray_segments;
+  }
+  state.counters["photons/s"] = benchmark::Counter(double(photons), benchmark::Counter::kIsRate);
+  state.counters["segments/s"] = benchmark::Counter(double(segments), benchmark::Counter::kIsRate);
+  state.counters["segments/photon"] = double(segments) / double(photons);
+}
+
+// What a user's run pays before the first photon: validation copy, re-centring, BVH build.
+void BM_ScenePrepareAndBuild(benchmark::State& state) {
+  const Scene& scene = scene_by_index(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const detail::PreparedScene prepared = detail::prepare(scene);
+    benchmark::DoNotOptimize(detail::make_embree_backend(prepared));
+  }
+  state.counters["triangles"] = double(detail::prepare(scene).triangle_count);
+}
+
+// Random rays: origins uniform in the scene's box, directions uniform on the sphere, one
+// rtcIntersect1 each, spread over TBB workers exactly as the photon tracer spreads paths.
+void BM_RawEmbreeRandomRays(benchmark::State& state) {
+  const Scene& scene = scene_by_index(static_cast<int>(state.range(0)));
+  const detail::PreparedScene prepared = detail::prepare(scene);
+  const detail::EmbreeScene embree(prepared);
+  RTCBounds b;
+  rtcGetSceneBounds(embree.handle(), &b);
+  const glm::vec3 lo(b.lower_x, b.lower_y, b.lower_z), hi(b.upper_x, b.upper_y, b.upper_z);
+  const std::uint64_t rays = static_cast<std::uint64_t>(state.range(1));
+  std::uint64_t total = 0, hits = 0;
+  for (auto _ : state) {
+    tbb::enumerable_thread_specific<std::uint64_t> local_hits(0);
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, rays, 256), [&](auto r) {
+      _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+      _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+      for (std::uint64_t i = r.begin(); i != r.end(); ++i) {
+        PathRng rng(77, i);
+        RTCRayHit rh{};
+        const glm::vec3 o = lo + glm::vec3(rng.uniform(), rng.uniform(), rng.uniform()) * (hi - lo);
+        const float z = 1 - 2 * rng.uniform(), rr = std::sqrt(std::max(0.f, 1 - z * z));
+        const float ph = 6.2831853f * rng.uniform();
+        rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
+        rh.ray.dir_x = rr * std::cos(ph), rh.ray.dir_y = rr * std::sin(ph), rh.ray.dir_z = z;
+        rh.ray.tfar = std::numeric_limits<float>::infinity();
+        rh.ray.mask = ~0u;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(embree.handle(), &ctx, &rh);
+        local_hits.local() += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      }
+    });
+    total += rays;
+    for (auto h : local_hits) hits += h;
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(total), benchmark::Counter::kIsRate);
+  state.counters["hit_fraction"] = double(hits) / double(total);
+}
+
+// Args: {scene (0 Cornell box, 1 ~1M triangles), photons or rays}.
+BENCHMARK(BM_PhotonTracing)->Args({0, 2'000'000})->Args({1, 2'000'000})
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_ScenePrepareAndBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RawEmbreeRandomRays)->Args({0, 4'000'000})->Args({1, 4'000'000})
+    ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+
+}  // namespace
+}  // namespace lightsolver::bench
+
+BENCHMARK_MAIN();

@@ -1,0 +1,128 @@
+"""The Python module: same scenes and numbers as the CLI, numpy in and out, progress,
+cancellation, GIL release and clear errors."""
+import json
+import math
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import lightsolver
+
+
+def unit_room(reflectance: float = 0.0) -> "lightsolver.Scene":
+    """A 2 m cube (inward faces) with a central point source and a floor grid."""
+    s = lightsolver.Scene()
+    s.add_material("grey", reflectance=reflectance)
+    v = np.array([[0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0],
+                  [0, 0, 2], [2, 0, 2], [2, 2, 2], [0, 2, 2]], dtype=float)
+    # Fronts point into the cube.
+    t = np.array([[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6], [0, 4, 5], [0, 5, 1],
+                  [3, 2, 6], [3, 6, 7], [0, 3, 7], [0, 7, 4], [1, 5, 6], [1, 6, 2]])
+    s.add_mesh("cube", v, t, "grey")
+    s.add_point_light("lamp", [1, 1, 1], 1000.0)
+    s.add_surface_target("walls", "cube")
+    s.add_grid_target("floor grid", [0, 0, 0], [2, 0, 0], [0, 2, 0], (4, 3))
+    return s
+
+
+def test_version_and_format():
+    assert lightsolver.__version__.count(".") == 2
+    assert lightsolver.SCENE_FORMAT == "lightsolver.scene/1"
+
+
+def test_numpy_scene_conserves_flux_and_shapes_cells():
+    r = lightsolver.solve(unit_room(), photons=200_000, seed=3)
+    walls, grid = r["targets"]
+    assert walls["hits"] == r["photons"] == 200_000  # closed black room: every photon lands once
+    assert math.isclose(walls["mean_lux"] * walls["area_m2"], 1000.0, rel_tol=1e-9)
+    assert grid["cells_lux"].shape == (3, 4)
+    assert grid["cells_hits"].dtype == np.uint64
+    assert np.all(grid["cells_ci_low_lux"] <= grid["cells_lux"])
+    assert np.all(grid["cells_lux"] <= grid["cells_ci_high_lux"])
+    assert grid["min_lux"] == pytest.approx(grid["cells_lux"].min())
+
+
+def test_json_and_numpy_scenes_give_identical_numbers(tmp_path):
+    scene = {
+        "format": "lightsolver.scene/1",
+        "materials": {"grey": {"type": "diffuse", "reflectance": 0.6}},
+        "meshes": [{"name": "floor", "material": "grey",
+                    "vertices": [[0, 0, 0], [3, 0, 0], [3, 3, 0], [0, 3, 0]],
+                    "triangles": [[0, 1, 2], [0, 2, 3]]}],
+        "luminaires": [{"name": "lamp", "type": "point", "flux_lm": 500, "position": [1, 1, 2]}],
+        "targets": [{"name": "floor", "type": "surface", "mesh": "floor"}],
+    }
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps(scene))
+    from_file = lightsolver.solve(lightsolver.load_scene(str(path)), photons=50_000, seed=9)
+    s = lightsolver.Scene()
+    s.add_material("grey", reflectance=0.6)
+    s.add_mesh("floor", np.array(scene["meshes"][0]["vertices"], float),
+               np.array(scene["meshes"][0]["triangles"]), "grey")
+    s.add_point_light("lamp", [1, 1, 2], 500)
+    s.add_surface_target("floor", "floor")
+    from_numpy = lightsolver.solve(s, photons=50_000, seed=9)
+    assert from_file["targets"] == from_numpy["targets"]
+
+
+def test_progress_callback_reports_and_can_cancel():
+    calls = []
+    r = lightsolver.solve(unit_room(), photons=2_000_000, progress=lambda d, t: calls.append((d, t)))
+    assert calls and calls[-1] == (2_000_000, 2_000_000)
+    assert not r["partial"]
+    r = lightsolver.solve(unit_room(), photons=2_000_000, progress=lambda d, t: d < 100_000)
+    assert r["partial"] and 0 < r["photons"] < 2_000_000
+    assert any("stopped early" in w for w in r["warnings"])
+
+
+def test_cancel_token_from_another_thread_and_gil_released():
+    token = lightsolver.CancelToken()
+    ticks = []
+
+    def other_thread():
+        for _ in range(20):  # runs only if solve() released the GIL
+            ticks.append(time.monotonic())
+            time.sleep(0.01)
+        token.cancel()
+
+    worker = threading.Thread(target=other_thread)
+    worker.start()
+    r = lightsolver.solve(unit_room(0.95), photons=500_000_000, cancel=token)
+    worker.join()
+    assert token.cancelled
+    assert r["partial"] and r["photons"] < 500_000_000
+    assert len(ticks) == 20
+
+
+def test_callback_exception_propagates():
+    def boom(done, total):
+        raise RuntimeError("from callback")
+
+    with pytest.raises(RuntimeError, match="from callback"):
+        lightsolver.solve(unit_room(), photons=1_000_000, progress=boom)
+
+
+def test_bad_input_raises_input_error_naming_the_field(tmp_path):
+    s = unit_room()
+    s.add_point_light("bad", [0, 0, 1], -5.0)
+    with pytest.raises(lightsolver.InputError, match=r"luminaires\[1\]\.flux_lm"):
+        lightsolver.solve(s)
+    nan = lightsolver.Scene()
+    nan.add_material("m")
+    nan.add_mesh("tri", np.array([[0, 0, 0], [1, np.nan, 0], [0, 1, 0]]), np.array([[0, 1, 2]]), "m")
+    nan.add_point_light("p", [0, 0, 1], 1.0)
+    nan.add_surface_target("t", "tri")
+    with pytest.raises(lightsolver.InputError, match=r"meshes\[0\]\.vertices\[1\]"):
+        nan.validate()
+    with pytest.raises(ValueError, match="out of range"):
+        nan.add_mesh("bad", np.zeros((3, 3)), np.array([[0, 1, 3]]), "m")
+    with pytest.raises(ValueError, match="shape"):
+        nan.add_mesh("bad", np.zeros((3, 2)), np.array([[0, 1, 2]]), "m")
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"format": "lightsolver.scene/1",\n "materials": [}')
+    with pytest.raises(lightsolver.InputError, match=r"bad\.json: line 2"):
+        lightsolver.load_scene(str(bad))
+    with pytest.raises(lightsolver.InputError, match="photons"):
+        lightsolver.solve(unit_room(), photons=0)
