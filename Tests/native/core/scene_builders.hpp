@@ -1,6 +1,7 @@
 #pragma once
 // Scenes for the closed-form tests, built in code so each test states its geometry exactly.
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <cmath>
 #include <numbers>
