@@ -90,7 +90,7 @@ TEST_P(Stability, MillimetreGlassKeepsFresnelTransmittance) {
   const double rp = std::pow((n * cos_i - cos_t) / (n * cos_i + cos_t), 2);
   const double T = 0.5 * ((1 - rs) / (1 + rs) + (1 - rp) / (1 + rp));
   const Results r = run(s, 1'000'000);
-  expect_in_ci(r.targets[0].estimate, 1000.0 * cos_i * T, 0.01, "1 mm slab");
+  expect_in_ci(r.targets[0].estimate, 1000.0 * cos_i * T, 0.02, "1 mm slab");
 }
 
 TEST_P(Stability, LosslessMirrorBoxTerminatesWithABiasWarning) {
