@@ -62,6 +62,7 @@ class Search {
   bool visit(const Configuration& c);
   void judge(std::uint64_t cell, const Configuration& c, const Evaluation& screen);
   void admit(std::uint64_t cell, std::uint64_t photons, const Evaluation& e);
+  void record(std::uint64_t cell, std::uint64_t photons, const IsocUpdate& u);
   bool better(const Configuration& a, const Configuration& b) const;
   bool check_stop(bool ignore_limit = false);
   void run_start(std::uint32_t s, std::uint64_t budget);
@@ -164,9 +165,14 @@ void Search::admit(std::uint64_t cell, std::uint64_t photons, const Evaluation& 
     return;
   }
   const IsocUpdate u = isoc_.update(cell, e.objective);
-  ++counters_.cases[static_cast<std::size_t>(u.result)];
+  record(cell, photons, u);
   if (u.admitted()) level_[cell] = photons;
   for (std::uint64_t k : u.removed) level_.erase(k);
+}
+
+void Search::record(std::uint64_t cell, std::uint64_t photons, const IsocUpdate& u) {
+  ++counters_.cases[static_cast<std::size_t>(u.result)];
+  if (ctl_.on_update) ctl_.on_update(d_.configuration(cell), photons, u);
 }
 
 // Navigation only: fewer constraint misses first, then the better mean. Statistical caution
@@ -271,7 +277,7 @@ void Search::refine() {
       continue;
     }
     const IsocUpdate u = fresh.update(key, e->objective);
-    ++counters_.cases[static_cast<std::size_t>(u.result)];
+    record(key, N_, u);
     if (u.admitted()) levels[key] = N_;
     for (std::uint64_t k : u.removed) levels.erase(k);
   }

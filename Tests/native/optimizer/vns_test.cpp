@@ -269,6 +269,26 @@ TEST(VnsStatistics, PerIterationSplitAndTotalsAddUp) {
   EXPECT_EQ(seen.back().isoc_size, r.isoc.size());
 }
 
+TEST(VnsControl, EveryIsocUpdateIsReportedWithItsCase) {
+  const Domain d = unit_square(25);
+  SyntheticEvaluator ev = bump_evaluator();
+  CaseCounts seen{};
+  std::uint64_t wrong_level = 0;
+  Control ctl;
+  ctl.on_update = [&](const Configuration& c, std::uint64_t photons, const IsocUpdate& u) {
+    ++seen[static_cast<std::size_t>(u.result)];
+    if (photons != kN || ev.calls().count({d.index(c), kN}) == 0) ++wrong_level;
+  };
+  const OptimizationResult r =
+      optimize(d, maximize_mean_illuminance("t"), ev, base_options(6), ctl);
+  EXPECT_EQ(seen, r.counters.cases);
+  EXPECT_EQ(wrong_level, 0u);  // strategy A offers N estimates only
+  EXPECT_EQ(seen[static_cast<std::size_t>(UpdateCase::kFirst)], 1u);
+  EXPECT_GT(seen[static_cast<std::size_t>(UpdateCase::kReplaced)] +
+                seen[static_cast<std::size_t>(UpdateCase::kLeads)],
+            0u);
+}
+
 TEST(VnsControl, ProgressCallbackReturningFalseStopsTheRun) {
   const Domain d = unit_square(25);
   SyntheticEvaluator ev = bump_evaluator();

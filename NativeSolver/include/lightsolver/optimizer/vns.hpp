@@ -69,6 +69,9 @@ struct VnsOptions {
 struct Control {
   std::function<bool(const IterationStats&)> progress;
   const std::atomic<bool>* cancel = nullptr;
+  /// Called after every ISOC update (refinement included) with the candidate's cells, the
+  /// photon count of the estimate offered and what the update did: for logs and debugging.
+  std::function<void(const Configuration&, std::uint64_t, const IsocUpdate&)> on_update;
 };
 
 /// Runs the search. Throws std::invalid_argument on bad options (confidence outside (0, 1),
