@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -46,20 +47,26 @@ class ProgressBar {
 struct RunArgs {
   std::string scene, out, backend = "auto";
   std::optional<std::uint64_t> photons, seed;
-  std::optional<double> confidence;
+  std::optional<double> confidence, accuracy;
   int threads = 0;
   bool quiet = false;
 };
 
-int run(const RunArgs& a) {
-  const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
+lightsolver::SolveOptions options_from(const RunArgs& a) {
   lightsolver::SolveOptions opt;
   opt.photons = a.photons;
   opt.seed = a.seed;
   opt.confidence = a.confidence;
   opt.threads = a.threads;
   opt.backend = a.backend;
+  opt.target_accuracy = a.accuracy;
   opt.cancel = &g_interrupted;
+  return opt;
+}
+
+int run(const RunArgs& a) {
+  const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
+  const lightsolver::SolveOptions opt = options_from(a);
   std::signal(SIGINT, on_sigint);
   lightsolver::Results results;
   {
@@ -74,6 +81,43 @@ int run(const RunArgs& a) {
     if (!out) throw std::runtime_error("cannot write " + a.out);
   }
   return results.partial ? 130 : 0;  // 128 + SIGINT, as shells report an interrupted command
+}
+
+// Worst relative half-width over all targets (targets without light excluded).
+double worst_relative_half_width(const lightsolver::Results& r) {
+  double worst = 0.0;
+  for (const auto& t : r.targets) {
+    const auto& e = t.estimate;
+    if (e.mean > 0) worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
+  }
+  return worst;
+}
+
+// What accuracy costs in time: the same scene at 4x more photons per row (each row halves
+// the interval), then the photons and time each accuracy goal would need at that rate.
+int cost(const RunArgs& a, std::uint64_t max_photons) {
+  const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
+  lightsolver::SolveOptions opt = options_from(a);
+  std::signal(SIGINT, on_sigint);
+  std::printf("%14s %10s %16s %14s\n", "photons", "seconds", "worst ±/E [%]", "photons/s");
+  lightsolver::Results last;
+  for (std::uint64_t n = 10'000; n <= max_photons && !g_interrupted; n *= 4) {
+    opt.photons = n;
+    last = lightsolver::solve(scene, opt);
+    if (last.partial) break;
+    std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(n),
+                last.seconds, 100.0 * worst_relative_half_width(last),
+                double(n) / std::max(last.seconds, 1e-9));
+  }
+  if (last.photons == 0) return 130;
+  const double w = worst_relative_half_width(last), rate = double(last.photons) / last.seconds;
+  std::printf("\nat %.0f%% confidence, from the last row (interval width ~ 1/sqrt(photons)):\n",
+              100.0 * last.confidence);
+  for (const double goal : {0.10, 0.05, 0.02, 0.01, 0.005}) {
+    const double need = double(last.photons) * (w / goal) * (w / goal);
+    std::printf("  ±%4.1f%%: %12.3g photons, %10.3g s\n", 100.0 * goal, need, need / rate);
+  }
+  return g_interrupted ? 130 : 0;
 }
 
 }  // namespace
@@ -97,11 +141,29 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--backend", ra.backend, "auto or embree")
       ->check(CLI::IsMember({"auto", "embree"}));
   run_cmd->add_option("--out", ra.out, "Write results JSON here");
+  run_cmd->add_option("--accuracy", ra.accuracy,
+                      "Stop when every target's CI half-width is at most this fraction of its "
+                      "mean (e.g. 0.02); --photons is then the budget")
+      ->check(CLI::Range(1e-6, 0.999));
   run_cmd->add_flag("--quiet,-q", ra.quiet, "Do not print the table");
+
+  RunArgs ca;
+  std::uint64_t max_photons = 16'000'000;
+  CLI::App* cost_cmd =
+      app.add_subcommand("cost", "Show what accuracy costs in time for a scene (photons vs CI)");
+  cost_cmd->add_option("scene", ca.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  cost_cmd->add_option("--max-photons", max_photons, "Largest run (default 1.6e7)");
+  cost_cmd->add_option("--seed", ca.seed, "Random seed");
+  cost_cmd->add_option("--confidence", ca.confidence, "Confidence level")
+      ->check(CLI::Range(0.0, 1.0));
+  cost_cmd->add_option("--threads", ca.threads, "Worker threads (0: all cores)");
+  cost_cmd->add_option("--backend", ca.backend, "auto or embree")
+      ->check(CLI::IsMember({"auto", "embree"}));
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);
+    if (*cost_cmd) return cost(ca, max_photons);
   } catch (const lightsolver::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

@@ -66,3 +66,26 @@ def test_ctrl_c_stops_cleanly_with_partial_results(cli, room_scene, tmp_path):
     res = json.loads(out.read_text())
     assert res["partial"] and 0 < res["photons"] < 5_000_000_000
     assert res["targets"][0]["mean_lux"] > 0
+
+
+def test_cost_shows_accuracy_against_time(cli, room_scene):
+    r = run(cli, "cost", str(room_scene), "--max-photons", "160000")
+    assert r.returncode == 0, r.stderr
+    rows = [line.split() for line in r.stdout.splitlines() if line.strip()[:1].isdigit()]
+    assert [int(row[0]) for row in rows] == [10_000, 40_000, 160_000]
+    widths = [float(row[2]) for row in rows]
+    # 4x the photons halves the interval (within Monte Carlo noise).
+    assert 1.6 < widths[0] / widths[1] < 2.5 and 1.6 < widths[1] / widths[2] < 2.5
+    assert "±" in r.stdout and "photons" in r.stdout
+
+
+def test_run_to_an_accuracy_goal(cli, room_scene, tmp_path):
+    out = tmp_path / "acc.json"
+    r = run(cli, "run", str(room_scene), "--accuracy", "0.05", "--photons", "100000000",
+            "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    res = json.loads(out.read_text())
+    assert res["accuracy_met"] and res["target_accuracy"] == 0.05
+    assert res["photons"] < 100_000_000 and not res["partial"]
+    for t in res["targets"]:
+        assert (t["ci_high_lux"] - t["ci_low_lux"]) / 2 <= 0.05 * t["mean_lux"]

@@ -126,3 +126,10 @@ def test_bad_input_raises_input_error_naming_the_field(tmp_path):
         lightsolver.load_scene(str(bad))
     with pytest.raises(lightsolver.InputError, match="photons"):
         lightsolver.solve(unit_room(), photons=0)
+
+
+def test_target_accuracy_keyword():
+    r = lightsolver.solve(unit_room(0.5), photons=50_000_000, target_accuracy=0.02)
+    assert r["accuracy_met"] and r["photons"] < 50_000_000
+    walls = r["targets"][0]
+    assert (walls["ci_high_lux"] - walls["ci_low_lux"]) / 2 <= 0.02 * walls["mean_lux"]

@@ -22,6 +22,10 @@ struct SolveOptions {
   std::optional<double> confidence;      ///< default: scene.settings.confidence
   int threads = 0;                       ///< 0: all cores
   std::string backend = "auto";          ///< "auto", "embree" (and "vulkan" where built)
+  /// Stop as soon as every target's CI half-width is at most this fraction of its mean (e.g.
+  /// 0.02); `photons` is then the budget. Batches double from 2^14 photons, so the stopping
+  /// point is deterministic for a seed.
+  std::optional<double> target_accuracy;
   const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current batch
 };
 
@@ -45,6 +49,8 @@ struct Results {
   std::uint64_t photons = 0;            ///< traced (== requested unless partial)
   std::uint64_t photons_requested = 0;
   bool partial = false;                 ///< stopped early by cancel or progress callback
+  std::optional<double> target_accuracy;  ///< the goal, when one was set
+  bool accuracy_met = false;            ///< every target reached target_accuracy
   double seconds = 0.0;
   std::string backend;
   double confidence = 0.95;

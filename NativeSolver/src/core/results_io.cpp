@@ -52,6 +52,10 @@ std::string results_to_json(const Results& r) {
                       {"ray_segments", r.ray_segments},
                       {"total_flux_lm", r.total_flux_lm},
                       {"warnings", r.warnings}};
+  if (r.target_accuracy) {
+    j["target_accuracy"] = *r.target_accuracy;
+    j["accuracy_met"] = r.accuracy_met;
+  }
   nlohmann::json targets = nlohmann::json::array();
   for (const auto& t : r.targets) targets.push_back(target_json(t));
   j["targets"] = std::move(targets);

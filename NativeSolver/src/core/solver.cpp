@@ -19,8 +19,23 @@ std::unique_ptr<detail::Backend> make_backend(const std::string& name,
 }
 
 // Batches give progress reports and cancellation points; their size does not change results.
-std::uint64_t batch_size(std::uint64_t total) {
-  return std::clamp<std::uint64_t>(total / 100, 1u << 14, 1u << 22);
+// In accuracy mode they double from 2^14 so a goal met early is seen early.
+std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_mode) {
+  const std::uint64_t size =
+      accuracy_mode ? std::max<std::uint64_t>(done, 1u << 14)
+                    : std::clamp<std::uint64_t>(total / 100, 1u << 14, 1u << 22);
+  return std::min(size, total - done);
+}
+
+// True when every target's interval is narrow enough relative to its mean. A target with no
+// hit yet cannot be judged: keep tracing.
+bool accuracy_reached(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                      std::uint64_t photons, double confidence, double goal) {
+  for (const std::uint32_t bin : s.target_bin) {
+    const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
+    if (e.hits == 0 || 0.5 * (e.ci_high - e.ci_low) > goal * e.mean) return false;
+  }
+  return true;
 }
 
 TargetResult make_target(const Target& t, const detail::PreparedScene& s,
@@ -58,6 +73,10 @@ void add_warnings(const Scene& scene, Results& r) {
                          "; their remaining light is lost, so results are biased low");
   }
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
+  if (r.target_accuracy && !r.accuracy_met && !r.partial) {
+    r.warnings.push_back("the photon budget ran out before every target reached the requested "
+                         "accuracy");
+  }
 }
 
 }  // namespace
@@ -75,6 +94,10 @@ Results solve(const Scene& scene, const SolveOptions& options, const ProgressFn&
     throw InputError("", "confidence", "must lie strictly between 0 and 1");
   }
   if (options.threads < 0) throw InputError("", "threads", "must be >= 0 (0: all cores)");
+  r.target_accuracy = options.target_accuracy;
+  if (r.target_accuracy && !(*r.target_accuracy > 0.0 && *r.target_accuracy < 1.0)) {
+    throw InputError("", "target_accuracy", "must lie strictly between 0 and 1 (e.g. 0.02)");
+  }
 
   const detail::PreparedScene prepared = detail::prepare(scene);
   r.total_flux_lm = prepared.total_flux_lm;
@@ -83,19 +106,24 @@ Results solve(const Scene& scene, const SolveOptions& options, const ProgressFn&
     auto backend = make_backend(options.backend, prepared);
     r.backend = backend->name();
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    const std::uint64_t batch = batch_size(r.photons_requested);
+    const bool accuracy_mode = r.target_accuracy.has_value();
     while (r.photons < r.photons_requested) {
       if (options.cancel && options.cancel->load()) break;
-      const std::uint64_t n = std::min(batch, r.photons_requested - r.photons);
+      const std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode);
       arena.execute([&] { backend->trace(r.photons, n, r.seed, tallies); });
       r.photons += n;
+      if (accuracy_mode &&
+          accuracy_reached(prepared, tallies, r.photons, r.confidence, *r.target_accuracy)) {
+        r.accuracy_met = true;
+        break;
+      }
       if (progress && !progress(r.photons, r.photons_requested)) break;
     }
   } else {
     r.backend = options.backend == "auto" ? "embree" : options.backend;
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
-  r.partial = r.photons < r.photons_requested;
+  r.partial = r.photons < r.photons_requested && !r.accuracy_met;
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {

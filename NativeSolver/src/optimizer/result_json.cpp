@@ -7,7 +7,7 @@ namespace lightsolver::optimizer {
 
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;  // keeps the documented key order
 
 json estimate_json(const Estimate& e) {
   return {{"mean", e.mean},

@@ -194,7 +194,7 @@ std::vector<double> read_angles(TokenStream& in, long n, const char* what, doubl
       fail(in.file(), in.last_line(),
            std::string(what) + " " + std::to_string(a) + " is outside " + std::to_string(lo) +
                ".." + std::to_string(hi));
-    if (!angles.empty() && a <= angles.back())
+    if (!angles.empty() && a <= angles.back() + kAngleEps)
       fail(in.file(), in.last_line(),
            std::string(what) + "s must increase (" + std::to_string(angles.back()) + " then " +
                std::to_string(a) + ")");
@@ -287,6 +287,7 @@ void read_photometry(TokenStream& in, int year, PhotometricData& data) {
   for (long i = 0; i < nv * nh; ++i) {
     const double cd = in.number("candela value");
     if (cd < 0.0) fail(file, in.last_line(), "candela values must be >= 0");
+    if (!std::isfinite(cd * factor)) fail(file, in.last_line(), "candela value is too large");
     table.candela.push_back(cd * factor);
   }
   if (!in.at_end())

@@ -108,7 +108,7 @@ std::vector<double> read_angles(LineReader& in, long n, const char* what, double
     if (a < -kAngleEps || a > hi + kAngleEps)
       fail(in.file(), in.last_line(),
            std::string(what) + " " + std::to_string(a) + " is outside 0.." + std::to_string(hi));
-    if (!angles.empty() && a <= angles.back())
+    if (!angles.empty() && a <= angles.back() + kAngleEps)
       fail(in.file(), in.last_line(), std::string(what) + "s must increase");
     angles.push_back(a);
   }
@@ -229,6 +229,8 @@ PhotometricData parse_ldt(std::string_view text, const std::string& source_name)
     for (long j = 0; j < ng; ++j) {
       const double value = in.number("luminous intensity");
       if (value < 0.0) fail(source_name, in.last_line(), "luminous intensities must be >= 0");
+      if (!std::isfinite(value * to_cd))
+        fail(source_name, in.last_line(), "luminous intensity is too large");
       table.candela.push_back(value * to_cd);
     }
   }

@@ -87,6 +87,16 @@ double eval_direction(const SamplerTables& t, const glm::dvec3& d);
 /// Unit direction of (plane, polar) angles in degrees.
 glm::dvec3 direction_of(const SamplerTables& t, double plane_deg, double polar_deg);
 
+/// Intensity along the great circle through the aim (-z) and `side` (+x or +y):
+/// direction(a) = sin(a) side + cos(a) (-z) for a = -180..180 degrees in 0.1 degree steps.
+std::vector<double> great_circle_profile(const SamplerTables& t, const glm::dvec3& side,
+                                         std::vector<double>& angles_deg);
+
+/// Full angle between the two points either side of the profile's peak where the intensity
+/// falls to `fraction` of the peak; NaN when it never does.
+double spread_angle_deg(const std::vector<double>& profile, const std::vector<double>& angles,
+                        double fraction);
+
 /// Reads a whole file (at most 64 MiB); throws InputError when it cannot.
 std::string read_file(const std::string& path);
 

@@ -182,3 +182,38 @@ TEST(Cancellation, StopsAtABatchBoundaryAndMarksPartial) {
 
 }  // namespace
 }  // namespace lightsolver::test
+
+namespace lightsolver::test {
+namespace {
+
+TEST(Accuracy, StopsWhenEveryTargetIsPreciseEnough) {
+  Scene s;
+  add_material(s, "white", Material::Type::Diffuse, 0.6);
+  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 3, 3), 2));
+  s.targets.push_back(surface("room", 0));
+  s.targets.push_back(grid("desk", {1, 1, 0.8}, {1, 0, 0}, {0, 0.6, 0}, 1, 1));
+  s.luminaires.push_back(point_light({2, 1.5, 2.5}, 2000.0));
+  validate(s);
+  SolveOptions o;
+  o.photons = 100'000'000;
+  o.target_accuracy = 0.03;
+  const Results r = solve(s, o);
+  EXPECT_TRUE(r.accuracy_met);
+  EXPECT_FALSE(r.partial);
+  EXPECT_LT(r.photons, 100'000'000u);
+  for (const auto& t : r.targets) {
+    EXPECT_LE(0.5 * (t.estimate.ci_high - t.estimate.ci_low), 0.03 * t.estimate.mean) << t.name;
+  }
+  const Results again = solve(s, o);
+  EXPECT_EQ(again.photons, r.photons);  // the stopping point is deterministic
+  o.photons = 20'000;                   // a budget too small for the goal
+  const Results short_run = solve(s, o);
+  EXPECT_FALSE(short_run.accuracy_met);
+  EXPECT_EQ(short_run.photons, 20'000u);
+  EXPECT_FALSE(short_run.warnings.empty());
+  o.target_accuracy = 0.0;
+  EXPECT_THROW(solve(s, o), InputError);
+}
+
+}  // namespace
+}  // namespace lightsolver::test
