@@ -13,9 +13,8 @@
 /// To place a luminaire with world vectors `aim` (gamma = 0) and `c0` (orthonormal):
 /// world = x * c0 + y * cross(c0, aim) + z * (-aim); see to_world().
 
-#include <glm/vec3.hpp>
-
 #include <cstddef>
+#include <glm/vec3.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,9 +47,9 @@ enum class OpeningShape {
   Point,
   Rectangle,
   Box,
-  Disk,              ///< circle or ellipse (length x width)
-  VerticalCylinder,  ///< circular or elliptical footprint, height along z
-  Sphere,            ///< sphere or ellipsoid
+  Disk,                   ///< circle or ellipse (length x width)
+  VerticalCylinder,       ///< circular or elliptical footprint, height along z
+  Sphere,                 ///< sphere or ellipsoid
   HorizontalCylinderC0,   ///< axis along x (C0)
   HorizontalCylinderC90,  ///< axis along y (C90)
   VerticalDisk,           ///< vertical circle or ellipse facing C0 (in the y-z plane)
@@ -88,9 +87,9 @@ struct PhotometricData {
   /// the luminaire lumens where the file gives them (EULUMDAT), else 0.
   double rated_lumens_lm = 0.0;
   int lamp_count = 1;
-  double candela_multiplier = 1.0;   ///< IES multiplier, or EULUMDAT conversion factor
+  double candela_multiplier = 1.0;  ///< IES multiplier, or EULUMDAT conversion factor
   double ballast_factor = 1.0;
-  double ballast_lamp_factor = 1.0;  ///< applied for LM-63-1986..1995 only
+  double ballast_lamp_factor = 1.0;   ///< applied for LM-63-1986..1995 only
   double file_generation_type = 0.0;  ///< LM-63-2019 field (0 when absent)
   double input_watts = 0.0;
   double light_output_ratio_percent = 0.0;      ///< EULUMDAT LORL (0 when unknown)

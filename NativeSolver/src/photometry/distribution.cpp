@@ -33,16 +33,21 @@ std::vector<std::function<double(double)>> symmetry_ops(PhotometricSymmetry s) {
   const auto mirror_90_270 = [](double c) { return 180.0 - c; };
   const auto half_turn = [](double c) { return 180.0 + c; };
   switch (s) {
-    case PhotometricSymmetry::BilateralC0C180: return {id, mirror_0_180};
-    case PhotometricSymmetry::BilateralC90C270: return {id, mirror_90_270};
-    case PhotometricSymmetry::Quadrant: return {id, mirror_0_180, mirror_90_270, half_turn};
-    default: return {id};
+    case PhotometricSymmetry::BilateralC0C180:
+      return {id, mirror_0_180};
+    case PhotometricSymmetry::BilateralC90C270:
+      return {id, mirror_90_270};
+    case PhotometricSymmetry::Quadrant:
+      return {id, mirror_0_180, mirror_90_270, half_turn};
+    default:
+      return {id};
   }
 }
 
 // Stored plane whose angle equals a (mod 360), or -1.
 long find_stored(const std::vector<std::pair<double, std::size_t>>& stored, double a) {
-  auto it = std::lower_bound(stored.begin(), stored.end(), std::make_pair(a - kEps, std::size_t{0}));
+  auto it =
+      std::lower_bound(stored.begin(), stored.end(), std::make_pair(a - kEps, std::size_t{0}));
   if (it != stored.end() && circular_gap(it->first, a) < kEps) return static_cast<long>(it->second);
   // a near 0 may match a plane stored near 360, and the other way round.
   if (!stored.empty() && circular_gap(stored.front().first, a) < kEps)
@@ -83,7 +88,8 @@ void unfold_type_c(const StoredTable& t, std::vector<double>& angles,
   // Close the circle: C360 repeats C0 (a file's own C360 plane is kept if it has one).
   const long last = find_stored(stored, 360.0 - kEps / 2);
   angles.push_back(360.0);
-  const bool has_own_360 = !t.horizontal_deg.empty() && std::abs(t.horizontal_deg.back() - 360.0) < kEps;
+  const bool has_own_360 =
+      !t.horizontal_deg.empty() && std::abs(t.horizontal_deg.back() - 360.0) < kEps;
   rows.push_back(has_own_360 && last >= 0 ? t.horizontal_deg.size() - 1 : rows.front());
 }
 
@@ -124,8 +130,8 @@ double max_sin(double t0, double t1) {
 bool locate(const std::vector<double>& nodes, double x, std::size_t& i, double& f) {
   if (nodes.size() < 2 || x < nodes.front() - kEps || x > nodes.back() + kEps) return false;
   const auto it = std::upper_bound(nodes.begin(), nodes.end(), x);
-  i = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(it - nodes.begin() - 1, 0,
-                                                          static_cast<std::ptrdiff_t>(nodes.size()) - 2));
+  i = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(
+      it - nodes.begin() - 1, 0, static_cast<std::ptrdiff_t>(nodes.size()) - 2));
   f = std::clamp((x - nodes[i]) / (nodes[i + 1] - nodes[i]), 0.0, 1.0);
   return true;
 }
@@ -169,7 +175,8 @@ void unfold(const StoredTable& t, PhotometricData& data) {
   data.candela.clear();
   data.candela.reserve(rows.size() * nv);
   for (std::size_t row : rows)
-    data.candela.insert(data.candela.end(), t.candela.begin() + static_cast<std::ptrdiff_t>(row * nv),
+    data.candela.insert(data.candela.end(),
+                        t.candela.begin() + static_cast<std::ptrdiff_t>(row * nv),
                         t.candela.begin() + static_cast<std::ptrdiff_t>((row + 1) * nv));
 }
 
@@ -185,8 +192,8 @@ SamplerTables make_tables(const PhotometricData& d) {
   for (std::size_t i = 0; i + 1 < np; ++i) {
     for (std::size_t j = 0; j + 1 < nt; ++j) {
       const double i00 = at(i, j), i10 = at(i + 1, j), i01 = at(i, j + 1), i11 = at(i + 1, j + 1);
-      sum += cell_flux(t.plane_deg[i], t.plane_deg[i + 1], t.polar_deg[j], t.polar_deg[j + 1],
-                       i00, i10, i01, i11);
+      sum += cell_flux(t.plane_deg[i], t.plane_deg[i + 1], t.polar_deg[j], t.polar_deg[j + 1], i00,
+                       i10, i01, i11);
       t.cell_cdf.push_back(sum);
       // Slightly inflated so rounding never puts I sin t above the bound.
       t.cell_bound.push_back(std::max({i00, i10, i01, i11}) *

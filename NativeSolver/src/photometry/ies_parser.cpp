@@ -159,7 +159,10 @@ void decode_opening(double w, double l, double h, int year, PhotometricData& dat
     len = aw;
   } else if (year == 1995 && (key == "+0-" || key == "0+-")) {
     shape = key == "+0-" ? S::HorizontalCylinderC0 : S::HorizontalCylinderC90;
-    if (key == "+0-") wid = ah; else len = ah;
+    if (key == "+0-")
+      wid = ah;
+    else
+      len = ah;
   } else if (year == 1995 && (key == "-++" || key == "+-+")) {
     shape = S::VerticalCylinder;
   } else if (year == 1995 && (key == "-+-" || key == "+--")) {
@@ -206,7 +209,8 @@ std::vector<double> read_angles(TokenStream& in, long n, const char* what, doubl
 PhotometricSymmetry classify_horizontal(PhotometricType type, const std::vector<double>& h,
                                         const std::string& file, int line) {
   if (type != PhotometricType::C) {
-    if (h.size() < 2) fail(file, line, "type A and B photometry needs at least 2 horizontal angles");
+    if (h.size() < 2)
+      fail(file, line, "type A and B photometry needs at least 2 horizontal angles");
     return near(h.front(), 0.0) ? PhotometricSymmetry::LateralAB : PhotometricSymmetry::None;
   }
   if (h.size() == 1) return PhotometricSymmetry::Rotational;
@@ -223,9 +227,15 @@ PhotometricSymmetry classify_horizontal(PhotometricType type, const std::vector<
 // Angle ranges per type: the polar coordinate must stay within a half circle.
 void angle_limits(PhotometricType type, double& v_lo, double& v_hi, double& h_lo, double& h_hi) {
   switch (type) {
-    case PhotometricType::C: v_lo = 0, v_hi = 180, h_lo = 0, h_hi = 360; break;
-    case PhotometricType::A: v_lo = -90, v_hi = 90, h_lo = -180, h_hi = 180; break;
-    case PhotometricType::B: v_lo = -180, v_hi = 180, h_lo = -90, h_hi = 90; break;
+    case PhotometricType::C:
+      v_lo = 0, v_hi = 180, h_lo = 0, h_hi = 360;
+      break;
+    case PhotometricType::A:
+      v_lo = -90, v_hi = 90, h_lo = -180, h_hi = 180;
+      break;
+    case PhotometricType::B:
+      v_lo = -180, v_hi = 180, h_lo = -90, h_hi = 90;
+      break;
   }
 }
 
@@ -248,7 +258,8 @@ void read_photometry(TokenStream& in, int year, PhotometricData& data) {
   const auto type = type_code == 1.0 ? PhotometricType::C
                                      : (type_code == 2.0 ? PhotometricType::B : PhotometricType::A);
   const double units = in.number("units type");
-  if (units != 1.0 && units != 2.0) fail(file, in.last_line(), "units type must be 1 (feet) or 2 (metres)");
+  if (units != 1.0 && units != 2.0)
+    fail(file, in.last_line(), "units type must be 1 (feet) or 2 (metres)");
   const double to_m = units == 1.0 ? kFootToMetre : 1.0;
   const double width = in.number("luminous opening width") * to_m;
   const double length = in.number("luminous opening length") * to_m;

@@ -124,8 +124,13 @@ void stored_planes(long isym, long mc, const std::vector<double>& c, const std::
   const auto angle_is = [&](long i, double a) { return std::abs(c[i] - a) < kAngleEps; };
   need(angle_is(0, 0.0), "the C angles must start at 0");
   switch (isym) {
-    case 0: first = 0, count = mc; need(mc >= 2, "needs at least 2 C planes"); break;
-    case 1: first = 0, count = 1; break;
+    case 0:
+      first = 0, count = mc;
+      need(mc >= 2, "needs at least 2 C planes");
+      break;
+    case 1:
+      first = 0, count = 1;
+      break;
     case 2:
       need(mc % 2 == 0 && angle_is(mc / 2, 180.0), "needs an even Mc with C(Mc/2) = 180");
       first = 0, count = mc / 2 + 1;
@@ -142,10 +147,10 @@ void stored_planes(long isym, long mc, const std::vector<double>& c, const std::
   }
 }
 
-const PhotometricSymmetry kSymmetry[] = {
-    PhotometricSymmetry::None, PhotometricSymmetry::Rotational,
-    PhotometricSymmetry::BilateralC0C180, PhotometricSymmetry::BilateralC90C270,
-    PhotometricSymmetry::Quadrant};
+const PhotometricSymmetry kSymmetry[] = {PhotometricSymmetry::None, PhotometricSymmetry::Rotational,
+                                         PhotometricSymmetry::BilateralC0C180,
+                                         PhotometricSymmetry::BilateralC90C270,
+                                         PhotometricSymmetry::Quadrant};
 
 void set_opening(double length_mm, double width_mm, double height_mm, PhotometricData& data) {
   data.opening_length_m = length_mm / 1000.0;

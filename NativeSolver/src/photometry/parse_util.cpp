@@ -120,12 +120,12 @@ double TokenStream::number(const std::string& what) {
 long TokenStream::integer(const std::string& what, long lo, long hi) {
   const double value = number(what);
   if (value != std::floor(value))
-    fail(file_, last_line_, what + " must be a whole number (got " + quote(std::to_string(value)) +
-                                ")");
+    fail(file_, last_line_,
+         what + " must be a whole number (got " + quote(std::to_string(value)) + ")");
   if (value < static_cast<double>(lo) || value > static_cast<double>(hi))
     fail(file_, last_line_,
-         what + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) +
-             " (got " + std::to_string(static_cast<long long>(value)) + ")");
+         what + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " +
+             std::to_string(static_cast<long long>(value)) + ")");
   return static_cast<long>(value);
 }
 
@@ -174,36 +174,54 @@ PhotometricData load_photometry(const std::string& path) {
 
 const char* to_string(PhotometricType type) {
   switch (type) {
-    case PhotometricType::C: return "C";
-    case PhotometricType::B: return "B";
-    case PhotometricType::A: return "A";
+    case PhotometricType::C:
+      return "C";
+    case PhotometricType::B:
+      return "B";
+    case PhotometricType::A:
+      return "A";
   }
   return "?";
 }
 
 const char* to_string(PhotometricSymmetry symmetry) {
   switch (symmetry) {
-    case PhotometricSymmetry::None: return "none";
-    case PhotometricSymmetry::Rotational: return "rotational";
-    case PhotometricSymmetry::BilateralC0C180: return "bilateral about C0-C180";
-    case PhotometricSymmetry::BilateralC90C270: return "bilateral about C90-C270";
-    case PhotometricSymmetry::Quadrant: return "quadrant (C0-C180 and C90-C270)";
-    case PhotometricSymmetry::LateralAB: return "lateral about H = 0";
+    case PhotometricSymmetry::None:
+      return "none";
+    case PhotometricSymmetry::Rotational:
+      return "rotational";
+    case PhotometricSymmetry::BilateralC0C180:
+      return "bilateral about C0-C180";
+    case PhotometricSymmetry::BilateralC90C270:
+      return "bilateral about C90-C270";
+    case PhotometricSymmetry::Quadrant:
+      return "quadrant (C0-C180 and C90-C270)";
+    case PhotometricSymmetry::LateralAB:
+      return "lateral about H = 0";
   }
   return "?";
 }
 
 const char* to_string(OpeningShape shape) {
   switch (shape) {
-    case OpeningShape::Point: return "point";
-    case OpeningShape::Rectangle: return "rectangle";
-    case OpeningShape::Box: return "box";
-    case OpeningShape::Disk: return "disk/ellipse";
-    case OpeningShape::VerticalCylinder: return "vertical cylinder";
-    case OpeningShape::Sphere: return "sphere/ellipsoid";
-    case OpeningShape::HorizontalCylinderC0: return "horizontal cylinder along C0";
-    case OpeningShape::HorizontalCylinderC90: return "horizontal cylinder along C90";
-    case OpeningShape::VerticalDisk: return "vertical disk facing C0";
+    case OpeningShape::Point:
+      return "point";
+    case OpeningShape::Rectangle:
+      return "rectangle";
+    case OpeningShape::Box:
+      return "box";
+    case OpeningShape::Disk:
+      return "disk/ellipse";
+    case OpeningShape::VerticalCylinder:
+      return "vertical cylinder";
+    case OpeningShape::Sphere:
+      return "sphere/ellipsoid";
+    case OpeningShape::HorizontalCylinderC0:
+      return "horizontal cylinder along C0";
+    case OpeningShape::HorizontalCylinderC90:
+      return "horizontal cylinder along C90";
+    case OpeningShape::VerticalDisk:
+      return "vertical disk facing C0";
   }
   return "?";
 }

@@ -1,9 +1,8 @@
 #pragma once
 // Internal helpers shared by the photometry sources (not installed, not public API).
 
-#include <glm/vec3.hpp>
-
 #include <cstddef>
+#include <glm/vec3.hpp>
 #include <string>
 #include <string_view>
 #include <vector>

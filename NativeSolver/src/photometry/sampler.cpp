@@ -40,8 +40,8 @@ glm::dvec3 PhotometricSampler::sample_direction(PathRng& rng) const {
   const auto& cdf = tables_.cell_cdf;
   const double x = rng.uniform_double() * total_flux_lm_;
   // First cell whose cumulative flux exceeds x: zero-flux cells are never chosen.
-  std::size_t cell = static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), x) -
-                                              cdf.begin());
+  std::size_t cell =
+      static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), x) - cdf.begin());
   if (cell >= cdf.size()) {  // x rounded up to the total: take the last cell with flux
     cell = cdf.size() - 1;
     while (cell > 0 && cdf[cell] == cdf[cell - 1]) --cell;

@@ -83,8 +83,8 @@ void describe_lumens(std::ostringstream& out, const PhotometricData& d, double i
     if (d.rated_lumens_lm > 0) out << ", luminaire " << fixed(d.rated_lumens_lm, 1) << " lm";
     out << "\n";
   } else {
-    out << "Lumens (file): " << fixed(d.rated_lumens_lm, 1) << " lm lamp lumens ("
-        << d.lamp_count << " lamp" << (d.lamp_count == 1 ? "" : "s") << ")\n";
+    out << "Lumens (file): " << fixed(d.rated_lumens_lm, 1) << " lm lamp lumens (" << d.lamp_count
+        << " lamp" << (d.lamp_count == 1 ? "" : "s") << ")\n";
   }
   out << "Lumens (integrated): " << fixed(integrated, 1) << " lm";
   if (d.rated_lumens_lm > 0)
@@ -106,13 +106,12 @@ void describe_peak(std::ostringstream& out, const PhotometricData& d) {
       << fixed(d.vertical_angles_deg[best % nv], 1) << " deg\n";
 }
 
-void describe_spreads(std::ostringstream& out, const PhotometricData& d,
-                      const SamplerTables& t) {
+void describe_spreads(std::ostringstream& out, const PhotometricData& d, const SamplerTables& t) {
   const bool c = d.type == PhotometricType::C;
   const char* names[2] = {c ? "C0-C180" : "H = 0", c ? "C90-C270" : "V = 0"};
   const glm::dvec3 sides[2] = {{1, 0, 0}, {0, 1, 0}};
-  for (const auto& [label, fraction] : {std::pair{"Beam angle (50 %)", 0.5},
-                                        std::pair{"Field angle (10 %)", 0.1}}) {
+  for (const auto& [label, fraction] :
+       {std::pair{"Beam angle (50 %)", 0.5}, std::pair{"Field angle (10 %)", 0.1}}) {
     out << label << ":";
     for (int k = 0; k < 2; ++k) {
       std::vector<double> angles;
@@ -134,8 +133,8 @@ std::string photometry_summary(const PhotometricData& d) {
   describe_lumens(out, d, integrated);
   describe_peak(out, d);
   describe_spreads(out, d, t);
-  out << "Opening: " << to_string(d.opening_shape) << " " << fixed(d.opening_length_m, 3)
-      << " x " << fixed(d.opening_width_m, 3) << " x " << fixed(d.opening_height_m, 3)
+  out << "Opening: " << to_string(d.opening_shape) << " " << fixed(d.opening_length_m, 3) << " x "
+      << fixed(d.opening_width_m, 3) << " x " << fixed(d.opening_height_m, 3)
       << " m (length along C0 x width x height)\n";
   out << "Tilt: " << d.tilt << "\n";
   for (const auto& w : d.warnings) out << "Warning: " << w << "\n";
