@@ -24,8 +24,11 @@ void check_options(const Domain& d, const VnsOptions& o) {
   if (o.confirmation_photons == 0)
     throw std::invalid_argument("optimize: confirmation_photons (N) must be >= 1");
   if (o.starts == 0) throw std::invalid_argument("optimize: starts must be >= 1");
-  for (const Configuration& c : o.initial)
+  for (const Configuration& c : o.initial) {
     if (!d.contains(c)) throw std::invalid_argument("optimize: initial configuration off the grid");
+    if (o.admissible && !o.admissible(c))
+      throw std::invalid_argument("optimize: initial configuration not admissible");
+  }
 }
 
 std::uint32_t auto_kmax(const Domain& d) {
@@ -64,6 +67,8 @@ class Search {
   void admit(std::uint64_t cell, std::uint64_t photons, const Evaluation& e);
   void record(std::uint64_t cell, std::uint64_t photons, const IsocUpdate& u);
   bool better(const Configuration& a, const Configuration& b) const;
+  bool admissible(const Configuration& c) const { return !opt_.admissible || opt_.admissible(c); }
+  Configuration random_start();
   bool check_stop(bool ignore_limit = false);
   void run_start(std::uint32_t s, std::uint64_t budget);
   Configuration descend(Configuration x);
@@ -130,6 +135,10 @@ const Evaluation* Search::evaluate(std::uint64_t cell, const Configuration& c,
 // must stop before the cell could be traced.
 bool Search::visit(const Configuration& c) {
   const std::uint64_t cell = d_.index(c);
+  if (!admissible(c)) {
+    if (judged_.insert(cell).second) ++counters_.inadmissible;
+    return !stop_;
+  }
   const Evaluation* screen = evaluate(cell, c, n_);
   if (!screen) return false;
   if (judged_.insert(cell).second) judge(cell, c, *screen);
@@ -181,7 +190,8 @@ void Search::record(std::uint64_t cell, std::uint64_t photons, const IsocUpdate&
 bool Search::better(const Configuration& a, const Configuration& b) const {
   const Evaluation* ea = cache_.most_precise(d_.index(a));
   const Evaluation* eb = cache_.most_precise(d_.index(b));
-  if (!ea || !eb) return false;
+  if (!ea) return false;  // untraced (inadmissible) cells lose against anything traced
+  if (!eb) return true;
   const double va = violation(ea->constraints, in_), vb = violation(eb->constraints, in_);
   if (va != vb) return va < vb;
   return in_.goal == Goal::kMaximize ? ea->objective.mean > eb->objective.mean
@@ -211,7 +221,7 @@ Configuration Search::descend(Configuration cur) {
 }
 
 void Search::run_start(std::uint32_t s, std::uint64_t budget) {
-  Configuration x = s < opt_.initial.size() ? opt_.initial[s] : d_.random(rng_);
+  Configuration x = s < opt_.initial.size() ? opt_.initial[s] : random_start();
   begin_iteration();
   if (visit(x)) x = descend(x);
   end_iteration(s, 0);
@@ -231,6 +241,21 @@ void Search::run_start(std::uint32_t s, std::uint64_t budget) {
     }
     end_iteration(s, k_used);
   }
+}
+
+// A uniformly random admissible cell: rejection first, then (for sparse filters) a scan from a
+// random cell, so the draw stays deterministic and always terminates.
+Configuration Search::random_start() {
+  for (int tries = 0; tries < 64; ++tries) {
+    Configuration c = d_.random(rng_);
+    if (admissible(c)) return c;
+  }
+  const std::uint64_t first = uniform_below(rng_, d_.cell_count());
+  for (std::uint64_t i = 0; i < d_.cell_count(); ++i) {
+    Configuration c = d_.configuration((first + i) % d_.cell_count());
+    if (admissible(c)) return c;
+  }
+  throw std::invalid_argument("optimize: no admissible configuration");
 }
 
 void Search::end_iteration(std::uint32_t start, std::uint32_t k) {

@@ -362,6 +362,38 @@ TEST(VnsSearch, InitialConfigurationIsTheFirstCellTraced) {
   EXPECT_TRUE(isoc_cells(d, r).count(d.index({17, 8})));
 }
 
+TEST(VnsSearch, AdmissibleFilterSkipsMirrorImagesOfInterchangeableLuminaires) {
+  // Two identical luminaires on a line: (a, b) and (b, a) are the same design. Keeping
+  // lum0 <= lum1 halves the grid and leaves one copy of the optimum (cells 2 and 7).
+  Domain d;
+  d.add_range("lum0.x", 0.0, 1.0, 10).add_range("lum1.x", 0.0, 1.0, 10);
+  auto h = [](double x, double c) { return 50.0 * std::exp(-(x - c) * (x - c) / 0.02); };
+  auto truth = [&](const std::vector<double>& v) {
+    return std::max(h(v[0], 0.25) + h(v[1], 0.75), h(v[0], 0.75) + h(v[1], 0.25));
+  };
+  SyntheticEvaluator ev({truth, kSigmaN, kN}, {}, 0.95);
+  VnsOptions o = base_options(2);
+  o.max_iterations = 100000;  // run until the 55 admissible cells are exhausted
+  o.admissible = [](const Configuration& c) { return c[0] <= c[1]; };
+  const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o);
+  for (const auto& [key, calls] : ev.calls()) {
+    const Configuration c = d.configuration(key.first);
+    EXPECT_LE(c[0], c[1]);
+  }
+  ASSERT_EQ(r.stop, StopReason::kExhausted);
+  EXPECT_EQ(r.counters.inadmissible, 45u);  // the 10 * 9 / 2 cells with lum0 > lum1
+  EXPECT_EQ(ev.calls().size() - r.counters.confirmations, 55u);  // one n trace per kept cell
+  const std::set<std::uint64_t> cells = isoc_cells(d, r);
+  EXPECT_TRUE(cells.count(d.index({2, 7})));
+  EXPECT_FALSE(cells.count(d.index({7, 2})));
+  VnsOptions bad = o;
+  bad.initial = {{7, 2}};
+  EXPECT_THROW(optimize(d, maximize_mean_illuminance("t"), ev, bad), std::invalid_argument);
+  bad = o;
+  bad.admissible = [](const Configuration&) { return false; };
+  EXPECT_THROW(optimize(d, maximize_mean_illuminance("t"), ev, bad), std::invalid_argument);
+}
+
 TEST(VnsResult, JsonCarriesTheIsocAndCounters) {
   const Domain d = unit_square(25);
   SyntheticEvaluator ev = bump_evaluator();

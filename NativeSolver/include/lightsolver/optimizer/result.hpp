@@ -39,6 +39,7 @@ struct Counters {
   std::uint64_t confirmations = 0;  ///< evaluations with N photons (precise)
   std::uint64_t infeasible = 0;     ///< candidates kept out of the ISOC by their constraints
   std::uint64_t refined = 0;        ///< strategy B: members re-evaluated with N at the end
+  std::uint64_t inadmissible = 0;   ///< cells skipped by VnsOptions::admissible
   CaseCounts cases{};               ///< ISOC updates per UpdateCase (refinement included)
   double update_seconds = 0.0;      ///< evaluator: applying configurations to the scene
   double trace_seconds = 0.0;       ///< evaluator: tracing

@@ -61,6 +61,10 @@ struct VnsOptions {
   LocalSearch local_search = LocalSearch::kFirstImprovement;
   Neighbourhood neighbourhood = Neighbourhood::kAxis;
   bool keep_history = true;  ///< fill OptimizationResult::history
+  /// Optional filter: cells for which it returns false are never traced nor admitted (a
+  /// non-rectangular placement face on its bounding grid, or lum0 <= lum1 to skip mirror
+  /// images of interchangeable luminaires). Must be deterministic; initial cells must pass.
+  std::function<bool(const Configuration&)> admissible;
 };
 
 /// Observation and cancellation. The callback runs after every iteration on the calling
@@ -75,7 +79,8 @@ struct Control {
 };
 
 /// Runs the search. Throws std::invalid_argument on bad options (confidence outside (0, 1),
-/// N = 0, starts = 0, an initial configuration outside the domain, an empty domain) and
+/// N = 0, starts = 0, an initial configuration outside the domain or not admissible, no
+/// admissible cell at all, an empty domain) and
 /// whatever the evaluator throws. A cancelled run still returns the ISOC found so far
 /// (under strategy B it skips the refinement, and says so by StopReason::kCancelled).
 OptimizationResult optimize(const Domain& domain, const Intention& intention, Evaluator& evaluator,
