@@ -243,8 +243,8 @@ void Search::run_start(std::uint32_t s, std::uint64_t budget) {
   }
 }
 
-// A uniformly random admissible cell: rejection first, then (for sparse filters) a scan from a
-// random cell, so the draw stays deterministic and always terminates.
+// A random admissible cell: uniform by rejection while that succeeds quickly, then (for sparse
+// filters) the first admissible cell after a random one, so the draw always terminates.
 Configuration Search::random_start() {
   for (int tries = 0; tries < 64; ++tries) {
     Configuration c = d_.random(rng_);
