@@ -176,8 +176,9 @@ void decode_opening(double w, double l, double h, int year, PhotometricData& dat
     len = 0.0;
     wid = al;
   } else {
-    data.warnings.push_back("luminous opening (width " + std::to_string(w) + ", length " +
-                            std::to_string(l) + ", height " + std::to_string(h) +
+    data.warnings.push_back("luminous opening (width " + photometry_detail::format_number(w) +
+                            ", length " + photometry_detail::format_number(l) + ", height " +
+                            photometry_detail::format_number(h) +
                             ") matches no LM-63 shape; using a rectangle of |length| x |width|");
   }
   data.opening_shape = shape;
@@ -195,12 +196,13 @@ std::vector<double> read_angles(TokenStream& in, long n, const char* what, doubl
     if (i == 0) first_line = in.last_line();
     if (a < lo - kAngleEps || a > hi + kAngleEps)
       fail(in.file(), in.last_line(),
-           std::string(what) + " " + std::to_string(a) + " is outside " + std::to_string(lo) +
-               ".." + std::to_string(hi));
+           std::string(what) + " " + photometry_detail::format_number(a) + " is outside " +
+               photometry_detail::format_number(lo) + ".." + photometry_detail::format_number(hi));
     if (!angles.empty() && a <= angles.back() + kAngleEps)
       fail(in.file(), in.last_line(),
-           std::string(what) + "s must increase (" + std::to_string(angles.back()) + " then " +
-               std::to_string(a) + ")");
+           std::string(what) + "s must increase (" +
+               photometry_detail::format_number(angles.back()) + " then " +
+               photometry_detail::format_number(a) + ")");
     angles.push_back(a);
   }
   return angles;
@@ -221,7 +223,8 @@ PhotometricSymmetry classify_horizontal(PhotometricType type, const std::vector<
   if (near(first, 0.0) && last > 180.0) return PhotometricSymmetry::None;
   fail(file, line,
        "type C horizontal angles must run 0, 0-90, 0-180, 0-360 or 90-270 (got " +
-           std::to_string(first) + " to " + std::to_string(last) + ")");
+           photometry_detail::format_number(first) + " to " +
+           photometry_detail::format_number(last) + ")");
 }
 
 // Angle ranges per type: the polar coordinate must stay within a half circle.

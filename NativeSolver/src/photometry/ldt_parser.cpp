@@ -40,8 +40,9 @@ class LineReader {
     const double v = number(what);
     if (v != std::floor(v) || v < static_cast<double>(lo) || v > static_cast<double>(hi))
       fail(file_, last_line_,
-           std::string(what) + " must be a whole number in " + std::to_string(lo) + ".." +
-               std::to_string(hi) + " (got " + std::to_string(v) + ")");
+           std::string(what) + " must be a whole number in " +
+               photometry_detail::format_number(lo) + ".." + photometry_detail::format_number(hi) +
+               " (got " + photometry_detail::format_number(v) + ")");
     return static_cast<long>(v);
   }
 
@@ -107,7 +108,8 @@ std::vector<double> read_angles(LineReader& in, long n, const char* what, double
     const double a = in.number(what);
     if (a < -kAngleEps || a > hi + kAngleEps)
       fail(in.file(), in.last_line(),
-           std::string(what) + " " + std::to_string(a) + " is outside 0.." + std::to_string(hi));
+           std::string(what) + " " + photometry_detail::format_number(a) + " is outside 0.." +
+               photometry_detail::format_number(hi));
     if (!angles.empty() && a <= angles.back() + kAngleEps)
       fail(in.file(), in.last_line(), std::string(what) + "s must increase");
     angles.push_back(a);

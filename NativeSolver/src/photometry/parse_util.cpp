@@ -117,16 +117,21 @@ double TokenStream::number(const std::string& what) {
   return value;
 }
 
+std::string format_number(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", value);
+  return buf;
+}
+
 long TokenStream::integer(const std::string& what, long lo, long hi) {
   const double value = number(what);
   if (value != std::floor(value))
-    fail(file_, last_line_,
-         what + " must be a whole number (got " + quote(std::to_string(value)) + ")");
+    fail(file_, last_line_, what + " must be a whole number (got " + format_number(value) + ")");
   if (value < static_cast<double>(lo) || value > static_cast<double>(hi))
     fail(file_, last_line_,
          what + " must be between " + std::to_string(lo) + " and " + std::to_string(hi) + " (got " +
-             std::to_string(static_cast<long long>(value)) + ")");
-  return static_cast<long>(value);
+             format_number(value) + ")");
+  return static_cast<long>(value);  // in [lo, hi]: exact
 }
 
 std::string read_file(const std::string& path) {

@@ -29,6 +29,9 @@ std::string_view trim(std::string_view s);
 /// A token shown in a message: at most 32 characters, non-printable bytes escaped.
 std::string quote(std::string_view token);
 
+/// A number for messages ("%.10g": no huge fixed-point strings, no conversions that overflow).
+std::string format_number(double value);
+
 /// Parses a whole token as a finite decimal number ('+' allowed; a ',' decimal separator when
 /// `comma_decimal`). Returns false if the token is not a number; NaN and infinities count as
 /// not-a-number too.
