@@ -13,6 +13,7 @@ PKGS=(
   libvulkan-dev mesa-vulkan-drivers glslc glslang-tools spirv-tools vulkan-tools
   vulkan-validationlayers
   freecad xvfb xauth python3-matplotlib
+  libstb-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do
