@@ -97,6 +97,9 @@ double directional_flux_lm(const Luminaire& l);
 /// building a Scene by hand.
 void validate(Scene& scene);
 
+/// Checks (and normalises directions of) the luminaires only: for scenes changed in place.
+void validate_luminaires(Scene& scene);
+
 }  // namespace lightsolver
 
 namespace lightsolver {

@@ -4,6 +4,7 @@
 // how a backend splits or orders the work.
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,20 @@ class Backend {
   /// (out.bins.size() == scene bins). Runs in the caller's TBB arena.
   virtual void trace(std::uint64_t first, std::uint64_t count, std::uint64_t seed,
                      TallyBlock& out) = 0;
+  /// PreparedScene::luminaires changed (backends holding copies re-upload them).
+  virtual void luminaires_changed() {}
+  /// Moves a movable mesh; `transform` maps its prepared coordinates to local world space
+  /// (rigid). Backends without instancing refuse.
+  virtual void set_mesh_transform(std::size_t mesh, const glm::mat4& transform) {
+    (void)mesh;
+    (void)transform;
+    throw std::runtime_error("the " + name() + " backend cannot move geometry");
+  }
 };
 
 std::unique_ptr<Backend> make_embree_backend(const PreparedScene& scene);
+
+/// The backend named "auto", "embree" (or others where built) for a prepared scene.
+std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedScene& scene);
 
 }  // namespace lightsolver::detail

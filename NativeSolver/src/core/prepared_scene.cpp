@@ -98,7 +98,7 @@ PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin
 
 }  // namespace
 
-PreparedScene prepare(const Scene& scene) {
+PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movable) {
   PreparedScene out;
   out.origin = scene_centre(scene);
   out.materials = scene.materials;
@@ -125,6 +125,14 @@ PreparedScene prepare(const Scene& scene) {
     out.grids.push_back(prepare_grid(t, out.origin, bin));
     out.target_bin.push_back(bin);
   }
+  for (std::size_t i : movable) out.meshes.at(i).movable = true;
+  prepare_luminaires(scene, out);
+  return out;
+}
+
+void prepare_luminaires(const Scene& scene, PreparedScene& out) {
+  out.luminaires.clear();
+  out.luminaire_cdf.clear();
   double cumulative = 0.0;
   for (const auto& l : scene.luminaires) {
     out.luminaires.push_back(prepare_luminaire(l, out.origin));
@@ -136,7 +144,6 @@ PreparedScene prepare(const Scene& scene) {
     for (auto& c : out.luminaire_cdf) c /= cumulative;
     out.luminaire_cdf.back() = 1.0;
   }
-  return out;
 }
 
 }  // namespace lightsolver::detail

@@ -1,6 +1,7 @@
 #pragma once
 // The scene as the tracers consume it: re-centred (in double, then float), tallies laid out as
 // bins, luminaires reduced to what emission needs. Shared by every backend (Embree, Vulkan).
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -20,6 +21,8 @@ struct PreparedMesh {
   std::vector<vec3> normals;             // unit front (counter-clockwise) normal per triangle
   int material = 0;
   std::int32_t bin = -1;                 // surface-target bin, or -1
+  bool movable = false;                  // instanced so its transform can change cheaply
+  glm::mat4 transform{1.0f};             // movable: prepared (local) coordinates -> local world
 };
 
 struct PreparedGrid {
@@ -57,7 +60,11 @@ struct PreparedScene {
   std::size_t triangle_count = 0;
 };
 
-// Builds the tracer-side scene. The Scene must have passed validate().
-PreparedScene prepare(const Scene& scene);
+// Builds the tracer-side scene. The Scene must have passed validate(). Meshes whose indices
+// are listed in `movable` are marked for instancing.
+PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movable = {});
+
+// Re-derives the luminaires and their flux CDF after Scene::luminaires changed.
+void prepare_luminaires(const Scene& scene, PreparedScene& out);
 
 }  // namespace lightsolver::detail

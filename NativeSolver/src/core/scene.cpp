@@ -39,6 +39,10 @@ class Validator {
  public:
   explicit Validator(Scene& s) : s_(s) {}
 
+  void luminaires() {
+    for (std::size_t i = 0; i < s_.luminaires.size(); ++i) luminaire(i);
+  }
+
   void run() {
     for (std::size_t i = 0; i < s_.materials.size(); ++i) material(i);
     for (std::size_t i = 0; i < s_.meshes.size(); ++i) mesh(i);
@@ -201,5 +205,7 @@ class Validator {
 }  // namespace
 
 void validate(Scene& scene) { Validator(scene).run(); }
+
+void validate_luminaires(Scene& scene) { Validator(scene).luminaires(); }
 
 }  // namespace lightsolver

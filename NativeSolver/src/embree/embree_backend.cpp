@@ -9,6 +9,8 @@
 
 #include <limits>
 
+#include <glm/mat3x3.hpp>
+
 #include "core/backend.hpp"
 #include "core/emitters.hpp"
 #include "core/path_deposits.hpp"
@@ -23,6 +25,10 @@ class EmbreeBackend final : public Backend {
   explicit EmbreeBackend(const PreparedScene& s) : s_(s), embree_(s) {}
 
   std::string name() const override { return "embree"; }
+
+  void set_mesh_transform(std::size_t mesh, const glm::mat4& transform) override {
+    embree_.set_transform(mesh, transform);
+  }
 
   void trace(std::uint64_t first, std::uint64_t count, std::uint64_t seed,
              TallyBlock& out) override {
@@ -57,15 +63,18 @@ class EmbreeBackend final : public Backend {
       const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
       if (!s_.grids.empty()) cross_grids(s_.grids, ray.origin, ray.direction, rh.ray.tfar, deposits);
       if (!hit) return;
-      const PreparedMesh& m = s_.meshes[rh.hit.geomID];
-      const vec3 n = m.normals[rh.hit.primID];
+      const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
+      const PreparedMesh& m = s_.meshes[instanced ? rh.hit.instID[0] : rh.hit.geomID];
+      vec3 n = m.normals[rh.hit.primID];
+      if (instanced) n = glm::normalize(glm::mat3(m.transform) * n);  // rigid: no inverse needed
       if (m.bin >= 0 && glm::dot(ray.direction, n) < 0.0f) deposits.add(m.bin);
       if (!scatter(s_.materials[m.material], n, ray.direction, rng)) return;
       if (bounce >= s_.max_bounces) {
         ++t.capped_paths;  // still alive: stopping here loses its energy (reported)
         return;
       }
-      const vec3 p = hit_point(m, rh.hit.primID, rh.hit.u, rh.hit.v);
+      vec3 p = hit_point(m, rh.hit.primID, rh.hit.u, rh.hit.v);
+      if (instanced) p = vec3(m.transform * glm::vec4(p, 1.0f));
       ray.origin = offset_ray_origin(p, glm::dot(ray.direction, n) > 0.0f ? n : -n);
     }
   }

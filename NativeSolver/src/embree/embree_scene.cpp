@@ -14,26 +14,50 @@ void check(RTCDevice device, const char* step) {
   }
 }
 
-}  // namespace
+RTCGeometry triangle_geometry(RTCDevice device, const PreparedMesh& m) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.vertices.data(), 0,
+                             3 * sizeof(float), (m.vertices.size() - 1) / 3);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
+                             3 * sizeof(std::uint32_t), m.indices.size() / 3);
+  rtcCommitGeometry(g);
+  return g;
+}
 
-EmbreeScene::EmbreeScene(const PreparedScene& scene) {
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("Embree: cannot create a device (unsupported CPU?)");
-  scene_ = rtcNewScene(device_);
+RTCScene new_scene(RTCDevice device, RTCBuildQuality quality) {
+  RTCScene scene = rtcNewScene(device);
   // Robust mode makes traversal watertight: photons must not leak through shared edges of a
   // closed room, or flux conservation breaks.
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene, quality);
+  return scene;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const PreparedScene& scene)
+    : instanced_(scene.meshes.size(), nullptr), instances_(scene.meshes.size(), nullptr) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("Embree: cannot create a device (unsupported CPU?)");
+  scene_ = new_scene(device_, RTC_BUILD_QUALITY_HIGH);
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const PreparedMesh& m = scene.meshes[i];
     if (m.indices.empty()) continue;  // every triangle was degenerate; nothing to hit
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.vertices.data(),
-                               0, 3 * sizeof(float), (m.vertices.size() - 1) / 3);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
-                               3 * sizeof(std::uint32_t), m.indices.size() / 3);
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(i));
+    RTCGeometry g = triangle_geometry(device_, m);
+    if (m.movable) {
+      // Its own BVH, built once; the instance's transform moves it (geometry ID 0 inside).
+      instanced_[i] = new_scene(device_, RTC_BUILD_QUALITY_HIGH);
+      rtcAttachGeometryByID(instanced_[i], g, 0);
+      rtcCommitScene(instanced_[i]);
+      instances_[i] = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(instances_[i], instanced_[i]);
+      rtcSetGeometryTransform(instances_[i], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                              &m.transform[0][0]);
+      rtcCommitGeometry(instances_[i]);
+      rtcAttachGeometryByID(scene_, instances_[i], static_cast<unsigned>(i));
+    } else {
+      rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(i));
+    }
     rtcReleaseGeometry(g);
     check(device_, "geometry setup");
   }
@@ -41,8 +65,24 @@ EmbreeScene::EmbreeScene(const PreparedScene& scene) {
   check(device_, "BVH build");
 }
 
+void EmbreeScene::set_transform(std::size_t mesh, const glm::mat4& transform) {
+  if (mesh >= instances_.size() || !instances_[mesh]) {
+    throw std::logic_error("mesh " + std::to_string(mesh) + " is not instanced");
+  }
+  rtcSetGeometryTransform(instances_[mesh], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+  rtcCommitGeometry(instances_[mesh]);
+  rtcCommitScene(scene_);
+  check(device_, "instance update");
+}
+
 EmbreeScene::~EmbreeScene() {
   if (scene_) rtcReleaseScene(scene_);
+  for (RTCGeometry g : instances_) {
+    if (g) rtcReleaseGeometry(g);
+  }
+  for (RTCScene s : instanced_) {
+    if (s) rtcReleaseScene(s);
+  }
   if (device_) rtcReleaseDevice(device_);
 }
 

@@ -147,6 +147,12 @@ inline double corner_factor_perpendicular(double a, double depth, double y) {
 constexpr double kCheckConfidence = 0.9999994;
 
 // The backends every closed-form test runs on.
-inline std::vector<std::string> backends() { return {"embree"}; }
+inline std::vector<std::string> backends() {
+#ifdef LIGHTSOLVER_HAVE_VULKAN
+  return {"embree", "vulkan"};
+#else
+  return {"embree"};
+#endif
+}
 
 }  // namespace lightsolver::test

@@ -1,0 +1,224 @@
+// Simulation: a prepared scene and its backend, kept for many runs (solve() uses it once).
+// Photons are traced in batches (progress, cancellation and accuracy checks between them),
+// then integer tallies become illuminance estimates.
+#include "lightsolver/simulation.hpp"
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/backend.hpp"
+
+namespace lightsolver {
+namespace detail {
+
+struct SimulationState {
+  Scene scene;
+  PreparedScene prepared;
+  std::unique_ptr<Backend> backend;
+  int threads = 0;
+  double pending_update_seconds = 0.0;
+};
+
+}  // namespace detail
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Batches give progress reports and cancellation points; their size does not change results.
+// In accuracy mode they double from 2^14 so a goal met early is seen early.
+std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_mode) {
+  const std::uint64_t size =
+      accuracy_mode ? std::max<std::uint64_t>(done, 1u << 14)
+                    : std::clamp<std::uint64_t>(total / 100, 1u << 14, 1u << 22);
+  return std::min(size, total - done);
+}
+
+// True when every target's interval is narrow enough relative to its mean. A target with no
+// hit yet cannot be judged: keep tracing.
+bool accuracy_reached(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                      std::uint64_t photons, double confidence, double goal) {
+  for (const std::uint32_t bin : s.target_bin) {
+    const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
+    if (e.hits == 0 || 0.5 * (e.ci_high - e.ci_low) > goal * e.mean) return false;
+  }
+  return true;
+}
+
+TargetResult make_target(const Target& t, const detail::PreparedScene& s,
+                         const detail::TallyBlock& tallies, std::uint32_t bin,
+                         std::uint64_t photons, double confidence) {
+  TargetResult r;
+  r.name = t.name;
+  r.is_grid = t.type == Target::Type::Grid;
+  r.area_m2 = s.bins[bin].area_m2;
+  auto estimate = [&](std::uint32_t b) {
+    return make_estimate(tallies.bins[b], photons, s.total_flux_lm / s.bins[b].area_m2,
+                         confidence);
+  };
+  r.estimate = estimate(bin);
+  if (!r.is_grid) return r;
+  r.nu = t.nu;
+  r.nv = t.nv;
+  r.cells.reserve(std::size_t(t.nu) * t.nv);
+  for (std::uint32_t c = 0; c < t.nu * t.nv; ++c) r.cells.push_back(estimate(bin + 1 + c));
+  const auto [lo, hi] = std::minmax_element(r.cells.begin(), r.cells.end(),
+                                            [](auto& a, auto& b) { return a.mean < b.mean; });
+  r.min_lux = lo->mean;
+  r.max_lux = hi->mean;
+  r.uniformity = r.estimate.mean > 0.0 ? r.min_lux / r.estimate.mean : 0.0;
+  return r;
+}
+
+void add_warnings(const Scene& scene, Results& r) {
+  r.warnings = scene.warnings;
+  if (r.total_flux_lm <= 0.0) r.warnings.push_back("all luminaires have zero flux");
+  if (r.capped_paths > 0) {
+    r.warnings.push_back(std::to_string(r.capped_paths) +
+                         " photon path(s) were still alive at max_bounces = " +
+                         std::to_string(scene.settings.max_bounces) +
+                         "; their remaining light is lost, so results are biased low");
+  }
+  if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
+  if (r.target_accuracy && !r.accuracy_met && !r.partial) {
+    r.warnings.push_back("the photon budget ran out before every target reached the requested "
+                         "accuracy");
+  }
+}
+
+
+// Rigid: the linear part is orthonormal and the last row is (0, 0, 0, 1).
+bool is_rigid(const glm::dmat4& m) {
+  const glm::dmat3 r(m);
+  const glm::dmat3 should_be_identity = glm::transpose(r) * r;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (std::abs(should_be_identity[i][j] - (i == j ? 1.0 : 0.0)) > 1e-6) return false;
+    }
+  }
+  return m[0][3] == 0 && m[1][3] == 0 && m[2][3] == 0 && m[3][3] == 1;
+}
+
+}  // namespace
+
+Simulation::Simulation(Scene scene, Options options)
+    : state_(std::make_unique<detail::SimulationState>()) {
+  if (options.threads < 0) throw InputError("", "threads", "must be >= 0 (0: all cores)");
+  validate(scene);
+  std::vector<std::size_t> movable;
+  for (const auto& name : options.movable_meshes) {
+    const int i = scene.find_mesh(name);
+    if (i < 0) throw InputError(scene.source_file, "movable_meshes", "unknown mesh \"" + name + "\"");
+    movable.push_back(static_cast<std::size_t>(i));
+  }
+  state_->scene = std::move(scene);
+  state_->prepared = detail::prepare(state_->scene, movable);
+  state_->backend = detail::make_backend(options.backend, state_->prepared);
+  state_->threads = options.threads;
+}
+
+Simulation::~Simulation() = default;
+
+const Scene& Simulation::scene() const { return state_->scene; }
+
+double Simulation::pending_update_seconds() const { return state_->pending_update_seconds; }
+
+void Simulation::set_luminaire(std::size_t index, const Luminaire& luminaire) {
+  const auto start = Clock::now();
+  Scene& s = state_->scene;
+  if (index >= s.luminaires.size()) {
+    throw InputError(s.source_file, "luminaires", "no luminaire " + std::to_string(index));
+  }
+  const Luminaire previous = s.luminaires[index];
+  s.luminaires[index] = luminaire;
+  try {
+    validate_luminaires(s);
+  } catch (...) {
+    s.luminaires[index] = previous;  // a rejected change leaves the simulation as it was
+    throw;
+  }
+  detail::prepare_luminaires(s, state_->prepared);
+  state_->backend->luminaires_changed();
+  state_->pending_update_seconds += seconds_since(start);
+}
+
+void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
+  const auto start = Clock::now();
+  detail::PreparedScene& p = state_->prepared;
+  const std::string where = "meshes[" + std::to_string(mesh) + "]";
+  if (mesh >= p.meshes.size() || !p.meshes[mesh].movable) {
+    throw InputError(state_->scene.source_file, where, "mesh is not declared movable");
+  }
+  if (!is_rigid(world)) {
+    throw InputError(state_->scene.source_file, where,
+                     "transform must be rigid (rotation + translation): areas must not change");
+  }
+  // The same motion in re-centred coordinates: T = shift(-origin) * world * shift(origin),
+  // composed in double before the float conversion.
+  glm::dmat4 local = world;
+  local[3] = glm::dvec4(glm::dvec3(world * glm::dvec4(p.origin, 1.0)) - p.origin, 1.0);
+  p.meshes[mesh].transform = glm::mat4(local);
+  state_->backend->set_mesh_transform(mesh, p.meshes[mesh].transform);
+  state_->pending_update_seconds += seconds_since(start);
+}
+
+Results Simulation::run(const SolveOptions& options, const ProgressFn& progress) {
+  const auto start = Clock::now();
+  const Scene& scene = state_->scene;
+  const detail::PreparedScene& prepared = state_->prepared;
+  Results r;
+  r.photons_requested = options.photons.value_or(scene.settings.photons);
+  r.seed = options.seed.value_or(scene.settings.seed);
+  r.confidence = options.confidence.value_or(scene.settings.confidence);
+  r.target_accuracy = options.target_accuracy;
+  if (r.photons_requested == 0) throw InputError("", "photons", "must be at least 1");
+  if (!(r.confidence > 0.0 && r.confidence < 1.0)) {
+    throw InputError("", "confidence", "must lie strictly between 0 and 1");
+  }
+  if (r.target_accuracy && !(*r.target_accuracy > 0.0 && *r.target_accuracy < 1.0)) {
+    throw InputError("", "target_accuracy", "must lie strictly between 0 and 1 (e.g. 0.02)");
+  }
+  state_->pending_update_seconds = 0.0;
+  r.backend = state_->backend->name();
+  r.total_flux_lm = prepared.total_flux_lm;
+  detail::TallyBlock tallies(prepared.bins.size());
+  if (prepared.total_flux_lm > 0.0) {
+    tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
+    const bool accuracy_mode = r.target_accuracy.has_value();
+    while (r.photons < r.photons_requested) {
+      if (options.cancel && options.cancel->load()) break;
+      const std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode);
+      arena.execute([&] { state_->backend->trace(r.photons, n, r.seed, tallies); });
+      r.photons += n;
+      if (accuracy_mode &&
+          accuracy_reached(prepared, tallies, r.photons, r.confidence, *r.target_accuracy)) {
+        r.accuracy_met = true;
+        break;
+      }
+      if (progress && !progress(r.photons, r.photons_requested)) break;
+    }
+  } else {
+    r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
+  }
+  r.partial = r.photons < r.photons_requested && !r.accuracy_met;
+  r.ray_segments = tallies.ray_segments;
+  r.capped_paths = tallies.capped_paths;
+  for (std::size_t i = 0; i < scene.targets.size(); ++i) {
+    r.targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
+                                    r.photons, r.confidence));
+  }
+  add_warnings(scene, r);
+  r.seconds = seconds_since(start);
+  return r;
+}
+
+}  // namespace lightsolver
