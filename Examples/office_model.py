@@ -116,6 +116,9 @@ def build_office(doc: Optional[Any] = None, photons: int = 200000, seed: int = 1
     volume.Length, volume.Width, volume.Height = ROOM_X_MM, ROOM_Y_MM, ROOM_Z_MM
     space = arch.makeSpace(volume)
     space.Label = "Office"
+    # The space is not geometry (never exported); hidden, it does not hide the room in the GUI.
+    space.Visibility = False
+    volume.Visibility = False
     doc.recompute()
 
     analysis = lighting.make_analysis(doc, photons=photons, seed=seed)

@@ -162,7 +162,10 @@ class SceneBuilder:
             self.report.add("warning", f"'{obj.Label}' has no usable shape ({exc}); left out",
                             obj.Name)
             return
-        parts, errors = tessellate_faces(shape, self.linear_mm, self.angular_deg)
+        try:
+            parts, errors = tessellate_faces(shape, self.linear_mm, self.angular_deg)
+        except Exception as exc:  # noqa: BLE001 - a broken B-rep must not stop the export
+            parts, errors = [None] * len(shape.Faces), [f"{type(exc).__name__}: {exc}"]
         failed = sum(1 for p in parts if p is None)
         if errors:
             level = "warning"

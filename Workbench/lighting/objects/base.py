@@ -55,6 +55,8 @@ class BaseProxy:
     TYPE: str = "Lighting::Base"
     #: Declarative property table, completed by subclasses.
     PROPERTIES: Dict[str, Prop] = {}
+    #: View provider (module under lighting.viewproviders, class), attached when GuiUp.
+    VIEW_PROVIDER: Optional[tuple] = None
 
     def __init__(self, obj: Any) -> None:
         obj.Proxy = self
@@ -85,11 +87,23 @@ class BaseProxy:
                 setattr(obj, name, prop.default)
             obj.setEditorMode(name, prop.mode)
 
+    @classmethod
+    def has_all_properties(cls, obj: Any) -> bool:
+        """True once every property of the table exists on ``obj``."""
+        existing = set(obj.PropertiesList)
+        return all(name in existing for name in cls.PROPERTIES)
+
     # -- FreeCAD hooks -------------------------------------------------------------------
     def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
-        """Migrate objects from older files: add new properties with their defaults."""
+        """Migrate objects from older files: add new properties with their defaults; give
+        objects saved by freecadcmd (no GuiDocument.xml) their view provider in the GUI."""
         self.Type = self.TYPE
         self.ensure_properties(obj)
+        if FreeCAD.GuiUp and self.VIEW_PROVIDER is not None:
+            from PySide import QtCore
+
+            doc, name = obj.Document, obj.Name
+            QtCore.QTimer.singleShot(0, lambda: attach_view_provider(doc.getObject(name)))
 
     def execute(self, obj: Any) -> None:
         """Recompute; subclasses with geometry override this."""
@@ -106,6 +120,26 @@ class BaseProxy:
 
     def loads(self, state: Optional[dict]) -> None:
         return None
+
+
+def attach_view_provider(obj: Any) -> None:
+    """Give ``obj`` its Lighting view provider if the GUI is up and it has none yet."""
+    if obj is None or not FreeCAD.GuiUp:
+        return
+    proxy = getattr(obj, "Proxy", None)
+    spec = getattr(proxy, "VIEW_PROVIDER", None)
+    vobj = getattr(obj, "ViewObject", None)
+    if spec is None or vobj is None:
+        return
+    current = getattr(vobj, "Proxy", None)
+    if current is not None and not isinstance(current, (int, float, str)):
+        return  # FreeCAD reports a missing proxy as 0
+    import importlib
+
+    module = importlib.import_module(f"lighting.viewproviders.{spec[0]}")
+    proxy = getattr(module, spec[1])(vobj)
+    if getattr(proxy, "ViewObject", None) is None:  # FreeCAD did not call attach()
+        proxy.attach(vobj)
 
 
 def proxy_type(obj: Any) -> str:

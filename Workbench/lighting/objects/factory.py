@@ -21,12 +21,12 @@ def _vec_mm(point_m: Vec) -> FreeCAD.Vector:
     return FreeCAD.Vector(x, y, z) * M_TO_MM
 
 
-def _attach_view(obj: Any, module: str, cls: str) -> None:
-    if FreeCAD.GuiUp and getattr(obj, "ViewObject", None) is not None:
-        import importlib
+def _attach_view(obj: Any, module: str = "", cls: str = "") -> None:
+    """The FEM pattern: view providers only when the GUI is up."""
+    if FreeCAD.GuiUp:
+        from lighting.objects.base import attach_view_provider
 
-        view_module = importlib.import_module(f"lighting.viewproviders.{module}")
-        getattr(view_module, cls)(obj.ViewObject)
+        attach_view_provider(obj)
 
 
 def _add_to_analysis(obj: Any, analysis: Optional[Any]) -> None:

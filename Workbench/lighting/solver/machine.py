@@ -47,7 +47,9 @@ class AnalysisRun:
     ``start()`` + poll ``finished``), then ``apply()``."""
 
     def __init__(self, analysis: Any, output_dir: Optional[str] = None,
-                 log: Optional[Callable[[str, str], None]] = None) -> None:
+                 log: Optional[Callable[[str, str], None]] = None,
+                 spare_core: bool = False) -> None:
+        """``spare_core``: with Threads = 0 (all cores), leave one core to the GUI."""
         self.analysis = analysis
         self.output_dir = output_dir or scene_mod.default_output_directory(analysis)
         self.log = log or (lambda level, text: None)
@@ -67,7 +69,9 @@ class AnalysisRun:
         # Settings copied on the main thread; the worker never reads the document.
         self._settings = {
             "photons": int(analysis.Photons), "seed": int(analysis.Seed),
-            "confidence": float(analysis.Confidence), "threads": int(analysis.Threads),
+            "confidence": float(analysis.Confidence),
+            "threads": int(analysis.Threads) or (max(1, (os.cpu_count() or 1) - 1)
+                                                 if spare_core else 0),
             "backend": str(analysis.Backend), "accuracy": float(analysis.TargetAccuracy),
             "max_photons": int(analysis.MaxPhotons),
         }

@@ -125,7 +125,7 @@ def solve_file(scene_file: str, photons: int, seed: int, confidence: float, thre
     try:
         scene = module.load_scene(scene_file)
     except Exception as exc:  # noqa: BLE001 - the solver's validation messages
-        raise SolverError(f"The solver rejected the scene {scene_file}: {exc}") from exc
+        raise SolverError(f"The solver rejected the scene: {exc}") from exc
     kwargs: Dict[str, Any] = {"photons": int(photons), "seed": int(seed),
                               "confidence": float(confidence), "threads": int(threads),
                               "progress": progress, "cancel": cancel}

@@ -1,0 +1,191 @@
+"""FreeCAD GUI macro of the GUI test (run by run_gui_test.py under Xvfb; do not run alone).
+
+Opens the example office with the Lighting workbench, runs the analysis through the
+Lighting_Run command while a heartbeat timer measures how long the event loop stalls, saves
+screenshots of the 3D view before, after and after save + reopen, measures their colours and
+writes everything to status.json. Always ends the process with os._exit."""
+import json
+import os
+import threading
+import time
+import traceback
+
+OUT = os.environ["LIGHTING_GUI_OUT"]
+STATUS = {"errors": [], "log": []}
+SIZE = (1200, 900)
+
+
+def log(text):
+    STATUS["log"].append(text)
+
+
+def finish(code=0):
+    with open(os.path.join(OUT, "status.json"), "w", encoding="utf-8") as stream:
+        json.dump(STATUS, stream, indent=1)
+    os._exit(code)
+
+
+threading.Timer(float(os.environ.get("LIGHTING_GUI_TIMEOUT", "200")),
+                lambda: (STATUS["errors"].append("watchdog: GUI test timed out"), finish(3))).start()
+
+
+def pump(seconds=0.3):
+    from PySide import QtGui
+
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+
+
+def image_metrics(path):
+    """Colourful pixels (saturation > 0.6, value > 0.35) outside the legend strip and the
+    hue bins (30 deg) holding at least 0.2 % of the measured pixels."""
+    from PySide import QtGui
+
+    image = QtGui.QImage(path)
+    width, height = image.width(), image.height()
+    x0 = int(width * 0.2)  # the legend sits at the left
+    total = colourful = 0
+    bins = [0] * 12
+    for y in range(0, height, 2):
+        for x in range(x0, width, 2):
+            colour = QtGui.QColor(image.pixel(x, y))
+            total += 1
+            if colour.saturationF() > 0.6 and colour.valueF() > 0.35:
+                colourful += 1
+                bins[int(max(colour.hueF(), 0.0) * 12) % 12] += 1
+    distinct = sum(1 for b in bins if b > 0.002 * total)
+    legend = legend_total = 0
+    for y in range(0, height, 2):
+        for x in range(0, x0, 2):
+            colour = QtGui.QColor(image.pixel(x, y))
+            legend_total += 1
+            legend += colour.saturationF() > 0.6 and colour.valueF() > 0.35
+    non_white = 0
+    for y in range(0, height, 8):
+        for x in range(0, width, 8):
+            if QtGui.QColor(image.pixel(x, y)).valueF() < 0.95:
+                non_white += 1
+    return {"path": path, "colourful_fraction": colourful / max(total, 1),
+            "legend_fraction": legend / max(legend_total, 1),
+            "hue_bins": distinct, "bins": bins, "non_white_fraction":
+            non_white / max(((width + 7) // 8) * ((height + 7) // 8), 1)}
+
+
+def screenshot(doc, name):
+    import FreeCADGui
+
+    view = FreeCADGui.getDocument(doc.Name).ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    pump(0.5)
+    path = os.path.join(OUT, f"{name}.png")
+    view.saveImage(path, SIZE[0], SIZE[1], "White")
+    STATUS.setdefault("images", {})[name] = image_metrics(path)
+    log(f"screenshot {path}")
+    return path
+
+
+def hide_for_view(doc):
+    """Look into the room from above: hide the ceiling and the placement domain's points."""
+    for label in ("Ceiling", "CeilingDomain"):
+        for obj in doc.getObjectsByLabel(label):
+            obj.ViewObject.hide()
+
+
+def distinct_colours(obj):
+    return len({tuple(round(c, 3) for c in col[:3]) for col in obj.ViewObject.DiffuseColor})
+
+
+def run_analysis(doc):
+    """Lighting_Run on the analysis; waits in a real event loop with a heartbeat."""
+    import FreeCADGui
+    from PySide import QtCore
+
+    from lighting.taskpanels import analysis_panel
+
+    analysis = doc.getObject("LightingAnalysis")
+    analysis.Photons = int(os.environ.get("LIGHTING_GUI_PHOTONS", "1500000"))
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(analysis)
+    beats = []
+    loop = QtCore.QEventLoop()
+    heartbeat = QtCore.QTimer()
+    heartbeat.setInterval(20)
+
+    def beat():
+        job = analysis_panel.last_run()
+        beats.append((time.monotonic(), job.stage if job is not None else "none"))
+        if job is not None and job.stage in ("done", "failed", "cancelled"):
+            loop.quit()
+    heartbeat.timeout.connect(beat)
+    heartbeat.start()
+    started = time.monotonic()
+    FreeCADGui.runCommand("Lighting_Run")
+    QtCore.QTimer.singleShot(120000, loop.quit)
+    loop.exec_()
+    heartbeat.stop()
+    job = analysis_panel.last_run()
+    gaps = [b[0] - a[0] for a, b in zip(beats, beats[1:]) if a[1] == "solve" and b[1] == "solve"]
+    solve_times = [b[0] for b in beats if b[1] == "solve"]
+    STATUS["run"] = {"stage": job.stage if job else None, "seconds": time.monotonic() - started,
+                     "solve_beats": len(gaps) + 1 if gaps else 0,
+                     "solve_seconds": (solve_times[-1] - solve_times[0]) if solve_times else 0.0,
+                     "max_gap_solve_s": max(gaps) if gaps else None,
+                     "max_gap_all_s": max((b[0] - a[0] for a, b in zip(beats, beats[1:])),
+                                          default=None),
+                     "error": str(job.error) if job and job.error else None,
+                     "status": analysis.Status}
+    pump(0.5)
+    FreeCADGui.Control.closeDialog()
+
+
+def main():
+    import FreeCAD
+    import FreeCADGui
+
+    FreeCADGui.getMainWindow().resize(1280, 1000)
+    FreeCADGui.activateWorkbench("LightingWorkbench")
+    import lighting
+
+    STATUS["workbench"] = FreeCADGui.activeWorkbench().name()
+    ok, info = lighting.solver_available()
+    STATUS["solver"], STATUS["solver_info"] = ok, info
+    doc = FreeCAD.openDocument(os.environ["LIGHTING_GUI_FILE"])
+    pump(0.5)
+    STATUS["view_providers"] = {
+        o.Name: type(o.ViewObject.Proxy).__name__ for o in doc.Objects
+        if getattr(o, "Proxy", None) is not None and type(o.Proxy).__module__.startswith("lighting")}
+    hide_for_view(doc)
+    STATUS["visible_opened"] = sorted(o.Name for o in doc.Objects
+                                      if getattr(o, "ViewObject", None) is not None
+                                      and o.ViewObject.Visibility)
+    screenshot(doc, "before")
+    if not ok:
+        log("solver not available: stopping after the first screenshot")
+        return
+    run_analysis(doc)
+    STATUS["workplane_colours_after"] = distinct_colours(doc.getObject("Workplane"))
+    screenshot(doc, "after")
+    path = os.path.join(OUT, "solved.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    pump(0.3)
+    doc = FreeCAD.openDocument(path)
+    pump(1.0)
+    hide_for_view(doc)
+    STATUS["visible_reopened"] = sorted(o.Name for o in doc.Objects
+                                        if getattr(o, "ViewObject", None) is not None
+                                        and o.ViewObject.Visibility)
+    STATUS["workplane_colours_reopened"] = distinct_colours(doc.getObject("Workplane"))
+    STATUS["mean_lux_reopened"] = doc.getObject("Workplane").MeanLux
+    screenshot(doc, "reopened")
+
+
+try:
+    main()
+    finish(0)
+except Exception:  # noqa: BLE001 - reported through status.json
+    STATUS["errors"].append(traceback.format_exc())
+    finish(1)

@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""GUI test under Xvfb: FreeCAD with the Lighting workbench opens the example office, runs
+the analysis through its command, and the 3D view must show the false-colour result.
+
+    /usr/bin/python3 Tests/workbench/run_gui_test.py [--update-docs]
+
+Steps: build the example (freecadcmd, no solve) -> ``xvfb-run freecad gui_macro.py`` ->
+check status.json: the workbench loaded, Lighting_Run finished, the event loop never stalled
+during the solve, the screenshot after the run is false-coloured (many saturated pixels in
+>= 3 hue bins, clearly more than before the run) and so is the one after save + reopen.
+Prints the screenshot paths. --update-docs copies the result to docs/workbench-office.png.
+Exit status: 0 passed, 1 failed, 77 skipped (no xvfb-run/freecad, or no solver module unless
+LIGHTSOLVER_REQUIRED=1)."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+from run_tests import REPO, freecad_env
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+# A frozen GUI stalls for the whole solve; a busy 2-core CI machine may pause it briefly.
+MAX_GAP_S = 1.0
+
+
+def check(status: dict) -> list:
+    """The failed expectations (empty when the GUI test passed)."""
+    problems = []
+    if status.get("errors"):
+        problems.extend(status["errors"])
+    if status.get("workbench") != "LightingWorkbench":
+        problems.append(f"workbench not active: {status.get('workbench')}")
+    vps = status.get("view_providers", {})
+    if vps.get("Workplane") != "ViewProviderTarget":
+        problems.append(f"view providers not attached after opening: {vps}")
+    images = status.get("images", {})
+    run = status.get("run", {})
+    if run.get("stage") != "done":
+        problems.append(f"analysis did not finish: {run}")
+        return problems
+    gap, beats = run.get("max_gap_solve_s"), run.get("solve_beats", 0)
+    limit = min(MAX_GAP_S, 0.5 * run.get("solve_seconds", 0.0))
+    if beats < 10 or gap is None or gap > limit:
+        problems.append(f"event loop stalled {gap} s during a {run.get('solve_seconds')} s "
+                        f"solve ({beats} heartbeats; limit {limit:.2f} s): GUI not responsive")
+    before, after = images.get("before", {}), images.get("after", {})
+    for name in ("after", "reopened"):
+        img = images.get(name, {})
+        if img.get("non_white_fraction", 0) < 0.05:
+            problems.append(f"{name} screenshot is blank: {img}")
+        if img.get("legend_fraction", 0) < 0.01:
+            problems.append(f"{name} screenshot has no colour legend: {img.get('legend_fraction')}")
+        if img.get("hue_bins", 0) < 3:
+            problems.append(f"{name} screenshot has {img.get('hue_bins')} hue bins (< 3): "
+                            "no false colours")
+        if img.get("colourful_fraction", 0) < 2 * before.get("colourful_fraction", 0) + 0.01:
+            problems.append(f"{name} screenshot is not more colourful than the unlit model: "
+                            f"{img.get('colourful_fraction')} vs {before.get('colourful_fraction')}")
+    if status.get("workplane_colours_after", 0) < 4 or status.get("workplane_colours_reopened", 0) < 4:
+        problems.append("workplane grid cells are not coloured by value")
+    if after.get("colourful_fraction", 0) and images.get("reopened", {}).get(
+            "colourful_fraction", 0) < 0.5 * after["colourful_fraction"]:
+        problems.append("colours lost after save and reopen")
+    return problems
+
+
+def main(argv: list) -> int:
+    for tool in ("xvfb-run", "freecad", "freecadcmd"):
+        if shutil.which(tool) is None:
+            print(f"run_gui_test: {tool} not found; skipped")
+            return 77
+    root = tempfile.mkdtemp(prefix="lighting-gui-")
+    env = freecad_env(root)
+    example = os.path.join(root, "office.FCStd")
+    build = subprocess.run(["freecadcmd", os.path.join(REPO, "Examples", "office.py")],
+                           env=dict(env, LIGHTING_OUT=example, LIGHTING_BUILD_ONLY="1"),
+                           capture_output=True, text=True, timeout=300)
+    if build.returncode != 0:
+        print(build.stdout, build.stderr)
+        print("run_gui_test: building the example failed")
+        return 1
+    out = os.path.join(root, "gui")
+    os.makedirs(out)
+    env.update(LIGHTING_GUI_FILE=example, LIGHTING_GUI_OUT=out, QTWEBENGINE_DISABLE_SANDBOX="1")
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad",
+           os.path.join(HERE, "gui_macro.py")]
+    print("run_gui_test:", " ".join(cmd), flush=True)
+    proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=400, cwd=root)
+    status_file = os.path.join(out, "status.json")
+    if not os.path.exists(status_file):
+        print(proc.stdout[-3000:], proc.stderr[-3000:])
+        print("run_gui_test: FreeCAD ended without status.json")
+        return 1
+    with open(status_file, encoding="utf-8") as stream:
+        status = json.load(stream)
+    print(json.dumps({k: v for k, v in status.items() if k != "log"}, indent=1))
+    for name, img in status.get("images", {}).items():
+        print(f"screenshot ({name}): {img['path']}")
+    if not status.get("solver"):
+        message = f"run_gui_test: solver not importable: {status.get('solver_info')}"
+        if os.environ.get("LIGHTSOLVER_REQUIRED") == "1":
+            print(message + " (LIGHTSOLVER_REQUIRED=1): FAILED")
+            return 1
+        print(message + "; skipped after the first screenshot")
+        return 77
+    problems = check(status)
+    for problem in problems:
+        print(f"run_gui_test: FAILED: {problem}")
+    if not problems and "--update-docs" in argv:
+        target = os.path.join(REPO, "docs", "workbench-office.png")
+        shutil.copyfile(status["images"]["after"]["path"], target)
+        print(f"run_gui_test: copied the screenshot to {target}")
+    print("run_gui_test:", "FAILED" if problems else "passed")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,45 @@
+"""Examples/office.py run the way a user runs it: ``freecadcmd Examples/office.py``."""
+import os
+import subprocess
+
+import FreeCAD
+
+from wbtest import REPO, DocTestCase, needs_solver, work_dir
+
+SCRIPT = os.path.join(REPO, "Examples", "office.py")
+
+
+def run_example(out: str, **env_extra: str) -> subprocess.CompletedProcess:
+    env = dict(os.environ, LIGHTING_OUT=out, **env_extra)
+    return subprocess.run(["freecadcmd", SCRIPT], env=env, capture_output=True, text=True,
+                          timeout=300)
+
+
+class Example(DocTestCase):
+    def test_build_only(self):
+        out = os.path.join(work_dir("example-build"), "office.FCStd")
+        proc = run_example(out, LIGHTING_BUILD_ONLY="1")
+        self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+        doc = FreeCAD.openDocument(out)
+        labels = {o.Label for o in doc.Objects}
+        for label in ("Walls", "Window", "Desk", "Cabinet", "Workplane", "Desk top",
+                      "North wall", "LightingAnalysis", "Luminaire04"):
+            self.assertIn(label, labels)
+        self.assertFalse(doc.getObject("Workplane").HasResults)
+
+    @needs_solver
+    def test_analyse_and_save(self):
+        out = os.path.join(work_dir("example"), "office.FCStd")
+        proc = run_example(out, LIGHTING_PHOTONS="100000")
+        print("\n" + proc.stdout[-1500:])
+        self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+        self.assertIn("Workplane", proc.stdout)
+        self.assertIn("Em 95% CI", proc.stdout)
+        scene = os.path.join(os.path.dirname(out), "office_lighting", "LightingAnalysis",
+                             "scene.json")
+        self.assertTrue(os.path.exists(scene))
+        doc = FreeCAD.openDocument(out)
+        grid = doc.getObject("Workplane")
+        self.assertTrue(grid.HasResults)
+        self.assertGreater(grid.MeanLux, 100.0)
+        self.assertEqual(doc.getObject("LightingAnalysis").SceneFile, scene)

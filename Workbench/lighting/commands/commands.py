@@ -1,0 +1,258 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""GUI commands (toolbar and menu "Lighting"). Object creation goes through
+``FreeCADGui.doCommand`` so the Python console shows the equivalent script, inside one
+undo transaction per command."""
+from __future__ import annotations
+
+from typing import Any, Dict, List, Optional, Tuple
+
+import FreeCAD
+import FreeCADGui
+from PySide import QtGui
+
+from lighting.objects import analysis as analysis_mod
+from lighting.objects.base import proxy_type
+from lighting.viewproviders.base import icon_path
+
+COMMANDS: List[str] = []
+
+
+def _doc() -> Optional[Any]:
+    return FreeCAD.ActiveDocument
+
+
+def active_analysis(create: bool = False) -> Optional[Any]:
+    """The selected analysis, else the document's first one (created if asked)."""
+    doc = _doc()
+    if doc is None:
+        return None
+    for obj in FreeCADGui.Selection.getSelection():
+        if proxy_type(obj) == analysis_mod.TYPE:
+            return obj
+        for parent in obj.InList:
+            if proxy_type(parent) == analysis_mod.TYPE:
+                return parent
+    found = analysis_mod.find_analysis(doc)
+    if found is None and create:
+        FreeCADGui.doCommand("lighting.make_analysis(FreeCAD.ActiveDocument)")
+        found = analysis_mod.find_analysis(doc)
+    return found
+
+
+def _analysis_arg() -> str:
+    found = active_analysis()
+    return f"FreeCAD.ActiveDocument.getObject('{found.Name}')" if found is not None else "None"
+
+
+def _selected_faces() -> List[Tuple[Any, List[str]]]:
+    faces = []
+    for sel in FreeCADGui.Selection.getSelectionEx():
+        names = [n for n in sel.SubElementNames if n.startswith("Face")]
+        if names:
+            faces.append((sel.Object, names))
+    return faces
+
+
+def _run_transaction(title: str, lines: List[str]) -> None:
+    doc = _doc()
+    doc.openTransaction(title)
+    try:
+        FreeCADGui.addModule("lighting")
+        for line in lines:
+            FreeCADGui.doCommand(line)
+        FreeCADGui.doCommand("FreeCAD.ActiveDocument.recompute()")
+    except Exception as exc:  # noqa: BLE001 - show and undo, never leave half an object
+        doc.abortTransaction()
+        FreeCAD.Console.PrintError(f"Lighting: {title} failed: {exc}\n")
+        QtGui.QMessageBox.warning(FreeCADGui.getMainWindow(), "Lighting", f"{title} failed:\n{exc}")
+        return
+    doc.commitTransaction()
+
+
+class BaseCommand:
+    """Command resources from a table; active with an open document."""
+
+    NAME = "Lighting_Base"
+    MENU = ""
+    TIP = ""
+    ICON = "Lighting_Workbench"
+
+    def GetResources(self) -> Dict[str, str]:  # noqa: N802 (FreeCAD API name)
+        return {"Pixmap": icon_path(self.ICON), "MenuText": self.MENU, "ToolTip": self.TIP}
+
+    def IsActive(self) -> bool:  # noqa: N802
+        return _doc() is not None
+
+
+class CommandAnalysis(BaseCommand):
+    NAME, ICON = "Lighting_Analysis", "Lighting_Analysis"
+    MENU = "Lighting analysis"
+    TIP = "Create a lighting analysis: solver settings, scene export and results"
+
+    def Activated(self) -> None:  # noqa: N802
+        _run_transaction("Create lighting analysis",
+                         ["lighting.make_analysis(FreeCAD.ActiveDocument)"])
+
+
+class CommandLuminaire(BaseCommand):
+    NAME, ICON = "Lighting_Luminaire", "Lighting_Luminaire"
+    MENU = "Luminaire"
+    TIP = ("Add a luminaire. With a face selected (e.g. the ceiling's underside) it is placed "
+           "5 cm off the face's centre, aimed along the face normal")
+
+    def Activated(self) -> None:  # noqa: N802
+        position, aim = (0.0, 0.0, 2.5), (0.0, 0.0, -1.0)
+        sel = FreeCADGui.Selection.getSelectionEx()
+        if sel and sel[0].SubObjects:
+            sub = sel[0].SubObjects[0]
+            if sub.ShapeType == "Face":
+                u0, u1, v0, v1 = sub.ParameterRange
+                normal = sub.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
+                point = sub.CenterOfMass + normal * 50.0
+                position = (point.x / 1000, point.y / 1000, point.z / 1000)
+                aim = (normal.x, normal.y, normal.z)
+            elif sub.ShapeType == "Vertex":
+                p = sub.Point
+                position = (p.x / 1000, p.y / 1000, p.z / 1000)
+        _run_transaction("Create luminaire", [
+            f"lighting.make_luminaire(FreeCAD.ActiveDocument, position_m={position!r}, "
+            f"aim={aim!r}, analysis={_analysis_arg()})"])
+
+
+class CommandTarget(BaseCommand):
+    NAME, ICON = "Lighting_Target", "Lighting_Target"
+    MENU = "Face target"
+    TIP = "Report illuminance on the selected faces (front = outward face normal)"
+
+    def IsActive(self) -> bool:  # noqa: N802
+        return _doc() is not None and bool(_selected_faces())
+
+    def Activated(self) -> None:  # noqa: N802
+        faces = ", ".join(f"(FreeCAD.ActiveDocument.getObject('{o.Name}'), {names!r})"
+                          for o, names in _selected_faces())
+        _run_transaction("Create face target", [
+            f"lighting.make_face_target(FreeCAD.ActiveDocument, [{faces}], "
+            f"analysis={_analysis_arg()})"])
+
+
+class CommandGrid(BaseCommand):
+    NAME, ICON = "Lighting_Grid", "Lighting_Grid"
+    MENU = "Calculation grid"
+    TIP = ("Calculation grid over the selected floor, slab, Arch space or floor face at "
+           "work-plane height (0.80 m, 0.5 m wall band, EN 12464-1 spacing)")
+
+    def IsActive(self) -> bool:  # noqa: N802
+        return _doc() is not None and bool(FreeCADGui.Selection.getSelection())
+
+    def Activated(self) -> None:  # noqa: N802
+        sel = FreeCADGui.Selection.getSelectionEx()[0]
+        faces = [n for n in sel.SubElementNames if n.startswith("Face")]
+        face = repr(faces[0]) if faces else "None"
+        _run_transaction("Create calculation grid", [
+            f"lighting.make_grid_target(FreeCAD.ActiveDocument, "
+            f"FreeCAD.ActiveDocument.getObject('{sel.Object.Name}'), face={face}, "
+            f"analysis={_analysis_arg()})"])
+
+
+class CommandPlacementDomain(BaseCommand):
+    NAME, ICON = "Lighting_PlacementDomain", "Lighting_PlacementDomain"
+    MENU = "Placement domain"
+    TIP = "Face (e.g. the ceiling) where the optimizer may place luminaires"
+
+    def IsActive(self) -> bool:  # noqa: N802
+        return _doc() is not None and bool(_selected_faces())
+
+    def Activated(self) -> None:  # noqa: N802
+        obj, names = _selected_faces()[0]
+        _run_transaction("Create placement domain", [
+            f"lighting.make_placement_domain(FreeCAD.ActiveDocument, "
+            f"FreeCAD.ActiveDocument.getObject('{obj.Name}'), {names[0]!r}, "
+            f"analysis={_analysis_arg()})"])
+
+
+class CommandCheck(BaseCommand):
+    NAME, ICON = "Lighting_Check", "Lighting_Check"
+    MENU = "Check"
+    TIP = "Check the analysis: luminaires, targets, leaky geometry, absurd values"
+
+    def Activated(self) -> None:  # noqa: N802
+        """Opens the analysis panel and checks there (report view + the panel's log)."""
+        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
+
+        panel = AnalysisTaskPanel(active_analysis(create=True))
+        FreeCADGui.Control.closeDialog()
+        FreeCADGui.Control.showDialog(panel)
+        panel.check()
+
+
+class CommandExport(BaseCommand):
+    NAME, ICON = "Lighting_Export", "Lighting_Export"
+    MENU = "Export scene"
+    TIP = "Write the analysis' scene file (scene.json) for the lightsolver CLI"
+
+    def Activated(self) -> None:  # noqa: N802
+        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
+
+        panel = AnalysisTaskPanel(active_analysis(create=True))
+        FreeCADGui.Control.closeDialog()
+        FreeCADGui.Control.showDialog(panel)
+        panel.export()
+
+
+class CommandRun(BaseCommand):
+    NAME, ICON = "Lighting_Run", "Lighting_Run"
+    MENU = "Run analysis"
+    TIP = "Check, export and solve the analysis (the solver runs in the background)"
+
+    def Activated(self) -> None:  # noqa: N802
+        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
+
+        analysis = active_analysis(create=True)
+        FreeCADGui.Control.closeDialog()
+        FreeCADGui.Control.showDialog(AnalysisTaskPanel(analysis, autostart=True))
+
+
+class CommandResults(BaseCommand):
+    NAME, ICON = "Lighting_Results", "Lighting_Results"
+    MENU = "Results"
+    TIP = "Show the results table and the colour scale of the analysis"
+
+    def IsActive(self) -> bool:  # noqa: N802
+        return _doc() is not None and active_analysis() is not None
+
+    def Activated(self) -> None:  # noqa: N802
+        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
+
+        FreeCADGui.Control.closeDialog()
+        FreeCADGui.Control.showDialog(AnalysisTaskPanel(active_analysis()))
+
+
+class CommandClearResults(BaseCommand):
+    NAME, ICON = "Lighting_ClearResults", "Lighting_ClearResults"
+    MENU = "Clear results"
+    TIP = "Remove the stored results of the analysis (undoable)"
+
+    def IsActive(self) -> bool:  # noqa: N802
+        analysis = active_analysis() if _doc() is not None else None
+        return analysis is not None and bool(analysis.ResultsJson)
+
+    def Activated(self) -> None:  # noqa: N802
+        from lighting.solver import store
+
+        store.clear(active_analysis())
+
+
+ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPlacementDomain,
+       CommandCheck, CommandExport, CommandRun, CommandResults, CommandClearResults)
+MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_Target", "Lighting_Grid",
+                  "Lighting_PlacementDomain"]
+RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Results",
+                "Lighting_ClearResults"]
+
+
+def register() -> None:
+    """Add every command to FreeCAD (once)."""
+    for cls in ALL:
+        if cls.NAME not in COMMANDS:
+            FreeCADGui.addCommand(cls.NAME, cls())
+            COMMANDS.append(cls.NAME)

@@ -1,0 +1,169 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""View provider of the analysis: the group in the tree, its task panel, the colour legend.
+
+The legend is drawn by Coin in the 3D view (so ``saveImage`` screenshots contain it): an
+annotation with its own orthographic camera, inside a group that the view's bounding box
+ignores (FreeCAD's SoSkipBoundingGroup) so that "fit all" is unaffected."""
+from __future__ import annotations
+
+from typing import Any, Optional
+
+import FreeCAD
+
+from lighting.colormap import Scale
+from lighting.viewproviders.base import ViewProviderBase
+
+LEGEND_STEPS = 32
+LEGEND_TICKS = 6
+# Legend rectangle in the legend camera's coordinates (x, y in -1..1 over the viewport).
+X0, X1, Y0, Y1 = -0.97, -0.92, -0.75, 0.75
+
+
+def _coin() -> Any:
+    from pivy import coin
+
+    return coin
+
+
+def _skip_bounding_group() -> Any:
+    """A group that the bounding-box action skips, or a plain separator if unavailable."""
+    coin = _coin()
+    try:
+        node_type = coin.SoType.fromName("SoSkipBoundingGroup")
+        if not node_type.isBad():
+            node = node_type.createInstance()
+            if hasattr(node, "addChild"):
+                return node
+    except Exception:  # noqa: BLE001 - fall back below
+        pass
+    return coin.SoSeparator()
+
+
+def build_legend(scale: Scale, title: str = "Illuminance [lx]") -> Any:
+    """Coin nodes of a vertical colour bar with tick labels at the left of the view."""
+    coin = _coin()
+    root = coin.SoAnnotation()
+    camera = coin.SoOrthographicCamera()
+    camera.viewportMapping = coin.SoCamera.LEAVE_ALONE
+    camera.position = (0.0, 0.0, 5.0)
+    camera.height = 2.0
+    camera.nearDistance = 0.5
+    camera.farDistance = 10.0
+    root.addChild(camera)
+    light_model = coin.SoLightModel()
+    light_model.model = coin.SoLightModel.BASE_COLOR
+    root.addChild(light_model)
+    pick = coin.SoPickStyle()
+    pick.style = coin.SoPickStyle.UNPICKABLE
+    root.addChild(pick)
+    # Colour bar: LEGEND_STEPS quads, bottom = min.
+    points, colours = [], []
+    dy = (Y1 - Y0) / LEGEND_STEPS
+    for i in range(LEGEND_STEPS):
+        y = Y0 + i * dy
+        points += [(X0, y, 0.0), (X1, y, 0.0), (X1, y + dy, 0.0), (X0, y + dy, 0.0)]
+        colours.append(scale.colour(scale.min_lux + (i + 0.5) / LEGEND_STEPS *
+                                    (scale.max_lux - scale.min_lux)))
+    material = coin.SoMaterial()
+    material.diffuseColor.setValues(0, len(colours), colours)
+    root.addChild(material)
+    binding = coin.SoMaterialBinding()
+    binding.value = coin.SoMaterialBinding.PER_FACE
+    root.addChild(binding)
+    coords = coin.SoCoordinate3()
+    coords.point.setValues(0, len(points), points)
+    root.addChild(coords)
+    faces = coin.SoFaceSet()
+    faces.numVertices.setValues(0, LEGEND_STEPS, [4] * LEGEND_STEPS)
+    root.addChild(faces)
+    # Labels.
+    text_sep = coin.SoSeparator()
+    text_colour = coin.SoBaseColor()
+    text_colour.rgb = (0.0, 0.0, 0.0)
+    text_sep.addChild(text_colour)
+    font = coin.SoFont()
+    font.size = 14
+    text_sep.addChild(font)
+    for value in scale.ticks(LEGEND_TICKS):
+        y = Y0 + scale.position(value) * (Y1 - Y0)
+        label = coin.SoSeparator()
+        move = coin.SoTranslation()
+        move.translation = (X1 + 0.01, y - 0.01, 0.0)
+        label.addChild(move)
+        text = coin.SoText2()
+        text.string = f"{value:.0f}"
+        label.addChild(text)
+        text_sep.addChild(label)
+    title_sep = coin.SoSeparator()
+    move = coin.SoTranslation()
+    move.translation = (X0, Y1 + 0.05, 0.0)
+    title_sep.addChild(move)
+    text = coin.SoText2()
+    text.string = title
+    title_sep.addChild(text)
+    text_sep.addChild(title_sep)
+    root.addChild(text_sep)
+    return root
+
+
+class ViewProviderAnalysis(ViewProviderBase):
+    """Analysis group: opens the run/results task panel; draws the legend."""
+
+    ICON = "Lighting_Analysis"
+
+    def __init__(self, vobj: Any) -> None:
+        super().__init__(vobj)
+
+    def attach(self, vobj: Any) -> None:
+        super().attach(vobj)
+        if getattr(self, "legend_root", None) is not None:
+            return
+        # The legend hangs under the root node, beside the display-mode switch, so it works
+        # however the view provider was attached (new, restored, or added to a file saved
+        # headless); visibility follows ShowLegend and the analysis' own visibility.
+        coin = _coin()
+        self.legend_root = coin.SoSeparator()
+        self.legend_holder = _skip_bounding_group()
+        self.legend_root.addChild(self.legend_holder)
+        vobj.RootNode.addChild(self.legend_root)
+        from PySide import QtCore
+
+        # Restored documents: paint once every object is there.
+        QtCore.QTimer.singleShot(0, self._refresh_later)
+
+    def _refresh_later(self) -> None:
+        try:
+            obj = self.Object
+            obj.Name  # noqa: B018 - raises if the object was deleted
+        except Exception:  # noqa: BLE001
+            return
+        from lighting.viewproviders import coloring
+
+        coloring.refresh(obj)
+
+    def onChanged(self, vobj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
+        if prop == "Visibility" and getattr(self, "legend_root", None) is not None:
+            self._refresh_later()
+
+    def update_legend(self, scale: Optional[Scale]) -> None:
+        """Show the legend of ``scale`` (None hides it)."""
+        holder = getattr(self, "legend_holder", None)
+        if holder is None:
+            return
+        holder.removeAllChildren()
+        vobj = getattr(self, "ViewObject", None)
+        if scale is not None and (vobj is None or vobj.Visibility):
+            holder.addChild(build_legend(scale))
+
+    def task_panel(self, vobj: Any) -> Optional[Any]:
+        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
+
+        return AnalysisTaskPanel(vobj.Object)
+
+    def claimChildren(self) -> list:  # noqa: N802
+        return list(getattr(self.Object, "Group", []))
+
+    def onDelete(self, vobj: Any, subelements: Any) -> bool:  # noqa: N802
+        """Deleting the analysis keeps its members (they move to the document root)."""
+        FreeCAD.Console.PrintLog(f"Lighting: deleting analysis {vobj.Object.Name}\n")
+        return True

@@ -1,0 +1,19 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""View provider of luminaires: a yellow symbol with its aim line."""
+from __future__ import annotations
+
+from typing import Any
+
+from lighting.viewproviders.base import ViewProviderBase, set_if_exists
+
+
+class ViewProviderLuminaire(ViewProviderBase):
+    """Luminaire symbol (sphere, cone or panel) in warm yellow."""
+
+    ICON = "Lighting_Luminaire"
+
+    def __init__(self, vobj: Any) -> None:
+        super().__init__(vobj)
+        set_if_exists(vobj, "ShapeColor", (1.0, 0.85, 0.1))
+        set_if_exists(vobj, "LineColor", (0.9, 0.5, 0.0))
+        set_if_exists(vobj, "LineWidth", 2.0)

@@ -1,0 +1,60 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""View provider of targets: plain when not computed, false colours with results."""
+from __future__ import annotations
+
+from typing import Any
+
+from lighting.viewproviders.base import ViewProviderBase, set_if_exists
+
+#: App properties whose change repaints the target.
+REPAINT_ON = ("Shape", "HasResults", "CellsLux", "MeanLux")
+
+
+class ViewProviderTarget(ViewProviderBase):
+    """Grid cells or target faces, coloured by illuminance."""
+
+    ICON = "Lighting_Target"
+
+    def __init__(self, vobj: Any) -> None:
+        super().__init__(vobj)
+        set_if_exists(vobj, "LineColor", (0.2, 0.2, 0.2))
+        set_if_exists(vobj, "LineWidth", 1.0)
+        set_if_exists(vobj, "Lighting", "Two side")
+
+    def getIcon(self) -> str:  # noqa: N802 (FreeCAD API name)
+        from lighting.viewproviders.base import icon_path
+
+        grid = getattr(getattr(self, "Object", None), "TargetType", "") == "Grid"
+        return icon_path("Lighting_Grid" if grid else "Lighting_Target")
+
+    def updateData(self, obj: Any, prop: str) -> None:  # noqa: N802
+        if prop in REPAINT_ON:
+            _repaint_later(obj)
+
+
+_pending: set = set()
+
+
+def _repaint_later(obj: Any) -> None:
+    """Repaint after FreeCAD's own update of the shape (which resets face colours); several
+    property changes in a row cause one repaint."""
+    from PySide import QtCore
+
+    name, doc = obj.Name, obj.Document
+    key = (doc.Name, name)
+    if key in _pending:
+        return
+    _pending.add(key)
+
+    def repaint() -> None:
+        _pending.discard(key)
+        try:
+            target = doc.getObject(name)
+        except Exception:  # noqa: BLE001 - document closed meanwhile
+            return
+        if target is not None:
+            from lighting.viewproviders import coloring
+
+            coloring.refresh_target(target)
+
+    QtCore.QTimer.singleShot(0, repaint)
