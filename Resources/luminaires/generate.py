@@ -41,11 +41,11 @@ def wallwasher(x, y, z):
 
 
 def batwing(x, y, z):
-    """Office panel: batwing peak near gamma 50, wider in C0-C180 than in C90-C270."""
+    """Office panel: batwing peak near gamma 52, wider in C0-C180 than in C90-C270.
+    I = cos g (0.25 + 1.8 sin^2 g (1 + 0.3 cos 2C)), smooth at the nadir: sin^2 g cos 2C =
+    x^2 - y^2."""
     cos_g = np.clip(-z, 0.0, None)
-    sin2 = 1.0 - cos_g ** 2
-    cos2c = np.where(sin2 > 0, (x * x - y * y) / np.where(sin2 > 0, sin2, 1.0), 1.0)
-    return np.where(z < 0, cos_g * (0.25 + 1.8 * sin2) * (1.0 + 0.3 * cos2c), 0.0)
+    return np.where(z < 0, cos_g * (0.25 + 1.8 * (1.3 * x * x + 0.7 * y * y)), 0.0)
 
 
 def linear_tube(x, y, z):
