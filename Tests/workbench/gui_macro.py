@@ -141,6 +141,52 @@ def run_analysis(doc):
     FreeCADGui.Control.closeDialog()
 
 
+def commands_smoke():
+    """The toolbar commands on a plain slab: create every object from a selection, undo,
+    Check and Export through their commands."""
+    import FreeCAD
+    import FreeCADGui
+
+    from lighting.objects.base import proxy_type
+
+    doc = FreeCAD.newDocument("Commands")
+    slab = doc.addObject("Part::Box", "Slab")
+    slab.Length, slab.Width, slab.Height = 4000, 3000, 200
+    doc.recompute()
+    sel = FreeCADGui.Selection
+
+    def run(command, sub=None):
+        sel.clearSelection()
+        if sub is not None:
+            sel.addSelection(doc.Name, slab.Name, sub) if sub else sel.addSelection(doc.Name, slab.Name)
+        FreeCADGui.runCommand(command)
+        pump(0.2)
+    run("Lighting_Analysis")
+    run("Lighting_Luminaire", "Face5")  # the slab's underside: 5 cm below it, aimed down
+    run("Lighting_Target", "Face6")
+    run("Lighting_Grid", "")
+    run("Lighting_PlacementDomain", "Face5")
+    kinds = sorted(proxy_type(o) for o in doc.Objects if proxy_type(o))
+    lum = [o for o in doc.Objects if proxy_type(o) == "Lighting::Luminaire"]
+    info = {"created": kinds,
+            "luminaire_z": lum[0].Placement.Base.z if lum else None,
+            "luminaire_aim_z": lum[0].AimDirection.z if lum else None,
+            "icons": {o.Name: bool(o.ViewObject.Proxy.getIcon()) for o in doc.Objects
+                      if proxy_type(o)}}
+    doc.undo()
+    info["after_undo"] = sorted(proxy_type(o) for o in doc.Objects if proxy_type(o))
+    run("Lighting_Check")
+    FreeCADGui.Control.closeDialog()
+    run("Lighting_Export")
+    FreeCADGui.Control.closeDialog()
+    analysis = [o for o in doc.Objects if proxy_type(o) == "Lighting::Analysis"][0]
+    info["scene_file"] = analysis.SceneFile
+    info["scene_exists"] = bool(analysis.SceneFile) and os.path.exists(analysis.SceneFile)
+    STATUS["commands"] = info
+    FreeCAD.closeDocument(doc.Name)
+    pump(0.2)
+
+
 def main():
     import FreeCAD
     import FreeCADGui
@@ -152,6 +198,7 @@ def main():
     STATUS["workbench"] = FreeCADGui.activeWorkbench().name()
     ok, info = lighting.solver_available()
     STATUS["solver"], STATUS["solver_info"] = ok, info
+    commands_smoke()
     doc = FreeCAD.openDocument(os.environ["LIGHTING_GUI_FILE"])
     pump(0.5)
     STATUS["view_providers"] = {

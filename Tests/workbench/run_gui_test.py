@@ -35,6 +35,19 @@ def check(status: dict) -> list:
     vps = status.get("view_providers", {})
     if vps.get("Workplane") != "ViewProviderTarget":
         problems.append(f"view providers not attached after opening: {vps}")
+    commands = status.get("commands", {})
+    expected = sorted(["Lighting::Analysis", "Lighting::Luminaire", "Lighting::Target",
+                       "Lighting::Target", "Lighting::PlacementDomain"])
+    if commands.get("created") != expected:
+        problems.append(f"commands created {commands.get('created')}, expected {expected}")
+    if commands.get("after_undo") != [k for k in expected if k != "Lighting::PlacementDomain"]:
+        problems.append(f"undo of the last command left {commands.get('after_undo')}")
+    if commands.get("luminaire_z") != -50.0 or commands.get("luminaire_aim_z") != -1.0:
+        problems.append(f"luminaire from a face selection misplaced: {commands}")
+    if not commands.get("scene_exists"):
+        problems.append(f"Lighting_Export wrote no scene: {commands.get('scene_file')}")
+    if not all(commands.get("icons", {}).values()):
+        problems.append(f"missing icons: {commands.get('icons')}")
     images = status.get("images", {})
     run = status.get("run", {})
     if run.get("stage") != "done":

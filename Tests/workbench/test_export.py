@@ -9,7 +9,7 @@ import Part
 import lighting
 from lighting.export import collect
 from lighting.export.materials import internal_transmittance
-from wbtest import (DocTestCase, build_office, load_scene, mesh, open_edges, triangle_keys,
+from wbtest import (REPO, DocTestCase, build_office, load_scene, mesh, open_edges, triangle_keys,
                     triangle_normals, work_dir)
 
 V = FreeCAD.Vector
@@ -238,3 +238,52 @@ class ShapesAndDeflection(DocTestCase):
         target = [m for m in result.scene["meshes"] if m["name"].endswith(".faces")][0]
         self.assertAlmostEqual(min(p[0] for p in target["vertices"]), 10.0, 9)
         self.assertTrue(math.isclose(target["vertices"][0][2], 0.01, abs_tol=1e-9))
+
+
+class Photometric(DocTestCase):
+    """IES/LDT luminaires: flux (file or override) x MF, C0 orientation, file copied."""
+
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("Photometric")
+        floor = self.doc.addObject("Part::Box", "Floor")
+        floor.Length = floor.Width = 4000
+        floor.Height = 10
+        self.doc.recompute()
+        lighting.make_analysis(self.doc)
+        self.lum = lighting.make_luminaire(self.doc, (2.0, 2.0, 3.0), kind="Photometric",
+                                           flux_lm=0.0, maintenance_factor=0.8)
+        self.lum.PhotometricFile = os.path.join(REPO, "Resources", "luminaires", "wallwasher.ldt")
+        lighting.make_grid_target(self.doc, floor, height_m=0.0, wall_band_m=0.0, spacing_m=0.5)
+        self.doc.recompute()
+
+    def _luminaire(self):
+        folder = work_dir("photometric")
+        path = lighting.export_scene(self.doc, directory=folder)
+        with open(path, encoding="utf-8") as stream:
+            entry = json.load(stream)["luminaires"][0]
+        self.assertTrue(os.path.exists(os.path.join(folder, entry["file"])))
+        return entry
+
+    def test_file_flux_and_orientation(self):
+        entry = self._luminaire()
+        self.assertEqual(entry["type"], "photometric")
+        self.assertAlmostEqual(entry["flux_lm"], 2000.0 * 0.8)  # the LDT's lamp set x MF
+        self.assertEqual(entry["aim"], [0.0, 0.0, -1.0])
+        self.assertEqual(entry["rotation_deg"], 0.0)
+        self.assertTrue(entry["file"].startswith("photometry/"))
+        # Turn the luminaire 90 deg about z: its C0 (local +X) now points to +y.
+        self.lum.Placement.Rotation = FreeCAD.Rotation(V(0, 0, 1), 90).multiply(
+            self.lum.Placement.Rotation)
+        self.doc.recompute()
+        self.assertAlmostEqual(self._luminaire()["rotation_deg"], -90.0, 9)
+
+    def test_flux_override_and_ies(self):
+        self.lum.PhotometricFile = os.path.join(REPO, "Resources", "luminaires", "downlight.ies")
+        self.assertAlmostEqual(self._luminaire()["flux_lm"], 1500.0 * 0.8)
+        self.lum.FluxLumen = 1000.0
+        self.assertAlmostEqual(self._luminaire()["flux_lm"], 800.0)
+
+    def test_missing_file_is_an_error(self):
+        self.lum.PhotometricFile = "/nonexistent/lamp.ies"
+        report = lighting.check(self.doc, need_solver=False)
+        self.assertTrue(any("not found" in m.text for m in report.errors), report.format())

@@ -10,7 +10,7 @@ import Part
 
 import lighting
 from lighting.solver import machine, run
-from wbtest import DocTestCase, build_office, needs_solver, work_dir
+from wbtest import REPO, DocTestCase, build_office, needs_solver, work_dir
 
 V = FreeCAD.Vector
 
@@ -166,3 +166,35 @@ class Solver(DocTestCase):
         total = sum(result[t.Name].mean_lux * result[t.Name].area_m2 for t in targets)
         print(f"\nsum E*A = {total:.3f} lm of 1000 lm")
         self.assertAlmostEqual(total, 1000.0, delta=1e-6 * 1000.0)
+
+    @needs_solver
+    def test_photometric_c0_points_along_local_x(self):
+        """The wall-washer throws its light toward C0 (docs/photometry.md): with the
+        luminaire's local X along +x the +x half of the floor gets more; turned 90 degrees
+        about z, the +y half does."""
+        doc = FreeCAD.newDocument("Washer")
+        floor = doc.addObject("Part::Box", "Floor")
+        floor.Length = floor.Width = 4000
+        floor.Height = 10
+        doc.recompute()
+        lighting.make_analysis(doc, photons=200000)
+        lum = lighting.make_luminaire(doc, (2.0, 2.0, 2.0), kind="Photometric", flux_lm=0.0,
+                                      maintenance_factor=1.0)
+        lum.PhotometricFile = os.path.join(REPO, "Resources", "luminaires", "wallwasher.ies")
+        lighting.make_grid_target(doc, floor, height_m=0.0, wall_band_m=0.0, spacing_m=1.0)
+        doc.recompute()
+
+        def halves():
+            cells = lighting.analyze(doc, output_dir=work_dir("washer"))["Workplane"].cells_lux
+            rows = [cells[i * 4:(i + 1) * 4] for i in range(4)]  # row iv along y
+            plus_x = sum(r[2] + r[3] for r in rows)
+            minus_x = sum(r[0] + r[1] for r in rows)
+            plus_y = sum(rows[2]) + sum(rows[3])
+            minus_y = sum(rows[0]) + sum(rows[1])
+            return plus_x, minus_x, plus_y, minus_y
+        px, mx, py, my = halves()
+        self.assertGreater(px, 1.5 * mx)
+        lum.Placement.Rotation = FreeCAD.Rotation(V(0, 0, 1), 90).multiply(lum.Placement.Rotation)
+        doc.recompute()
+        px, mx, py, my = halves()
+        self.assertGreater(py, 1.5 * my)

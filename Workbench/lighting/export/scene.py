@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import shutil
 import tempfile
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Tuple
@@ -248,7 +249,10 @@ class SceneBuilder:
         luminaires = []
         for lum in lums:
             self.labels[lum.Name] = lum.Label
-            luminaires.append(luminaire_mod.scene_entry(lum))
+            try:
+                luminaires.append(luminaire_mod.scene_entry(lum))
+            except (OSError, ValueError) as exc:
+                self.report.add("error", f"Luminaire '{lum.Label}': {exc}", lum.Name)
         for note in self.resolver.notes:
             self.report.add("warning", note)
         dropped = sum(b.dropped for per in self.object_builders.values() for b in per.values())
@@ -336,6 +340,18 @@ def _write_text(path: str, text: str) -> None:
     os.replace(tmp, path)
 
 
+def _copy_photometry(luminaire: Dict[str, Any], directory: str) -> Dict[str, Any]:
+    """Photometric files are copied next to the scene (``photometry/``), so the scene folder
+    is self-contained; the entry then names the copy relative to the scene file."""
+    source = luminaire.get("file")
+    if not source or not os.path.isabs(source):
+        return luminaire
+    rel = f"photometry/{_safe_file_name(luminaire['name'])}_{os.path.basename(source)}"
+    os.makedirs(os.path.join(directory, "photometry"), exist_ok=True)
+    shutil.copyfile(source, os.path.join(directory, rel))
+    return dict(luminaire, file=rel)
+
+
 def write_scene(result: ExportResult, directory: str, storage: str = "Auto") -> str:
     """Write ``scene.json`` (and ``meshes/*.ply`` for PLY storage) into ``directory``."""
     try:
@@ -351,6 +367,7 @@ def write_scene(result: ExportResult, directory: str, storage: str = "Auto") -> 
                 ply.write_ply(os.path.join(directory, rel), mesh["vertices"], mesh["triangles"])
                 meshes.append({"name": mesh["name"], "material": mesh["material"], "file": rel})
             scene["meshes"] = meshes
+        scene["luminaires"] = [_copy_photometry(lum, directory) for lum in scene["luminaires"]]
         path = os.path.join(directory, SCENE_FILE)
         _write_text(path, dumps_scene(scene))
     except OSError as exc:

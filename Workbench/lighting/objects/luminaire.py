@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List
+import os
+from typing import Any, Dict, List, Optional
 
 import FreeCAD
 
@@ -11,14 +12,15 @@ from lighting.objects.base import BaseProxy, Prop, READ_ONLY
 from lighting.units import vec_m
 
 TYPE = "Lighting::Luminaire"
-LUMINAIRE_TYPES = ("Point", "Spot", "Area")
+LUMINAIRE_TYPES = ("Point", "Spot", "Area", "Photometric")
 #: The luminaire's aim in its own coordinates: the local -Z axis (like a downlight).
 LOCAL_AIM = FreeCAD.Vector(0, 0, -1)
 
 
 class Luminaire(BaseProxy):
-    """Point (isotropic), spot (CIE beam/field angles) or area (one-sided Lambertian rectangle)
-    luminaire. Position = ``Placement.Base``; aim = ``Placement.Rotation`` applied to -Z.
+    """Point (isotropic), spot (CIE beam/field angles), area (one-sided Lambertian rectangle)
+    or photometric (IES/LDT file) luminaire. Position = ``Placement.Base``; aim =
+    ``Placement.Rotation`` applied to -Z; a photometric file's C0 plane lies along local +X.
 
     The exported flux is the maintained flux: ``FluxLumen * MaintenanceFactor``, so the solver
     reports maintained illuminance Em (EN 12464-1)."""
@@ -28,10 +30,12 @@ class Luminaire(BaseProxy):
     PROPERTIES = {
         "LuminaireType": Prop("App::PropertyEnumeration", "Luminaire",
                               "Emission model: Point (isotropic), Spot (beam/field angles), "
-                              "Area (Lambertian rectangle Width x Length facing the aim)",
+                              "Area (Lambertian rectangle Width x Length facing the aim), "
+                              "Photometric (IES LM-63 / EULUMDAT file)",
                               "Area", items=LUMINAIRE_TYPES),
         "FluxLumen": Prop("App::PropertyFloat", "Luminaire",
-                          "Initial luminous flux of the luminaire in lumens (lm)", 3000.0),
+                          "Initial luminous flux of the luminaire in lumens (lm); Photometric: "
+                          "0 = the file's rated lamp lumens", 3000.0),
         "MaintenanceFactor": Prop("App::PropertyFloat", "Luminaire",
                                   "Maintenance factor MF = LLMF*LSF*LMF*RSMF (0..1]; the solver "
                                   "gets FluxLumen*MF, so results are maintained values", 0.8),
@@ -43,6 +47,9 @@ class Luminaire(BaseProxy):
                       "Area: luminous width along the local X axis", 600.0),
         "Length": Prop("App::PropertyLength", "Area",
                        "Area: luminous length along the local Y axis", 600.0),
+        "PhotometricFile": Prop("App::PropertyFile", "Photometric",
+                                "IES LM-63 (.ies) or EULUMDAT (.ldt) file; gamma = 0 along the "
+                                "aim, C0 along the luminaire's local X axis"),
         "SymbolSize": Prop("App::PropertyLength", "Display",
                            "Size of the 3D symbol of point and spot luminaires", 150.0),
         "AimDirection": Prop("App::PropertyVector", "Luminaire",
@@ -64,6 +71,9 @@ class Luminaire(BaseProxy):
             radius = min(size * math.tan(half), 2.0 * size)
             shapes.append(Part.makeCone(radius, 0.0, size, FreeCAD.Vector(0, 0, -size),
                                         FreeCAD.Vector(0, 0, 1)))
+        elif kind == "Photometric":
+            shapes.append(Part.makeCylinder(size / 2.0, size / 3.0))
+            shapes.append(Part.makeLine(FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(size, 0, 0)))
         else:
             width = max(float(obj.Width), 1.0)
             length = max(float(obj.Length), 1.0)
@@ -103,19 +113,40 @@ def rotation_for_aim(aim: FreeCAD.Vector) -> FreeCAD.Rotation:
     return FreeCAD.Rotation(LOCAL_AIM, target)
 
 
-def maintained_flux_lm(obj: Any) -> float:
-    """Flux handed to the solver: initial flux times the maintenance factor."""
-    return float(obj.FluxLumen) * float(obj.MaintenanceFactor)
+def maintained_flux_lm(obj: Any) -> Optional[float]:
+    """Flux handed to the solver: initial flux times the maintenance factor. Photometric
+    luminaires with FluxLumen = 0 use the file's rated lumens; None when the file has
+    absolute photometry (the solver then emits the file's own flux)."""
+    flux = float(obj.FluxLumen)
+    if obj.LuminaireType == "Photometric" and flux <= 0.0:
+        from lighting.photometry import rated_lumens
+
+        rated = rated_lumens(str(obj.PhotometricFile))
+        if rated is None:
+            return None
+        flux = rated
+    return flux * float(obj.MaintenanceFactor)
+
+
+def c0_rotation_deg(aim: FreeCAD.Vector, c0: FreeCAD.Vector) -> float:
+    """The scene's ``rotation_deg`` turning the solver's default C0 (+x, or +y when aiming
+    along x; docs/photometry.md) about the aim onto ``c0``."""
+    ref = FreeCAD.Vector(0, 1, 0) if abs(aim.x) > 0.999 else FreeCAD.Vector(1, 0, 0)
+    ref = (ref - aim * ref.dot(aim)).normalize()
+    return math.degrees(math.atan2(aim.cross(ref).dot(c0), ref.dot(c0)))
 
 
 def scene_entry(obj: Any) -> Dict[str, Any]:
-    """The luminaire as a ``luminaires[]`` entry of docs/scene-format.md (metres, lumens)."""
+    """The luminaire as a ``luminaires[]`` entry of docs/scene-format.md (metres, lumens).
+    Photometric entries name the file by its absolute path; the scene writer copies it."""
     placement = obj.getGlobalPlacement()
     position = placement.Base
     aim = aim_direction(obj)
-    entry: Dict[str, Any] = {"name": obj.Name, "type": obj.LuminaireType.lower(),
-                             "flux_lm": maintained_flux_lm(obj)}
     kind = obj.LuminaireType
+    entry: Dict[str, Any] = {"name": obj.Name, "type": kind.lower()}
+    flux = maintained_flux_lm(obj)
+    if flux is not None:
+        entry["flux_lm"] = flux
     if kind == "Point":
         entry["position"] = vec_m(position)
     elif kind == "Spot":
@@ -123,6 +154,12 @@ def scene_entry(obj: Any) -> Dict[str, Any]:
         entry["direction"] = [aim.x, aim.y, aim.z]
         entry["beam_angle_deg"] = float(obj.BeamAngle)
         entry["field_angle_deg"] = float(obj.FieldAngle)
+    elif kind == "Photometric":
+        entry["file"] = os.path.abspath(str(obj.PhotometricFile))
+        entry["position"] = vec_m(position)
+        entry["aim"] = [aim.x, aim.y, aim.z]
+        c0 = placement.Rotation.multVec(FreeCAD.Vector(1, 0, 0))
+        entry["rotation_deg"] = round(c0_rotation_deg(aim, c0), 9)
     else:
         rot = placement.Rotation
         # edge1 x edge2 must point along the aim (-Z local): Y x X = -Z.
@@ -141,7 +178,9 @@ def check(obj: Any) -> List[tuple]:
     name = obj.Label
     flux = float(obj.FluxLumen)
     mf = float(obj.MaintenanceFactor)
-    if not math.isfinite(flux) or flux <= 0.0:
+    if obj.LuminaireType == "Photometric" and flux == 0.0:
+        pass  # the file's own flux
+    elif not math.isfinite(flux) or flux <= 0.0:
         problems.append(("error", f"Luminaire '{name}': flux must be > 0 lm (got {flux:g})"))
     elif flux > 1.0e6:
         problems.append(("warning", f"Luminaire '{name}': flux {flux:g} lm is implausibly high "
@@ -158,4 +197,26 @@ def check(obj: Any) -> List[tuple]:
                                       f"360 deg (got beam {beam:g}, field {field:g})"))
     if obj.LuminaireType == "Area" and (float(obj.Width) <= 0.0 or float(obj.Length) <= 0.0):
         problems.append(("error", f"Luminaire '{name}': area luminaire needs Width and Length > 0"))
+    if obj.LuminaireType == "Photometric":
+        problems.extend(_check_photometric(obj))
     return problems
+
+
+def _check_photometric(obj: Any) -> List[tuple]:
+    from lighting.photometry import EXTENSIONS, rated_lumens
+
+    name, path = obj.Label, str(obj.PhotometricFile)
+    if not path or not os.path.isfile(path):
+        return [("error", f"Luminaire '{name}': photometric file '{path}' not found")]
+    if os.path.splitext(path)[1].lower() not in EXTENSIONS:
+        return [("error", f"Luminaire '{name}': '{path}' is not an .ies or .ldt file")]
+    if float(obj.FluxLumen) > 0.0:
+        return []
+    try:
+        rated = rated_lumens(path)
+    except (OSError, ValueError) as exc:
+        return [("error", f"Luminaire '{name}': {exc}")]
+    if rated is None and float(obj.MaintenanceFactor) != 1.0:
+        return [("warning", f"Luminaire '{name}': the file has absolute photometry and FluxLumen "
+                            "is 0, so the maintenance factor is not applied; set FluxLumen")]
+    return []

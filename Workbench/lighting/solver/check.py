@@ -92,9 +92,9 @@ def _check_luminaire_positions(report: Report, lums: List[Any], shapes: List[tup
             break
         if model_box is not None and model_box.isValid():
             box = FreeCAD.BoundBox(model_box)
-            box.enlarge(1000.0)
+            box.enlarge(5000.0)
             if not box.isInside(points[0]):
-                report.add("warning", f"Luminaire '{lum.Label}' is more than 1 m outside the "
+                report.add("warning", f"Luminaire '{lum.Label}' is more than 5 m outside the "
                                       "model", lum.Name)
 
 

@@ -105,6 +105,7 @@ class AnalysisRun:
         self.scene_file = scene_mod.write_scene(self.export, self.output_dir,
                                                 str(self.analysis.MeshStorage))
         store.set_status(self.analysis, "exported")
+        store.set_scene_file(self.analysis, self.scene_file)
         self.log("info", f"Scene written: {self.scene_file} ({self.export.triangle_count} "
                          f"triangles, {len(self.export.scene['meshes'])} meshes)")
         return self.scene_file

@@ -120,6 +120,11 @@ def set_status(analysis: Any, text: str) -> None:
     _set(analysis, "Status", text)
 
 
+def set_scene_file(analysis: Any, path: str) -> None:
+    """Record the last exported scene file without an undo step."""
+    _set(analysis, "SceneFile", path)
+
+
 def _refresh_view(analysis: Any) -> None:
     if FreeCAD.GuiUp:
         from lighting.viewproviders import coloring
