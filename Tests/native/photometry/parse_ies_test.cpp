@@ -69,6 +69,20 @@ TEST(ParseIes, Lm63_1995Bilateral90To270UnfoldsByMirror) {
   EXPECT_DOUBLE_EQ(d.opening_width_m, 0.3);
 }
 
+TEST(ParseIes, Bilateral0To180MirrorsAboutTheC0C180Plane) {
+  const auto d = parse_ies(
+      "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 3 1 2 0 0 0\n1 1 10\n0 90\n0 90 180\n"
+      "100 10\n200 20\n300 30\n",
+      "bilateral.ies");
+  EXPECT_EQ(d.symmetry, PhotometricSymmetry::BilateralC0C180);
+  ASSERT_EQ(d.horizontal_angles_deg, (std::vector<double>{0, 90, 180, 270, 360}));
+  EXPECT_DOUBLE_EQ(d.candela_at(3, 0), 200.0);  // C270 = C90
+  EXPECT_DOUBLE_EQ(d.candela_at(4, 1), 10.0);   // C360 = C0
+  const PhotometricSampler s(d);
+  EXPECT_NEAR(s.intensity_cd({0, -1, 0}), s.intensity_cd({0, 1, 0}), 1e-12);  // y mirror
+  EXPECT_NEAR(s.intensity_cd({0, 1, 0}), 20.0, 1e-9);
+}
+
 TEST(ParseIes, Lm63_1995TypeBMirrorsLaterallyAndPointsAlongMinusZ) {
   const auto d = load_photometry(corpus_file("ies/lm63_1995_type_b.ies"));
   EXPECT_EQ(d.type, PhotometricType::B);
