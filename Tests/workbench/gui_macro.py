@@ -87,15 +87,58 @@ def screenshot(doc, name):
     return path
 
 
-def hide_for_view(doc):
-    """Look into the room from above: hide the ceiling and the placement domain's points."""
+def hide_for_view(doc, hide=True):
+    """Look into the room from above: hide the ceiling and the placement domain's points
+    (only for the pictures: hidden objects are left out of the analysis)."""
     for label in ("Ceiling", "CeilingDomain"):
         for obj in doc.getObjectsByLabel(label):
-            obj.ViewObject.hide()
+            obj.ViewObject.Visibility = not hide
 
 
 def distinct_colours(obj):
     return len({tuple(round(c, 3) for c in col[:3]) for col in obj.ViewObject.DiffuseColor})
+
+
+def cancel_run(doc):
+    """Lighting_Run with far too many photons, then the panel's Cancel button: the run must
+    stop soon with partial results, the GUI alive."""
+    import FreeCADGui
+    from PySide import QtCore
+
+    from lighting.taskpanels import analysis_panel
+
+    analysis = doc.getObject("LightingAnalysis")
+    analysis.Photons = 500000000
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(analysis)
+    loop = QtCore.QEventLoop()
+    state = {"clicked": None}
+
+    def poll():
+        job = analysis_panel.last_run()
+        if job is None:
+            return
+        if state["clicked"] is None and job.stage == "solve" and job.done > 0:
+            analysis_panel.last_panel().buttons["cancel"].click()
+            state["clicked"] = time.monotonic()
+        if job.stage in ("done", "failed", "cancelled"):
+            loop.quit()
+    timer = QtCore.QTimer()
+    timer.setInterval(20)
+    timer.timeout.connect(poll)
+    timer.start()
+    FreeCADGui.runCommand("Lighting_Run")
+    QtCore.QTimer.singleShot(60000, loop.quit)
+    loop.exec_()
+    timer.stop()
+    job = analysis_panel.last_run()
+    STATUS["cancel"] = {"stage": job.stage if job else None,
+                        "stop_seconds": (time.monotonic() - state["clicked"])
+                        if state["clicked"] else None,
+                        "partial": analysis.Partial, "photons": analysis.PhotonsTraced,
+                        "status": analysis.Status}
+    pump(0.3)
+    FreeCADGui.Control.closeDialog()
 
 
 def run_analysis(doc):
@@ -209,11 +252,15 @@ def main():
                                       if getattr(o, "ViewObject", None) is not None
                                       and o.ViewObject.Visibility)
     screenshot(doc, "before")
+    hide_for_view(doc, False)
     if not ok:
         log("solver not available: stopping after the first screenshot")
         return
     run_analysis(doc)
     STATUS["workplane_colours_after"] = distinct_colours(doc.getObject("Workplane"))
+    STATUS["mean_lux_gui"] = doc.getObject("Workplane").MeanLux
+    STATUS["photons_gui"] = doc.getObject("LightingAnalysis").PhotonsTraced
+    hide_for_view(doc)
     screenshot(doc, "after")
     path = os.path.join(OUT, "solved.FCStd")
     doc.saveAs(path)
@@ -228,6 +275,8 @@ def main():
     STATUS["workplane_colours_reopened"] = distinct_colours(doc.getObject("Workplane"))
     STATUS["mean_lux_reopened"] = doc.getObject("Workplane").MeanLux
     screenshot(doc, "reopened")
+    hide_for_view(doc, False)
+    cancel_run(doc)
 
 
 try:

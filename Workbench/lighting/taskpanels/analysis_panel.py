@@ -25,11 +25,17 @@ COLUMNS = ("Target", "Type", "Em lx", "Em CI", "Emin lx", "Emin CI", "Emax lx", 
            "U0", "U0 CI", "Check")
 
 _last_run: Optional[machine.AnalysisRun] = None
+_last_panel: Optional["AnalysisTaskPanel"] = None
 
 
 def last_run() -> Optional[machine.AnalysisRun]:
     """The most recent run started from a task panel (for scripts and the GUI test)."""
     return _last_run
+
+
+def last_panel() -> Optional["AnalysisTaskPanel"]:
+    """The most recently opened analysis task panel."""
+    return _last_panel
 
 
 def _rows(result: results_mod.AnalysisResult) -> List[List[str]]:
@@ -84,6 +90,8 @@ class AnalysisTaskPanel:
     """FreeCAD task dialog (``form`` + accept/reject) for one analysis."""
 
     def __init__(self, analysis: Any, autostart: bool = False) -> None:
+        global _last_panel
+        _last_panel = self
         self.analysis = analysis
         self.job: Optional[machine.AnalysisRun] = None
         self.form = QtGui.QWidget()

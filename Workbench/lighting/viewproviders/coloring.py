@@ -53,7 +53,11 @@ def paint_target(target: Any, scale: Optional[Scale]) -> None:
     faces = len(target.Shape.Faces)
     if not faces:
         return
-    if scale is None or not target.HasResults:
+    proxy = getattr(vobj, "Proxy", None)
+    unlit = scale is not None and target.HasResults
+    if hasattr(proxy, "set_unlit"):
+        proxy.set_unlit(unlit)
+    if not unlit:
         colour, transparency = NO_RESULT_GRID if target.TargetType == "Grid" else NO_RESULT_FACES
         vobj.ShapeColor = colour
         vobj.DiffuseColor = [colour] * faces

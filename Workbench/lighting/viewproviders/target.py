@@ -21,6 +21,24 @@ class ViewProviderTarget(ViewProviderBase):
         set_if_exists(vobj, "LineWidth", 1.0)
         set_if_exists(vobj, "Lighting", "Two side")
 
+    def attach(self, vobj: Any) -> None:
+        super().attach(vobj)
+        if getattr(self, "light_model", None) is None:
+            from pivy import coin
+
+            # False colours are shown unshaded (BASE_COLOR) so they match the legend exactly.
+            self.light_model = coin.SoLightModel()
+            self.light_model.model = coin.SoLightModel.PHONG
+            vobj.RootNode.insertChild(self.light_model, 0)
+
+    def set_unlit(self, unlit: bool) -> None:
+        """Unshaded colours (results) or normal shading (no results)."""
+        model = getattr(self, "light_model", None)
+        if model is not None:
+            from pivy import coin
+
+            model.model = coin.SoLightModel.BASE_COLOR if unlit else coin.SoLightModel.PHONG
+
     def getIcon(self) -> str:  # noqa: N802 (FreeCAD API name)
         from lighting.viewproviders.base import icon_path
 
