@@ -271,11 +271,22 @@ class Photometric(DocTestCase):
         self.assertEqual(entry["aim"], [0.0, 0.0, -1.0])
         self.assertEqual(entry["rotation_deg"], 0.0)
         self.assertTrue(entry["file"].startswith("photometry/"))
-        # Turn the luminaire 90 deg about z: its C0 (local +X) now points to +y.
+        # Turn the luminaire 90 deg about z: its C0 (local +X) now points to +y, which the
+        # scene says as 90 deg counter-clockwise seen from above.
         self.lum.Placement.Rotation = FreeCAD.Rotation(V(0, 0, 1), 90).multiply(
             self.lum.Placement.Rotation)
         self.doc.recompute()
-        self.assertAlmostEqual(self._luminaire()["rotation_deg"], -90.0, 9)
+        self.assertAlmostEqual(self._luminaire()["rotation_deg"], 90.0, 9)
+        # Aimed along +x (a wall washer on a side wall), C0 up: the default is +y, -90 deg.
+        self.lum.Placement.Rotation = FreeCAD.Rotation(V(0, 0, -1), V(1, 0, 0))
+        self.doc.recompute()
+        c0 = self.lum.Placement.Rotation.multVec(V(1, 0, 0))
+        entry = self._luminaire()
+        self.assertEqual([round(x, 9) for x in entry["aim"]], [1.0, 0.0, 0.0])
+        ref, aim = V(0, 1, 0), V(*entry["aim"])
+        a = math.radians(entry["rotation_deg"])
+        solver_c0 = ref * math.cos(a) + ref.cross(aim) * math.sin(a)
+        self.assertAlmostEqual((solver_c0 - c0).Length, 0.0, 9)
 
     def test_flux_override_and_ies(self):
         self.lum.PhotometricFile = os.path.join(REPO, "Resources", "luminaires", "downlight.ies")

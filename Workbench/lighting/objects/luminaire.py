@@ -130,10 +130,11 @@ def maintained_flux_lm(obj: Any) -> Optional[float]:
 
 def c0_rotation_deg(aim: FreeCAD.Vector, c0: FreeCAD.Vector) -> float:
     """The scene's ``rotation_deg`` turning the solver's default C0 (+x, or +y when aiming
-    along x; docs/photometry.md) about the aim onto ``c0``."""
+    along x) counter-clockwise about the luminaire's up axis (-aim) onto ``c0``
+    (docs/scene-format.md: c0 = cos(a) ref + sin(a) ref x aim)."""
     ref = FreeCAD.Vector(0, 1, 0) if abs(aim.x) > 0.999 else FreeCAD.Vector(1, 0, 0)
     ref = (ref - aim * ref.dot(aim)).normalize()
-    return math.degrees(math.atan2(aim.cross(ref).dot(c0), ref.dot(c0)))
+    return math.degrees(math.atan2(ref.cross(aim).dot(c0), ref.dot(c0)))
 
 
 def scene_entry(obj: Any) -> Dict[str, Any]:
