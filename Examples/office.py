@@ -30,8 +30,6 @@ def _setup_paths() -> None:
 def main() -> int:
     """Build, analyse, print, save; returns the exit status."""
     _setup_paths()
-    import FreeCAD
-
     import lighting
     import office_model
 

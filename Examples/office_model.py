@@ -19,7 +19,6 @@ from typing import Any, Dict, Optional
 
 import FreeCAD
 import Mesh
-import Part
 
 import lighting
 from lighting.compat import import_arch

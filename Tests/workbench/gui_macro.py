@@ -223,6 +223,14 @@ def commands_smoke():
     run("Lighting_Export")
     FreeCADGui.Control.closeDialog()
     analysis = [o for o in doc.Objects if proxy_type(o) == "Lighting::Analysis"][0]
+    run("Lighting_Results")
+    info["results_panel"] = bool(FreeCADGui.Control.activeDialog())
+    FreeCADGui.Control.closeDialog()
+    FreeCADGui.getDocument(doc.Name).setEdit(analysis.Name)  # what a double click does
+    pump(0.2)
+    info["edit_panel"] = bool(FreeCADGui.Control.activeDialog())
+    FreeCADGui.Control.closeDialog()
+    FreeCADGui.getDocument(doc.Name).resetEdit()
     info["scene_file"] = analysis.SceneFile
     info["scene_exists"] = bool(analysis.SceneFile) and os.path.exists(analysis.SceneFile)
     STATUS["commands"] = info

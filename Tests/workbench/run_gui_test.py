@@ -46,6 +46,8 @@ def check(status: dict) -> list:
         problems.append(f"luminaire from a face selection misplaced: {commands}")
     if not commands.get("scene_exists"):
         problems.append(f"Lighting_Export wrote no scene: {commands.get('scene_file')}")
+    if not (commands.get("results_panel") and commands.get("edit_panel")):
+        problems.append(f"the analysis task panel did not open: {commands}")
     if not all(commands.get("icons", {}).values()):
         problems.append(f"missing icons: {commands.get('icons')}")
     images = status.get("images", {})

@@ -4,7 +4,6 @@ import math
 import os
 
 import FreeCAD
-import Part
 
 import lighting
 from lighting.export import collect
