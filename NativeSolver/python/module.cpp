@@ -262,6 +262,25 @@ PYBIND11_MODULE(lightsolver, m) {
            },
            py::arg("name"), py::arg("direction"), py::arg("corner"), py::arg("edge1"),
            py::arg("edge2"), py::arg("illuminance_lx"))
+      .def("add_photometric_light",
+           [](Scene& s, const std::string& name, const std::string& file,
+              std::vector<double> position, std::vector<double> aim, double rotation_deg,
+              std::optional<double> flux_lm) {
+             Luminaire l;
+             l.name = name;
+             l.type = Luminaire::Type::Photometric;
+             l.file = file;
+             l.position = vec3_arg(position, "position");
+             l.aim = vec3_arg(aim, "aim");
+             l.rotation_deg = rotation_deg;
+             load_photometric(l, file, flux_lm, "flux_lm");
+             s.luminaires.push_back(l);
+           },
+           py::arg("name"), py::arg("file"), py::arg("position"),
+           py::arg("aim") = std::vector<double>{0, 0, -1}, py::arg("rotation_deg") = 0.0,
+           py::arg("flux_lm") = py::none(),
+           "IES or EULUMDAT luminaire; gamma = 0 along `aim`, C0 toward +x turned "
+           "counter-clockwise about -aim by rotation_deg; flux_lm scales the file's intensities")
       .def("add_surface_target",
            [](Scene& s, const std::string& name, const std::string& mesh) {
              Target t;

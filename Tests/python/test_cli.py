@@ -89,3 +89,17 @@ def test_run_to_an_accuracy_goal(cli, room_scene, tmp_path):
     assert res["photons"] < 100_000_000 and not res["partial"]
     for t in res["targets"]:
         assert (t["ci_high_lux"] - t["ci_low_lux"]) / 2 <= 0.05 * t["mean_lux"]
+
+
+def test_photometry_summary_and_plot(cli, tmp_path):
+    from conftest import SOURCE_DIR
+    png = tmp_path / "polar.png"
+    r = run(cli, "photometry", str(SOURCE_DIR / "Resources/luminaires/wallwasher.ies"),
+            "--plot", str(png))
+    assert r.returncode == 0, r.stderr
+    assert "Peak" in r.stdout and "Beam angle" in r.stdout and "Lumens (integrated)" in r.stdout
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    bad = tmp_path / "bad.ies"
+    bad.write_text("IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3\n")
+    r = run(cli, "photometry", str(bad))
+    assert r.returncode == 1 and "bad.ies" in r.stderr and "line" in r.stderr

@@ -133,3 +133,16 @@ def test_target_accuracy_keyword():
     assert r["accuracy_met"] and r["photons"] < 50_000_000
     walls = r["targets"][0]
     assert (walls["ci_high_lux"] - walls["ci_low_lux"]) / 2 <= 0.02 * walls["mean_lux"]
+
+
+def test_photometric_light_from_python():
+    from conftest import SOURCE_DIR
+    s = lightsolver.Scene()
+    s.add_photometric_light("dl", str(SOURCE_DIR / "Resources/luminaires/downlight.ies"),
+                            [0, 0, 3], flux_lm=1500.0)
+    s.add_grid_target("floor", [-2, -2, 0], [4, 0, 0], [0, 4, 0], (4, 4))
+    r = lightsolver.solve(s, photons=400_000)
+    cells = r["targets"][0]["cells_lux"]
+    assert cells[1:3, 1:3].min() > 2 * cells[0, 0]  # a downlight: bright under, dim in corners
+    with pytest.raises(lightsolver.InputError, match="missing.ies"):
+        s.add_photometric_light("x", "/nowhere/missing.ies", [0, 0, 3])

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,8 @@
 
 namespace lightsolver {
 
-struct PhotometricData;  // photometry.hpp
+struct PhotometricData;    // photometry.hpp
+class PhotometricSampler;  // photometry.hpp
 
 /// Surface interaction model.
 struct Material {
@@ -50,10 +52,17 @@ struct Luminaire {
   double field_angle_deg = 0.0;      ///< spot: full angle at 10 % of peak intensity
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< area / directional parallelogram
   double illuminance_lx = 0.0;       ///< directional: illuminance normal to the beam
-  /// Photometric: the distribution (shared, immutable) and the luminaire frame; `aim` is where
-  /// gamma = 0 points, `c0` where the C0 plane points (orthonormal to aim).
+  /// Photometric: the distribution and its sampler (shared, immutable), the file it came from,
+  /// and the luminaire frame: `aim` is where gamma = 0 points, `rotation_deg` turns the C0
+  /// plane counter-clockwise about the luminaire's up axis (-aim; for a downlight: as seen from
+  /// above). At 0, C0 points toward +x (toward +y when aiming along x). `flux_lm` is the flux
+  /// actually emitted: the file's candela integrated, or scaled by a requested flux_lm over the
+  /// file's lamp lumens (over the integrated flux for absolute photometry).
   std::shared_ptr<const PhotometricData> photometry;
-  glm::dvec3 aim{0, 0, -1}, c0{1, 0, 0};
+  std::shared_ptr<const PhotometricSampler> sampler;
+  std::string file;
+  glm::dvec3 aim{0, 0, -1};
+  double rotation_deg = 0.0;
 };
 
 /// Where illuminance is reported.
@@ -109,5 +118,14 @@ double spot_relative_intensity(const Luminaire& spot, double angle_rad);
 
 /// Spot peak (on-axis) intensity in candela for the luminaire's flux.
 double spot_peak_intensity_cd(const Luminaire& spot);
+
+/// Photometric luminaire frame: the unit direction of its C0 plane (orthogonal to `aim`).
+glm::dvec3 photometric_c0(const Luminaire& l);
+
+/// Loads a photometric luminaire's file and sets `photometry`, `sampler` and `flux_lm` (the
+/// requested flux, or the file's when `requested_flux_lm` is empty). Throws InputError naming
+/// the file and line, or `where` for a bad flux.
+void load_photometric(Luminaire& l, const std::string& path, std::optional<double> requested_flux_lm,
+                      const std::string& where);
 
 }  // namespace lightsolver

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "core/sampling.hpp"
+#include "lightsolver/photometry.hpp"
 
 namespace lightsolver {
 namespace {
@@ -74,6 +75,18 @@ vec3 sample_spot(const PreparedLuminaire& l, PathRng& rng) {
   }
 }
 
+// Direction and opening point drawn exactly from the file's distribution (equal power per
+// photon), mapped from the luminaire frame (gamma = 0 along -z, C0 along +x) to the world.
+// The origin is pushed off the opening's plane so a recessed or flush luminaire is not
+// blocked by the ceiling it sits in.
+EmittedRay emit_photometric(const PreparedLuminaire& l, PathRng& rng) {
+  const PhotometricSampler& sampler = *l.source->sampler;
+  const glm::dvec3 aim(l.axis), c0(l.c0);
+  const glm::dvec3 o = lightsolver::to_world(sampler.sample_origin(rng), aim, c0);
+  const glm::dvec3 d = lightsolver::to_world(sampler.sample_direction(rng), aim, c0);
+  return {offset_ray_origin(l.position + vec3(o), l.axis), glm::normalize(vec3(d))};
+}
+
 }  // namespace
 
 EmittedRay emit(const PreparedLuminaire& l, PathRng& rng) {
@@ -92,9 +105,9 @@ EmittedRay emit(const PreparedLuminaire& l, PathRng& rng) {
       return {p, l.axis};
     }
     case Luminaire::Type::Photometric:
-      break;
+      return emit_photometric(l, rng);
   }
-  return {l.position, sample_sphere(rng)};  // unreachable until photometry is wired in
+  return {l.position, sample_sphere(rng)};  // unreachable: every type is handled above
 }
 
 }  // namespace detail

@@ -88,7 +88,7 @@ PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin
       break;
     case Luminaire::Type::Photometric:
       p.axis = vec3(glm::normalize(l.aim));
-      p.c0 = vec3(glm::normalize(l.c0));
+      p.c0 = vec3(photometric_c0(l));
       break;
     default:
       p.axis = vec3(l.direction);

@@ -142,6 +142,12 @@ class Validator {
       l.direction = glm::normalize(l.direction);
     }
     if (l.type == T::Spot) spot_angles(i, l);
+    if (l.type == T::Photometric) {
+      nonzero(at("luminaires", i, "aim"), l.aim);
+      l.aim = glm::normalize(l.aim);
+      if (!l.sampler) fail(at("luminaires", i, "file"), "no photometric data loaded");
+      if (!std::isfinite(l.rotation_deg)) fail(at("luminaires", i, "rotation_deg"), "not finite");
+    }
     if (l.type == T::Area || l.type == T::Directional) parallelogram(i, l);
     if (l.type == T::Directional) {
       if (!(l.illuminance_lx >= 0.0)) fail(at("luminaires", i, "illuminance_lx"), "must be >= 0");

@@ -103,7 +103,6 @@ Mesh read_mesh(const JsonNode& n, const Scene& scene, const std::string& base_di
 }
 
 Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
-  (void)base_dir;  // photometric files are resolved against it
   Luminaire l;
   l.name = n.at("name").string();
   const std::string type = n.at("type").string();
@@ -128,7 +127,17 @@ Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
     l.direction = n.at("direction").vec3();
     l.illuminance_lx = n.at("illuminance_lx").number();
   } else if (type == "photometric") {
-    n.at("type").fail("photometric luminaires need the photometry module, not built yet");
+    n.require_object({"name", "type", "file", "position", "aim", "rotation_deg", "flux_lm"});
+    l.type = Luminaire::Type::Photometric;
+    l.position = n.at("position").vec3();
+    if (n.has("aim")) l.aim = n.at("aim").vec3();
+    l.rotation_deg = n.number_or("rotation_deg", 0.0);
+    std::optional<double> flux;
+    if (n.has("flux_lm")) flux = n.at("flux_lm").number();
+    l.file = n.at("file").string();
+    load_photometric(l, (fs::path(base_dir) / l.file).lexically_normal().string(), flux,
+                     n.path() + ".flux_lm");
+    return l;
   } else {
     n.at("type").fail("unknown luminaire type \"" + type +
                       "\" (expected point, spot, area, directional or photometric)");

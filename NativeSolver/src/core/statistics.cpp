@@ -65,7 +65,13 @@ Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double
 }
 
 Relation compare(const Estimate& x, const Estimate& y, double confidence) {
-  const double threshold = z_for_confidence(confidence) * std::hypot(x.sigma, y.sigma);
+  // The optimizer compares thousands of times at one confidence: remember the last z.
+  thread_local double cached_confidence = -1.0, cached_z = 0.0;
+  if (confidence != cached_confidence) {
+    cached_z = z_for_confidence(confidence);
+    cached_confidence = confidence;
+  }
+  const double threshold = cached_z * std::hypot(x.sigma, y.sigma);
   const double diff = x.mean - y.mean;
   if (diff > threshold) return Relation::Greater;
   if (-diff > threshold) return Relation::Less;
