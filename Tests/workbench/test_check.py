@@ -48,6 +48,21 @@ class BadInput(DocTestCase):
         errors = _texts(report, "error")
         self.assertTrue(any("Buried" in e and "inside 'Wall'" in e for e in errors), errors)
 
+    def test_luminaire_flush_with_ceiling_warns(self):
+        ceiling = self.doc.addObject("Part::Box", "Ceiling")
+        ceiling.Length, ceiling.Width, ceiling.Height = 4000, 4000, 200
+        ceiling.Placement.Base = V(0, 0, 3000)
+        self.doc.recompute()
+        lighting.make_luminaire(self.doc, (2.0, 2.0, 3.0), name="Flush")
+        lighting.make_luminaire(self.doc, (1.0, 1.0, 2.99), name="Below")
+        lighting.make_grid_target(self.doc, self.box)
+        self.doc.recompute()
+        report = lighting.check(self.doc, need_solver=False)
+        warnings = _texts(report, "warning")
+        self.assertTrue(any("'Flush' lies on 'Ceiling'" in w for w in warnings), warnings)
+        self.assertFalse(any("'Below'" in w for w in warnings), warnings)
+        self.assertTrue(report.ok)
+
     def test_open_shell_and_open_mesh_warn(self):
         faces = Part.makeBox(1000, 1000, 1000).Faces[:5]  # one side missing
         leaky = self.doc.addObject("Part::Feature", "Leaky")

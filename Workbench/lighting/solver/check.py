@@ -19,6 +19,9 @@ from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
 from lighting.solver import run
 
+#: Emitters closer than this to a surface are reported as flush with it.
+FLUSH_MM = 0.5
+
 
 def _emitter_points(lum: Any) -> List[FreeCAD.Vector]:
     """Points of the emitter to test against solids: the centre, and an area's corners."""
@@ -78,6 +81,7 @@ def _check_luminaire_positions(report: Report, lums: List[Any], shapes: List[tup
             model_box.add(shape.BoundBox)
     for lum in lums:
         points = _emitter_points(lum)
+        buried = False
         for obj, shape in shapes:
             for solid in shape.Solids:
                 inside = [p for p in points if solid.BoundBox.isInside(p)
@@ -86,16 +90,40 @@ def _check_luminaire_positions(report: Report, lums: List[Any], shapes: List[tup
                     report.add("error", f"Luminaire '{lum.Label}' is inside '{obj.Label}': its "
                                         "light would be trapped; move it into the room",
                                lum.Name)
+                    buried = True
                     break
-            else:
-                continue
-            break
+            if buried:
+                break
+        if not buried:
+            _check_flush(report, lum, points[0], shapes)
         if model_box is not None and model_box.isValid():
             box = FreeCAD.BoundBox(model_box)
             box.enlarge(5000.0)
             if not box.isInside(points[0]):
                 report.add("warning", f"Luminaire '{lum.Label}' is more than 5 m outside the "
                                       "model", lum.Name)
+
+
+def _check_flush(report: Report, lum: Any, point: FreeCAD.Vector, shapes: List[tuple]) -> None:
+    """An emitter lying on a surface is partly blocked by it (coincident geometry)."""
+    import Part
+
+    vertex = None
+    for obj, shape in shapes:
+        box = FreeCAD.BoundBox(shape.BoundBox)
+        box.enlarge(FLUSH_MM)
+        if not box.isInside(point):
+            continue
+        vertex = vertex or Part.Vertex(point)
+        try:
+            distance = shape.distToShape(vertex)[0]
+        except Exception:  # noqa: BLE001 - no distance, no warning
+            continue
+        if distance < FLUSH_MM:
+            report.add("warning", f"Luminaire '{lum.Label}' lies on '{obj.Label}' "
+                                  f"({distance:.2f} mm): the surface may block its light; move "
+                                  "it a few millimetres off", lum.Name)
+            return
 
 
 def check_analysis(analysis: Any, need_solver: bool = True,
