@@ -297,3 +297,37 @@ class Photometric(DocTestCase):
         self.lum.PhotometricFile = "/nonexistent/lamp.ies"
         report = lighting.check(self.doc, need_solver=False)
         self.assertTrue(any("not found" in m.text for m in report.errors), report.format())
+
+
+class ArchElements(DocTestCase):
+    """Stairs, roofs and equipment (furniture) are exported with sensible materials."""
+
+    def test_stairs_roof_furniture(self):
+        from lighting.compat import import_arch
+        from lighting.export.scene import build_scene
+        import Draft
+
+        arch = import_arch()
+        doc = FreeCAD.newDocument("Arch")
+        stairs = arch.makeStairs(length=3000, width=1000, height=2800, steps=14)
+        outline = Draft.makeWire([V(0, 0, 3000), V(4000, 0, 3000), V(4000, 3000, 3000),
+                                  V(0, 3000, 3000)], closed=True)
+        doc.recompute()
+        roof = arch.makeRoof(outline, angles=[30, 30, 30, 30])
+        chair = doc.addObject("Part::Box", "ChairBox")
+        doc.recompute()
+        equipment = arch.makeEquipment(chair)
+        analysis = lighting.make_analysis(doc)
+        lighting.make_luminaire(doc, (2.0, 1.5, 2.5), kind="Point")
+        lighting.make_face_target(doc, [(stairs, "Face1")])
+        doc.recompute()
+        result = build_scene(analysis)
+        self.assertTrue(result.report.ok, result.report.format())
+        meshes = result.object_meshes
+        self.assertIn(stairs.Name, meshes)
+        self.assertIn(f"{roof.Name}.default_ceiling", meshes[roof.Name])  # its underside
+        self.assertEqual(meshes[equipment.Name], [equipment.Name])
+        self.assertNotIn(chair.Name, meshes)  # consumed by the equipment
+        mats = result.scene["materials"]
+        entry = [m for m in result.scene["meshes"] if m["name"] == equipment.Name][0]
+        self.assertEqual(mats[entry["material"]], {"type": "diffuse", "reflectance": 0.5})
