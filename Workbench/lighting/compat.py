@@ -2,19 +2,8 @@
 """Differences between FreeCAD 0.20, 0.21 and 1.0 (Arch -> BIM rename, IFC type names)."""
 from __future__ import annotations
 
-import re
 from typing import Any, Optional
 
-import FreeCAD
-
-
-def freecad_version() -> tuple:
-    """FreeCAD's version as a tuple of ints, e.g. (0, 20, 2)."""
-    parts = []
-    for item in FreeCAD.Version()[:3]:
-        digits = re.match(r"\d+", str(item))
-        parts.append(int(digits.group()) if digits else 0)
-    return tuple(parts)
 
 
 def import_arch() -> Any:

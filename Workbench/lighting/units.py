@@ -14,8 +14,3 @@ def vec_m(vector_mm: Any) -> List[float]:
     which removes float noise like 0.9500000000000001)."""
     return [round(vector_mm.x * MM_TO_M, 9), round(vector_mm.y * MM_TO_M, 9),
             round(vector_mm.z * MM_TO_M, 9)]
-
-
-def length_mm(value: Any) -> float:
-    """A length property, Quantity or number (millimetres) as a float in millimetres."""
-    return float(getattr(value, "Value", value))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 from lighting.units import MM_TO_M
 
@@ -125,8 +125,3 @@ def largest_triangle(part: FaceTriangles) -> int:
         if area > best_area:
             best, best_area = i, area
     return best
-
-
-def total_triangles(builders: Sequence[MeshBuilder]) -> int:
-    """Sum of the builders' triangle counts."""
-    return sum(len(b.triangles) for b in builders)

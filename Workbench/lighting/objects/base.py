@@ -159,16 +159,3 @@ def is_lighting_object(obj: Any) -> bool:
 def objects_of_type(doc: Any, type_name: str) -> list:
     """All objects of ``doc`` whose proxy is of the given Lighting type."""
     return [o for o in doc.Objects if proxy_type(o) == type_name]
-
-
-def report(text: str, level: str = "message") -> None:
-    """Print to FreeCAD's report view (or the console headless) with a trailing newline."""
-    line = text if text.endswith("\n") else text + "\n"
-    if level == "error":
-        FreeCAD.Console.PrintError(line)
-    elif level == "warning":
-        FreeCAD.Console.PrintWarning(line)
-    elif level == "log":
-        FreeCAD.Console.PrintLog(line)
-    else:
-        FreeCAD.Console.PrintMessage(line)
