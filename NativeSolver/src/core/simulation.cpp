@@ -34,12 +34,20 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-// Batches give progress reports and cancellation points; their size does not change results.
-// In accuracy mode they double from 2^14 so a goal met early is seen early.
-std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_mode) {
-  const std::uint64_t size =
-      accuracy_mode ? std::max<std::uint64_t>(done, 1u << 14)
-                    : std::clamp<std::uint64_t>(total / 100, 1u << 14, 1u << 22);
+// Batches are cancellation points and progress reports; their size never changes results
+// (photon i is photon i, tallies are integer sums). Normal runs aim at ~0.2 s per batch so a
+// Cancel is felt at once; accuracy runs double from 2^14 up to 2^22 so the point where the goal
+// is met does not depend on the machine's speed.
+std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_mode,
+                         double photons_per_second) {
+  constexpr std::uint64_t kMin = 1u << 14, kMax = 1u << 22;
+  std::uint64_t size = kMin;
+  if (accuracy_mode) {
+    size = std::clamp<std::uint64_t>(done, kMin, kMax);
+  } else if (photons_per_second > 0.0) {
+    size = std::clamp<std::uint64_t>(static_cast<std::uint64_t>(0.2 * photons_per_second), kMin,
+                                     8 * kMax);
+  }
   return std::min(size, total - done);
 }
 
@@ -194,9 +202,12 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   if (prepared.total_flux_lm > 0.0) {
     tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
     const bool accuracy_mode = r.target_accuracy.has_value();
+    const auto tracing_start = Clock::now();
     while (r.photons < r.photons_requested) {
       if (options.cancel && options.cancel->load()) break;
-      const std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode);
+      const double elapsed = seconds_since(tracing_start);
+      const std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode,
+                                         elapsed > 0.0 ? double(r.photons) / elapsed : 0.0);
       arena.execute([&] { state_->backend->trace(r.photons, n, r.seed, tallies); });
       r.photons += n;
       if (accuracy_mode &&
