@@ -10,12 +10,21 @@
 #include <fstream>
 #include <iostream>
 
+#include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 
 namespace {
 
 std::atomic<bool> g_interrupted{false};
+
+#ifdef LIGHTSOLVER_HAVE_VULKAN
+const std::vector<std::string> kBackends = {"auto", "embree", "vulkan"};
+const char* const kBackendHelp = "auto (a GPU if present, else embree), embree or vulkan";
+#else
+const std::vector<std::string> kBackends = {"auto", "embree"};
+const char* const kBackendHelp = "auto or embree";
+#endif
 
 void on_sigint(int) { g_interrupted.store(true); }
 
@@ -120,6 +129,16 @@ int cost(const RunArgs& a, std::uint64_t max_photons) {
   return g_interrupted ? 130 : 0;
 }
 
+int photometry(const std::string& file, const std::string& plot) {
+  const lightsolver::PhotometricData data = lightsolver::load_photometry(file);
+  std::cout << lightsolver::photometry_summary(data);
+  if (!plot.empty()) {
+    lightsolver::write_polar_plot_png(data, plot);
+    std::cout << "polar plot written to " << plot << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -138,8 +157,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   run_cmd->add_option("--threads", ra.threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
-  run_cmd->add_option("--backend", ra.backend, "auto or embree")
-      ->check(CLI::IsMember({"auto", "embree"}));
+  run_cmd->add_option("--backend", ra.backend, kBackendHelp)->check(CLI::IsMember(kBackends));
   run_cmd->add_option("--out", ra.out, "Write results JSON here");
   run_cmd->add_option("--accuracy", ra.accuracy,
                       "Stop when every target's CI half-width is at most this fraction of its "
@@ -157,13 +175,21 @@ int main(int argc, char** argv) {
   cost_cmd->add_option("--confidence", ca.confidence, "Confidence level")
       ->check(CLI::Range(0.0, 1.0));
   cost_cmd->add_option("--threads", ca.threads, "Worker threads (0: all cores)");
-  cost_cmd->add_option("--backend", ca.backend, "auto or embree")
-      ->check(CLI::IsMember({"auto", "embree"}));
+  cost_cmd->add_option("--backend", ca.backend, kBackendHelp)->check(CLI::IsMember(kBackends));
+
+  std::string photometry_file, plot_file;
+  CLI::App* photometry_cmd = app.add_subcommand(
+      "photometry", "Summarise an IES or EULUMDAT file (lumens, peak, beam and field angles)");
+  photometry_cmd->add_option("file", photometry_file, "IES (.ies) or EULUMDAT (.ldt) file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  photometry_cmd->add_option("--plot", plot_file, "Write a polar diagram (PNG) here");
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);
     if (*cost_cmd) return cost(ca, max_photons);
+    if (*photometry_cmd) return photometry(photometry_file, plot_file);
   } catch (const lightsolver::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;
