@@ -13,6 +13,7 @@
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
+#include "optimize_command.hpp"
 
 namespace {
 
@@ -185,6 +186,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   photometry_cmd->add_option("--plot", plot_file, "Write a polar diagram (PNG) here");
 
+  lightsolver::cli::add_optimize_command(app);  // runs from its own callback
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);

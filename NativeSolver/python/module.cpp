@@ -10,6 +10,7 @@
 
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
+#include "optimize_bindings.hpp"
 
 namespace py = pybind11;
 using namespace lightsolver;
@@ -349,4 +350,5 @@ PYBIND11_MODULE(lightsolver, m) {
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
         "progress(done, total) may return False to stop; the result is then marked partial. "
         "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean.");
+  bind_optimizer(m);  // lightsolver.optimize
 }

@@ -1,0 +1,136 @@
+#pragma once
+/// \file scene_problem.hpp
+/// The engine connected to real scenes: the `optimization` block of a scene file (intention,
+/// variables, search settings; docs/optimization.md §10) and the Evaluator that applies a
+/// configuration to a lightsolver::Simulation, traces it and reduces the results to the
+/// intention's estimates.
+///
+/// Usage:
+///   SceneProblem p = load_problem("cornell.json");
+///   OptimizationResult r = run_problem(p, {}, control);
+///   std::string json = problem_result_json(p, r);   // to_json + world positions per member
+
+#include <cstdint>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lightsolver/optimizer/domain.hpp"
+#include "lightsolver/optimizer/evaluator.hpp"
+#include "lightsolver/optimizer/intention.hpp"
+#include "lightsolver/optimizer/result.hpp"
+#include "lightsolver/optimizer/vns.hpp"
+#include "lightsolver/scene.hpp"
+#include "lightsolver/simulation.hpp"
+#include "lightsolver/solver.hpp"
+
+namespace lightsolver::optimizer {
+
+/// One entry of `optimization.variables`, with the Domain variables it owns.
+struct SceneVariable {
+  enum class Type {
+    kPosition,     ///< luminaire(s) on a parallelogram: corner + u·edge1 + v·edge2 (2 variables)
+    kTranslation,  ///< a mesh's `anchor` moved onto a parallelogram (2 variables)
+    kAim,          ///< a luminaire's tilt (from nadir) or pan (from +x, counter-clockwise), deg
+    kFlux,         ///< the flux of one or more luminaires, lm (1 variable)
+  };
+  enum class Angle { kTilt, kPan };
+
+  Type type = Type::kPosition;
+  std::vector<std::size_t> luminaires;  ///< position: moved together; aim: one; flux: all set
+  std::vector<glm::dvec3> offsets;      ///< position: each luminaire's anchor − the first's
+  std::size_t mesh = 0;                 ///< translation
+  glm::dvec3 anchor{0.0};  ///< translation: mesh point (as loaded) placed on the rectangle
+  glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< position / translation rectangle
+  Angle angle = Angle::kTilt;                      ///< aim
+  std::size_t first = 0;  ///< index of its first variable in SceneProblem::domain
+};
+
+/// A scene with its inverse problem, ready to run.
+struct SceneProblem {
+  Scene scene;
+  Intention intention;
+  Domain domain;
+  std::vector<SceneVariable> variables;
+  VnsOptions search;
+  std::string file;  ///< for messages
+
+  /// Meshes that translation variables move (Simulation::Options::movable_meshes).
+  std::vector<std::string> movable_meshes() const;
+};
+
+/// Reads a scene file and its `optimization` block. Throws InputError naming the file and the
+/// field (e.g. `optimization.variables[1].cells`), also when the block is missing.
+SceneProblem load_problem(const std::string& path);
+
+/// Same from JSON text of a whole scene file; `base_dir` resolves mesh and photometric files.
+SceneProblem problem_from_json(const std::string& text, const std::string& file,
+                               const std::string& base_dir);
+
+/// A scene built elsewhere (Python) plus the JSON text of an `optimization` block.
+SceneProblem problem_from_scene(Scene scene, const std::string& optimization_json,
+                                const std::string& file = "");
+
+/// What a configuration changes: luminaires to replace and movable meshes to place.
+struct SceneChanges {
+  std::vector<std::pair<std::size_t, Luminaire>> luminaires;
+  std::vector<std::pair<std::size_t, glm::dmat4>> meshes;  ///< rigid world transforms
+};
+
+/// The changes for a configuration's values (Domain order), starting from the loaded scene.
+SceneChanges changes_for(const SceneProblem& problem, const std::vector<double>& values);
+
+/// The scene with a configuration's values applied (for independent checks, pictures).
+Scene apply_values(const SceneProblem& problem, const std::vector<double>& values);
+
+/// Where each variable puts things, in world coordinates: "<luminaire>" → its anchor (position,
+/// centre of an area light), "<mesh>" → its translation, "<luminaire>.direction", flux in lm.
+std::map<std::string, std::vector<double>> describe_values(const SceneProblem& problem,
+                                                           const std::vector<double>& values);
+
+/// U0 = Emin / Em of a grid with a conservative interval (docs/optimization.md §9): the cells
+/// and the mean are one family of simultaneous intervals (Bonferroni), so the interval covers
+/// min_j E_j / Em whichever cell is the minimum. `total_flux_lm` and `photons` are the run's.
+Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std::uint64_t photons,
+                             double confidence);
+
+/// Evaluator over a Simulation that owns a copy of the problem's scene.
+class SceneEvaluator final : public Evaluator {
+ public:
+  /// `threads` 0: all cores. Throws InputError as Simulation does.
+  SceneEvaluator(const SceneProblem& problem, int threads = 0);
+  Evaluation evaluate(const EvaluationRequest& request) override;
+  /// The simulation's scene with the last request applied.
+  const Scene& scene() const { return simulation_.scene(); }
+  /// Results of the last trace (for tests and pictures).
+  const Results& last_results() const { return last_; }
+
+ private:
+  void apply(const std::vector<double>& values);
+  Estimate metric(const Metric& m) const;
+
+  const SceneProblem& problem_;
+  Simulation simulation_;
+  double confidence_;
+  Results last_;
+};
+
+/// Command-line / Python overrides of the `search` block.
+struct RunOverrides {
+  std::optional<std::uint64_t> iterations, seed, screening_photons, confirmation_photons;
+  int threads = 0;
+};
+
+/// Builds a SceneEvaluator and runs optimize() with the problem's search settings.
+OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& overrides,
+                               const Control& control = {});
+
+/// to_json(result) with, per ISOC member, `"scene": describe_values(...)` added.
+std::string problem_result_json(const SceneProblem& problem, const OptimizationResult& result,
+                                int indent = 2);
+
+}  // namespace lightsolver::optimizer

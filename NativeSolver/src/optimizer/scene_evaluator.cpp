@@ -1,0 +1,253 @@
+// SceneEvaluator: applies a configuration to a Simulation (luminaires replaced, movable meshes
+// placed by instance transform), traces it and reduces the Results to the intention's
+// estimates. Also the conservative U0 interval and the run / JSON helpers.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "lightsolver/optimizer/scene_problem.hpp"
+
+namespace lightsolver::optimizer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+constexpr double kDeg = M_PI / 180.0;
+
+glm::dvec3& aim_field(Luminaire& l) {
+  return l.type == Luminaire::Type::Photometric ? l.aim : l.direction;
+}
+
+// Tilt from straight down and pan from +x (counter-clockwise seen from above), degrees.
+std::pair<double, double> tilt_pan(const glm::dvec3& d) {
+  const glm::dvec3 u = glm::normalize(d);
+  return {std::acos(std::clamp(-u.z, -1.0, 1.0)) / kDeg, std::atan2(u.y, u.x) / kDeg};
+}
+
+glm::dvec3 direction_from(double tilt_deg, double pan_deg) {
+  const double t = tilt_deg * kDeg, p = pan_deg * kDeg;
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), -std::cos(t)};
+}
+
+bool is_sheet(const Luminaire& l) {
+  return l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional;
+}
+
+// Where a luminaire "is": its position, or the centre of its parallelogram.
+glm::dvec3 anchor_of(const Luminaire& l) {
+  return is_sheet(l) ? l.corner + 0.5 * (l.edge1 + l.edge2) : l.position;
+}
+
+void place(Luminaire& l, const glm::dvec3& anchor) {
+  if (is_sheet(l)) {
+    l.corner = anchor - 0.5 * (l.edge1 + l.edge2);
+  } else {
+    l.position = anchor;
+  }
+}
+
+glm::dvec3 on_rectangle(const SceneVariable& v, const std::vector<double>& values) {
+  return v.corner + values.at(v.first) * v.edge1 + values.at(v.first + 1) * v.edge2;
+}
+
+// One interval of a simultaneous family at critical value `z_wide`, rebuilt from an estimate
+// reported at `z_run`. Symmetric estimates (mean ± zσ, multi-hit tallies) widen by σ; binomial
+// ones (Wilson) are recomputed from their hit count, which stays sound at zero hits.
+Interval widened(const Estimate& e, double scale, std::uint64_t n, double z_run, double z_wide) {
+  if (e.ci_high == e.mean + z_run * e.sigma && e.hits > 0) {
+    return {std::max(0.0, e.mean - z_wide * e.sigma), e.mean + z_wide * e.sigma};
+  }
+  const double nd = static_cast<double>(n), p = static_cast<double>(e.hits) / nd;
+  const double z2n = z_wide * z_wide / nd;
+  const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
+  const double half = z_wide / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / nd + 0.25 * z2n / nd);
+  return {e.hits == 0 ? 0.0 : std::max(0.0, scale * (centre - half)), scale * (centre + half)};
+}
+
+const TargetResult& find_result(const Results& r, const std::string& name) {
+  for (const TargetResult& t : r.targets) {
+    if (t.name == name) return t;
+  }
+  throw std::logic_error("optimizer: target \"" + name + "\" missing from the results");
+}
+
+}  // namespace
+
+SceneChanges changes_for(const SceneProblem& p, const std::vector<double>& values) {
+  std::map<std::size_t, Luminaire> lums;
+  std::map<std::size_t, std::pair<double, double>> aims;  // luminaire -> (tilt, pan)
+  auto lum = [&](std::size_t i) -> Luminaire& {
+    return lums.try_emplace(i, p.scene.luminaires[i]).first->second;
+  };
+  SceneChanges c;
+  for (const SceneVariable& v : p.variables) {
+    switch (v.type) {
+      case SceneVariable::Type::kPosition: {
+        const glm::dvec3 at = on_rectangle(v, values);
+        for (std::size_t k = 0; k < v.luminaires.size(); ++k) {
+          place(lum(v.luminaires[k]), at + v.offsets[k]);
+        }
+        break;
+      }
+      case SceneVariable::Type::kTranslation:
+        c.meshes.emplace_back(v.mesh,
+                              glm::translate(glm::dmat4(1.0), on_rectangle(v, values) - v.anchor));
+        break;
+      case SceneVariable::Type::kAim: {
+        const std::size_t i = v.luminaires[0];
+        auto [it, fresh] = aims.try_emplace(i, tilt_pan(aim_field(lum(i))));
+        (v.angle == SceneVariable::Angle::kTilt ? it->second.first : it->second.second) =
+            values.at(v.first);
+        break;
+      }
+      case SceneVariable::Type::kFlux:
+        for (std::size_t i : v.luminaires) lum(i).flux_lm = values.at(v.first);
+        break;
+    }
+  }
+  for (const auto& [i, tp] : aims) aim_field(lum(i)) = direction_from(tp.first, tp.second);
+  for (auto& [i, l] : lums) c.luminaires.emplace_back(i, std::move(l));
+  return c;
+}
+
+Scene apply_values(const SceneProblem& problem, const std::vector<double>& values) {
+  Scene s = problem.scene;
+  const SceneChanges c = changes_for(problem, values);
+  for (const auto& [i, l] : c.luminaires) s.luminaires[i] = l;
+  for (const auto& [m, t] : c.meshes) {
+    for (glm::dvec3& v : s.meshes[m].vertices) v = glm::dvec3(t * glm::dvec4(v, 1.0));
+  }
+  validate(s);
+  return s;
+}
+
+std::map<std::string, std::vector<double>> describe_values(const SceneProblem& p,
+                                                           const std::vector<double>& values) {
+  std::map<std::string, std::vector<double>> out;
+  auto vec = [](const glm::dvec3& v) { return std::vector<double>{v.x, v.y, v.z}; };
+  const SceneChanges c = changes_for(p, values);
+  auto changed = [&](std::size_t i) -> Luminaire {
+    for (const auto& [k, l] : c.luminaires) {
+      if (k == i) return l;
+    }
+    return p.scene.luminaires[i];
+  };
+  for (const SceneVariable& v : p.variables) {
+    const std::string mesh =
+        v.type == SceneVariable::Type::kTranslation ? p.scene.meshes[v.mesh].name : std::string();
+    if (!mesh.empty()) out[mesh] = vec(on_rectangle(v, values));
+    for (std::size_t i : v.luminaires) {
+      Luminaire l = changed(i);
+      if (v.type == SceneVariable::Type::kPosition) out[l.name] = vec(anchor_of(l));
+      if (v.type == SceneVariable::Type::kAim) out[l.name + ".direction"] = vec(aim_field(l));
+      if (v.type == SceneVariable::Type::kFlux) out[l.name + ".flux_lm"] = {l.flux_lm};
+    }
+  }
+  return out;
+}
+
+Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std::uint64_t photons,
+                             double confidence) {
+  Estimate u;
+  if (grid.cells.empty() || photons == 0) return u;
+  const double cells = static_cast<double>(grid.cells.size());
+  const double z_run = z_for_confidence(confidence);
+  // m cells + the mean: each interval at 1 - (1 - confidence) / (m + 1), so all hold at once
+  // with probability >= confidence and the min over cells is covered by [min low, min high].
+  const double z_wide = z_for_confidence(1.0 - (1.0 - confidence) / (cells + 1.0));
+  const double cell_scale = total_flux_lm / (grid.area_m2 / cells);
+  double min_low = INFINITY, min_high = INFINITY, min_mean = INFINITY;
+  std::uint64_t min_hits = 0;
+  for (const Estimate& c : grid.cells) {
+    const Interval i = widened(c, cell_scale, photons, z_run, z_wide);
+    min_low = std::min(min_low, i.low);
+    min_high = std::min(min_high, i.high);
+    if (c.mean < min_mean) min_mean = c.mean, min_hits = c.hits;
+  }
+  const Interval em = widened(grid.estimate, total_flux_lm / grid.area_m2, photons, z_run, z_wide);
+  u.mean = grid.estimate.mean > 0.0 ? min_mean / grid.estimate.mean : 0.0;
+  u.ci_low = em.high > 0.0 ? min_low / em.high : 0.0;
+  u.ci_high = em.low > 0.0 ? std::min(1.0, min_high / em.low) : 1.0;  // min <= mean always
+  u.ci_low = std::min(u.ci_low, u.mean);
+  u.ci_high = std::max(u.ci_high, u.mean);
+  // compare() works on sigma: the half-width of this interval at the run's critical value.
+  u.sigma = (u.ci_high - u.ci_low) / (2.0 * z_run);
+  u.hits = min_hits;
+  return u;
+}
+
+SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads)
+    : problem_(problem),
+      simulation_(problem.scene, Simulation::Options{"auto", threads, problem.movable_meshes()}),
+      confidence_(problem.search.confidence) {}
+
+void SceneEvaluator::apply(const std::vector<double>& values) {
+  const SceneChanges c = changes_for(problem_, values);
+  for (const auto& [i, l] : c.luminaires) simulation_.set_luminaire(i, l);
+  for (const auto& [m, t] : c.meshes) simulation_.set_mesh_transform(m, t);
+}
+
+Estimate SceneEvaluator::metric(const Metric& m) const {
+  switch (m.kind) {
+    case MetricKind::kMeanIlluminance:
+      return find_result(last_, m.target).estimate;
+    case MetricKind::kUniformity:
+      return uniformity_estimate(find_result(last_, m.target), last_.total_flux_lm, last_.photons,
+                                 confidence_);
+    case MetricKind::kInstalledFlux: {
+      const double f = simulation_.scene().total_flux_lm();
+      return Estimate{f, 0.0, f, f, 0};
+    }
+    case MetricKind::kCustom:
+      break;
+  }
+  throw std::logic_error("optimizer: the scene evaluator has no custom metrics");
+}
+
+Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
+  Evaluation e;
+  const auto start = Clock::now();
+  apply(r.values);
+  e.update_seconds = seconds_since(start);
+  SolveOptions opt;
+  opt.photons = r.photons;
+  opt.seed = r.seed;
+  opt.confidence = confidence_;
+  const auto trace_start = Clock::now();
+  last_ = simulation_.run(opt);
+  e.trace_seconds = seconds_since(trace_start);
+  e.objective = metric(problem_.intention.objective);
+  for (const Constraint& c : problem_.intention.constraints)
+    e.constraints.push_back(metric(c.metric));
+  return e;
+}
+
+OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& o,
+                               const Control& control) {
+  VnsOptions opt = problem.search;
+  if (o.iterations) opt.max_iterations = *o.iterations;
+  if (o.seed) opt.seed = *o.seed;
+  if (o.screening_photons) opt.screening_photons = *o.screening_photons;
+  if (o.confirmation_photons) opt.confirmation_photons = *o.confirmation_photons;
+  SceneEvaluator evaluator(problem, o.threads);
+  return optimize(problem.domain, problem.intention, evaluator, opt, control);
+}
+
+std::string problem_result_json(const SceneProblem& problem, const OptimizationResult& result,
+                                int indent) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(to_json(result, -1));
+  j["scene_file"] = problem.file;
+  for (std::size_t i = 0; i < result.isoc.size(); ++i) {
+    j["isoc"][i]["scene"] = describe_values(problem, result.isoc[i].values);
+  }
+  return j.dump(indent);
+}
+
+}  // namespace lightsolver::optimizer

@@ -1,0 +1,119 @@
+"""lightsolver.optimize and `lightsolver optimize`: the result dict / JSON, progress, cancellation
+with the GIL released, in-memory scenes and errors naming the field."""
+import json
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+import lightsolver
+from conftest import SOURCE_DIR
+
+SMALL_ROOM = SOURCE_DIR / "Examples" / "optimization" / "small_room" / "small_room.json"
+CORNELL = SOURCE_DIR / "Examples" / "optimization" / "cornell" / "cornell.json"
+
+
+def test_optimize_file_returns_the_documented_result() -> None:
+    r = lightsolver.optimize(str(SMALL_ROOM), iterations=3, seed=2, threads=2)
+    assert r["format"] == "lightsolver.optimization/1"
+    assert r["goal"] == "minimize"
+    assert r["variables"] == ["a.u", "a.v", "b.u", "b.v", "a+b.flux_lm"]
+    assert r["counters"]["iterations"] == 3
+    assert len(r["history"]) == 3
+    member = r["isoc"][0]
+    assert {c["verdict"] for c in member["constraints"]} == {"met"}
+    flux = member["scene"]["a.flux_lm"][0]
+    assert member["objective"]["mean"] == pytest.approx(2 * flux)
+    assert len(member["scene"]["a"]) == 3  # world position of luminaire a
+
+
+def test_same_seed_same_isoc() -> None:
+    a = lightsolver.optimize(SMALL_ROOM, iterations=2, seed=5, threads=2)
+    b = lightsolver.optimize(SMALL_ROOM, iterations=2, seed=5, threads=1)
+    assert [m["cells"] for m in a["isoc"]] == [m["cells"] for m in b["isoc"]]
+    assert a["isoc"][0]["constraints"] == b["isoc"][0]["constraints"]
+
+
+def test_progress_reports_every_iteration_and_can_stop() -> None:
+    seen: list[dict] = []
+
+    def progress(s: dict) -> bool:
+        seen.append(s)
+        return s["iteration"] < 2
+
+    r = lightsolver.optimize(SMALL_ROOM, iterations=10, progress=progress, threads=2)
+    assert [s["iteration"] for s in seen] == [1, 2]
+    assert r["stop"] == "cancelled"
+    assert seen[-1]["trace_seconds"] > 0 and seen[-1]["total_photons"] > 0
+
+
+def test_cancel_token_stops_a_long_run_and_the_gil_is_released() -> None:
+    token = lightsolver.CancelToken()
+    ticks = 0
+
+    def tick() -> None:
+        nonlocal ticks
+        while not token.cancelled:
+            ticks += 1  # runs only if optimize() released the GIL
+            time.sleep(0.01)
+            if ticks == 30:
+                token.cancel()
+
+    t = threading.Thread(target=tick)
+    t.start()
+    start = time.monotonic()
+    r = lightsolver.optimize(CORNELL, iterations=1000, confirmation_photons=2_000_000, threads=2,
+                             cancel=token)
+    t.join()
+    assert r["stop"] == "cancelled"
+    assert ticks >= 30
+    assert time.monotonic() - start < 30
+
+
+def test_in_memory_scene_with_a_block_dict() -> None:
+    scene = lightsolver.load_scene(str(SMALL_ROOM))
+    block = json.loads(SMALL_ROOM.read_text())["optimization"]
+    block["intention"] = {"type": "maximize_mean_illuminance", "target": "workplane"}
+    block["variables"] = block["variables"][:1]
+    block["search"] = {"max_iterations": 2, "screening_photons": 0,
+                       "confirmation_photons": 20000}
+    r = lightsolver.optimize(scene, optimization=block, threads=2)
+    assert r["goal"] == "maximize"
+    assert r["variables"] == ["a.u", "a.v"]
+    with pytest.raises(ValueError, match="optimization"):
+        lightsolver.optimize(scene)
+
+
+def test_bad_block_names_the_field(tmp_path: Path) -> None:
+    doc = json.loads(SMALL_ROOM.read_text())
+    doc["optimization"]["variables"][1]["cells"] = [3]
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(doc))
+    with pytest.raises(lightsolver.InputError, match=r"optimization\.variables\[1\]\.cells"):
+        lightsolver.optimize(str(bad))
+
+
+def test_cli_prints_progress_and_writes_the_isoc(cli: str, tmp_path: Path) -> None:
+    out = tmp_path / "isoc.json"
+    p = subprocess.run([cli, "optimize", str(SMALL_ROOM), "--iterations", "2", "--seed", "3",
+                        "--threads", "2", "--out", str(out)],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert lines[0].split()[0] == "1" and "isoc" in lines[0] and "trace" in lines[0]
+    assert "per iteration: update" in p.stdout
+    r = json.loads(out.read_text())
+    assert r["counters"]["iterations"] == 2
+    assert r["isoc"] and "scene" in r["isoc"][0]
+
+
+def test_cli_reports_a_bad_block(cli: str, tmp_path: Path) -> None:
+    doc = json.loads(SMALL_ROOM.read_text())
+    doc["optimization"]["search"]["strategy"] = "guess"
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(doc))
+    p = subprocess.run([cli, "optimize", str(bad)], capture_output=True, text=True, timeout=60)
+    assert p.returncode == 1
+    assert "optimization.search.strategy" in p.stderr
