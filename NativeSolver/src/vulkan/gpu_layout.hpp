@@ -1,0 +1,113 @@
+#pragma once
+// C++ twins of the std430 structs in Shaders/scene_layout.glsl and Shaders/trace_layout.glsl.
+// Every struct is a multiple of 16 bytes of 4-byte fields, so both sides agree byte for byte.
+#include <cstdint>
+
+namespace lightsolver::detail::gpu {
+
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+struct Node {  // binary BVH node with both children's boxes
+  float lo0[3];
+  std::uint32_t child0;
+  float hi0[3];
+  std::uint32_t count0;  // 0: child0 is a node; > 0: child0 is the first of count0 triangles
+  float lo1[3];
+  std::uint32_t child1;
+  float hi1[3];
+  std::uint32_t count1;
+};
+
+struct Tri {  // triangle in leaf order
+  float v0[3];
+  std::uint32_t mesh;
+  float v1[3];
+  std::uint32_t prim;
+  float v2[3];
+  std::uint32_t pad;
+};
+
+struct MeshInfo {
+  std::uint32_t material;
+  std::int32_t bin;
+  std::uint32_t pad[2];
+};
+
+struct Material {
+  std::uint32_t type;      // Material::Type
+  std::uint32_t p_first;   // 24-bit thresholds, see probability_threshold()
+  std::uint32_t p_second;
+  std::uint32_t thin;
+  float ior, tau, alpha, pad;
+};
+
+struct Luminaire {
+  float position[3];
+  std::uint32_t type;  // Luminaire::Type
+  float axis[3];
+  float half_beam;
+  float corner[3];
+  float half_field;
+  float edge1[3];
+  float cos_half_field;
+  float edge2[3];
+  float pad;
+};
+
+struct Grid {
+  float corner[3];
+  std::uint32_t nu;
+  float normal[3];
+  std::uint32_t nv;
+  float du[3];
+  std::uint32_t bin;
+  float dv[3];
+  std::uint32_t pad;
+};
+
+struct TracePush {
+  std::uint64_t first_path;
+  std::uint64_t seed;
+  std::uint32_t path_count;
+  std::uint32_t max_bounces;
+  std::uint32_t luminaire_count;
+  std::uint32_t grid_count;
+};
+
+static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
+static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
+static_assert(sizeof(TracePush) == 32);
+
+/// Specialisation constant ids of trace.comp (0 is the workgroup size).
+enum SpecId : std::uint32_t {
+  kWorkgroupSize = 0,
+  kHasDiffuse,
+  kHasMirror,
+  kHasGlass,
+  kHasGlossy,
+  kHasPoint,
+  kHasSpot,
+  kHasArea,
+  kHasDirectional,
+  kHasGrids,
+  kHasSurfaceBins,
+  kManyLuminaires,
+  kSpecCount
+};
+
+/// Bindings of trace.comp, in order.
+enum Binding : std::uint32_t {
+  kNodes,
+  kTris,
+  kTriNormals,
+  kMeshes,
+  kMaterials,
+  kLuminaires,
+  kLuminaireCdf,
+  kGrids,
+  kTallies,
+  kCounters,
+  kBindingCount
+};
+
+}  // namespace lightsolver::detail::gpu

@@ -1,0 +1,11 @@
+#pragma once
+// SPIR-V of the library's compute shaders, compiled from Shaders/ by glslc at build time and
+// embedded as uint32 arrays.
+#include <cstdint>
+#include <span>
+
+namespace lightsolver::detail::shaders {
+
+std::span<const std::uint32_t> trace();
+
+}  // namespace lightsolver::detail::shaders

@@ -1,0 +1,82 @@
+// Per-path deposit counts, so each bin receives this path's total c and c^2 (the variance
+// estimate needs whole-path totals). A path keeps at most kMaxDeposits distinct bins in
+// registers. To stay exact for paths that touch more, a pass keeps the kMaxDeposits SMALLEST bins
+// above `dep_floor`: a bin refused or evicted is larger than every kept bin, and the largest kept
+// bin only decreases, so it can never come back with a partial count. After the pass every kept
+// count is complete; if anything was refused the path is replayed (same random stream, same
+// code, hence the same path) with dep_floor = the largest bin flushed. Paths within the budget,
+// nearly all of them, take one pass.
+#ifndef LIGHTSOLVER_DEPOSITS_GLSL
+#define LIGHTSOLVER_DEPOSITS_GLSL
+
+const uint kMaxDeposits = 16u;
+
+uint dep_key[kMaxDeposits];    // bin + 1, so that dep_floor = 0 admits every bin
+uint dep_count[kMaxDeposits];
+uint dep_size;
+uint dep_floor;
+bool dep_refused;
+
+void deposits_begin(uint floor_key) {
+  dep_size = 0u;
+  dep_floor = floor_key;
+  dep_refused = false;
+}
+
+void deposit(uint bin) {
+  const uint key = bin + 1u;
+  if (key <= dep_floor) return;  // flushed by an earlier pass
+  uint largest = 0u;
+  for (uint i = 0u; i < dep_size; ++i) {
+    if (dep_key[i] == key) {
+      ++dep_count[i];
+      return;
+    }
+    if (dep_key[i] > dep_key[largest]) largest = i;
+  }
+  if (dep_size < kMaxDeposits) {
+    dep_key[dep_size] = key;
+    dep_count[dep_size] = 1u;
+    ++dep_size;
+    return;
+  }
+  dep_refused = true;
+  if (key < dep_key[largest]) {  // evict the largest: it is replayed in a later pass
+    dep_key[largest] = key;
+    dep_count[largest] = 1u;
+  }
+}
+
+// Adds this pass's complete counts; returns the floor for the next pass, or 0 when done.
+uint deposits_flush() {
+  uint largest = 0u;
+  for (uint i = 0u; i < dep_size; ++i) {
+    const uint bin = dep_key[i] - 1u;
+    const uint64_t c = uint64_t(dep_count[i]);
+    atomicAdd(tallies[2u * bin], c);
+    atomicAdd(tallies[2u * bin + 1u], c * c);
+    largest = max(largest, dep_key[i]);
+  }
+  return dep_refused ? largest : 0u;
+}
+
+// Virtual grids crossed from the front by o + t d, 0 <= t <= t_max (core/path_deposits.hpp).
+void cross_grids(vec3 o, vec3 d, float t_max) {
+  const float t_end = t_max * (1.0 + 1e-5) + 1e-6;
+  for (uint k = 0u; k < pc.grid_count; ++k) {
+    const GridGpu g = grids[k];
+    const float denom = dot(d, g.normal);
+    if (!(denom < 0.0)) continue;  // parallel, or from behind
+    const float t = dot(g.corner - o, g.normal) / denom;
+    if (!(t >= 0.0 && t <= t_end)) continue;
+    const vec3 rel = o + t * d - g.corner;
+    const float a = dot(rel, g.du), b = dot(rel, g.dv);
+    if (!(a >= 0.0 && a < 1.0 && b >= 0.0 && b < 1.0)) continue;
+    const uint iu = min(uint(a * float(g.nu)), g.nu - 1u);
+    const uint iv = min(uint(b * float(g.nv)), g.nv - 1u);
+    deposit(g.bin);
+    deposit(g.bin + 1u + iv * g.nu + iu);
+  }
+}
+
+#endif

@@ -1,0 +1,69 @@
+// Photon emission, mirroring NativeSolver/src/core/emitters.cpp draw for draw.
+#ifndef LIGHTSOLVER_EMIT_GLSL
+#define LIGHTSOLVER_EMIT_GLSL
+
+// upper_bound over the cumulative flux, on integers so the pick equals the CPU's double compare.
+uint pick_luminaire() {
+  const uint64_t u = rng_u53();  // always drawn: keeps the random stream aligned with the CPU
+  if (!MANY_LUMINAIRES) return 0u;
+  uint lo = 0u, hi = pc.luminaire_count;
+  while (lo < hi) {
+    const uint mid = (lo + hi) / 2u;
+    if (u < cdf53[mid]) hi = mid; else lo = mid + 1u;
+  }
+  return min(lo, pc.luminaire_count - 1u);
+}
+
+float spot_profile(float theta, float half_beam, float half_field) {
+  if (theta <= half_beam) return 1.0 - 0.5 * theta / half_beam;
+  if (theta <= half_field) return 0.5 - 0.4 * (theta - half_beam) / (half_field - half_beam);
+  return 0.0;
+}
+
+// The accepted (cos theta, phi). A private global rather than a loop-carried local: lavapipe
+// (Mesa 22.3) lets SIMD lanes that already left a divergent loop have their loop-carried locals
+// overwritten by later iterations of other lanes; stores to private variables stay masked.
+vec2 g_spot_sample;
+
+// Uniform in solid angle over the field cone, accepted with the relative intensity.
+vec3 sample_spot(LuminaireGpu l) {
+  bool accepted = false;
+  while (!accepted) {
+    const float cos_t = 1.0 - rng_uniform() * (1.0 - l.cos_half_field);
+    const float phi = 2.0 * kPi * rng_uniform();
+    // acos() is imprecise near 1 on some drivers; atan2 of the cancellation-free sine is not.
+    const float w = 1.0 - clamp(cos_t, -1.0, 1.0);
+    const float theta = atan(sqrt(max(0.0, w * (2.0 - w))), 1.0 - w);
+    if (rng_uniform() < spot_profile(theta, l.half_beam, l.half_field)) {
+      g_spot_sample = vec2(cos_t, phi);
+      accepted = true;
+    }
+  }
+  const float cos_t = g_spot_sample.x, phi = g_spot_sample.y;
+  const float sin_t = sqrt(max(0.0, 1.0 - cos_t * cos_t));
+  return to_world(vec3(sin_t * cos(phi), sin_t * sin(phi), cos_t), l.axis);
+}
+
+vec3 point_on_parallelogram(LuminaireGpu l) {
+  const float s = rng_uniform();
+  const float t = rng_uniform();
+  return l.corner + s * l.edge1 + t * l.edge2;
+}
+
+void emit(LuminaireGpu l, out vec3 origin, out vec3 dir) {
+  if (HAS_SPOT && l.type == kSpot) {
+    origin = l.position;
+    dir = sample_spot(l);
+  } else if (HAS_AREA && l.type == kArea) {
+    origin = offset_ray_origin(point_on_parallelogram(l), l.axis);  // not blocked by its ceiling
+    dir = sample_cosine(l.axis);
+  } else if (HAS_DIRECTIONAL && l.type == kDirectional) {
+    origin = offset_ray_origin(point_on_parallelogram(l), l.axis);
+    dir = l.axis;
+  } else {
+    origin = l.position;
+    dir = sample_sphere();
+  }
+}
+
+#endif
