@@ -76,8 +76,8 @@ void Algorithm::create_pipeline(std::span<const std::uint32_t> spirv,
   info.stage.pName = "main";
   info.stage.pSpecializationInfo = spec.empty() ? nullptr : &spec_info;
   info.layout = pipeline_layout_;
-  const VkResult r = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr,
-                                              &pipeline_);
+  const VkResult r =
+      vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
   vkDestroyShaderModule(device_, module, nullptr);  // the pipeline keeps what it needs
   check(r, "compiling the compute pipeline");
 }

@@ -33,8 +33,7 @@ class Algorithm {
 
  private:
   void create_layouts(std::size_t bindings);
-  void create_pipeline(std::span<const std::uint32_t> spirv,
-                       const std::vector<SpecConstant>& spec);
+  void create_pipeline(std::span<const std::uint32_t> spirv, const std::vector<SpecConstant>& spec);
   void write_descriptors(const std::vector<const Buffer*>& buffers);
   void release() noexcept;
 

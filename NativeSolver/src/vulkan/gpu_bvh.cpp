@@ -43,7 +43,8 @@ void set_children(void* node, void** children, unsigned count, void*) {
 }
 
 void set_bounds(void* node, const RTCBounds** bounds, unsigned count, void*) {
-  for (unsigned i = 0; i < count && i < 2; ++i) static_cast<InnerNode*>(node)->bounds[i] = *bounds[i];
+  for (unsigned i = 0; i < count && i < 2; ++i)
+    static_cast<InnerNode*>(node)->bounds[i] = *bounds[i];
 }
 
 void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count,
@@ -81,8 +82,8 @@ std::vector<RTCBuildPrimitive> build_primitives(const PreparedScene& s) {
       const glm::vec3 a = vertex(m, m.indices[3 * t]), b = vertex(m, m.indices[3 * t + 1]),
                       c = vertex(m, m.indices[3 * t + 2]);
       const glm::vec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
-      prims.push_back({lo.x, lo.y, lo.z, static_cast<unsigned>(g), hi.x, hi.y, hi.z,
-                       static_cast<unsigned>(t)});
+      prims.push_back(
+          {lo.x, lo.y, lo.z, static_cast<unsigned>(g), hi.x, hi.y, hi.z, static_cast<unsigned>(t)});
     }
   }
   return prims;

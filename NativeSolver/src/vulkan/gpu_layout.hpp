@@ -34,8 +34,8 @@ struct MeshInfo {
 };
 
 struct Material {
-  std::uint32_t type;      // Material::Type
-  std::uint32_t p_first;   // 24-bit thresholds, see probability_threshold()
+  std::uint32_t type;     // Material::Type
+  std::uint32_t p_first;  // 24-bit thresholds, see probability_threshold()
   std::uint32_t p_second;
   std::uint32_t thin;
   float ior, tau, alpha, pad;

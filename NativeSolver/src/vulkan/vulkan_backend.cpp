@@ -138,8 +138,8 @@ class VulkanBackend final : public Backend {
   }
 
   std::uint32_t groups(std::uint64_t paths) const {
-    const std::uint64_t limit = std::min<std::uint64_t>(
-        65535, ctx_.properties().limits.maxComputeWorkGroupCount[0]);
+    const std::uint64_t limit =
+        std::min<std::uint64_t>(65535, ctx_.properties().limits.maxComputeWorkGroupCount[0]);
     return static_cast<std::uint32_t>(
         std::clamp<std::uint64_t>((paths + kWorkgroupSize - 1) / kWorkgroupSize, 1, limit));
   }
@@ -165,9 +165,9 @@ class VulkanBackend final : public Backend {
     out.capped_paths += v[2 * out.bins.size() + 1];
   }
 
-  const PreparedScene& s_;  // owned by the caller (Simulation), updated in place
-  GpuSceneData data_;       // host copy of what is small and may change
-  vkw::Context ctx_;        // destroyed after everything created from it
+  const PreparedScene& s_;            // owned by the caller (Simulation), updated in place
+  GpuSceneData data_;                 // host copy of what is small and may change
+  vkw::Context ctx_;                  // destroyed after everything created from it
   std::vector<vkw::Buffer> buffers_;  // indexed by gpu::Binding
   std::optional<vkw::Buffer> readback_;
   std::optional<vkw::Algorithm> trace_;

@@ -122,8 +122,8 @@ TEST_F(BvhTest, SpheresFromOutsideHitAndMissLikeEmbree) {
   Scene scene;
   add_material(scene, "grey", Material::Type::Diffuse, 0.5);
   for (int i = 0; i < 4; ++i) {
-    scene.meshes.push_back(bench::sphere_mesh("s" + std::to_string(i), 0,
-                                              {1.5 * i, 0.3 * i, 0.0}, 0.7, 24, 32));
+    scene.meshes.push_back(
+        bench::sphere_mesh("s" + std::to_string(i), 0, {1.5 * i, 0.3 * i, 0.0}, 0.7, 24, 32));
   }
   scene.luminaires.push_back(point_light({0, 0, 5}, 1));
   scene.targets.push_back(surface("s0", 0));
