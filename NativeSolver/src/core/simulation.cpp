@@ -22,6 +22,7 @@ struct SimulationState {
   std::unique_ptr<Backend> backend;
   int threads = 0;
   double pending_update_seconds = 0.0;
+  Warnings backend_notes;  // e.g. why "auto" fell back to the CPU
 };
 
 }  // namespace detail
@@ -130,7 +131,8 @@ Simulation::Simulation(Scene scene, Options options)
   }
   state_->scene = std::move(scene);
   state_->prepared = detail::prepare(state_->scene, movable);
-  state_->backend = detail::make_backend(options.backend, state_->prepared);
+  state_->backend =
+      detail::make_backend(options.backend, state_->prepared, state_->backend_notes);
   state_->threads = options.threads;
 }
 
@@ -228,6 +230,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
                                     r.photons, r.confidence));
   }
   add_warnings(scene, r);
+  r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);
   return r;
 }

@@ -12,15 +12,17 @@ namespace detail {
 
 // "auto": a real GPU through Vulkan when one is usable, else Embree (lavapipe is slower than
 // Embree, so a CPU Vulkan device is used only when asked for by name).
-std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedScene& scene) {
+std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedScene& scene,
+                                      std::vector<std::string>& notes) {
   if (name == "embree") return make_embree_backend(scene);
 #ifdef LIGHTSOLVER_HAVE_VULKAN
   if (name == "vulkan") return make_vulkan_backend(scene);
   if (name == "auto" && vulkan_gpu_available()) {
     try {
       return make_vulkan_backend(scene);
-    } catch (const std::runtime_error&) {
-      // Falls through to Embree; the results name the backend that ran ("embree").
+    } catch (const std::runtime_error& e) {
+      notes.push_back(std::string("the GPU could not be used, traced on the CPU instead: ") +
+                      e.what());
     }
   }
   const char* expected = "expected auto, embree or vulkan";

@@ -82,7 +82,9 @@ TEST_P(ClosedForm, LambertianRectangleToParallelPlane) {
   }
   const Results r = run(s, 6'000'000);
   for (std::size_t i = 0; i < probes.size(); ++i) {
-    auto E = [&](dvec3 p) { return 1000.0 * parallel_rect_factor(-p.x, 1 - p.x, -p.y, 1 - p.y, 3); };
+    auto E = [&](dvec3 p) {
+      return 1000.0 * parallel_rect_factor(-p.x, 1 - p.x, -p.y, 1 - p.y, 3);
+    };
     const double exact = patch_mean(E, probes[i], {0.2, 0, 0}, {0, 0.2, 0});
     expect_in_ci(r.targets[i].estimate, exact, 0.08, "probe " + std::to_string(i));
   }
@@ -145,17 +147,30 @@ TEST_P(ClosedForm, Cie171CubeWithCentralSource) {
 }
 
 TEST_P(ClosedForm, MirrorAddsTheImageSource) {
-  Scene s;
-  add_material(s, "mirror", Material::Type::Mirror, 1.0);
-  s.meshes.push_back(quad_mesh("mirror", 0, {-10, -10, 0}, {20, 0, 0}, {0, 20, 0}));
-  const dvec3 src(0, 0, 1), image(0, 0, -1);
-  s.luminaires.push_back(point_light(src, 4000.0));
-  const dvec3 c(0.2, -0.3, 2), e1(0, 0.4, 0), e2(0.4, 0, 0);  // front -z: counts upward light
-  s.targets.push_back(grid("above", c, e1, e2, 1, 1));
-  const Results r = run(s, 4'000'000);
-  const double direct = point_source_patch_lux(src, 4000.0, c, e1, e2);
-  const double mirrored = point_source_patch_lux(image, 4000.0, c, e1, e2);
-  expect_in_ci(r.targets[0].estimate, direct + mirrored, 0.03, "direct + image");
+  for (const bool glossy : {false, true}) {
+    Scene s;
+    if (glossy) {  // a GGX lobe of roughness 0 and albedo 1 is a perfect mirror
+      Material m;
+      m.name = "glossy";
+      m.type = Material::Type::Glossy;
+      m.reflectance = 0.0;
+      m.specular = 1.0;
+      m.roughness = 0.0;
+      s.materials.push_back(m);
+    } else {
+      add_material(s, "mirror", Material::Type::Mirror, 1.0);
+    }
+    s.meshes.push_back(quad_mesh("mirror", 0, {-10, -10, 0}, {20, 0, 0}, {0, 20, 0}));
+    const dvec3 src(0, 0, 1), image(0, 0, -1);
+    s.luminaires.push_back(point_light(src, 4000.0));
+    const dvec3 c(0.2, -0.3, 2), e1(0, 0.4, 0), e2(0.4, 0, 0);  // front -z: counts upward light
+    s.targets.push_back(grid("above", c, e1, e2, 1, 1));
+    const Results r = run(s, 4'000'000);
+    const double direct = point_source_patch_lux(src, 4000.0, c, e1, e2);
+    const double mirrored = point_source_patch_lux(image, 4000.0, c, e1, e2);
+    expect_in_ci(r.targets[0].estimate, direct + mirrored, 0.03,
+                 glossy ? "glossy, roughness 0" : "mirror");
+  }
 }
 
 // Slab transmittance per polarisation, (1 - R)^2 / (1 - R^2) = (1 - R) / (1 + R), averaged.
