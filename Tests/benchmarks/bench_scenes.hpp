@@ -65,9 +65,7 @@ inline Scene cornell_box() {
   s.meshes.push_back(room_mesh("room", 0, {0, 0, 0}, {5.5, 5.5, 5.5}, 4));
   for (auto [lo, hi] : {std::pair{glm::dvec3(1, 1, 0), glm::dvec3(2.6, 2.6, 1.6)},
                         std::pair{glm::dvec3(3, 3, 0), glm::dvec3(4.6, 4.6, 3.3)}}) {
-    Mesh b = room_mesh("block", 1, lo, hi, 2);
-    for (auto& t : b.triangles) std::swap(t[1], t[2]);  // outward
-    s.meshes.push_back(b);
+    s.meshes.push_back(test::solid_box_mesh("block", 1, lo, hi, 2));
   }
   s.luminaires.push_back(ceiling_panel({2.2, 2.2, 5.5}, 1.1, 10'000));
   s.targets.push_back(test::surface("room", 0));

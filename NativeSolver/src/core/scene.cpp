@@ -148,7 +148,9 @@ class Validator {
       if (!l.sampler) fail(at("luminaires", i, "file"), "no photometric data loaded");
       if (!std::isfinite(l.rotation_deg)) fail(at("luminaires", i, "rotation_deg"), "not finite");
     }
-    if (l.type == T::Area || l.type == T::Directional) parallelogram(i, l);
+    if (l.type == T::Area || l.type == T::Directional) {
+      parallelogram("luminaires", i, l.corner, l.edge1, l.edge2, "the area is zero");
+    }
     if (l.type == T::Directional) {
       if (!(l.illuminance_lx >= 0.0)) fail(at("luminaires", i, "illuminance_lx"), "must be >= 0");
       if (std::abs(glm::dot(glm::normalize(glm::cross(l.edge1, l.edge2)), l.direction)) < 1e-9) {
@@ -167,13 +169,14 @@ class Validator {
     }
   }
 
-  void parallelogram(std::size_t i, const Luminaire& l) {
-    finite(at("luminaires", i, "corner"), l.corner);
-    nonzero(at("luminaires", i, "edge1"), l.edge1);
-    nonzero(at("luminaires", i, "edge2"), l.edge2);
-    if (glm::length(glm::cross(l.edge1, l.edge2)) <= 1e-9 * glm::length(l.edge1) *
-                                                          glm::length(l.edge2)) {
-      fail(at("luminaires", i, "edge2"), "edge1 and edge2 are parallel: the area is zero");
+  // corner + s*edge1 + t*edge2 with a non-zero area (area luminaires, sun openings, grids).
+  void parallelogram(const char* list, std::size_t i, const glm::dvec3& corner,
+                     const glm::dvec3& e1, const glm::dvec3& e2, const char* what) {
+    finite(at(list, i, "corner"), corner);
+    nonzero(at(list, i, "edge1"), e1);
+    nonzero(at(list, i, "edge2"), e2);
+    if (glm::length(glm::cross(e1, e2)) <= 1e-9 * glm::length(e1) * glm::length(e2)) {
+      fail(at(list, i, "edge2"), std::string("edge1 and edge2 are parallel: ") + what);
     }
   }
 
@@ -189,13 +192,7 @@ class Validator {
       }
       return;
     }
-    finite(at("targets", i, "corner"), t.corner);
-    nonzero(at("targets", i, "edge1"), t.edge1);
-    nonzero(at("targets", i, "edge2"), t.edge2);
-    if (glm::length(glm::cross(t.edge1, t.edge2)) <= 1e-9 * glm::length(t.edge1) *
-                                                          glm::length(t.edge2)) {
-      fail(at("targets", i, "edge2"), "edge1 and edge2 are parallel: the grid has zero area");
-    }
+    parallelogram("targets", i, t.corner, t.edge1, t.edge2, "the grid has zero area");
     if (t.nu == 0 || t.nv == 0) fail(at("targets", i, "cells"), "need at least 1x1 cells");
   }
 

@@ -192,9 +192,7 @@ Scene glass_scene(bool thin, dvec3 beam) {
   if (thin) {
     s.meshes.push_back(quad_mesh("pane", 0, {-2, -2, 1}, {4, 0, 0}, {0, 4, 0}));
   } else {
-    Mesh box = room_mesh("slab", 0, {-2, -2, 1}, {2, 2, 1.05});
-    for (auto& t : box.triangles) std::swap(t[1], t[2]);  // outward normals: a solid body
-    s.meshes.push_back(box);
+    s.meshes.push_back(solid_box_mesh("slab", 0, {-2, -2, 1}, {2, 2, 1.05}));
   }
   Luminaire sun;
   sun.name = "beam";
@@ -228,14 +226,7 @@ TEST_P(ClosedForm, ClearGlassPaneTransmittanceFromFresnel) {
 
 TEST_P(ClosedForm, SpotIntensityOnAxisAndOff) {
   Scene s;
-  Luminaire spot;
-  spot.name = "spot";
-  spot.type = Luminaire::Type::Spot;
-  spot.position = {0, 0, 3};
-  spot.direction = {0, 0, -1};
-  spot.beam_angle_deg = 30;
-  spot.field_angle_deg = 60;
-  spot.flux_lm = 1000.0;
+  const Luminaire spot = spot_light({0, 0, 3}, {0, 0, -1}, 30, 60, 1000.0);
   s.luminaires.push_back(spot);
   const double i0 = spot_peak_intensity_cd(spot);
   auto E = [&](dvec3 p) {

@@ -63,6 +63,26 @@ inline Mesh room_mesh(const std::string& name, int material, dvec3 lo, dvec3 hi,
   return m;
 }
 
+// Closed box [lo, hi] with faces whose fronts point OUT of it (furniture, glass blocks).
+inline Mesh solid_box_mesh(const std::string& name, int material, dvec3 lo, dvec3 hi, int n = 1) {
+  Mesh m = room_mesh(name, material, lo, hi, n);
+  for (auto& t : m.triangles) std::swap(t[1], t[2]);
+  return m;
+}
+
+inline Luminaire spot_light(dvec3 position, dvec3 direction, double beam_deg, double field_deg,
+                            double flux_lm) {
+  Luminaire l;
+  l.name = "spot";
+  l.type = Luminaire::Type::Spot;
+  l.position = position;
+  l.direction = direction;
+  l.beam_angle_deg = beam_deg;
+  l.field_angle_deg = field_deg;
+  l.flux_lm = flux_lm;
+  return l;
+}
+
 inline Luminaire point_light(dvec3 p, double flux_lm) {
   Luminaire l;
   l.name = "point";

@@ -16,19 +16,9 @@ Scene room_with_block(dvec3 block_offset) {
   add_material(s, "grey", Material::Type::Diffuse, 0.5);
   add_material(s, "block", Material::Type::Diffuse, 0.3);
   s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(6, 4, 3), 2));
-  Mesh block = room_mesh("block", 1, dvec3(1, 1, 0), dvec3(2, 2, 0.8));
-  for (auto& t : block.triangles) std::swap(t[1], t[2]);  // outward faces
-  for (auto& v : block.vertices) v += block_offset;
-  s.meshes.push_back(block);
-  Luminaire spot;
-  spot.name = "spot";
-  spot.type = Luminaire::Type::Spot;
-  spot.position = {4.5, 1.5, 2.9};
-  spot.direction = {0, 0, -1};
-  spot.beam_angle_deg = 30;
-  spot.field_angle_deg = 50;
-  spot.flux_lm = 2000;
-  s.luminaires.push_back(spot);
+  s.meshes.push_back(solid_box_mesh("block", 1, dvec3(1, 1, 0) + block_offset,
+                                    dvec3(2, 2, 0.8) + block_offset));
+  s.luminaires.push_back(spot_light({4.5, 1.5, 2.9}, {0, 0, -1}, 30, 50, 2000));
   s.targets.push_back(surface("block", 1));
   s.targets.push_back(grid("workplane", {0.5, 0.5, 0.85}, {5, 0, 0}, {0, 3, 0}, 5, 3));
   return s;
