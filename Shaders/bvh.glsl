@@ -16,6 +16,7 @@ struct Hit {
   float t;
   uint tri;  // leaf-order triangle, kNone on a miss
   float u, v;  // barycentric weights of v1 and v2 (Embree's convention)
+  uint inst;   // instance (movable mesh) hit, kNone for static geometry
 };
 
 struct RayPre {
@@ -81,15 +82,11 @@ void intersect_leaf(RayPre r, uint first, uint count, inout Hit h) {
   for (uint k = 0u; k < count; ++k) intersect_triangle(r, first + k, h);
 }
 
-Hit trace_closest(vec3 o, vec3 d) {
-  const RayPre r = prepare_ray(o, d);
-  Hit h;
-  h.t = kNoHit;
-  h.tri = kNone;
-  h.u = h.v = 0.0;
+// Closest hit below node `root` nearer than h.t; updates h.
+void traverse(RayPre r, uint root, inout Hit h) {
   uint stack[kStackSize];
   int sp = 0;
-  uint node = 0u;
+  uint node = root;
   for (;;) {
     const Node n = nodes[node];
     float near0 = 0.0, near1 = 0.0;
@@ -116,6 +113,21 @@ Hit trace_closest(vec3 o, vec3 d) {
       node = stack[--sp];
     }
   }
+}
+
+Hit no_hit() {
+  Hit h;
+  h.t = kNoHit;
+  h.tri = kNone;
+  h.u = h.v = 0.0;
+  h.inst = kNone;
+  return h;
+}
+
+// Closest hit in the static geometry (the BVH rooted at node 0).
+Hit trace_closest(vec3 o, vec3 d) {
+  Hit h = no_hit();
+  traverse(prepare_ray(o, d), 0u, h);
   return h;
 }
 

@@ -2,6 +2,8 @@
 #ifndef LIGHTSOLVER_EMIT_GLSL
 #define LIGHTSOLVER_EMIT_GLSL
 
+#include "photometric.glsl"
+
 // upper_bound over the cumulative flux, on integers so the pick equals the CPU's double compare.
 uint pick_luminaire() {
   const uint64_t u = rng_u53();  // always drawn: keeps the random stream aligned with the CPU
@@ -57,6 +59,8 @@ void emit(LuminaireGpu l, out vec3 origin, out vec3 dir) {
   } else if (HAS_AREA && l.type == kArea) {
     origin = offset_ray_origin(point_on_parallelogram(l), l.axis);  // not blocked by its ceiling
     dir = sample_cosine(l.axis);
+  } else if (HAS_PHOTOMETRIC && l.type == kPhotometric) {
+    emit_photometric(l, origin, dir);
   } else if (HAS_DIRECTIONAL && l.type == kDirectional) {
     origin = offset_ray_origin(point_on_parallelogram(l), l.axis);
     dir = l.axis;

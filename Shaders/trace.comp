@@ -11,6 +11,7 @@ layout(local_size_x_id = 0) in;
 #include "sampling.glsl"
 #include "trace_layout.glsl"
 #include "bvh.glsl"
+#include "instances.glsl"
 #include "deposits.glsl"
 #include "emit.glsl"
 #include "scatter.glsl"
@@ -24,19 +25,19 @@ void trace_path(uint64_t id, bool first_pass) {
   vec3 o, d;
   emit(luminaires[pick_luminaire()], o, d);
   for (uint bounce = 0u;; ++bounce) {
-    const Hit h = trace_closest(o, d);
+    const Hit h = trace_scene(o, d);
     if (first_pass) ++g_segments;
     if (HAS_GRIDS) cross_grids(o, d, h.t);
     if (h.tri == kNone) return;
     const MeshInfo mesh = meshes[tris[h.tri].mesh];
-    const vec3 n = tri_normals[h.tri].xyz;
+    const vec3 n = hit_normal(h);
     if (HAS_SURFACE_BINS && mesh.bin >= 0 && dot(d, n) < 0.0) deposit(uint(mesh.bin));
     if (!scatter(materials[mesh.material], n, d)) return;
     if (bounce >= pc.max_bounces) {
       if (first_pass) ++g_capped;  // still alive: its remaining light is lost (reported)
       return;
     }
-    o = offset_ray_origin(hit_point(h), dot(d, n) > 0.0 ? n : -n);
+    o = offset_ray_origin(world_hit_point(h), dot(d, n) > 0.0 ? n : -n);
   }
 }
 

@@ -18,9 +18,11 @@ layout(constant_id = 8) const bool HAS_DIRECTIONAL = true;
 layout(constant_id = 9) const bool HAS_GRIDS = true;
 layout(constant_id = 10) const bool HAS_SURFACE_BINS = true;
 layout(constant_id = 11) const bool MANY_LUMINAIRES = true;
+layout(constant_id = 12) const bool HAS_PHOTOMETRIC = true;
+layout(constant_id = 13) const bool HAS_INSTANCES = true;  // movable meshes
 
 const uint kDiffuse = 0u, kMirror = 1u, kGlass = 2u, kGlossy = 3u;          // Material::Type
-const uint kPoint = 0u, kSpot = 1u, kArea = 2u, kDirectional = 3u;           // Luminaire::Type
+const uint kPoint = 0u, kSpot = 1u, kArea = 2u, kDirectional = 3u, kPhotometric = 4u;  // Luminaire
 
 struct MeshInfo {
   uint material;
@@ -43,7 +45,28 @@ struct LuminaireGpu {
   vec3 axis; float half_beam;
   vec3 corner; float half_field;
   vec3 edge1; float cos_half_field;
-  vec3 edge2; float pad;
+  vec3 edge2; uint photometric;  // index into photometrics[] (photometric type only)
+};
+
+// A photometric luminaire's sampler (lightsolver::SamplerTables): offsets into photo_floats[]
+// (plane and polar nodes in degrees, candela grid, per-cell rejection bound) and photo_cdf53[].
+struct PhotoGpu {
+  vec3 pole; uint plane_off;
+  vec3 zero; uint np;
+  vec3 ninety; uint polar_off;
+  vec3 c0; uint nt;
+  uint candela_off, bound_off, cell_off, cell_count;
+  uint last_cell;      // the last cell with flux: taken when the draw rounds up to the total
+  uint round_opening;  // elliptical opening (else rectangular)
+  float open_length, open_width;  // opening extents along x (C0) and y (C90)
+};
+
+// A movable mesh: its own BVH (in prepared coordinates) placed by a rigid transform.
+struct Instance {
+  mat4 to_world;   // PreparedMesh::transform
+  mat4 to_object;  // its inverse
+  vec3 lo; uint root;  // world box of the placed mesh; root node of its BVH
+  vec3 hi; uint pad;
 };
 
 struct GridGpu {
@@ -61,6 +84,11 @@ layout(std430, set = 0, binding = 6) readonly buffer LuminaireCdf { uint64_t cdf
 layout(std430, set = 0, binding = 7) readonly buffer Grids { GridGpu grids[]; };
 layout(std430, set = 0, binding = 8) buffer Tallies { uint64_t tallies[]; };  // S, Q per bin
 layout(std430, set = 0, binding = 9) buffer Counters { uint64_t counters[]; };  // segments, capped
+layout(std430, set = 0, binding = 10) readonly buffer Photometrics { PhotoGpu photometrics[]; };
+layout(std430, set = 0, binding = 11) readonly buffer PhotoFloats { float photo_floats[]; };
+// ceil-type 53-bit thresholds: cell c is chosen for the first c with rng_u53() < photo_cdf53[c].
+layout(std430, set = 0, binding = 12) readonly buffer PhotoCdf { uint64_t photo_cdf53[]; };
+layout(std430, set = 0, binding = 13) readonly buffer Instances { Instance instances[]; };
 
 layout(push_constant) uniform Push {
   uint64_t first_path;
@@ -69,6 +97,8 @@ layout(push_constant) uniform Push {
   uint max_bounces;
   uint luminaire_count;
   uint grid_count;
+  uint instance_count;
+  uint pad;
 } pc;
 
 #endif

@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <new>
 #include <stdexcept>
@@ -73,11 +74,12 @@ glm::vec3 vertex(const PreparedMesh& m, std::uint32_t index) {
   return {p[0], p[1], p[2]};
 }
 
-std::vector<RTCBuildPrimitive> build_primitives(const PreparedScene& s) {
+// Triangles of the static meshes (mesh < 0) or of one movable mesh, in prepared coordinates.
+std::vector<RTCBuildPrimitive> build_primitives(const PreparedScene& s, int only_mesh) {
   std::vector<RTCBuildPrimitive> prims;
-  prims.reserve(s.triangle_count);
   for (std::size_t g = 0; g < s.meshes.size(); ++g) {
     const PreparedMesh& m = s.meshes[g];
+    if (only_mesh < 0 ? m.movable : int(g) != only_mesh) continue;
     for (std::size_t t = 0; 3 * t < m.indices.size(); ++t) {
       const glm::vec3 a = vertex(m, m.indices[3 * t]), b = vertex(m, m.indices[3 * t + 1]),
                       c = vertex(m, m.indices[3 * t + 2]);
@@ -163,18 +165,15 @@ struct BvhDeleter {
   void operator()(RTCBVHTy* b) const { rtcReleaseBVH(b); }
 };
 
-}  // namespace
-
-GpuGeometry build_gpu_geometry(const PreparedScene& scene) {
-  GpuGeometry out;
-  std::vector<RTCBuildPrimitive> prims = build_primitives(scene);
+// Builds one BVH over `prims` and appends it to `out`; returns its root node.
+std::uint32_t append_bvh(RTCDevice device, const PreparedScene& scene,
+                         std::vector<RTCBuildPrimitive>& prims, GpuGeometry& out) {
+  const auto root_index = static_cast<std::uint32_t>(out.nodes.size());
   if (prims.empty()) {
     Flattener(scene, out).root(nullptr);
-    return out;
+    return root_index;
   }
-  std::unique_ptr<RTCDeviceTy, DeviceDeleter> device(rtcNewDevice(nullptr));
-  if (!device) throw std::runtime_error("Embree: cannot create a device for the GPU BVH");
-  std::unique_ptr<RTCBVHTy, BvhDeleter> bvh(rtcNewBVH(device.get()));
+  std::unique_ptr<RTCBVHTy, BvhDeleter> bvh(rtcNewBVH(device));
   RTCBuildArguments args = rtcDefaultBuildArguments();
   args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;  // binned SAH without spatial splits
   args.maxBranchingFactor = 2;
@@ -191,11 +190,40 @@ GpuGeometry build_gpu_geometry(const PreparedScene& scene) {
   const void* root = rtcBuildBVH(&args);
   if (!root) {
     throw std::runtime_error("Embree: rtcBuildBVH failed (error " +
-                             std::to_string(int(rtcGetDeviceError(device.get()))) + ")");
+                             std::to_string(int(rtcGetDeviceError(device))) + ")");
   }
-  out.tris.reserve(prims.size());
-  out.normals.reserve(prims.size());
   Flattener(scene, out).root(static_cast<const BuildNode*>(root));
+  return root_index;
+}
+
+// Box of a mesh in its prepared coordinates.
+void mesh_bounds(const PreparedMesh& m, glm::vec3& lo, glm::vec3& hi) {
+  lo = glm::vec3(std::numeric_limits<float>::max());
+  hi = -lo;
+  for (std::uint32_t i : m.indices) {
+    lo = glm::min(lo, vertex(m, i));
+    hi = glm::max(hi, vertex(m, i));
+  }
+}
+
+}  // namespace
+
+GpuGeometry build_gpu_geometry(const PreparedScene& scene) {
+  GpuGeometry out;
+  out.tris.reserve(scene.triangle_count);
+  out.normals.reserve(scene.triangle_count);
+  std::unique_ptr<RTCDeviceTy, DeviceDeleter> device(rtcNewDevice(nullptr));
+  if (!device) throw std::runtime_error("Embree: cannot create a device for the GPU BVH");
+  std::vector<RTCBuildPrimitive> prims = build_primitives(scene, -1);
+  append_bvh(device.get(), scene, prims, out);  // static geometry: root 0
+  for (std::size_t g = 0; g < scene.meshes.size(); ++g) {
+    if (!scene.meshes[g].movable) continue;
+    prims = build_primitives(scene, int(g));
+    GpuInstanceRoot inst{static_cast<std::uint32_t>(g), 0, {}, {}};
+    inst.root = append_bvh(device.get(), scene, prims, out);
+    mesh_bounds(scene.meshes[g], inst.lo, inst.hi);
+    out.instances.push_back(inst);
+  }
   return out;
 }
 

@@ -1,6 +1,10 @@
 #pragma once
 // BVH for the compute shader: built on the CPU by Embree's rtcBuildBVH (binned SAH), then
-// flattened depth-first into gpu::Node records with triangles stored in leaf order.
+// flattened depth-first into gpu::Node records with triangles stored in leaf order. Static
+// meshes share the BVH rooted at node 0; each movable mesh gets its own BVH in its prepared
+// coordinates, appended after it, which an instance places in the world.
+#include <cstdint>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <vector>
 
@@ -9,10 +13,16 @@
 
 namespace lightsolver::detail {
 
+struct GpuInstanceRoot {
+  std::uint32_t mesh, root;  // the movable mesh and the root node of its BVH
+  glm::vec3 lo, hi;          // its box in prepared coordinates
+};
+
 struct GpuGeometry {
-  std::vector<gpu::Node> nodes;    // nodes[0] is the root; never empty
-  std::vector<gpu::Tri> tris;      // leaf order
-  std::vector<glm::vec4> normals;  // unit front normal of tris[i]
+  std::vector<gpu::Node> nodes;            // nodes[0] is the root; never empty
+  std::vector<gpu::Tri> tris;              // leaf order
+  std::vector<glm::vec4> normals;          // unit front normal of tris[i]
+  std::vector<GpuInstanceRoot> instances;  // one per movable mesh, in mesh order
 };
 
 /// Builds the GPU geometry. Throws std::runtime_error when Embree fails.

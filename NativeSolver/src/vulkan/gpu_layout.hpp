@@ -51,7 +51,31 @@ struct Luminaire {
   float edge1[3];
   float cos_half_field;
   float edge2[3];
-  float pad;
+  std::uint32_t photometric;  // index into the Photometric records (photometric type only)
+};
+
+struct Photometric {  // one photometric luminaire's sampler tables, as offsets
+  float pole[3];
+  std::uint32_t plane_off;  // into the photometric floats
+  float zero[3];
+  std::uint32_t np;
+  float ninety[3];
+  std::uint32_t polar_off;
+  float c0[3];
+  std::uint32_t nt;
+  std::uint32_t candela_off, bound_off;  // into the photometric floats
+  std::uint32_t cell_off, cell_count;    // into the photometric CDF thresholds
+  std::uint32_t last_cell, round_opening;
+  float length, width;
+};
+
+struct Instance {       // a movable mesh's BVH placed in the world
+  float to_world[16];   // column-major, as glm::mat4
+  float to_object[16];  // inverse of to_world
+  float lo[3];
+  std::uint32_t root;  // root node of the mesh's own BVH
+  float hi[3];
+  std::uint32_t pad;
 };
 
 struct Grid {
@@ -72,11 +96,14 @@ struct TracePush {
   std::uint32_t max_bounces;
   std::uint32_t luminaire_count;
   std::uint32_t grid_count;
+  std::uint32_t instance_count;
+  std::uint32_t pad;
 };
 
 static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
 static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
-static_assert(sizeof(TracePush) == 32);
+static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
+static_assert(sizeof(TracePush) == 40);
 
 /// Specialisation constant ids of trace.comp (0 is the workgroup size).
 enum SpecId : std::uint32_t {
@@ -92,6 +119,8 @@ enum SpecId : std::uint32_t {
   kHasGrids,
   kHasSurfaceBins,
   kManyLuminaires,
+  kHasPhotometric,
+  kHasInstances,
   kSpecCount
 };
 
@@ -107,6 +136,10 @@ enum Binding : std::uint32_t {
   kGrids,
   kTallies,
   kCounters,
+  kPhotometrics,
+  kPhotoFloats,
+  kPhotoCdf,
+  kInstances,
   kBindingCount
 };
 

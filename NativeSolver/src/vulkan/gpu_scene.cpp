@@ -2,7 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+#include <limits>
+#include <map>
 #include <stdexcept>
+
+#include "lightsolver/photometry.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -26,11 +33,6 @@ gpu::Material pack_material(const Material& m) {
 }
 
 gpu::Luminaire pack_luminaire(const PreparedLuminaire& l) {
-  if (l.type == Luminaire::Type::Photometric) {
-    throw std::runtime_error("Vulkan backend: photometric luminaire \"" +
-                             (l.source ? l.source->name : std::string()) +
-                             "\" is not supported yet; use --backend embree");
-  }
   gpu::Luminaire g{};
   put(g.position, l.position);
   g.type = static_cast<std::uint32_t>(l.type);
@@ -70,12 +72,20 @@ std::vector<vkw::SpecConstant> features(const PreparedScene& s) {
                                         [](const PreparedMesh& m) { return m.bin >= 0; });
   using M = Material::Type;
   using L = Luminaire::Type;
-  const bool on[] = {uses_material(M::Diffuse), uses_material(M::Mirror),
-                     uses_material(M::Glass),   uses_material(M::Glossy),
-                     uses_luminaire(L::Point),  uses_luminaire(L::Spot),
-                     uses_luminaire(L::Area),   uses_luminaire(L::Directional),
-                     !s.grids.empty(),          surface_bins,
-                     s.luminaires.size() > 1};
+  const bool on[] = {uses_material(M::Diffuse),
+                     uses_material(M::Mirror),
+                     uses_material(M::Glass),
+                     uses_material(M::Glossy),
+                     uses_luminaire(L::Point),
+                     uses_luminaire(L::Spot),
+                     uses_luminaire(L::Area),
+                     uses_luminaire(L::Directional),
+                     !s.grids.empty(),
+                     surface_bins,
+                     s.luminaires.size() > 1,
+                     uses_luminaire(L::Photometric),
+                     std::any_of(s.meshes.begin(), s.meshes.end(),
+                                 [](const PreparedMesh& m) { return m.movable; })};
   std::vector<vkw::SpecConstant> out;
   for (std::uint32_t id = gpu::kHasDiffuse; id < gpu::kSpecCount; ++id) {
     out.push_back({id, on[id - gpu::kHasDiffuse] ? 1u : 0u});
@@ -83,7 +93,110 @@ std::vector<vkw::SpecConstant> features(const PreparedScene& s) {
   return out;
 }
 
+// Photometric sampler tables, stored once per sampler however many luminaires share it.
+class PhotometricPacker {
+ public:
+  explicit PhotometricPacker(GpuSceneData& d) : d_(d) {}
+
+  gpu::Photometric pack(const PreparedLuminaire& l) {
+    if (!l.source || !l.source->sampler) {
+      throw std::runtime_error("Vulkan backend: photometric luminaire without a loaded file");
+    }
+    const PhotometricSampler& sampler = *l.source->sampler;
+    auto [it, added] = tables_.try_emplace(&sampler);
+    if (added) it->second = add_tables(sampler.tables());
+    gpu::Photometric p = it->second;
+    put(p.c0, l.c0);
+    if (const PhotometricData* data = l.source->photometry.get()) {
+      p.round_opening = round_opening(data->opening_shape) ? 1u : 0u;
+      p.length = static_cast<float>(data->opening_length_m);
+      p.width = static_cast<float>(data->opening_width_m);
+    }
+    return p;
+  }
+
+ private:
+  // PhotometricSampler::sample_origin draws over an ellipse for these shapes (sampler.cpp).
+  static bool round_opening(OpeningShape s) {
+    return s == OpeningShape::Disk || s == OpeningShape::VerticalCylinder ||
+           s == OpeningShape::Sphere || s == OpeningShape::VerticalDisk;
+  }
+
+  std::uint32_t add_floats(const std::vector<double>& v) {
+    const auto offset = static_cast<std::uint32_t>(d_.photo_floats.size());
+    for (double x : v) d_.photo_floats.push_back(static_cast<float>(x));
+    return offset;
+  }
+
+  gpu::Photometric add_tables(const SamplerTables& t) {
+    gpu::Photometric p{};
+    put(p.pole, glm::vec3(t.pole));
+    put(p.zero, glm::vec3(t.zero));
+    put(p.ninety, glm::vec3(t.ninety));
+    p.np = static_cast<std::uint32_t>(t.plane_deg.size());
+    p.nt = static_cast<std::uint32_t>(t.polar_deg.size());
+    p.plane_off = add_floats(t.plane_deg);
+    p.polar_off = add_floats(t.polar_deg);
+    p.candela_off = add_floats(t.candela);
+    p.bound_off = add_floats(t.cell_bound);
+    p.cell_off = static_cast<std::uint32_t>(d_.photo_cdf53.size());
+    p.cell_count = static_cast<std::uint32_t>(t.cell_cdf.size());
+    const double total = t.cell_cdf.back();
+    for (double c : t.cell_cdf) d_.photo_cdf53.push_back(scaled_cdf_threshold(c, total));
+    std::size_t last = t.cell_cdf.size() - 1;  // as sample_direction when x rounds up to total
+    while (last > 0 && t.cell_cdf[last] == t.cell_cdf[last - 1]) --last;
+    p.last_cell = static_cast<std::uint32_t>(last);
+    return p;
+  }
+
+  GpuSceneData& d_;
+  std::map<const PhotometricSampler*, gpu::Photometric> tables_;
+};
+
 }  // namespace
+
+std::uint64_t scaled_cdf_threshold(double c, double total) {
+  // The CPU picks the first cell with c > uniform_double() * total, where uniform_double() =
+  // k 2^-53 exactly; the rounded product is monotone in k, so the cells above the draw are
+  // exactly those with k < (smallest k whose product reaches c).
+  std::uint64_t lo = 0, hi = std::uint64_t(1) << 53;
+  while (lo < hi) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    if (static_cast<double>(mid) * 0x1p-53 * total >= c)
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return lo;
+}
+
+gpu::Instance pack_instance(const GpuInstanceRoot& r, const glm::mat4& transform) {
+  gpu::Instance g{};
+  const glm::dmat4 m(transform);
+  const glm::mat4 inv(glm::inverse(m));
+  std::memcpy(g.to_world, &transform[0][0], sizeof g.to_world);
+  std::memcpy(g.to_object, &inv[0][0], sizeof g.to_object);
+  g.root = r.root;
+  glm::dvec3 lo(0.0), hi(0.0);
+  if (r.lo.x <= r.hi.x) {  // not an empty mesh: the world box of the eight moved corners
+    lo = glm::dvec3(std::numeric_limits<double>::max());
+    hi = -lo;
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 c(k & 1 ? r.hi.x : r.lo.x, k & 2 ? r.hi.y : r.lo.y, k & 4 ? r.hi.z : r.lo.z);
+      const glm::dvec3 w(m * glm::dvec4(c, 1.0));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+    // Widened well beyond float rounding of the transform: the box only culls.
+    const glm::dvec3 a = glm::max(glm::abs(lo), glm::abs(hi));
+    const double pad = 1e-5 * (1.0 + std::max({a.x, a.y, a.z}));
+    lo -= pad;
+    hi += pad;
+  }
+  put(g.lo, glm::vec3(lo));
+  put(g.hi, glm::vec3(hi));
+  return g;
+}
 
 std::uint32_t probability_threshold(double p) {
   // uniform() = k * 2^-24 exactly, so k * 2^-24 < p  <=>  k < ceil(p * 2^24) (scaling is exact).
@@ -97,7 +210,20 @@ std::uint64_t cdf_threshold(double c) {
 void pack_luminaires(const PreparedScene& s, GpuSceneData& d) {
   d.luminaires.clear();
   d.cdf53.clear();
-  for (const auto& l : s.luminaires) d.luminaires.push_back(pack_luminaire(l));
+  d.photometrics.clear();
+  d.photo_floats.clear();
+  d.photo_cdf53.clear();
+  PhotometricPacker photometric(d);
+  for (const auto& l : s.luminaires) {
+    d.luminaires.push_back(pack_luminaire(l));
+    if (l.type == Luminaire::Type::Photometric) {
+      d.luminaires.back().photometric = static_cast<std::uint32_t>(d.photometrics.size());
+      d.photometrics.push_back(photometric.pack(l));
+    }
+  }
+  if (d.photo_floats.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw std::runtime_error("Vulkan backend: photometric tables too large");
+  }
   for (double c : s.luminaire_cdf) d.cdf53.push_back(cdf_threshold(c));
   d.features = features(s);
 }
@@ -111,6 +237,10 @@ GpuSceneData pack_scene(const PreparedScene& s) {
   }
   for (const auto& g : s.grids) d.grids.push_back(pack_grid(g));
   d.geometry = build_gpu_geometry(s);
+  d.instance_roots = d.geometry.instances;
+  for (const auto& r : d.instance_roots) {
+    d.instances.push_back(pack_instance(r, s.meshes[r.mesh].transform));
+  }
   return d;
 }
 

@@ -19,7 +19,12 @@ struct GpuSceneData {
   std::vector<gpu::Luminaire> luminaires;
   std::vector<std::uint64_t> cdf53;
   std::vector<gpu::Grid> grids;
-  std::vector<vkw::SpecConstant> features;  // ids kHasDiffuse .. kManyLuminaires
+  std::vector<gpu::Photometric> photometrics;   // one per photometric luminaire
+  std::vector<float> photo_floats;              // their sampler tables (shared per file)
+  std::vector<std::uint64_t> photo_cdf53;       // their cell thresholds
+  std::vector<GpuInstanceRoot> instance_roots;  // one per movable mesh
+  std::vector<gpu::Instance> instances;         // their current placement
+  std::vector<vkw::SpecConstant> features;      // ids kHasDiffuse .. kHasInstances
 };
 
 /// `uniform() < p` for the CPU's double p equals `rng_u24() < probability_threshold(p)`.
@@ -28,11 +33,18 @@ std::uint32_t probability_threshold(double p);
 /// `uniform_double() < c` equals `rng_u53() < cdf_threshold(c)`.
 std::uint64_t cdf_threshold(double c);
 
-/// Packs the scene. Throws std::runtime_error for what the GPU tracer does not support yet
-/// (photometric luminaires).
+/// The photometric cell pick: `uniform_double() * total < c` equals
+/// `rng_u53() < scaled_cdf_threshold(c, total)`.
+std::uint64_t scaled_cdf_threshold(double c, double total);
+
+/// A movable mesh's BVH placed by `transform` (prepared -> local world, rigid).
+gpu::Instance pack_instance(const GpuInstanceRoot& root, const glm::mat4& transform);
+
+/// Packs the scene. Throws std::runtime_error when Embree cannot build the BVH or a
+/// photometric luminaire has no loaded file.
 GpuSceneData pack_scene(const PreparedScene& scene);
 
-/// Re-packs only luminaires, their CDF and the feature switches (after luminaires changed).
+/// Re-packs luminaires, their CDF, photometric tables and the feature switches.
 void pack_luminaires(const PreparedScene& scene, GpuSceneData& out);
 
 }  // namespace lightsolver::detail

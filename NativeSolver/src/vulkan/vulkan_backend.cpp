@@ -22,6 +22,13 @@ constexpr std::uint32_t kWorkgroupSize = 64;
 // on desktop GPUs), long enough to amortise the submit (lavapipe: ~0.1-0.5 s per submission).
 constexpr std::uint64_t kPathsPerSubmit = 1u << 16;
 
+struct LuminaireBuffer {
+  gpu::Binding binding;
+  const char* name;
+  const void* data;
+  std::size_t bytes;
+};
+
 template <class T>
 std::size_t bytes_of(const std::vector<T>& v) {
   return v.size() * sizeof(T);
@@ -42,6 +49,10 @@ class VulkanBackend final : public Backend {
     const std::size_t tally_bytes = 2 * sizeof(std::uint64_t) * s.bins.size();
     add_buffer("tallies", nullptr, tally_bytes);
     add_buffer("counters", nullptr, 2 * sizeof(std::uint64_t));
+    add_buffer("photometric luminaires", data_.photometrics.data(), bytes_of(data_.photometrics));
+    add_buffer("photometric tables", data_.photo_floats.data(), bytes_of(data_.photo_floats));
+    add_buffer("photometric CDF", data_.photo_cdf53.data(), bytes_of(data_.photo_cdf53));
+    add_buffer("instances", data_.instances.data(), bytes_of(data_.instances));
     readback_.emplace(ctx_, tally_bytes + 2 * sizeof(std::uint64_t), vkw::MemoryKind::Readback,
                       "tally readback");
     data_.geometry = {};  // on the device now
@@ -49,21 +60,44 @@ class VulkanBackend final : public Backend {
   }
 
   // Simulation::set_luminaire: same-sized data is re-uploaded in place; the pipeline is rebuilt
-  // only when the set of luminaire types (its specialisation) or the buffer sizes change.
+  // only when the set of luminaire types (its specialisation) or a buffer's size changes.
   void luminaires_changed() override {
     const auto old_features = data_.features;
-    const std::size_t old_count = data_.luminaires.size();
+    const std::size_t old_bytes[] = {bytes_of(data_.luminaires), bytes_of(data_.cdf53),
+                                     bytes_of(data_.photometrics), bytes_of(data_.photo_floats),
+                                     bytes_of(data_.photo_cdf53)};
     pack_luminaires(s_, data_);
-    if (data_.luminaires.size() != old_count) {
-      replace_buffer(gpu::kLuminaires, "luminaires", bytes_of(data_.luminaires));
-      replace_buffer(gpu::kLuminaireCdf, "luminaire CDF", bytes_of(data_.cdf53));
+    const LuminaireBuffer parts[] = {
+        {gpu::kLuminaires, "luminaires", data_.luminaires.data(), bytes_of(data_.luminaires)},
+        {gpu::kLuminaireCdf, "luminaire CDF", data_.cdf53.data(), bytes_of(data_.cdf53)},
+        {gpu::kPhotometrics, "photometric luminaires", data_.photometrics.data(),
+         bytes_of(data_.photometrics)},
+        {gpu::kPhotoFloats, "photometric tables", data_.photo_floats.data(),
+         bytes_of(data_.photo_floats)},
+        {gpu::kPhotoCdf, "photometric CDF", data_.photo_cdf53.data(), bytes_of(data_.photo_cdf53)}};
+    bool resized = false;
+    for (std::size_t i = 0; i < std::size(parts); ++i) {
+      if (parts[i].bytes != old_bytes[i]) {
+        replace_buffer(parts[i].binding, parts[i].name, parts[i].bytes);
+        resized = true;
+      }
+      if (parts[i].bytes > 0)
+        vkw::upload(ctx_, buffers_[parts[i].binding], parts[i].data, parts[i].bytes);
     }
-    vkw::upload(ctx_, buffers_[gpu::kLuminaires], data_.luminaires.data(),
-                bytes_of(data_.luminaires));
-    vkw::upload(ctx_, buffers_[gpu::kLuminaireCdf], data_.cdf53.data(), bytes_of(data_.cdf53));
-    if (data_.luminaires.size() != old_count || !same(old_features, data_.features)) {
-      build_pipeline();
+    if (resized || !same(old_features, data_.features)) build_pipeline();
+  }
+
+  // Only the instance record changes: each movable mesh keeps its own BVH in its prepared
+  // coordinates, so a move costs one small upload, no rebuild.
+  void set_mesh_transform(std::size_t mesh, const glm::mat4& transform) override {
+    const auto it = std::find_if(data_.instance_roots.begin(), data_.instance_roots.end(),
+                                 [&](const GpuInstanceRoot& r) { return r.mesh == mesh; });
+    if (it == data_.instance_roots.end()) {
+      throw std::logic_error("mesh " + std::to_string(mesh) + " is not movable");
     }
+    const std::size_t k = it - data_.instance_roots.begin();
+    data_.instances[k] = pack_instance(*it, transform);
+    vkw::upload(ctx_, buffers_[gpu::kInstances], data_.instances.data(), bytes_of(data_.instances));
   }
 
   std::string name() const override { return "vulkan"; }
@@ -85,7 +119,9 @@ class VulkanBackend final : public Backend {
                                 static_cast<std::uint32_t>(n),
                                 s_.max_bounces,
                                 static_cast<std::uint32_t>(data_.luminaires.size()),
-                                static_cast<std::uint32_t>(data_.grids.size())};
+                                static_cast<std::uint32_t>(data_.grids.size()),
+                                static_cast<std::uint32_t>(data_.instances.size()),
+                                0};
       trace_->record(cmd, groups(n), &push);
       done += n;
       if (done == count) record_readback(cmd);
