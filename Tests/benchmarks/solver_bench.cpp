@@ -15,6 +15,7 @@
 #include "core/prepared_scene.hpp"
 #include "embree/embree_scene.hpp"
 #include "lightsolver/rng.hpp"
+#include "lightsolver/simulation.hpp"
 
 namespace lightsolver::bench {
 namespace {
@@ -95,6 +96,20 @@ void BM_RawEmbreeRandomRays(benchmark::State& state) {
   state.counters["hit_fraction"] = double(hits) / double(total);
 }
 
+// Moving one object in a scene (the optimizer's geometry update): an instance transform and a
+// top-level rebuild; static geometry is not rebuilt.
+void BM_MoveOneMesh(benchmark::State& state) {
+  const Scene& scene = scene_by_index(static_cast<int>(state.range(0)));
+  Simulation::Options options;
+  options.movable_meshes = {scene.meshes[1].name};
+  Simulation sim(scene, options);
+  double x = 0.0;
+  for (auto _ : state) {
+    x = x > 0.5 ? 0.0 : x + 0.01;
+    sim.set_mesh_transform(1, glm::dmat4(1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, x, 0, 0, 1));
+  }
+}
+
 // Args: {scene (0 Cornell box, 1 ~1M triangles), photons or rays}.
 // Rates are per process CPU-second (every worker thread counted): on this shared machine other
 // jobs steal wall-clock time, not CPU time, so CPU-normalised rates compare fairly in one run.
@@ -102,6 +117,7 @@ BENCHMARK(BM_PhotonTracing)->Args({0, 2'000'000})->Args({1, 2'000'000})
     ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->MinTime(2.0);
 BENCHMARK(BM_ScenePrepareAndBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime();
+BENCHMARK(BM_MoveOneMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_RawEmbreeRandomRays)->Args({0, 4'000'000})->Args({1, 4'000'000})
     ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->MinTime(2.0);
 

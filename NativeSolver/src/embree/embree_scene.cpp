@@ -33,13 +33,32 @@ RTCScene new_scene(RTCDevice device, RTCBuildQuality quality) {
   return scene;
 }
 
+RTCGeometry instance_of(RTCDevice device, RTCScene scene, const glm::mat4& transform) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(g, scene);
+  rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+  rtcCommitGeometry(g);
+  return g;
+}
+
 }  // namespace
 
+// Without movable meshes every triangle sits in one scene. With them, the top level holds only
+// instances — one for all static geometry, one per movable mesh — so moving a mesh rebuilds a
+// BVH over a handful of boxes instead of over every static triangle.
 EmbreeScene::EmbreeScene(const PreparedScene& scene)
     : instanced_(scene.meshes.size(), nullptr), instances_(scene.meshes.size(), nullptr) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree: cannot create a device (unsupported CPU?)");
-  scene_ = new_scene(device_, RTC_BUILD_QUALITY_HIGH);
+  bool any_movable = false;
+  for (const auto& m : scene.meshes) any_movable = any_movable || m.movable;
+  scene_ = new_scene(device_, any_movable ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
+  RTCScene statics = scene_;
+  if (any_movable) {
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_ROBUST);
+    static_scene_ = new_scene(device_, RTC_BUILD_QUALITY_HIGH);
+    statics = static_scene_;
+  }
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const PreparedMesh& m = scene.meshes[i];
     if (m.indices.empty()) continue;  // every triangle was degenerate; nothing to hit
@@ -49,17 +68,20 @@ EmbreeScene::EmbreeScene(const PreparedScene& scene)
       instanced_[i] = new_scene(device_, RTC_BUILD_QUALITY_HIGH);
       rtcAttachGeometryByID(instanced_[i], g, 0);
       rtcCommitScene(instanced_[i]);
-      instances_[i] = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
-      rtcSetGeometryInstancedScene(instances_[i], instanced_[i]);
-      rtcSetGeometryTransform(instances_[i], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
-                              &m.transform[0][0]);
-      rtcCommitGeometry(instances_[i]);
+      instances_[i] = instance_of(device_, instanced_[i], m.transform);
       rtcAttachGeometryByID(scene_, instances_[i], static_cast<unsigned>(i));
     } else {
-      rtcAttachGeometryByID(scene_, g, static_cast<unsigned>(i));
+      rtcAttachGeometryByID(statics, g, static_cast<unsigned>(i));
     }
     rtcReleaseGeometry(g);
     check(device_, "geometry setup");
+  }
+  if (any_movable) {
+    rtcCommitScene(static_scene_);
+    static_instance_id_ = static_cast<unsigned>(scene.meshes.size());
+    RTCGeometry g = instance_of(device_, static_scene_, glm::mat4(1.0f));
+    rtcAttachGeometryByID(scene_, g, static_instance_id_);
+    rtcReleaseGeometry(g);
   }
   rtcCommitScene(scene_);
   check(device_, "BVH build");
@@ -77,6 +99,7 @@ void EmbreeScene::set_transform(std::size_t mesh, const glm::mat4& transform) {
 
 EmbreeScene::~EmbreeScene() {
   if (scene_) rtcReleaseScene(scene_);
+  if (static_scene_) rtcReleaseScene(static_scene_);
   for (RTCGeometry g : instances_) {
     if (g) rtcReleaseGeometry(g);
   }
