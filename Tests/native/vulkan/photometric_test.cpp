@@ -2,9 +2,11 @@
 // the CPU's order (origin, cell, rejection tries), so the same seed gives the same photons.
 #include <string>
 
+#include "lightsolver/photometry.hpp"
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
 #include "native/core/scene_builders.hpp"
+#include "vulkan/gpu_scene.hpp"
 #include "vulkan_test_util.hpp"
 
 namespace lightsolver::test {
@@ -65,6 +67,24 @@ void expect_same_hits(const Results& e, const Results& v, const std::string& wha
 }
 
 using VulkanPhotometricTest = VulkanTest;
+
+// The cell pick on integers equals the CPU's `uniform_double() * total < cdf[c]` on both sides
+// of every threshold, for every cell of every sample file.
+TEST(PhotometricThresholds, CellPickEqualsTheCpuCompare) {
+  for (const char* file :
+       {"downlight.ies", "downlight.ldt", "wallwasher.ies", "wallwasher.ldt", "batwing_panel.ies",
+        "batwing_panel.ldt", "linear_tube.ies", "linear_tube.ldt"}) {
+    const Luminaire l = photometric(file, dvec3(0), {0, 0, -1}, 0);
+    const std::vector<double>& cdf = l.sampler->tables().cell_cdf;
+    const double total = cdf.back();
+    auto below = [&](std::uint64_t k, double c) { return double(k) * 0x1p-53 * total < c; };
+    for (double c : cdf) {
+      const std::uint64_t t = detail::scaled_cdf_threshold(c, total);
+      if (t > 0) EXPECT_TRUE(below(t - 1, c)) << file;
+      EXPECT_FALSE(below(t, c)) << file;
+    }
+  }
+}
 
 TEST_F(VulkanPhotometricTest, SameSeedTracesTheSamePhotonsAsEmbree) {
   const Scene s = photometric_room();
