@@ -11,6 +11,7 @@
 /// where the binomial formula of the paper underestimates the variance.
 
 #include <cstdint>
+#include <utility>
 
 namespace lightsolver {
 
@@ -27,7 +28,12 @@ struct Estimate {
   double ci_low = 0.0;
   double ci_high = 0.0;
   std::uint64_t hits = 0;
+  bool binomial = false;  ///< no path deposited twice: the Wilson interval was used
 };
+
+/// Wilson score interval for `hits` successes in `n` trials at critical value `z`, as fractions
+/// (multiply by the estimate's scale). The lower bound is exactly 0 at zero hits.
+std::pair<double, double> wilson_interval(std::uint64_t hits, std::uint64_t n, double z);
 
 /// Two-sided standard-normal critical value: P(|Z| <= z) = confidence (0.95 -> 1.95996).
 double z_for_confidence(double confidence);

@@ -38,6 +38,15 @@ double variance_of_mean(const Tally& t, std::uint64_t n) {
 
 }  // namespace
 
+std::pair<double, double> wilson_interval(std::uint64_t hits, std::uint64_t n, double z) {
+  const double nd = static_cast<double>(n), p = static_cast<double>(hits) / nd;
+  const double z2n = z * z / nd;
+  const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
+  const double half = z / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / nd + 0.25 * z2n / nd);
+  // At zero hits centre == half analytically; rounding must not leave a positive bound.
+  return {hits == 0 ? 0.0 : std::max(0.0, centre - half), centre + half};
+}
+
 Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double confidence) {
   Estimate e;
   e.hits = t.sum;
@@ -49,13 +58,11 @@ Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double
   if (t.sum_sq == t.sum) {
     // Each path deposited at most once (c_i in {0,1} <=> Q == S): binomial counts, for which
     // the Wilson score interval keeps its coverage at small and zero counts.
-    const double z2n = z * z / n;
-    const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
-    const double half = z / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / n + 0.25 * z2n / n);
+    const auto [low, high] = wilson_interval(t.sum, paths, z);
+    e.binomial = true;
     e.sigma = scale * std::sqrt(std::max(0.0, p * (1.0 - p)) / n);
-    // At zero hits centre == half analytically; rounding must not leave a positive bound.
-    e.ci_low = t.sum == 0 ? 0.0 : std::max(0.0, scale * (centre - half));
-    e.ci_high = scale * (centre + half);
+    e.ci_low = scale * low;
+    e.ci_high = scale * high;
     return e;
   }
   e.sigma = scale * std::sqrt(variance_of_mean(t, paths));

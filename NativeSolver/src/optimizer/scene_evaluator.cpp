@@ -57,18 +57,13 @@ glm::dvec3 on_rectangle(const SceneVariable& v, const std::vector<double>& value
   return v.corner + values.at(v.first) * v.edge1 + values.at(v.first + 1) * v.edge2;
 }
 
-// One interval of a simultaneous family at critical value `z_wide`, rebuilt from an estimate
-// reported at `z_run`. Symmetric estimates (mean ± zσ, multi-hit tallies) widen by σ; binomial
-// ones (Wilson) are recomputed from their hit count, which stays sound at zero hits.
-Interval widened(const Estimate& e, double scale, std::uint64_t n, double z_run, double z_wide) {
-  if (e.ci_high == e.mean + z_run * e.sigma && e.hits > 0) {
-    return {std::max(0.0, e.mean - z_wide * e.sigma), e.mean + z_wide * e.sigma};
-  }
-  const double nd = static_cast<double>(n), p = static_cast<double>(e.hits) / nd;
-  const double z2n = z_wide * z_wide / nd;
-  const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
-  const double half = z_wide / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / nd + 0.25 * z2n / nd);
-  return {e.hits == 0 ? 0.0 : std::max(0.0, scale * (centre - half)), scale * (centre + half)};
+// One interval of a simultaneous family at critical value `z_wide`. Symmetric estimates
+// (mean ± zσ, multi-hit tallies) widen by σ; binomial ones get their Wilson interval at z_wide,
+// which stays sound at zero hits.
+Interval widened(const Estimate& e, double scale, std::uint64_t n, double z_wide) {
+  if (!e.binomial) return {std::max(0.0, e.mean - z_wide * e.sigma), e.mean + z_wide * e.sigma};
+  const auto [low, high] = wilson_interval(e.hits, n, z_wide);
+  return {scale * low, scale * high};
 }
 
 const TargetResult& find_result(const Results& r, const std::string& name) {
@@ -166,12 +161,12 @@ Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std
   double min_low = INFINITY, min_high = INFINITY, min_mean = INFINITY;
   std::uint64_t min_hits = 0;
   for (const Estimate& c : grid.cells) {
-    const Interval i = widened(c, cell_scale, photons, z_run, z_wide);
+    const Interval i = widened(c, cell_scale, photons, z_wide);
     min_low = std::min(min_low, i.low);
     min_high = std::min(min_high, i.high);
     if (c.mean < min_mean) min_mean = c.mean, min_hits = c.hits;
   }
-  const Interval em = widened(grid.estimate, total_flux_lm / grid.area_m2, photons, z_run, z_wide);
+  const Interval em = widened(grid.estimate, total_flux_lm / grid.area_m2, photons, z_wide);
   u.mean = grid.estimate.mean > 0.0 ? min_mean / grid.estimate.mean : 0.0;
   u.ci_low = em.high > 0.0 ? min_low / em.high : 0.0;
   u.ci_high = em.low > 0.0 ? std::min(1.0, min_high / em.low) : 1.0;  // min <= mean always

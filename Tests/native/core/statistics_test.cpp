@@ -217,3 +217,19 @@ TEST(Accuracy, StopsWhenEveryTargetIsPreciseEnough) {
 
 }  // namespace
 }  // namespace lightsolver::test
+
+namespace lightsolver::test {
+namespace {
+
+TEST(Statistics, EstimateRecordsWhichIntervalItUsed) {
+  EXPECT_TRUE(make_estimate({3, 3}, 1000, 1.0, 0.95).binomial);
+  EXPECT_FALSE(make_estimate({4, 10}, 4, 1.0, 0.95).binomial);
+  const auto [low, high] = wilson_interval(3, 1000, z_for_confidence(0.95));
+  const Estimate e = make_estimate({3, 3}, 1000, 2.0, 0.95);
+  EXPECT_DOUBLE_EQ(e.ci_low, 2.0 * low);
+  EXPECT_DOUBLE_EQ(e.ci_high, 2.0 * high);
+  EXPECT_EQ(wilson_interval(0, 50, 2.0).first, 0.0);
+}
+
+}  // namespace
+}  // namespace lightsolver::test
