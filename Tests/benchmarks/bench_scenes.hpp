@@ -1,6 +1,7 @@
 #pragma once
 // Procedural benchmark scenes: a Cornell box, and a room full of tessellated spheres (~1M
 // triangles) standing in for a detailed BIM model.
+
 #include <cmath>
 #include <numbers>
 
@@ -35,7 +36,8 @@ inline Mesh sphere_mesh(const std::string& name, int material, glm::dvec3 c, dou
   }
   for (int i = 0; i < rings; ++i) {
     for (int j = 0; j < segments; ++j) {
-      const auto a = std::uint32_t(i * segments + j), b = std::uint32_t(i * segments + (j + 1) % segments);
+      const auto a = std::uint32_t(i * segments + j),
+                 b = std::uint32_t(i * segments + (j + 1) % segments);
       const auto c2 = a + segments, d = b + segments;
       m.triangles.push_back({a, c2, d});
       m.triangles.push_back({a, d, b});

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "bench_scenes.hpp"
+#include "bench_util.hpp"
 #include "core/backend.hpp"
 #include "core/prepared_scene.hpp"
 #include "embree/embree_scene.hpp"
@@ -32,17 +33,8 @@ void BM_PhotonTracing(benchmark::State& state) {
   const Scene& scene = scene_by_index(static_cast<int>(state.range(0)));
   const detail::PreparedScene prepared = detail::prepare(scene);
   auto backend = detail::make_embree_backend(prepared);
-  const auto n = static_cast<std::uint64_t>(state.range(1));
-  std::uint64_t photons = 0, segments = 0, seed = 1;
-  for (auto _ : state) {
-    detail::TallyBlock tallies(prepared.bins.size());
-    backend->trace(0, n, seed++, tallies);
-    photons += n;
-    segments += tallies.ray_segments;
-  }
-  state.counters["photons/s"] = benchmark::Counter(double(photons), benchmark::Counter::kIsRate);
-  state.counters["segments/s"] = benchmark::Counter(double(segments), benchmark::Counter::kIsRate);
-  state.counters["segments/photon"] = double(segments) / double(photons);
+  measure_tracing(state, *backend, prepared.bins.size(),
+                  static_cast<std::uint64_t>(state.range(1)));
 }
 
 // What a user's run pays before the first photon: validation copy, re-centring, BVH build.
@@ -113,13 +105,24 @@ void BM_MoveOneMesh(benchmark::State& state) {
 // Args: {scene (0 Cornell box, 1 ~1M triangles), photons or rays}.
 // Rates are per process CPU-second (every worker thread counted): on this shared machine other
 // jobs steal wall-clock time, not CPU time, so CPU-normalised rates compare fairly in one run.
-BENCHMARK(BM_PhotonTracing)->Args({0, 2'000'000})->Args({1, 2'000'000})
-    ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->MinTime(2.0);
-BENCHMARK(BM_ScenePrepareAndBuild)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)
+BENCHMARK(BM_PhotonTracing)
+    ->Args({0, 2'000'000})
+    ->Args({1, 2'000'000})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_ScenePrepareAndBuild)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime();
 BENCHMARK(BM_MoveOneMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
-BENCHMARK(BM_RawEmbreeRandomRays)->Args({0, 4'000'000})->Args({1, 4'000'000})
-    ->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->MinTime(2.0);
+BENCHMARK(BM_RawEmbreeRandomRays)
+    ->Args({0, 4'000'000})
+    ->Args({1, 4'000'000})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->MinTime(2.0);
 
 }  // namespace
 }  // namespace lightsolver::bench

@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_scenes.hpp"
+#include "bench_util.hpp"
 #include "core/backend.hpp"
 #include "core/prepared_scene.hpp"
 #include "vulkan/vulkan_backend.hpp"
@@ -23,16 +24,8 @@ void trace_rate(benchmark::State& state, bool vulkan) {
   const detail::PreparedScene prepared = detail::prepare(scene);
   auto backend =
       vulkan ? detail::make_vulkan_backend(prepared) : detail::make_embree_backend(prepared);
-  const auto n = static_cast<std::uint64_t>(state.range(1));
-  std::uint64_t photons = 0, segments = 0, seed = 1;
-  for (auto _ : state) {
-    detail::TallyBlock tallies(prepared.bins.size());
-    backend->trace(0, n, seed++, tallies);
-    photons += n;
-    segments += tallies.ray_segments;
-  }
-  state.counters["photons/s"] = benchmark::Counter(double(photons), benchmark::Counter::kIsRate);
-  state.counters["segments/s"] = benchmark::Counter(double(segments), benchmark::Counter::kIsRate);
+  measure_tracing(state, *backend, prepared.bins.size(),
+                  static_cast<std::uint64_t>(state.range(1)));
 }
 
 void BM_Embree(benchmark::State& state) { trace_rate(state, false); }

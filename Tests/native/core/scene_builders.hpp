@@ -1,9 +1,10 @@
 #pragma once
 // Scenes for the closed-form tests, built in code so each test states its geometry exactly.
-#include <glm/geometric.hpp>
-#include <glm/trigonometric.hpp>
+#include <gtest/gtest.h>
 
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -54,12 +55,12 @@ inline Mesh room_mesh(const std::string& name, int material, dvec3 lo, dvec3 hi,
   };
   const dvec3 d = hi - lo;
   const dvec3 X(d.x, 0, 0), Y(0, d.y, 0), Z(0, 0, d.z);
-  face(lo, X, Y);          // floor, front X x Y = +z
-  face(lo + Z, Y, X);      // ceiling, front -z
-  face(lo, Z, X);          // y = lo, front Z x X = +y
-  face(lo + Y, X, Z);      // y = hi, front -y
-  face(lo, Y, Z);          // x = lo, front Y x Z = +x
-  face(lo + X, Z, Y);      // x = hi, front -x
+  face(lo, X, Y);      // floor, front X x Y = +z
+  face(lo + Z, Y, X);  // ceiling, front -z
+  face(lo, Z, X);      // y = lo, front Z x X = +y
+  face(lo + Y, X, Z);  // y = hi, front -y
+  face(lo, Y, Z);      // x = lo, front Y x Z = +x
+  face(lo + X, Z, Y);  // x = hi, front -x
   return m;
 }
 
@@ -111,6 +112,27 @@ inline Target surface(const std::string& name, int mesh) {
   t.type = Target::Type::Surface;
   t.mesh = mesh;
   return t;
+}
+
+// A grey 6 x 4 x 3 m room, a block (mesh 1, a surface target) shifted by `block_offset`, a spot
+// over one side and a workplane grid: the scene for moving-geometry tests on every backend.
+inline Scene room_with_block(dvec3 block_offset) {
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  add_material(s, "block", Material::Type::Diffuse, 0.3);
+  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(6, 4, 3), 2));
+  s.meshes.push_back(
+      solid_box_mesh("block", 1, dvec3(1, 1, 0) + block_offset, dvec3(2, 2, 0.8) + block_offset));
+  s.luminaires.push_back(spot_light({4.5, 1.5, 2.9}, {0, 0, -1}, 30, 50, 2000));
+  s.targets.push_back(surface("block", 1));
+  s.targets.push_back(grid("workplane", {0.5, 0.5, 0.85}, {5, 0, 0}, {0, 3, 0}, 5, 3));
+  return s;
+}
+
+// Two independent estimates of the same quantity agree within 5 combined sigma.
+inline void expect_same_within(const Estimate& a, const Estimate& b, const std::string& what) {
+  EXPECT_LT(std::abs(a.mean - b.mean), 5.0 * std::hypot(a.sigma, b.sigma) + 1e-12)
+      << what << ": " << a.mean << " vs " << b.mean;
 }
 
 // Solid angle of triangle abc seen from p (Van Oosterom & Strackee 1983).

@@ -1,33 +1,15 @@
 // Simulation: changes between runs (the optimizer's inner loop) give the same answers as
 // scenes built with the change from the start.
+#include "lightsolver/simulation.hpp"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "lightsolver/simulation.hpp"
 #include "scene_builders.hpp"
 
 namespace lightsolver::test {
 namespace {
-
-// A grey room with a desk-like block (movable) and a spot over one side.
-Scene room_with_block(dvec3 block_offset) {
-  Scene s;
-  add_material(s, "grey", Material::Type::Diffuse, 0.5);
-  add_material(s, "block", Material::Type::Diffuse, 0.3);
-  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(6, 4, 3), 2));
-  s.meshes.push_back(solid_box_mesh("block", 1, dvec3(1, 1, 0) + block_offset,
-                                    dvec3(2, 2, 0.8) + block_offset));
-  s.luminaires.push_back(spot_light({4.5, 1.5, 2.9}, {0, 0, -1}, 30, 50, 2000));
-  s.targets.push_back(surface("block", 1));
-  s.targets.push_back(grid("workplane", {0.5, 0.5, 0.85}, {5, 0, 0}, {0, 3, 0}, 5, 3));
-  return s;
-}
-
-void expect_same_within(const Estimate& a, const Estimate& b, const std::string& what) {
-  EXPECT_LT(std::abs(a.mean - b.mean), 5.0 * std::hypot(a.sigma, b.sigma) + 1e-12)
-      << what << ": " << a.mean << " vs " << b.mean;
-}
 
 TEST(Simulation, MovedMeshMatchesASceneBuiltThere) {
   Simulation::Options opt;
