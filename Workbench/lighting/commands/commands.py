@@ -170,6 +170,16 @@ class CommandPlacementDomain(BaseCommand):
             f"analysis={_analysis_arg()})"])
 
 
+def _show_analysis_panel(analysis: Any, **options: Any) -> Any:
+    """Closes any open task dialog and opens the analysis panel; returns the panel."""
+    from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
+
+    FreeCADGui.Control.closeDialog()
+    panel = AnalysisTaskPanel(analysis, **options)
+    FreeCADGui.Control.showDialog(panel)
+    return panel
+
+
 class CommandCheck(BaseCommand):
     NAME, ICON = "Lighting_Check", "Lighting_Check"
     MENU = "Check"
@@ -177,12 +187,7 @@ class CommandCheck(BaseCommand):
 
     def Activated(self) -> None:  # noqa: N802
         """Opens the analysis panel and checks there (report view + the panel's log)."""
-        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
-
-        panel = AnalysisTaskPanel(active_analysis(create=True))
-        FreeCADGui.Control.closeDialog()
-        FreeCADGui.Control.showDialog(panel)
-        panel.check()
+        _show_analysis_panel(active_analysis(create=True)).check()
 
 
 class CommandExport(BaseCommand):
@@ -191,12 +196,7 @@ class CommandExport(BaseCommand):
     TIP = "Write the analysis' scene file (scene.json) for the lightsolver CLI"
 
     def Activated(self) -> None:  # noqa: N802
-        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
-
-        panel = AnalysisTaskPanel(active_analysis(create=True))
-        FreeCADGui.Control.closeDialog()
-        FreeCADGui.Control.showDialog(panel)
-        panel.export()
+        _show_analysis_panel(active_analysis(create=True)).export()
 
 
 class CommandRun(BaseCommand):
@@ -205,11 +205,7 @@ class CommandRun(BaseCommand):
     TIP = "Check, export and solve the analysis (the solver runs in the background)"
 
     def Activated(self) -> None:  # noqa: N802
-        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
-
-        analysis = active_analysis(create=True)
-        FreeCADGui.Control.closeDialog()
-        FreeCADGui.Control.showDialog(AnalysisTaskPanel(analysis, autostart=True))
+        _show_analysis_panel(active_analysis(create=True), autostart=True)
 
 
 class CommandResults(BaseCommand):
@@ -221,10 +217,7 @@ class CommandResults(BaseCommand):
         return _doc() is not None and active_analysis() is not None
 
     def Activated(self) -> None:  # noqa: N802
-        from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
-
-        FreeCADGui.Control.closeDialog()
-        FreeCADGui.Control.showDialog(AnalysisTaskPanel(active_analysis()))
+        _show_analysis_panel(active_analysis())
 
 
 class CommandClearResults(BaseCommand):
