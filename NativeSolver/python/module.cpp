@@ -118,8 +118,9 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   std::optional<std::uint64_t> seed, std::optional<double> confidence,
                   int threads, const std::string& backend, py::object progress,
                   std::optional<CancelToken> cancel, std::optional<double> target_accuracy) {
-  Scene checked = scene;
-  validate(checked);
+  // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
+  // solve() validates the copy (and reports dropped triangles among the warnings).
+  const Scene snapshot = scene;
   SolveOptions opt;
   opt.photons = photons;
   opt.seed = seed;
@@ -146,7 +147,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   Results r;
   {
     py::gil_scoped_release nogil;
-    r = lightsolver::solve(checked, opt, fn);
+    r = lightsolver::solve(snapshot, opt, fn);
   }
   if (callback_error) std::rethrow_exception(callback_error);
   return results_dict(r);
