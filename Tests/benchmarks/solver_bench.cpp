@@ -13,7 +13,10 @@
 #include "bench_scenes.hpp"
 #include "bench_util.hpp"
 #include "core/backend.hpp"
+#include "core/emitters.hpp"
 #include "core/prepared_scene.hpp"
+#include "core/sampling.hpp"
+#include "core/scatter.hpp"
 #include "embree/embree_scene.hpp"
 #include "lightsolver/rng.hpp"
 #include "lightsolver/simulation.hpp"
@@ -88,6 +91,73 @@ void BM_RawEmbreeRandomRays(benchmark::State& state) {
   state.counters["hit_fraction"] = double(hits) / double(total);
 }
 
+// The photon tracer's own segments, recorded once (same emission, scattering and offsets, no
+// tallies), replayed through bare rtcIntersect1: the ceiling for the tracer on this scene, with
+// the rays' own lengths and directions. Random rays (above) start anywhere in the box; photon
+// segments start on lights and surfaces and cross the room, so their traversal costs differ.
+std::vector<RTCRay> record_photon_segments(const detail::PreparedScene& s,
+                                           const detail::EmbreeScene& embree, std::uint64_t n) {
+  std::vector<RTCRay> rays;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  for (std::uint64_t id = 0; id < n; ++id) {
+    PathRng rng(5, id);
+    detail::EmittedRay ray = detail::emit(s.luminaires[detail::pick_luminaire(s, rng)], rng);
+    for (std::uint32_t bounce = 0;; ++bounce) {
+      RTCRayHit rh{};
+      rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;
+      rh.ray.dir_x = ray.direction.x, rh.ray.dir_y = ray.direction.y;
+      rh.ray.dir_z = ray.direction.z;
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.mask = ~0u;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rays.push_back(rh.ray);
+      rtcIntersect1(embree.handle(), &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || bounce >= s.max_bounces) break;
+      bool moved = false;
+      const detail::PreparedMesh& m = s.meshes[embree.mesh_of(rh.hit, moved)];
+      const detail::vec3 n = m.normals[rh.hit.primID];
+      if (!detail::scatter(s.materials[m.material], n, ray.direction, rng)) break;
+      auto vertex = [&](int k) {
+        const std::uint32_t i = m.indices[3 * rh.hit.primID + k];
+        return detail::vec3(m.vertices[3 * i], m.vertices[3 * i + 1], m.vertices[3 * i + 2]);
+      };
+      const detail::vec3 v0 = vertex(0);
+      const detail::vec3 p = v0 + rh.hit.u * (vertex(1) - v0) + rh.hit.v * (vertex(2) - v0);
+      ray.origin = detail::offset_ray_origin(p, glm::dot(ray.direction, n) > 0.0f ? n : -n);
+    }
+  }
+  return rays;
+}
+
+void BM_RawEmbreePhotonSegments(benchmark::State& state) {
+  const Scene& scene = scene_by_index(static_cast<int>(state.range(0)));
+  const detail::PreparedScene prepared = detail::prepare(scene);
+  const detail::EmbreeScene embree(prepared);
+  const std::vector<RTCRay> rays =
+      record_photon_segments(prepared, embree, static_cast<std::uint64_t>(state.range(1)));
+  std::uint64_t total = 0;
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](auto r) {
+      _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+      _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        RTCRayHit rh;
+        rh.ray = rays[i];
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(embree.handle(), &ctx, &rh);
+        benchmark::DoNotOptimize(rh.hit.primID);
+      }
+    });
+    total += rays.size();
+  }
+  state.counters["rays/s"] = benchmark::Counter(double(total), benchmark::Counter::kIsRate);
+}
+
 // Moving one object in a scene (the optimizer's geometry update): an instance transform and a
 // top-level rebuild; static geometry is not rebuilt.
 void BM_MoveOneMesh(benchmark::State& state) {
@@ -120,6 +190,12 @@ BENCHMARK(BM_MoveOneMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Measur
 BENCHMARK(BM_RawEmbreeRandomRays)
     ->Args({0, 4'000'000})
     ->Args({1, 4'000'000})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_RawEmbreePhotonSegments)
+    ->Args({0, 1'000'000})
+    ->Args({1, 1'000'000})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->MinTime(2.0);
