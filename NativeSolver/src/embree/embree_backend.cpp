@@ -1,4 +1,4 @@
-// The CPU backend: one photon path per loop iteration, rtcIntersect1 per segment, paths spread
+// The CPU backend: rtcIntersect1 per segment, a few paths interleaved per worker, paths spread
 // over TBB workers. Tallies are integer counts, so the result is independent of the schedule.
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
@@ -7,48 +7,23 @@
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
 
-#include <limits>
-
+#include <array>
 #include <glm/mat3x3.hpp>
+#include <limits>
 
 #include "core/backend.hpp"
 #include "core/emitters.hpp"
 #include "core/path_deposits.hpp"
 #include "core/scatter.hpp"
 #include "embree/embree_scene.hpp"
+#include "embree/hit_triangles.hpp"
 
 namespace lightsolver::detail {
 namespace {
 
-// What a hit needs of its triangle, in one cache line: on large models the BVH leaves hold
-// their own triangle copies, so the scene's vertex, index and normal arrays are cold and four
-// scattered reads per hit would cost more than the intersection. e1, e2 are exactly the float
-// differences the interpolation used to compute, so results are unchanged to the bit.
-struct alignas(64) HitTriangle {
-  vec3 v0, e1, e2, n;
-};
-
-std::vector<std::vector<HitTriangle>> pack_triangles(const PreparedScene& s) {
-  std::vector<std::vector<HitTriangle>> out(s.meshes.size());
-  for (std::size_t i = 0; i < s.meshes.size(); ++i) {
-    const PreparedMesh& m = s.meshes[i];
-    auto vertex = [&](std::uint32_t k) {
-      return vec3(m.vertices[3 * k], m.vertices[3 * k + 1], m.vertices[3 * k + 2]);
-    };
-    out[i].reserve(m.normals.size());
-    for (std::size_t t = 0; t < m.normals.size(); ++t) {
-      const vec3 v0 = vertex(m.indices[3 * t]);
-      out[i].push_back(
-          {v0, vertex(m.indices[3 * t + 1]) - v0, vertex(m.indices[3 * t + 2]) - v0, m.normals[t]});
-    }
-  }
-  return out;
-}
-
 class EmbreeBackend final : public Backend {
  public:
-  explicit EmbreeBackend(const PreparedScene& s)
-      : s_(s), embree_(s), triangles_(pack_triangles(s)) {}
+  explicit EmbreeBackend(const PreparedScene& s) : s_(s), embree_(s), triangles_(s) {}
 
   std::string name() const override { return "embree"; }
 
@@ -64,49 +39,104 @@ class EmbreeBackend final : public Backend {
                         // Embree wants denormals flushed in every tracing thread.
                         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
                         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-                        TallyBlock& t = local.local();
-                        PathDeposits deposits;
-                        for (std::uint64_t id = r.begin(); id != r.end(); ++id) {
-                          trace_path(id, seed, deposits, t);
-                          deposits.flush(t.bins);
-                        }
+                        trace_range(r.begin(), r.end(), seed, local.local());
                       });
     for (const TallyBlock& t : local) out.add(t);
   }
 
  private:
-  void trace_path(std::uint64_t id, std::uint64_t seed, PathDeposits& deposits,
-                  TallyBlock& t) const {
-    PathRng rng(seed, id);
-    EmittedRay ray = emit(s_.luminaires[pick_luminaire(s_, rng)], rng);
+  // Paths in flight per worker. A hit's triangle record is, on large models, a DRAM miss that a
+  // raw ray never pays; with several paths interleaved, the record is prefetched right after
+  // the intersection and used only after the other lanes' rays have been traced, by when it has
+  // arrived. Each lane keeps its own deposits, so the per-path totals (and hence the integer
+  // tallies) are exactly those of one-path-at-a-time tracing. Four lanes measured best on the
+  // 1M-triangle benchmark (+10 % over one; eight spill more state than they hide).
+  static constexpr int kLanes = 4;
+
+  struct Lane {
+    PathRng rng{0, 0};
+    EmittedRay ray;
+    std::uint32_t bounce = 0;
+    RTCRayHit rh;
+    PathDeposits deposits;
+    bool active = false;
+  };
+
+  void trace_range(std::uint64_t next, std::uint64_t end, std::uint64_t seed, TallyBlock& t) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    for (std::uint32_t bounce = 0;; ++bounce) {
-      RTCRayHit rh = make_ray(ray);
-      rtcIntersect1(embree_.handle(), &context, &rh);
-      ++t.ray_segments;
-      const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-      if (!s_.grids.empty()) cross_grids(s_.grids, ray.origin, ray.direction, rh.ray.tfar, deposits);
-      if (!hit) return;
-      bool instanced = false;
-      const unsigned mesh = embree_.mesh_of(rh.hit, instanced);
-      const PreparedMesh& m = s_.meshes[mesh];
-      const HitTriangle& tri = triangles_[mesh][rh.hit.primID];
-      vec3 n = tri.n;
-      if (instanced) n = glm::normalize(glm::mat3(m.transform) * n);  // rigid: no inverse needed
-      if (m.bin >= 0 && glm::dot(ray.direction, n) < 0.0f) deposits.add(m.bin);
-      if (!scatter(s_.materials[m.material], n, ray.direction, rng)) return;
-      if (bounce >= s_.max_bounces) {
-        ++t.capped_paths;  // still alive: stopping here loses its energy (reported)
-        return;
-      }
-      // Interpolating the triangle is more accurate than origin + t * direction, whose error
-      // grows with the distance travelled (it biases reflective rooms: tested).
-      vec3 p = tri.v0 + rh.hit.u * tri.e1 + rh.hit.v * tri.e2;
-      if (instanced) p = vec3(m.transform * glm::vec4(p, 1.0f));
-      ray.origin = offset_ray_origin(p, glm::dot(ray.direction, n) > 0.0f ? n : -n);
+    std::array<Lane, kLanes> lanes;
+    int active = 0;
+    for (Lane& lane : lanes) {
+      if (next == end) break;
+      start_path(lane, next++, seed);
+      intersect(lane, context, t);
+      ++active;
     }
+    while (active > 0) {
+      for (Lane& lane : lanes) {
+        if (!lane.active) continue;
+        if (!continue_path(lane, t)) {
+          lane.deposits.flush(t.bins);
+          if (next == end) {
+            lane.active = false;
+            --active;
+            continue;
+          }
+          start_path(lane, next++, seed);
+        }
+        intersect(lane, context, t);
+      }
+    }
+  }
+
+  void start_path(Lane& lane, std::uint64_t id, std::uint64_t seed) const {
+    lane.rng = PathRng(seed, id);
+    lane.ray = emit(s_.luminaires[pick_luminaire(s_, lane.rng)], lane.rng);
+    lane.bounce = 0;
+    lane.active = true;
+  }
+
+  // Traces the lane's next segment, counts the grids it crosses and starts fetching the record
+  // of the triangle it hit.
+  void intersect(Lane& lane, RTCIntersectContext& context, TallyBlock& t) const {
+    lane.rh = make_ray(lane.ray);
+    rtcIntersect1(embree_.handle(), &context, &lane.rh);
+    ++t.ray_segments;
+    if (!s_.grids.empty()) {
+      cross_grids(s_.grids, lane.ray.origin, lane.ray.direction, lane.rh.ray.tfar, lane.deposits);
+    }
+    if (lane.rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
+    bool instanced = false;
+    const unsigned mesh = embree_.mesh_of(lane.rh.hit, instanced);
+    _mm_prefetch(reinterpret_cast<const char*>(&triangles_.at(mesh, lane.rh.hit.primID)),
+                 _MM_HINT_T0);
+  }
+
+  // Deposits on and scatters at the lane's last hit; false when the path has ended.
+  bool continue_path(Lane& lane, TallyBlock& t) const {
+    const RTCHit& h = lane.rh.hit;
+    if (h.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    bool instanced = false;
+    const unsigned mesh = embree_.mesh_of(h, instanced);
+    const PreparedMesh& m = s_.meshes[mesh];
+    const HitTriangle& tri = triangles_.at(mesh, h.primID);
+    EmittedRay& ray = lane.ray;
+    vec3 n = tri.n;
+    if (instanced) n = glm::normalize(glm::mat3(m.transform) * n);  // rigid: no inverse needed
+    if (m.bin >= 0 && glm::dot(ray.direction, n) < 0.0f) lane.deposits.add(m.bin);
+    if (!scatter(s_.materials[m.material], n, ray.direction, lane.rng)) return false;
+    if (lane.bounce++ >= s_.max_bounces) {
+      ++t.capped_paths;  // still alive: stopping here loses its energy (reported)
+      return false;
+    }
+    // Interpolating the triangle is more accurate than origin + t * direction, whose error
+    // grows with the distance travelled (it biases reflective rooms: tested).
+    vec3 p = tri.v0 + h.u * tri.e1 + h.v * tri.e2;
+    if (instanced) p = vec3(m.transform * glm::vec4(p, 1.0f));
+    ray.origin = offset_ray_origin(p, glm::dot(ray.direction, n) > 0.0f ? n : -n);
+    return true;
   }
 
   static RTCRayHit make_ray(const EmittedRay& r) {
@@ -129,7 +159,7 @@ class EmbreeBackend final : public Backend {
 
   const PreparedScene& s_;
   EmbreeScene embree_;
-  std::vector<std::vector<HitTriangle>> triangles_;  // per mesh, per primitive
+  HitTriangles triangles_;
 };
 
 }  // namespace

@@ -160,6 +160,9 @@ TEST_P(ClosedForm, MirrorAddsTheImageSource) {
     } else {
       add_material(s, "mirror", Material::Type::Mirror, 1.0);
     }
+    // A slab in the mirror's shadow comes first, so the mirror is not the scene's first mesh
+    // (its hit data must be found at an offset).
+    s.meshes.push_back(quad_mesh("slab", 0, {-1, -1, -5}, {2, 0, 0}, {0, 2, 0}));
     s.meshes.push_back(quad_mesh("mirror", 0, {-10, -10, 0}, {20, 0, 0}, {0, 20, 0}));
     const dvec3 src(0, 0, 1), image(0, 0, -1);
     s.luminaires.push_back(point_light(src, 4000.0));
