@@ -55,12 +55,16 @@ enum class OpeningShape {
   VerticalDisk,           ///< vertical circle or ellipse facing C0 (in the y-z plane)
 };
 
-/// TILT data of an IES file (lamp output against lamp tilt). Parsed and kept, not applied:
-/// it depends on how the luminaire is mounted.
+/// TILT data of an IES file: lamp output multiplier against the luminaire's tilt from its
+/// measured attitude (type C: from aimed straight down).
 struct TiltData {
   int lamp_geometry = 0;  ///< 1 vertical base-up/down, 2 horizontal in C0, 3 horizontal in C90
   std::vector<double> angles_deg;
   std::vector<double> factors;
+
+  /// Multiplier at `tilt_deg`: linear between the table's angles, the end value beyond either
+  /// end (LM-63 defines no extrapolation), 1 without a table.
+  double factor_at(double tilt_deg) const;
 };
 
 /// A luminous intensity distribution, whichever file it came from.

@@ -3,10 +3,9 @@
 /// In-memory scene, format `lightsolver.scene/1` (docs/scene-format.md). Coordinates are kept
 /// in double precision here; backends re-centre them before converting to float.
 
-#include <glm/vec3.hpp>
-#include <glm/mat4x4.hpp>
-
 #include <cstdint>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,13 +44,13 @@ struct Luminaire {
   enum class Type { Point, Spot, Area, Directional, Photometric };
   std::string name;
   Type type = Type::Point;
-  double flux_lm = 0.0;              ///< emitted flux (directional: derived from illuminance_lx)
-  glm::dvec3 position{0.0};          ///< point, spot, photometric
-  glm::dvec3 direction{0, 0, -1};    ///< spot axis, directional beam (unit length)
-  double beam_angle_deg = 0.0;       ///< spot: full angle at 50 % of peak intensity
-  double field_angle_deg = 0.0;      ///< spot: full angle at 10 % of peak intensity
+  double flux_lm = 0.0;            ///< emitted flux (directional: derived from illuminance_lx)
+  glm::dvec3 position{0.0};        ///< point, spot, photometric
+  glm::dvec3 direction{0, 0, -1};  ///< spot axis, directional beam (unit length)
+  double beam_angle_deg = 0.0;     ///< spot: full angle at 50 % of peak intensity
+  double field_angle_deg = 0.0;    ///< spot: full angle at 10 % of peak intensity
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< area / directional parallelogram
-  double illuminance_lx = 0.0;       ///< directional: illuminance normal to the beam
+  double illuminance_lx = 0.0;                     ///< directional: illuminance normal to the beam
   /// Photometric: the distribution and its sampler (shared, immutable), the file it came from,
   /// and the luminaire frame: `aim` is where gamma = 0 points, `rotation_deg` turns the C0
   /// plane counter-clockwise about the luminaire's up axis (-aim; for a downlight: as seen from
@@ -122,10 +121,19 @@ double spot_peak_intensity_cd(const Luminaire& spot);
 /// Photometric luminaire frame: the unit direction of its C0 plane (orthogonal to `aim`).
 glm::dvec3 photometric_c0(const Luminaire& l);
 
+/// Lamp output multiplier from the file's TILT table at the luminaire's tilt (the angle
+/// between `aim` and straight down, -z); 1 without a table or for type A/B photometry, whose
+/// measured attitude is not "aimed down". The solver emits flux_lm times this factor.
+double photometric_tilt_factor(const Luminaire& l);
+
+/// Remarks on a photometric luminaire for the results: its file's warnings, and a TILT table
+/// that is not applied. Empty for other luminaire types.
+Warnings photometric_warnings(const Luminaire& l);
+
 /// Loads a photometric luminaire's file and sets `photometry`, `sampler` and `flux_lm` (the
 /// requested flux, or the file's when `requested_flux_lm` is empty). Throws InputError naming
 /// the file and line, or `where` for a bad flux.
-void load_photometric(Luminaire& l, const std::string& path, std::optional<double> requested_flux_lm,
-                      const std::string& where);
+void load_photometric(Luminaire& l, const std::string& path,
+                      std::optional<double> requested_flux_lm, const std::string& where);
 
 }  // namespace lightsolver

@@ -1,8 +1,8 @@
 // Photometric luminaires in the scene: loading the file, the luminaire frame.
+#include <algorithm>
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-
-#include <cmath>
 
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene.hpp"
@@ -19,6 +19,31 @@ glm::dvec3 photometric_c0(const Luminaire& l) {
   // term).
   const double a = glm::radians(l.rotation_deg);
   return std::cos(a) * c0 + std::sin(a) * glm::cross(c0, aim);
+}
+
+double photometric_tilt_factor(const Luminaire& l) {
+  if (l.type != Luminaire::Type::Photometric || !l.photometry) return 1.0;
+  const PhotometricData& d = *l.photometry;
+  if (d.tilt == "NONE" || d.type != PhotometricType::C) return 1.0;
+  // Type C is measured aimed straight down, so the tilt is the aim's angle from -z, whichever
+  // way the luminaire leans. (For horizontal lamps, geometries 2 and 3, LM-63 tabulates tilt
+  // about one axis; the angle from straight down is the same quantity for that tilt.)
+  const double cos_tilt = std::clamp(-glm::normalize(l.aim).z, -1.0, 1.0);
+  return d.tilt_data.factor_at(glm::degrees(std::acos(cos_tilt)));
+}
+
+Warnings photometric_warnings(const Luminaire& l) {
+  if (l.type != Luminaire::Type::Photometric || !l.photometry) return {};
+  const PhotometricData& d = *l.photometry;
+  Warnings out;
+  const std::string who = "luminaire \"" + l.name + "\" (" + l.file + "): ";
+  for (const std::string& w : d.warnings) out.push_back(who + w);
+  if (d.tilt != "NONE" && d.type != PhotometricType::C) {
+    out.push_back(who +
+                  "TILT table not applied: type A/B photometry has no 'aimed down' "
+                  "attitude to measure the tilt from");
+  }
+  return out;
 }
 
 void load_photometric(Luminaire& l, const std::string& path,

@@ -1,9 +1,8 @@
 #include "core/prepared_scene.hpp"
 
+#include <algorithm>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
-
-#include <algorithm>
 #include <limits>
 
 namespace lightsolver::detail {
@@ -20,10 +19,9 @@ glm::dvec3 scene_centre(const Scene& s) {
   for (const auto& m : s.meshes) {
     for (const auto& v : m.vertices) grow(v);
   }
-  for (const auto& l : s.luminaires) grow(l.type == Luminaire::Type::Area ||
-                                              l.type == Luminaire::Type::Directional
-                                          ? l.corner
-                                          : l.position);
+  for (const auto& l : s.luminaires)
+    grow(l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional ? l.corner
+                                                                                   : l.position);
   for (const auto& t : s.targets) {
     if (t.type == Target::Type::Grid) grow(t.corner);
   }
@@ -136,7 +134,7 @@ void prepare_luminaires(const Scene& scene, PreparedScene& out) {
   double cumulative = 0.0;
   for (const auto& l : scene.luminaires) {
     out.luminaires.push_back(prepare_luminaire(l, out.origin));
-    cumulative += l.flux_lm;
+    cumulative += l.flux_lm * photometric_tilt_factor(l);  // a lamp's output at its tilt
     out.luminaire_cdf.push_back(cumulative);
   }
   out.total_flux_lm = cumulative;

@@ -3,13 +3,13 @@
 // then integer tallies become illuminance estimates.
 #include "lightsolver/simulation.hpp"
 
-#include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 
 #include "core/backend.hpp"
 
@@ -71,8 +71,7 @@ TargetResult make_target(const Target& t, const detail::PreparedScene& s,
   r.is_grid = t.type == Target::Type::Grid;
   r.area_m2 = s.bins[bin].area_m2;
   auto estimate = [&](std::uint32_t b) {
-    return make_estimate(tallies.bins[b], photons, s.total_flux_lm / s.bins[b].area_m2,
-                         confidence);
+    return make_estimate(tallies.bins[b], photons, s.total_flux_lm / s.bins[b].area_m2, confidence);
   };
   r.estimate = estimate(bin);
   if (!r.is_grid) return r;
@@ -90,6 +89,10 @@ TargetResult make_target(const Target& t, const detail::PreparedScene& s,
 
 void add_warnings(const Scene& scene, Results& r) {
   r.warnings = scene.warnings;
+  for (const Luminaire& l : scene.luminaires) {
+    const Warnings w = photometric_warnings(l);
+    r.warnings.insert(r.warnings.end(), w.begin(), w.end());
+  }
   if (r.total_flux_lm <= 0.0) r.warnings.push_back("all luminaires have zero flux");
   if (r.capped_paths > 0) {
     r.warnings.push_back(std::to_string(r.capped_paths) +
@@ -99,11 +102,11 @@ void add_warnings(const Scene& scene, Results& r) {
   }
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
   if (r.target_accuracy && !r.accuracy_met && !r.partial) {
-    r.warnings.push_back("the photon budget ran out before every target reached the requested "
-                         "accuracy");
+    r.warnings.push_back(
+        "the photon budget ran out before every target reached the requested "
+        "accuracy");
   }
 }
-
 
 // Rigid: the linear part is orthonormal and the last row is (0, 0, 0, 1).
 bool is_rigid(const glm::dmat4& m) {
@@ -126,13 +129,13 @@ Simulation::Simulation(Scene scene, Options options)
   std::vector<std::size_t> movable;
   for (const auto& name : options.movable_meshes) {
     const int i = scene.find_mesh(name);
-    if (i < 0) throw InputError(scene.source_file, "movable_meshes", "unknown mesh \"" + name + "\"");
+    if (i < 0)
+      throw InputError(scene.source_file, "movable_meshes", "unknown mesh \"" + name + "\"");
     movable.push_back(static_cast<std::size_t>(i));
   }
   state_->scene = std::move(scene);
   state_->prepared = detail::prepare(state_->scene, movable);
-  state_->backend =
-      detail::make_backend(options.backend, state_->prepared, state_->backend_notes);
+  state_->backend = detail::make_backend(options.backend, state_->prepared, state_->backend_notes);
   state_->threads = options.threads;
 }
 

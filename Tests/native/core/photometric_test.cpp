@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <numbers>
 #include <tuple>
@@ -85,8 +87,8 @@ TEST_P(Photometric, IlluminanceFollowsTheCandelaTableInManyDirections) {
   // I cos / d^2 is a far-field law: photons leave from the whole luminous opening, so probes
   // sit beyond ten times its size (the photometric-distance rule asks for five).
   const PhotometricData& data = *l.photometry;
-  const double size = std::max({data.opening_length_m, data.opening_width_m,
-                                data.opening_height_m});
+  const double size =
+      std::max({data.opening_length_m, data.opening_width_m, data.opening_height_m});
   const double d = std::max(2.0, 10.0 * size);
   std::vector<Probe> probes;
   for (double gamma : {5.0, 30.0, 55.0, 80.0}) {
@@ -97,8 +99,8 @@ TEST_P(Photometric, IlluminanceFollowsTheCandelaTableInManyDirections) {
     }
   }
   for (std::size_t i = 0; i < probes.size(); ++i) {
-    s.targets.push_back(grid("p" + std::to_string(i), probes[i].corner, probes[i].e1,
-                             probes[i].e2, 1, 1));
+    s.targets.push_back(
+        grid("p" + std::to_string(i), probes[i].corner, probes[i].e1, probes[i].e2, 1, 1));
   }
   const Results r = trace(s, 6'000'000, backend);
   ASSERT_EQ(r.backend, backend);
@@ -149,7 +151,8 @@ std::pair<double, double> halves(Luminaire l, dvec3 plus_axis) {
   s.luminaires.push_back(l);
   const dvec3 side = glm::cross(dvec3(0, 0, 1), plus_axis);
   s.targets.push_back(grid("plus", -3.0 * side, 3.0 * plus_axis, 6.0 * side, 1, 1));
-  s.targets.push_back(grid("minus", -3.0 * side - 3.0 * plus_axis, 3.0 * plus_axis, 6.0 * side, 1, 1));
+  s.targets.push_back(
+      grid("minus", -3.0 * side - 3.0 * plus_axis, 3.0 * plus_axis, 6.0 * side, 1, 1));
   for (auto& t : s.targets) {
     if (glm::cross(t.edge1, t.edge2).z < 0) std::swap(t.edge1, t.edge2);  // face up
     t.corner.z = -2.0;
@@ -159,12 +162,12 @@ std::pair<double, double> halves(Luminaire l, dvec3 plus_axis) {
 }
 
 TEST(PhotometricFrame, AsymmetricFileLightsTheSideItsC0PlanePointsTo) {
-  const auto [plus_x, minus_x] = halves(photometric("wallwasher.ies", {0, 0, 0}, {0, 0, -1}, 0),
-                                        {1, 0, 0});
+  const auto [plus_x, minus_x] =
+      halves(photometric("wallwasher.ies", {0, 0, 0}, {0, 0, -1}, 0), {1, 0, 0});
   EXPECT_GT(plus_x, 3.0 * minus_x);
   // Rotated 90 degrees about the aim, C0 points to +y.
-  const auto [plus_y, minus_y] = halves(photometric("wallwasher.ies", {0, 0, 0}, {0, 0, -1}, 90),
-                                        {0, 1, 0});
+  const auto [plus_y, minus_y] =
+      halves(photometric("wallwasher.ies", {0, 0, 0}, {0, 0, -1}, 90), {0, 1, 0});
   EXPECT_GT(plus_y, 3.0 * minus_y);
   EXPECT_NEAR(plus_y, plus_x, 0.05 * plus_x);
 }
@@ -180,13 +183,76 @@ TEST(PhotometricFrame, FluxOverrideScalesIntensities) {
   EXPECT_THROW(photometric("downlight.ies", {0, 0, 0}, {0, 0, -1}, 0, -1.0), InputError);
 }
 
+// The TILT=INCLUDE file of the parser corpus (type C, rotationally symmetric, vertical lamp):
+// factors 1, .95, .94, .90, .88, .87, .94 at 0, 15, ..., 90 degrees.
+Luminaire tilted_lamp(double tilt_deg) {
+  const double t = glm::radians(tilt_deg);
+  Luminaire l;
+  l.name = "tilted";
+  l.type = Luminaire::Type::Photometric;
+  l.aim = {std::sin(t), 0, -std::cos(t)};
+  l.file = "lm63_1991_tilt_include.ies";
+  load_photometric(l, std::string(LIGHTSOLVER_SOURCE_DIR) + "/Tests/fuzz/corpus/ies/" + l.file,
+                   std::nullopt, "flux_lm");
+  return l;
+}
+
+// The lamp's output follows the TILT table at the luminaire's tilt from straight down: the
+// emitted flux exactly, the illuminance on a probe along the aim within its interval.
+TEST(PhotometricTilt, OutputFollowsTheTableAtTheLuminairesTilt) {
+  // (tilt, factor): table nodes, between nodes, beyond the table's last angle (end value).
+  for (const auto [tilt, factor] :
+       {std::pair{0.0, 1.0}, {22.5, 0.945}, {45.0, 0.90}, {120.0, 0.94}}) {
+    const Luminaire l = tilted_lamp(tilt);
+    EXPECT_NEAR(photometric_tilt_factor(l), factor, 1e-12) << tilt;
+    Scene s;
+    s.luminaires.push_back(l);
+    const Probe p = probe_toward(l.position, l.aim, 2.0, 0.3);
+    s.targets.push_back(grid("probe", p.corner, p.e1, p.e2, 1, 1));
+    const Results r = trace(s, 3'000'000);
+    EXPECT_NEAR(r.total_flux_lm, factor * l.flux_lm, 1e-9 * l.flux_lm) << tilt;
+    const double exact = factor * expected_lux(l, p);
+    EXPECT_LE(r.targets[0].estimate.ci_low, exact) << tilt;
+    EXPECT_GE(r.targets[0].estimate.ci_high, exact) << tilt;
+    EXPECT_LT(r.targets[0].estimate.ci_high - r.targets[0].estimate.ci_low, 0.1 * exact) << tilt;
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+  }
+}
+
+// A type B file (floodlight, measured aimed horizontally) has no "aimed down" to measure tilt
+// from: its table is not applied, and the results say so.
+TEST(PhotometricTilt, TypeBTableIsReportedNotApplied) {
+  const auto dir = std::filesystem::temp_directory_path() / "lightsolver_tilt_b";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "flood.ies") << "IESNA:LM-63-2002\nTILT=INCLUDE\n1\n2\n0 90\n1 0.5\n"
+                                      "1 1000 1 2 2 2 2 0 0 0\n1 1 10\n-90 90\n-90 90\n"
+                                      "100 100\n100 100\n";
+  Luminaire l;
+  l.name = "flood";
+  l.type = Luminaire::Type::Photometric;
+  l.aim = {1, 0, 0};
+  l.file = "flood.ies";
+  load_photometric(l, (dir / "flood.ies").string(), std::nullopt, "flux_lm");
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(photometric_tilt_factor(l), 1.0);
+  Scene s;
+  s.luminaires.push_back(l);
+  s.targets.push_back(grid("wall", {3, -1, -1}, {0, 0, 2}, {0, 2, 0}, 1, 1));
+  const Results r = trace(s, 10'000);
+  EXPECT_DOUBLE_EQ(r.total_flux_lm, l.flux_lm);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("luminaire \"flood\" (flood.ies): TILT table not applied"),
+            std::string::npos)
+      << r.warnings[0];
+}
+
 TEST(PhotometricFrame, IesAndLdtOfOneDistributionLightAlike) {
   for (const char* name : {"downlight", "wallwasher", "batwing_panel", "linear_tube"}) {
     Results r[2];
     for (int k = 0; k < 2; ++k) {
       Scene s;
-      s.luminaires.push_back(photometric(std::string(name) + (k ? ".ldt" : ".ies"),
-                                         {0, 0, 2.5}, {0, 0, -1}, 0));
+      s.luminaires.push_back(
+          photometric(std::string(name) + (k ? ".ldt" : ".ies"), {0, 0, 2.5}, {0, 0, -1}, 0));
       s.targets.push_back(grid("floor", {-3, -3, 0}, {6, 0, 0}, {0, 6, 0}, 3, 3));
       r[k] = trace(s, 300'000);
     }

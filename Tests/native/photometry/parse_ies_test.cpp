@@ -52,6 +52,18 @@ TEST(ParseIes, Lm63_1991TiltIncludeAndOldBallastLampFactor) {
   EXPECT_NEAR(d.opening_width_m, 0.1524, 1e-12);
 }
 
+TEST(TiltTable, FactorIsLinearBetweenAnglesAndHoldsTheEndValues) {
+  const TiltData t = load_photometry(corpus_file("ies/lm63_1991_tilt_include.ies")).tilt_data;
+  EXPECT_DOUBLE_EQ(t.factor_at(0.0), 1.0);
+  EXPECT_DOUBLE_EQ(t.factor_at(15.0), 0.95);
+  EXPECT_DOUBLE_EQ(t.factor_at(90.0), 0.94);
+  EXPECT_NEAR(t.factor_at(37.5), 0.92, 1e-12);  // halfway from .94 (30) to .90 (45)
+  EXPECT_NEAR(t.factor_at(80.0), 0.87 + (0.94 - 0.87) / 3.0, 1e-12);
+  EXPECT_DOUBLE_EQ(t.factor_at(-5.0), 1.0);           // before the first angle: its factor
+  EXPECT_DOUBLE_EQ(t.factor_at(150.0), 0.94);         // after the last angle: its factor
+  EXPECT_DOUBLE_EQ(TiltData{}.factor_at(40.0), 1.0);  // TILT=NONE
+}
+
 TEST(ParseIes, Lm63_1995Bilateral90To270UnfoldsByMirror) {
   const auto d = load_photometry(corpus_file("ies/lm63_1995_bilateral_90_270.ies"));
   EXPECT_EQ(d.symmetry, PhotometricSymmetry::BilateralC90C270);
