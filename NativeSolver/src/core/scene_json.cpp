@@ -1,5 +1,7 @@
 // Scene file reader: JSON -> Scene. Types and keys are checked here; value ranges and
 // cross-references are checked by validate(), shared with scenes built in memory.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -81,13 +83,33 @@ Mesh read_inline_geometry(const JsonNode& n) {
   return mesh;
 }
 
-Mesh read_mesh(const JsonNode& n, const Scene& scene, const std::string& base_dir) {
+// Mesh files are read in single precision (Assimp's Debian build): far from the origin their
+// coordinates are already rounded before the solver re-centres in double. Said, not hidden.
+void warn_if_coarse(const Mesh& mesh, const JsonNode& n, const std::string& file,
+                    Warnings& warnings) {
+  double largest = 0.0;
+  for (const auto& p : mesh.vertices) {
+    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  }
+  constexpr double kFineUpTo_m = 65536.0;  // float steps below 8 mm
+  if (largest < kFineUpTo_m) return;
+  const double step_mm = 1e3 * (std::nextafter(float(largest), INFINITY) - float(largest));
+  std::ostringstream w;
+  w << n.path() << " (\"" << file << "\"): coordinates reach " << largest
+    << " m; mesh files are read in single precision, so positions there are rounded to " << step_mm
+    << " mm steps. Move the model near the origin in the file and place it with "
+    << "\"transform\" (applied in double), or give the vertices inline";
+  warnings.push_back(w.str());
+}
+
+Mesh read_mesh(const JsonNode& n, Scene& scene, const std::string& base_dir) {
   n.require_object({"name", "material", "file", "vertices", "triangles", "transform"});
   Mesh mesh;
   if (n.has("file")) {
     if (n.has("vertices") || n.has("triangles")) n.fail("give either \"file\" or inline geometry");
     const std::string file = n.at("file").string();
     mesh = load_mesh_file((fs::path(base_dir) / file).lexically_normal().string());
+    warn_if_coarse(mesh, n, file, scene.warnings);
   } else {
     mesh = read_inline_geometry(n);
   }
@@ -111,8 +133,8 @@ Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
     l.type = Luminaire::Type::Point;
     l.position = n.at("position").vec3();
   } else if (type == "spot") {
-    n.require_object({"name", "type", "flux_lm", "position", "direction", "beam_angle_deg",
-                      "field_angle_deg"});
+    n.require_object(
+        {"name", "type", "flux_lm", "position", "direction", "beam_angle_deg", "field_angle_deg"});
     l.type = Luminaire::Type::Spot;
     l.position = n.at("position").vec3();
     l.direction = n.at("direction").vec3();
@@ -204,14 +226,14 @@ Scene scene_from_json(const std::string& text, const std::string& file,
                        "optimization", "metadata"});
   const std::string format = root.at("format").string();
   if (format != kFormat) {
-    root.at("format").fail("unsupported format \"" + format + "\" (this solver reads \"" +
-                           kFormat + "\")");
+    root.at("format").fail("unsupported format \"" + format + "\" (this solver reads \"" + kFormat +
+                           "\")");
   }
   Scene scene;
   scene.source_file = file;
   for (const auto& item : root.at("materials").object().items()) {
-    scene.materials.push_back(read_material(
-        item.key(), JsonNode(item.value(), "materials." + item.key(), file)));
+    scene.materials.push_back(
+        read_material(item.key(), JsonNode(item.value(), "materials." + item.key(), file)));
   }
   const JsonNode meshes = root.at("meshes");
   for (std::size_t i = 0; i < meshes.array_size(); ++i) {

@@ -2,7 +2,6 @@
 // crash, hang or silent nonsense; recoverable problems produce warnings.
 #include <gtest/gtest.h>
 
-
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -45,7 +44,8 @@ TEST(SceneErrors, ValidSceneLoads) {
 }
 
 TEST(SceneErrors, MalformedJsonNamesLineAndColumn) {
-  const std::string e = error_of("{\n  \"format\": \"lightsolver.scene/1\",\n  \"materials\": {,}\n}");
+  const std::string e =
+      error_of("{\n  \"format\": \"lightsolver.scene/1\",\n  \"materials\": {,}\n}");
   EXPECT_NE(e.find("scene.json: line 3"), std::string::npos) << e;
   EXPECT_NE(e.find("malformed JSON"), std::string::npos) << e;
 }
@@ -53,8 +53,8 @@ TEST(SceneErrors, MalformedJsonNamesLineAndColumn) {
 TEST(SceneErrors, UnknownKeysAreErrors) {
   EXPECT_NE(error_of(valid_scene(R"(, "colour": 1)")).find("scene.json: colour: unknown key"),
             std::string::npos);
-  const std::string e = error_of(replaced(valid_scene(), R"("flux_lm": 1000)",
-                                          R"("flux_lm": 1000, "lumens": 5)"));
+  const std::string e =
+      error_of(replaced(valid_scene(), R"("flux_lm": 1000)", R"("flux_lm": 1000, "lumens": 5)"));
   EXPECT_NE(e.find("luminaires[0].lumens: unknown key"), std::string::npos) << e;
   EXPECT_NE(error_of(replaced(valid_scene(), R"("reflectance": 0.7)",
                               R"("reflectance": 0.7, "ior": 1.5)"))
@@ -78,10 +78,10 @@ TEST(SceneErrors, WrongTypesAndUnknownTypeNames) {
   EXPECT_NE(error_of(replaced(valid_scene(), "lightsolver.scene/1", "lightsolver.scene/9"))
                 .find("format: unsupported format"),
             std::string::npos);
-  EXPECT_NE(error_of(replaced(valid_scene(), R"("position": [0.5,0.5,2])",
-                              R"("position": [0.5,0.5])"))
-                .find("luminaires[0].position: expected [x, y, z]"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(replaced(valid_scene(), R"("position": [0.5,0.5,2])", R"("position": [0.5,0.5])"))
+          .find("luminaires[0].position: expected [x, y, z]"),
+      std::string::npos);
 }
 
 TEST(SceneErrors, MissingRequiredKey) {
@@ -137,9 +137,9 @@ TEST(SceneErrors, UnknownNamesReferenced) {
 }
 
 TEST(SceneErrors, DegenerateTrianglesDroppedWithWarning) {
-  const Scene s = scene_from_json(replaced(valid_scene(), "[[0,1,2],[0,2,3]]",
-                                           "[[0,1,2],[0,2,3],[0,0,1],[0,1,1]]"),
-                                  "scene.json", kData);
+  const Scene s = scene_from_json(
+      replaced(valid_scene(), "[[0,1,2],[0,2,3]]", "[[0,1,2],[0,2,3],[0,0,1],[0,1,1]]"),
+      "scene.json", kData);
   EXPECT_EQ(s.meshes[0].triangles.size(), 2u);
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("dropped 2 degenerate"), std::string::npos) << s.warnings[0];
@@ -151,16 +151,22 @@ TEST(SceneErrors, ZeroAreaTargets) {
             std::string::npos);
   const std::string grid = R"({"name": "g", "type": "grid", "corner": [0,0,1],
       "edge1": [1,0,0], "edge2": [2,0,0], "cells": [2,2]})";
-  EXPECT_NE(error_of(replaced(valid_scene(), R"({"name": "floor", "type": "surface", "mesh": "floor"})", grid))
+  EXPECT_NE(error_of(replaced(valid_scene(),
+                              R"({"name": "floor", "type": "surface", "mesh": "floor"})", grid))
                 .find("targets[0].edge2: edge1 and edge2 are parallel"),
             std::string::npos);
 }
 
 TEST(SceneErrors, NoLuminaireOrNoTarget) {
-  EXPECT_NE(error_of(replaced(valid_scene(), R"({"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]})", ""))
-                .find("luminaires: the scene has no luminaire"),
-            std::string::npos);
-  EXPECT_NE(error_of(replaced(valid_scene(), R"({"name": "floor", "type": "surface", "mesh": "floor"})", ""))
+  EXPECT_NE(
+      error_of(
+          replaced(valid_scene(),
+                   R"({"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]})",
+                   ""))
+          .find("luminaires: the scene has no luminaire"),
+      std::string::npos);
+  EXPECT_NE(error_of(replaced(valid_scene(),
+                              R"({"name": "floor", "type": "surface", "mesh": "floor"})", ""))
                 .find("targets: the scene has no target"),
             std::string::npos);
 }
@@ -175,8 +181,20 @@ TEST(SceneErrors, MeshFiles) {
       replaced(valid_scene(), inline_mesh, replaced(ok, "triangle.ply", "quad.obj")), "scene.json",
       kData);
   EXPECT_EQ(q.meshes[0].triangles.size(), 2u);  // the quad face is triangulated
+  EXPECT_TRUE(s.warnings.empty() && q.warnings.empty());
+  // Georeferenced coordinates in a file: read in float, so the scene says how coarse they are
+  // (0.5 m steps at 5.2e6 m) and how to avoid it.
+  const Scene g = scene_from_json(
+      replaced(valid_scene(), inline_mesh, replaced(ok, "triangle.ply", "georeferenced.obj")),
+      "scene.json", kData);
+  ASSERT_EQ(g.warnings.size(), 1u);
+  for (const char* part : {"meshes[0] (\"georeferenced.obj\")", "coordinates reach 5.2e+06 m",
+                           "500 mm steps", "\"transform\""}) {
+    EXPECT_NE(g.warnings[0].find(part), std::string::npos) << part << " in " << g.warnings[0];
+  }
   for (const char* bad : {"missing.ply", "truncated.ply", "garbage.obj"}) {
-    const std::string e = error_of(replaced(valid_scene(), inline_mesh, replaced(ok, "triangle.ply", bad)));
+    const std::string e =
+        error_of(replaced(valid_scene(), inline_mesh, replaced(ok, "triangle.ply", bad)));
     EXPECT_NE(e.find(bad), std::string::npos) << e;
     EXPECT_EQ(e.find("<no error>"), std::string::npos) << bad;
   }
@@ -207,7 +225,8 @@ TEST(SceneErrors, ImpossibleSolveOptions) {
 TEST(SceneErrors, SpotAndAreaGeometryChecks) {
   const std::string spot = R"({"name": "s", "type": "spot", "flux_lm": 100, "position": [0,0,2],
       "direction": [0,0,-1], "beam_angle_deg": 60, "field_angle_deg": 40})";
-  const std::string lamp = R"({"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]})";
+  const std::string lamp =
+      R"({"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]})";
   EXPECT_NE(error_of(replaced(valid_scene(), lamp, spot)).find("beam_angle_deg < field_angle_deg"),
             std::string::npos);
   const std::string area = R"({"name": "a", "type": "area", "flux_lm": 100, "corner": [0,0,2],
