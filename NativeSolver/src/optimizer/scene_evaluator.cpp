@@ -81,6 +81,11 @@ SceneChanges changes_for(const SceneProblem& p, const std::vector<double>& value
   auto lum = [&](std::size_t i) -> Luminaire& {
     return lums.try_emplace(i, p.scene.luminaires[i]).first->second;
   };
+  // Per moved mesh: translation after rotation (T · R), whatever order the variables come in.
+  std::map<std::size_t, glm::dmat4> moves;
+  auto move = [&](std::size_t m) -> glm::dmat4& {
+    return moves.try_emplace(m, glm::dmat4(1.0)).first->second;
+  };
   SceneChanges c;
   for (const SceneVariable& v : p.variables) {
     switch (v.type) {
@@ -92,9 +97,17 @@ SceneChanges changes_for(const SceneProblem& p, const std::vector<double>& value
         break;
       }
       case SceneVariable::Type::kTranslation:
-        c.meshes.emplace_back(v.mesh,
-                              glm::translate(glm::dmat4(1.0), on_rectangle(v, values) - v.anchor));
+        move(v.mesh) =
+            glm::translate(glm::dmat4(1.0), on_rectangle(v, values) - v.anchor) * move(v.mesh);
         break;
+      case SceneVariable::Type::kRotation: {
+        const glm::dmat4 turn =
+            glm::translate(glm::dmat4(1.0), v.pivot) *
+            glm::rotate(glm::dmat4(1.0), glm::radians(values.at(v.first)), v.axis) *
+            glm::translate(glm::dmat4(1.0), -v.pivot);
+        move(v.mesh) = move(v.mesh) * turn;
+        break;
+      }
       case SceneVariable::Type::kAim: {
         const std::size_t i = v.luminaires[0];
         auto [it, fresh] = aims.try_emplace(i, tilt_pan(aim_field(lum(i))));
@@ -107,6 +120,7 @@ SceneChanges changes_for(const SceneProblem& p, const std::vector<double>& value
         break;
     }
   }
+  for (const auto& [m, t] : moves) c.meshes.emplace_back(m, t);
   for (const auto& [i, tp] : aims) aim_field(lum(i)) = direction_from(tp.first, tp.second);
   for (auto& [i, l] : lums) c.luminaires.emplace_back(i, std::move(l));
   return c;
@@ -138,6 +152,9 @@ std::map<std::string, std::vector<double>> describe_values(const SceneProblem& p
     const std::string mesh =
         v.type == SceneVariable::Type::kTranslation ? p.scene.meshes[v.mesh].name : std::string();
     if (!mesh.empty()) out[mesh] = vec(on_rectangle(v, values));
+    if (v.type == SceneVariable::Type::kRotation) {
+      out[p.scene.meshes[v.mesh].name + ".rotation_deg"] = {values.at(v.first)};
+    }
     for (std::size_t i : v.luminaires) {
       Luminaire l = changed(i);
       if (v.type == SceneVariable::Type::kPosition) out[l.name] = vec(anchor_of(l));

@@ -3,6 +3,7 @@
 // Every error names the file and the field, like the scene loader's.
 #include "lightsolver/optimizer/scene_problem.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <glm/geometric.hpp>
@@ -128,6 +129,58 @@ SceneVariable read_translation(const JsonNode& n, SceneProblem& p, Claims& claim
   return v;
 }
 
+// Turning an object (a desk, a partition) about a vertical axis through its centre is what a
+// designer means by "rotate it"; pivot and axis can say otherwise.
+SceneVariable read_rotation(const JsonNode& n, SceneProblem& p, Claims& claims,
+                            std::vector<bool>& pivot_given) {
+  n.require_object({"type", "name", "mesh", "pivot", "axis", "min_deg", "max_deg", "cells"});
+  SceneVariable v;
+  v.type = SceneVariable::Type::kRotation;
+  const std::string mesh = n.at("mesh").string();
+  const int index = p.scene.find_mesh(mesh);
+  if (index < 0) n.at("mesh").fail("unknown mesh \"" + mesh + "\"");
+  v.mesh = static_cast<std::size_t>(index);
+  claims.claim(n.at("mesh"), "the rotation of mesh \"" + mesh + "\"");
+  pivot_given.push_back(n.has("pivot"));
+  if (n.has("pivot")) v.pivot = n.at("pivot").vec3();
+  if (n.has("axis")) {
+    const glm::dvec3 axis = n.at("axis").vec3();
+    if (!(glm::length(axis) > 1e-12)) n.at("axis").fail("must not be the zero vector");
+    v.axis = glm::normalize(axis);
+  }
+  const double lo = n.at("min_deg").number(), hi = n.at("max_deg").number();
+  if (!(lo < hi)) n.at("max_deg").fail("must be greater than min_deg");
+  if (hi - lo > 360.0) n.at("max_deg").fail("a rotation may span at most one turn (360 degrees)");
+  const std::uint32_t cells = positive_count(n.at("cells"));
+  v.first = p.domain.dimensions();
+  try {
+    p.domain.add_angle(n.has("name") ? n.at("name").string() : mesh + ".rotation_deg", lo, hi,
+                       cells);
+  } catch (const std::exception& e) {
+    n.at("cells").fail(e.what());
+  }
+  return v;
+}
+
+// Default pivots, once every variable is known: the anchor of the same mesh's translation (so
+// the anchor still lands on its rectangle after turning), else the bounding-box centre.
+void resolve_pivots(SceneProblem& p, const std::vector<bool>& pivot_given) {
+  std::size_t k = 0;
+  for (SceneVariable& v : p.variables) {
+    if (v.type != SceneVariable::Type::kRotation || pivot_given[k++]) continue;
+    const Mesh& m = p.scene.meshes[v.mesh];
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::dvec3& q : m.vertices) {
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    v.pivot = 0.5 * (lo + hi);
+    for (const SceneVariable& t : p.variables) {
+      if (t.type == SceneVariable::Type::kTranslation && t.mesh == v.mesh) v.pivot = t.anchor;
+    }
+  }
+}
+
 SceneVariable read_aim(const JsonNode& n, SceneProblem& p, Claims& claims) {
   n.require_object({"type", "name", "luminaire", "angle", "min_deg", "max_deg", "cells"});
   SceneVariable v;
@@ -203,6 +256,7 @@ SceneVariable read_flux(const JsonNode& n, SceneProblem& p, Claims& claims) {
 void read_variables(const JsonNode& list, SceneProblem& p) {
   if (list.array_size() == 0) list.fail("needs at least one variable");
   Claims claims;
+  std::vector<bool> pivot_given;  // per rotation variable
   for (std::size_t i = 0; i < list.array_size(); ++i) {
     const JsonNode n = list[i];
     const std::string type = n.at("type").string();
@@ -210,15 +264,18 @@ void read_variables(const JsonNode& list, SceneProblem& p) {
       p.variables.push_back(read_position(n, p, claims));
     } else if (type == "translation") {
       p.variables.push_back(read_translation(n, p, claims));
+    } else if (type == "rotation") {
+      p.variables.push_back(read_rotation(n, p, claims, pivot_given));
     } else if (type == "aim") {
       p.variables.push_back(read_aim(n, p, claims));
     } else if (type == "flux") {
       p.variables.push_back(read_flux(n, p, claims));
     } else {
       n.at("type").fail("unknown variable type \"" + type +
-                        "\" (expected position, translation, aim or flux)");
+                        "\" (expected position, translation, rotation, aim or flux)");
     }
   }
+  resolve_pivots(p, pivot_given);
 }
 
 Intention read_intention(const JsonNode& n, const Scene& s) {
@@ -359,7 +416,12 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
 std::vector<std::string> SceneProblem::movable_meshes() const {
   std::vector<std::string> names;
   for (const SceneVariable& v : variables) {
-    if (v.type == SceneVariable::Type::kTranslation) names.push_back(scene.meshes[v.mesh].name);
+    const bool moves =
+        v.type == SceneVariable::Type::kTranslation || v.type == SceneVariable::Type::kRotation;
+    const std::string& name = scene.meshes[v.mesh].name;
+    if (moves && std::find(names.begin(), names.end(), name) == names.end()) {
+      names.push_back(name);
+    }
   }
   return names;
 }

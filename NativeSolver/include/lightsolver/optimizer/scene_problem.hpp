@@ -37,16 +37,20 @@ struct SceneVariable {
     kTranslation,  ///< a mesh's `anchor` moved onto a parallelogram (2 variables)
     kAim,          ///< a luminaire's tilt (from nadir) or pan (from +x, counter-clockwise), deg
     kFlux,         ///< the flux of one or more luminaires, lm (1 variable)
+    kRotation,     ///< a mesh turned about `axis` through `pivot`, deg (1 variable)
   };
   enum class Angle { kTilt, kPan };
 
   Type type = Type::kPosition;
   std::vector<std::size_t> luminaires;  ///< position: moved together; aim: one; flux: all set
   std::vector<glm::dvec3> offsets;      ///< position: each luminaire's anchor − the first's
-  std::size_t mesh = 0;                 ///< translation
+  std::size_t mesh = 0;                 ///< translation, rotation
   glm::dvec3 anchor{0.0};  ///< translation: mesh point (as loaded) placed on the rectangle
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< position / translation rectangle
   Angle angle = Angle::kTilt;                      ///< aim
+  /// rotation: a point of the mesh as loaded (default: the anchor of the mesh's translation
+  /// variable, else the centre of its bounding box) and a unit axis (default +z, vertical)
+  glm::dvec3 pivot{0.0}, axis{0.0, 0.0, 1.0};
   std::size_t first = 0;  ///< index of its first variable in SceneProblem::domain
 };
 
@@ -59,7 +63,7 @@ struct SceneProblem {
   VnsOptions search;
   std::string file;  ///< for messages
 
-  /// Meshes that translation variables move (Simulation::Options::movable_meshes).
+  /// Meshes that translation or rotation variables move (Simulation::Options::movable_meshes).
   std::vector<std::string> movable_meshes() const;
 };
 
