@@ -3,8 +3,9 @@
 
 The domain samples candidate positions on a regular grid over the face (``Resolution``),
 ``EdgeMargin`` away from its boundary and ``MountingOffset`` off the face along its outward
-normal. The export writes them to the scene's ``metadata.placement_domains`` (the solver
-ignores metadata; the optimizer will read them)."""
+normal. The export writes them to the scene's ``metadata.placement_domains``. Neither the
+solver nor the optimizer reads metadata yet: turning domains into an ``optimization`` block
+(docs/optimization.md §10-11) is the next step of the GUI's inverse design."""
 from __future__ import annotations
 
 import math
