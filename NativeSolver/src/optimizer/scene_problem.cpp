@@ -13,6 +13,7 @@
 
 #include "core/json_reader.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "optimizer/placement_region.hpp"
 
 namespace lightsolver::optimizer {
 namespace {
@@ -48,6 +49,7 @@ std::uint32_t positive_count(const JsonNode& n) {
 }
 
 // Reads corner / edge1 / edge2 / cells: [k, m] and adds the two variables `<name>.u`, `.v`.
+// The rectangle, its cells and its optional `within` polygon.
 void read_rectangle(const JsonNode& n, const std::string& name, SceneVariable& v, Domain& d) {
   v.corner = n.at("corner").vec3();
   v.edge1 = n.at("edge1").vec3();
@@ -66,6 +68,7 @@ void read_rectangle(const JsonNode& n, const std::string& name, SceneVariable& v
   } catch (const std::exception& e) {
     cells.fail(e.what());
   }
+  if (n.has("within")) v.region = regions::read_region(n.at("within"), v, d);
 }
 
 // `luminaire` (one name) or `luminaires` (a non-empty list).
@@ -100,7 +103,7 @@ class Claims {
 
 SceneVariable read_position(const JsonNode& n, SceneProblem& p, Claims& claims) {
   n.require_object(
-      {"type", "name", "luminaire", "luminaires", "corner", "edge1", "edge2", "cells"});
+      {"type", "name", "luminaire", "luminaires", "corner", "edge1", "edge2", "cells", "within"});
   SceneVariable v;
   v.type = SceneVariable::Type::kPosition;
   v.luminaires = read_luminaires(n, p.scene);
@@ -116,7 +119,8 @@ SceneVariable read_position(const JsonNode& n, SceneProblem& p, Claims& claims) 
 }
 
 SceneVariable read_translation(const JsonNode& n, SceneProblem& p, Claims& claims) {
-  n.require_object({"type", "name", "mesh", "anchor", "corner", "edge1", "edge2", "cells"});
+  n.require_object(
+      {"type", "name", "mesh", "anchor", "corner", "edge1", "edge2", "cells", "within"});
   SceneVariable v;
   v.type = SceneVariable::Type::kTranslation;
   const std::string mesh = n.at("mesh").string();
@@ -407,6 +411,12 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
     p.search = read_search(root.at("search"), p);
   } else {
     p.search.confidence = p.scene.settings.confidence;
+  }
+  p.search.admissible = regions::admissible_filter(p);
+  for (std::size_t i = 0; i < p.search.initial.size(); ++i) {
+    if (p.search.admissible && !p.search.admissible(p.search.initial[i])) {
+      root.at("search").at("initial")[i].fail("a cell centre lies outside its variable's `within`");
+    }
   }
   return p;
 }

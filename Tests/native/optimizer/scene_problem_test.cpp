@@ -228,6 +228,32 @@ const BadCase kBadCases[] = {
        o["variables"].push_back(cube_rotation());
      },
      "optimization.variables[5].mesh", "already set"},
+    {"WithinTwoPoints",
+     [](json& o) {
+       var(o, 0)["within"] = {{0, 0, 2.9}, {4, 0, 2.9}};
+     },
+     "optimization.variables[0].within", "at least 3 points"},
+    {"WithinNoArea",
+     [](json& o) {
+       var(o, 0)["within"] = {{0, 0, 2.9}, {2, 2, 2.9}, {4, 4, 2.9}};
+     },
+     "optimization.variables[0].within", "no area"},
+    {"WithinMissesEveryCell",
+     [](json& o) {
+       var(o, 0)["within"] = {{5, 5, 2.9}, {6, 5, 2.9}, {6, 6, 2.9}};
+     },
+     "optimization.variables[0].within", "no cell centre"},
+    {"WithinBadPoint",
+     [](json& o) {
+       var(o, 1)["within"] = {{0, 0}, {1, 0}, {0, 1}};
+     },
+     "optimization.variables[1].within[0]", "[x, y, z]"},
+    {"InitialOutsideWithin",
+     [](json& o) {
+       var(o, 0)["within"] = {{0, 0, 2.9}, {2, 0, 2.9}, {2, 2, 2.9}, {0, 2, 2.9}};
+       o["search"]["initial"] = {{0, 0, 0, 0, 0, 0}, {3, 3, 0, 0, 0, 0}};
+     },
+     "optimization.search.initial[1]", "outside its variable's `within`"},
     {"BadStrategy", [](json& o) { o["search"]["strategy"] = "guess"; },
      "optimization.search.strategy", "confirm"},
     {"BadConfidence", [](json& o) { o["search"]["confidence"] = 1.5; },
@@ -375,6 +401,44 @@ TEST(SceneEvaluator, RotatedGeometryMatchesARebuiltScene) {
                 1e-3 * rebuilt.targets[t].estimate.mean)
         << rebuilt.targets[t].name;
   }
+}
+
+// An L-shaped ceiling: the point light may not go over the room's missing quadrant (x, y > 2),
+// where a target wants it. Every cell there is skipped, never traced; the optimum is the
+// admissible cells next to the corner of the L, (2.5, 1.5) and (1.5, 2.5), by symmetry.
+TEST(SceneProblem, WithinKeepsTheSearchOnAnLShapedCeiling) {
+  json scene = base_scene();
+  scene["targets"].push_back({{"name", "corner"},
+                              {"type", "grid"},
+                              {"corner", {2.5, 2.5, 0.8}},
+                              {"edge1", {1, 0, 0}},
+                              {"edge2", {0, 1, 0}},
+                              {"cells", {1, 1}}});
+  json& o = scene["optimization"];
+  o["intention"] = {{"type", "maximize_mean_illuminance"}, {"target", "corner"}};
+  o["variables"] = {
+      {{"type", "position"},
+       {"luminaire", "p"},
+       {"corner", {0, 0, 2.9}},
+       {"edge1", {4, 0, 0}},
+       {"edge2", {0, 4, 0}},
+       {"cells", {4, 4}},
+       {"within", {{0, 0, 2.9}, {4, 0, 2.9}, {4, 2, 2.9}, {2, 2, 2.9}, {2, 4, 2.9}, {0, 4, 2.9}}}}};
+  o["search"] = {{"seed", 5},
+                 {"max_iterations", 40},
+                 {"screening_photons", 20000},
+                 {"confirmation_photons", 200000}};
+  const SceneProblem p = parse(scene);
+  ASSERT_TRUE(p.search.admissible);
+  const OptimizationResult r = run_problem(p, {});
+  EXPECT_GT(r.counters.inadmissible, 0u);
+  ASSERT_FALSE(r.isoc.empty());
+  for (const ResultMember& m : r.isoc) {
+    const double x = 4 * m.values[0], y = 4 * m.values[1];
+    EXPECT_FALSE(x > 2 && y > 2) << "member at (" << x << ", " << y << ") is off the ceiling";
+  }
+  const double x = 4 * r.isoc[0].values[0], y = 4 * r.isoc[0].values[1];
+  EXPECT_TRUE((x == 2.5 && y == 1.5) || (x == 1.5 && y == 2.5)) << x << ", " << y;
 }
 
 TEST(SceneEvaluator, InstalledFluxIsExact) {

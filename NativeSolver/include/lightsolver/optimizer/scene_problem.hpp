@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <map>
 #include <optional>
@@ -47,7 +48,10 @@ struct SceneVariable {
   std::size_t mesh = 0;                 ///< translation, rotation
   glm::dvec3 anchor{0.0};  ///< translation: mesh point (as loaded) placed on the rectangle
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< position / translation rectangle
-  Angle angle = Angle::kTilt;                      ///< aim
+  /// position / translation `within`: the admissible polygon in rectangle coordinates (u, v);
+  /// cells whose centre lies outside are never evaluated. Empty: the whole rectangle.
+  std::vector<glm::dvec2> region;
+  Angle angle = Angle::kTilt;  ///< aim
   /// rotation: a point of the mesh as loaded (default: the anchor of the mesh's translation
   /// variable, else the centre of its bounding box) and a unit axis (default +z, vertical)
   glm::dvec3 pivot{0.0}, axis{0.0, 0.0, 1.0};

@@ -1,0 +1,28 @@
+#pragma once
+// `within` polygons of position and translation variables: the cells of a placement rectangle
+// that lie on an L-shaped ceiling, around a column, inside a room that is not a rectangle.
+#include <functional>
+#include <glm/vec2.hpp>
+#include <vector>
+
+#include "core/json_reader.hpp"
+#include "lightsolver/optimizer/domain.hpp"
+#include "lightsolver/optimizer/scene_problem.hpp"
+
+namespace lightsolver::optimizer::regions {
+
+/// Reads `within` ([[x, y, z], ...], world metres, in order around the polygon) into the
+/// variable's rectangle coordinates (u along edge1, v along edge2; points off the rectangle's
+/// plane are projected onto it). Fails naming the field for fewer than 3 points, a polygon
+/// without area, or one that holds no cell centre of the rectangle.
+std::vector<glm::dvec2> read_region(const lightsolver::detail::JsonNode& within,
+                                    const SceneVariable& v, const Domain& domain);
+
+/// Even-odd point-in-polygon test (a point on an edge may fall either way).
+bool inside(const std::vector<glm::dvec2>& polygon, glm::dvec2 q);
+
+/// The search's admissible filter: every variable with a region has its cell centre inside it.
+/// Empty when no variable has one.
+std::function<bool(const Configuration&)> admissible_filter(const SceneProblem& p);
+
+}  // namespace lightsolver::optimizer::regions
