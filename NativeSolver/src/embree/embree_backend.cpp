@@ -50,7 +50,7 @@ class EmbreeBackend final : public Backend {
   // the intersection and used only after the other lanes' rays have been traced, by when it has
   // arrived. Each lane keeps its own deposits, so the per-path totals (and hence the integer
   // tallies) are exactly those of one-path-at-a-time tracing. Four lanes measured best on the
-  // 1M-triangle benchmark (+10 % over one; eight spill more state than they hide).
+  // 1M-triangle benchmark (+10 % over one lane; two and eight were no better).
   static constexpr int kLanes = 4;
 
   struct Lane {
