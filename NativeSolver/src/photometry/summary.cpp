@@ -136,7 +136,16 @@ std::string photometry_summary(const PhotometricData& d) {
   out << "Opening: " << to_string(d.opening_shape) << " " << fixed(d.opening_length_m, 3) << " x "
       << fixed(d.opening_width_m, 3) << " x " << fixed(d.opening_height_m, 3)
       << " m (length along C0 x width x height)\n";
-  out << "Tilt: " << d.tilt << "\n";
+  out << "Tilt: " << d.tilt;
+  if (!d.tilt_data.factors.empty()) {
+    out << " (lamp geometry " << d.tilt_data.lamp_geometry << "; factor at tilt:";
+    for (std::size_t i = 0; i < d.tilt_data.factors.size(); ++i) {
+      out << " " << d.tilt_data.angles_deg[i] << "°=" << d.tilt_data.factors[i];
+    }
+    out << (d.type == PhotometricType::C ? "; applied at the aim's angle from straight down)"
+                                         : "; not applied to type A/B photometry)");
+  }
+  out << "\n";
   for (const auto& w : d.warnings) out << "Warning: " << w << "\n";
   return out.str();
 }

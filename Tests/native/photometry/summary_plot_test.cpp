@@ -61,6 +61,13 @@ TEST(Summary, AbsoluteTypeBAndWarnings) {
   EXPECT_TRUE(contains(photometry_summary(dark), "Lumens (integrated): 0.0 lm"));
 }
 
+TEST(Summary, TiltTableAndHowItIsApplied) {
+  const std::string s =
+      photometry_summary(load_photometry(test::corpus_file("ies/lm63_1991_tilt_include.ies")));
+  EXPECT_TRUE(contains(s, "Tilt: INCLUDE (lamp geometry 1; factor at tilt: 0°=1 15°=0.95")) << s;
+  EXPECT_TRUE(contains(s, "applied at the aim's angle from straight down")) << s;
+}
+
 TEST(PolarPlot, DrawsBothPlanesOfTheWallWasher) {
   const auto path = (std::filesystem::temp_directory_path() / "lightsolver_polar.png").string();
   write_polar_plot_png(load_photometry(test::sample_file("wallwasher.ldt")), path);
