@@ -11,15 +11,16 @@
 
 namespace lightsolver::optimizer::regions {
 
-/// Reads `within` ([[x, y, z], ...], world metres, in order around the polygon) into the
-/// variable's rectangle coordinates (u along edge1, v along edge2; points off the rectangle's
-/// plane are projected onto it). Fails naming the field for fewer than 3 points, a polygon
-/// without area, or one that holds no cell centre of the rectangle.
-std::vector<glm::dvec2> read_region(const lightsolver::detail::JsonNode& within,
-                                    const SceneVariable& v, const Domain& domain);
+/// Reads `within` into the variable's rectangle coordinates (u along edge1, v along edge2;
+/// points off the rectangle's plane are projected onto it): either one polygon
+/// ([[x, y, z], ...], world metres, in order around it) or {"outer": polygon, "holes":
+/// [polygon, ...]} (columns, shafts). Fails naming the field for a ring of fewer than 3 points
+/// or without area, or a region that holds no cell centre of the rectangle.
+PlacementRegion read_region(const lightsolver::detail::JsonNode& within, const SceneVariable& v,
+                            const Domain& domain);
 
-/// Even-odd point-in-polygon test (a point on an edge may fall either way).
-bool inside(const std::vector<glm::dvec2>& polygon, glm::dvec2 q);
+/// Even-odd test over all rings (a point inside a hole is outside; on an edge: either way).
+bool inside(const PlacementRegion& region, glm::dvec2 q);
 
 /// The search's admissible filter: every variable with a region has its cell centre inside it.
 /// Empty when no variable has one.

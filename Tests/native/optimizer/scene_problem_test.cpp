@@ -248,6 +248,17 @@ const BadCase kBadCases[] = {
        var(o, 1)["within"] = {{0, 0}, {1, 0}, {0, 1}};
      },
      "optimization.variables[1].within[0]", "[x, y, z]"},
+    {"WithinHoleTwoPoints",
+     [](json& o) {
+       var(o, 0)["within"] = {{"outer", {{0, 0, 2.9}, {4, 0, 2.9}, {4, 4, 2.9}}},
+                              {"holes", {{{1, 1, 2.9}, {2, 1, 2.9}}}}};
+     },
+     "optimization.variables[0].within.holes[0]", "at least 3 points"},
+    {"WithinUnknownKey",
+     [](json& o) {
+       var(o, 0)["within"] = {{"outer", {{0, 0, 2.9}, {4, 0, 2.9}, {4, 4, 2.9}}}, {"inner", 1}};
+     },
+     "optimization.variables[0].within.inner", "unknown key"},
     {"InitialOutsideWithin",
      [](json& o) {
        var(o, 0)["within"] = {{0, 0, 2.9}, {2, 0, 2.9}, {2, 2, 2.9}, {0, 2, 2.9}};
@@ -439,6 +450,43 @@ TEST(SceneProblem, WithinKeepsTheSearchOnAnLShapedCeiling) {
   }
   const double x = 4 * r.isoc[0].values[0], y = 4 * r.isoc[0].values[1];
   EXPECT_TRUE((x == 2.5 && y == 1.5) || (x == 1.5 && y == 2.5)) << x << ", " << y;
+}
+
+// A column through the middle of the ceiling: the cell right above the target is a hole, so the
+// light goes next to it (one of the four neighbours, all 1 m away), never into it.
+TEST(SceneProblem, WithinHolesKeepTheSearchOffAColumn) {
+  json scene = base_scene();
+  scene["targets"].push_back({{"name", "spot"},
+                              {"type", "grid"},
+                              {"corner", {2, 2, 0.8}},
+                              {"edge1", {1, 0, 0}},
+                              {"edge2", {0, 1, 0}},
+                              {"cells", {1, 1}}});
+  json& o = scene["optimization"];
+  o["intention"] = {{"type", "maximize_mean_illuminance"}, {"target", "spot"}};
+  o["variables"] = {
+      {{"type", "position"},
+       {"luminaire", "p"},
+       {"corner", {0, 0, 2.9}},
+       {"edge1", {4, 0, 0}},
+       {"edge2", {0, 4, 0}},
+       {"cells", {4, 4}},
+       {"within",
+        {{"outer", {{0, 0, 2.9}, {4, 0, 2.9}, {4, 4, 2.9}, {0, 4, 2.9}}},
+         {"holes", {{{2.1, 2.1, 2.9}, {2.9, 2.1, 2.9}, {2.9, 2.9, 2.9}, {2.1, 2.9, 2.9}}}}}}}};
+  o["search"] = {{"seed", 2},
+                 {"max_iterations", 40},
+                 {"screening_photons", 20000},
+                 {"confirmation_photons", 200000}};
+  const SceneProblem p = parse(scene);
+  const OptimizationResult r = run_problem(p, {});
+  EXPECT_EQ(r.counters.inadmissible, 1u);  // the one cell under the column, judged once
+  ASSERT_FALSE(r.isoc.empty());
+  for (const ResultMember& m : r.isoc) {
+    EXPECT_FALSE(m.values[0] == 0.625 && m.values[1] == 0.625) << "a member in the column";
+  }
+  const double x = 4 * r.isoc[0].values[0], y = 4 * r.isoc[0].values[1];
+  EXPECT_NEAR(std::hypot(x - 2.5, y - 2.5), 1.0, 1e-12) << x << ", " << y;
 }
 
 TEST(SceneEvaluator, InstalledFluxIsExact) {

@@ -31,6 +31,9 @@
 
 namespace lightsolver::optimizer {
 
+/// A placement region in a rectangle's (u, v) coordinates: outer ring first, then holes.
+using PlacementRegion = std::vector<std::vector<glm::dvec2>>;
+
 /// One entry of `optimization.variables`, with the Domain variables it owns.
 struct SceneVariable {
   enum class Type {
@@ -48,9 +51,9 @@ struct SceneVariable {
   std::size_t mesh = 0;                 ///< translation, rotation
   glm::dvec3 anchor{0.0};  ///< translation: mesh point (as loaded) placed on the rectangle
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< position / translation rectangle
-  /// position / translation `within`: the admissible polygon in rectangle coordinates (u, v);
+  /// position / translation `within`: the admissible region in rectangle coordinates (u, v);
   /// cells whose centre lies outside are never evaluated. Empty: the whole rectangle.
-  std::vector<glm::dvec2> region;
+  PlacementRegion region;
   Angle angle = Angle::kTilt;  ///< aim
   /// rotation: a point of the mesh as loaded (default: the anchor of the mesh's translation
   /// variable, else the centre of its bounding box) and a unit axis (default +z, vertical)
