@@ -414,32 +414,38 @@ TEST(SceneEvaluator, RotatedGeometryMatchesARebuiltScene) {
   }
 }
 
-// An L-shaped ceiling: the point light may not go over the room's missing quadrant (x, y > 2),
-// where a target wants it. Every cell there is skipped, never traced; the optimum is the
-// admissible cells next to the corner of the L, (2.5, 1.5) and (1.5, 2.5), by symmetry.
-TEST(SceneProblem, WithinKeepsTheSearchOnAnLShapedCeiling) {
+// The point light on the 4 x 4 ceiling (cells 1 m) limited to `within`, maximising the mean
+// illuminance of a 1 m square target at the workplane with corner (x, y).
+SceneProblem ceiling_within(const json& within, double x, double y, std::uint64_t seed) {
   json scene = base_scene();
-  scene["targets"].push_back({{"name", "corner"},
+  scene["targets"].push_back({{"name", "goal"},
                               {"type", "grid"},
-                              {"corner", {2.5, 2.5, 0.8}},
+                              {"corner", {x, y, 0.8}},
                               {"edge1", {1, 0, 0}},
                               {"edge2", {0, 1, 0}},
                               {"cells", {1, 1}}});
   json& o = scene["optimization"];
-  o["intention"] = {{"type", "maximize_mean_illuminance"}, {"target", "corner"}};
-  o["variables"] = {
-      {{"type", "position"},
-       {"luminaire", "p"},
-       {"corner", {0, 0, 2.9}},
-       {"edge1", {4, 0, 0}},
-       {"edge2", {0, 4, 0}},
-       {"cells", {4, 4}},
-       {"within", {{0, 0, 2.9}, {4, 0, 2.9}, {4, 2, 2.9}, {2, 2, 2.9}, {2, 4, 2.9}, {0, 4, 2.9}}}}};
-  o["search"] = {{"seed", 5},
+  o["intention"] = {{"type", "maximize_mean_illuminance"}, {"target", "goal"}};
+  o["variables"] = {{{"type", "position"},
+                     {"luminaire", "p"},
+                     {"corner", {0, 0, 2.9}},
+                     {"edge1", {4, 0, 0}},
+                     {"edge2", {0, 4, 0}},
+                     {"cells", {4, 4}},
+                     {"within", within}}};
+  o["search"] = {{"seed", seed},
                  {"max_iterations", 40},
                  {"screening_photons", 20000},
                  {"confirmation_photons", 200000}};
-  const SceneProblem p = parse(scene);
+  return parse(scene);
+}
+
+// An L-shaped ceiling: the point light may not go over the room's missing quadrant (x, y > 2),
+// where the target wants it. Every cell there is skipped, never traced; the optimum is the
+// admissible cells next to the corner of the L, (2.5, 1.5) and (1.5, 2.5), by symmetry.
+TEST(SceneProblem, WithinKeepsTheSearchOnAnLShapedCeiling) {
+  const SceneProblem p = ceiling_within(
+      {{0, 0, 2.9}, {4, 0, 2.9}, {4, 2, 2.9}, {2, 2, 2.9}, {2, 4, 2.9}, {0, 4, 2.9}}, 2.5, 2.5, 5);
   ASSERT_TRUE(p.search.admissible);
   const OptimizationResult r = run_problem(p, {});
   EXPECT_GT(r.counters.inadmissible, 0u);
@@ -455,31 +461,10 @@ TEST(SceneProblem, WithinKeepsTheSearchOnAnLShapedCeiling) {
 // A column through the middle of the ceiling: the cell right above the target is a hole, so the
 // light goes next to it (one of the four neighbours, all 1 m away), never into it.
 TEST(SceneProblem, WithinHolesKeepTheSearchOffAColumn) {
-  json scene = base_scene();
-  scene["targets"].push_back({{"name", "spot"},
-                              {"type", "grid"},
-                              {"corner", {2, 2, 0.8}},
-                              {"edge1", {1, 0, 0}},
-                              {"edge2", {0, 1, 0}},
-                              {"cells", {1, 1}}});
-  json& o = scene["optimization"];
-  o["intention"] = {{"type", "maximize_mean_illuminance"}, {"target", "spot"}};
-  o["variables"] = {
-      {{"type", "position"},
-       {"luminaire", "p"},
-       {"corner", {0, 0, 2.9}},
-       {"edge1", {4, 0, 0}},
-       {"edge2", {0, 4, 0}},
-       {"cells", {4, 4}},
-       {"within",
-        {{"outer", {{0, 0, 2.9}, {4, 0, 2.9}, {4, 4, 2.9}, {0, 4, 2.9}}},
-         {"holes", {{{2.1, 2.1, 2.9}, {2.9, 2.1, 2.9}, {2.9, 2.9, 2.9}, {2.1, 2.9, 2.9}}}}}}}};
-  o["search"] = {{"seed", 2},
-                 {"max_iterations", 40},
-                 {"screening_photons", 20000},
-                 {"confirmation_photons", 200000}};
-  const SceneProblem p = parse(scene);
-  const OptimizationResult r = run_problem(p, {});
+  const json within = {
+      {"outer", {{0, 0, 2.9}, {4, 0, 2.9}, {4, 4, 2.9}, {0, 4, 2.9}}},
+      {"holes", {{{2.1, 2.1, 2.9}, {2.9, 2.1, 2.9}, {2.9, 2.9, 2.9}, {2.1, 2.9, 2.9}}}}};
+  const OptimizationResult r = run_problem(ceiling_within(within, 2, 2, 2), {});
   EXPECT_EQ(r.counters.inadmissible, 1u);  // the one cell under the column, judged once
   ASSERT_FALSE(r.isoc.empty());
   for (const ResultMember& m : r.isoc) {
