@@ -27,6 +27,7 @@ _EXPORTS = {
     "analyze": "lighting.api",
     "check": "lighting.api",
     "export_scene": "lighting.api",
+    "optimize_placement": "lighting.api",
     "results": "lighting.api",
     "solver_available": "lighting.api",
     "AnalysisResult": "lighting.solver.results",

@@ -85,6 +85,42 @@ def analyze(doc: Any, analysis: Any = None, photons: Optional[int] = None,
     return result
 
 
+def optimize_placement(doc: Any, target: Any, goal: str = "maximize_uniformity",
+                       min_mean_lux: Optional[float] = None,
+                       min_uniformity: Optional[float] = None, iterations: int = 200,
+                       seed: int = 1, analysis: Any = None, output_dir: Optional[str] = None,
+                       screening_photons: Optional[int] = None,
+                       confirmation_photons: Optional[int] = None,
+                       progress: Optional[Callable[[dict], Any]] = None) -> Any:
+    """Find where the placement domains' luminaires should go (docs/workbench.md).
+
+    Each placement domain with a Template places MaxLuminaires luminaires on its candidate
+    lattice: the template and copies of it. The search (docs/optimization.md) returns every
+    configuration statistically indistinguishable from the best.
+
+    Args:
+        target: the target object the intention is about.
+        goal: "maximize_uniformity" (needs min_mean_lux), "minimize_installed_flux" (needs
+            min_mean_lux and min_uniformity), "maximize_mean_illuminance" or
+            "minimize_mean_illuminance".
+        iterations, seed: of the search; screening_photons (n), confirmation_photons (N):
+            the adaptive photon counts (default: the optimizer's).
+        progress: called after every iteration with a dict; return False to stop.
+
+    Returns:
+        :class:`lighting.solver.optimize.PlacementResult`: ``.members`` (best first, with
+        ``positions_m`` per luminaire) and ``.apply(member=0)``, which moves the template and
+        creates or moves its copies in the document.
+    """
+    from lighting.export.scene import default_output_directory
+    from lighting.solver.optimize import run_optimization
+
+    obj = _analysis(doc, analysis)
+    return run_optimization(obj, target, goal, min_mean_lux, min_uniformity, iterations, seed,
+                            output_dir or default_output_directory(obj), progress,
+                            screening_photons, confirmation_photons)
+
+
 def check(doc: Any, analysis: Any = None, need_solver: bool = True) -> Report:
     """The Check stage's report (never raises for model problems)."""
     from lighting.solver.check import check_analysis

@@ -3,9 +3,9 @@
 
 The domain samples candidate positions on a regular grid over the face (``Resolution``),
 ``EdgeMargin`` away from its boundary and ``MountingOffset`` off the face along its outward
-normal. The export writes them to the scene's ``metadata.placement_domains``. Neither the
-solver nor the optimizer reads metadata yet: turning domains into an ``optimization`` block
-(docs/optimization.md §10-11) is the next step of the GUI's inverse design."""
+normal. The export writes them to the scene's ``metadata.placement_domains``;
+:func:`optimization_rectangle` gives the optimizer the same lattice as a ``position``
+variable (``lighting.optimize_placement``)."""
 from __future__ import annotations
 
 import math
@@ -78,17 +78,14 @@ def domain_face(obj: Any) -> Any:
     return face
 
 
-def candidates(obj: Any) -> tuple:
-    """(list of candidate points in mm, outward unit normal of the face)."""
-    import Part
-
+def _lattice(obj: Any) -> tuple:
+    """(face, normal, offset vector, su, sv, nu, nv, step): the candidate lattice, nu x nv
+    points ``step`` apart from (su, sv) in the face's parameter plane, centred on the face."""
     face = domain_face(obj)
     normal = face_normal(face)
     step = float(obj.Resolution)
     if step <= 0.0:
         raise ValueError(f"Placement domain '{obj.Label}': Resolution must be > 0")
-    margin = float(obj.EdgeMargin)
-    offset = normal * float(obj.MountingOffset)
     u0, u1, v0, v1 = face.ParameterRange
     # Plane parameters are lengths in mm; centre the lattice on the face.
     nu = max(1, int(math.floor((u1 - u0) / step)) + 1)
@@ -97,6 +94,40 @@ def candidates(obj: Any) -> tuple:
         raise ValueError(f"Placement domain '{obj.Label}': Resolution {step:g} mm is too fine")
     su = u0 + 0.5 * ((u1 - u0) - (nu - 1) * step)
     sv = v0 + 0.5 * ((v1 - v0) - (nv - 1) * step)
+    return face, normal, normal * float(obj.MountingOffset), su, sv, nu, nv, step
+
+
+def optimization_rectangle(obj: Any) -> Dict[str, Any]:
+    """The domain as the rectangle of a ``position`` variable (docs/optimization.md §10, metres):
+    its cell centres are the candidate lattice, and ``within`` is the face shrunk by EdgeMargin
+    (outer wire and holes), so the admissible cells are the candidates."""
+    face, _, offset, su, sv, nu, nv, step = _lattice(obj)
+    corner = face.valueAt(su - 0.5 * step, sv - 0.5 * step)
+    edge1 = face.valueAt(su + (nu - 0.5) * step, sv - 0.5 * step) - corner
+    edge2 = face.valueAt(su - 0.5 * step, sv + (nv - 0.5) * step) - corner
+    region = face
+    margin = float(obj.EdgeMargin)
+    if margin > 0.0:
+        region = face.makeOffset2D(-margin)
+        if not region.Faces:
+            raise ValueError(f"Placement domain '{obj.Label}': EdgeMargin {margin:g} mm leaves "
+                             "nothing of the face")
+        region = region.Faces[0]
+
+    def ring(wire: Any) -> List[List[float]]:
+        return [vec_m(p + offset) for p in wire.discretize(Deflection=0.5)]
+
+    holes = [ring(w) for w in region.Wires if not w.isSame(region.OuterWire)]
+    return {"corner": vec_m(corner + offset), "edge1": vec_m(edge1), "edge2": vec_m(edge2),
+            "cells": [nu, nv], "within": {"outer": ring(region.OuterWire), "holes": holes}}
+
+
+def candidates(obj: Any) -> tuple:
+    """(list of candidate points in mm, outward unit normal of the face)."""
+    import Part
+
+    face, normal, offset, su, sv, nu, nv, step = _lattice(obj)
+    margin = float(obj.EdgeMargin)
     points: List[FreeCAD.Vector] = []
     boundary = Part.Compound(face.Wires)
     for i in range(nu):

@@ -1,0 +1,120 @@
+"""Inverse design from the document: placement domains become position variables on their
+candidate lattice, the optimizer's best places the luminaire over the target, apply() moves the
+template and makes (then reuses) copies."""
+import FreeCAD
+
+import lighting
+from lighting.objects import placement_domain as domain_mod
+from wbtest import DocTestCase, needs_solver, work_dir
+
+V = FreeCAD.Vector
+
+
+def build_room(max_luminaires: int = 1):
+    """A 4 x 4 m floor and ceiling slab (3 m up), a desk in one corner whose top is the target,
+    a point light and a placement domain on the ceiling's underside: candidates 1 m apart,
+    0.5 m from the edges, i.e. x, y in {1, 2, 3} m, 5 cm below the ceiling."""
+    doc = FreeCAD.newDocument("OptimizeRoom")
+    floor = doc.addObject("Part::Box", "Floor")
+    floor.Length, floor.Width, floor.Height = 4000, 4000, 100
+    floor.Placement.Base = V(0, 0, -100)
+    ceiling = doc.addObject("Part::Box", "Ceiling")
+    ceiling.Length, ceiling.Width, ceiling.Height = 4000, 4000, 100
+    ceiling.Placement.Base = V(0, 0, 3000)
+    desk = doc.addObject("Part::Box", "Desk")
+    desk.Length, desk.Width, desk.Height = 600, 600, 750
+    desk.Placement.Base = V(3000, 3000, 0)
+    doc.recompute()
+    analysis = lighting.make_analysis(doc, photons=20000, seed=3)
+    lum = lighting.make_luminaire(doc, position_m=(1.0, 1.0, 2.9), kind="Point", flux_lm=2000,
+                                  analysis=analysis)
+    target = lighting.make_face_target(doc, [(desk, "Face6")], analysis=analysis)
+    domain = lighting.make_placement_domain(doc, ceiling, "Face5", resolution_m=1.0,
+                                            max_luminaires=max_luminaires, offset_m=0.05,
+                                            edge_margin_m=0.5, template=lum, analysis=analysis)
+    domain.MinLuminaires = max_luminaires
+    doc.recompute()
+    return doc, analysis, lum, target, domain
+
+
+def near(a, b, tol=1e-6):
+    return all(abs(x - y) <= tol for x, y in zip(a, b))
+
+
+class Optimize(DocTestCase):
+    def test_domain_rectangle_cells_are_the_candidates(self):
+        doc, _, _, _, domain = build_room()
+        rect = domain_mod.optimization_rectangle(domain)
+        self.assertEqual(rect["cells"], [5, 5])
+        points, _ = domain_mod.candidates(domain)
+        self.assertEqual(len(points), 9)
+        # Cell centres corner + (i + 0.5)/5 edge1 + (j + 0.5)/5 edge2 hit every candidate.
+        c, e1, e2 = (V(*rect[k]) for k in ("corner", "edge1", "edge2"))
+        centres = [c + e1 * ((i + 0.5) / 5) + e2 * ((j + 0.5) / 5)
+                   for i in range(5) for j in range(5)]
+        for p in points:
+            self.assertTrue(any((q * 1000.0 - p).Length < 1e-3 for q in centres), p)
+        outer = rect["within"]["outer"]
+        xs, ys = [q[0] for q in outer], [q[1] for q in outer]
+        self.assertAlmostEqual(min(xs), 0.5, 6)  # the face shrunk by EdgeMargin
+        self.assertAlmostEqual(max(ys), 3.5, 6)
+        self.assertTrue(all(abs(q[2] - 2.95) < 1e-9 for q in outer))
+        self.assertEqual(rect["within"]["holes"], [])
+
+    @needs_solver
+    def test_best_place_is_over_the_desk_and_apply_moves_the_luminaire(self):
+        doc, analysis, lum, target, _ = build_room()
+        result = lighting.optimize_placement(
+            doc, target, goal="maximize_mean_illuminance", iterations=30, seed=2,
+            screening_photons=20000, confirmation_photons=100000,
+            output_dir=work_dir("optimize"))
+        members = result.members
+        self.assertGreater(len(members), 0)
+        for m in members:
+            x, y, z = m["positions_m"][lum.Name]
+            self.assertIn(round(x, 6), (1.0, 2.0, 3.0))
+            self.assertIn(round(y, 6), (1.0, 2.0, 3.0))
+            self.assertAlmostEqual(z, 2.95, 6)
+        self.assertTrue(near(members[0]["positions_m"][lum.Name], (3.0, 3.0, 2.95)))
+        lo, hi = members[0]["ci"]
+        self.assertLessEqual(lo, members[0]["mean"])
+        self.assertLessEqual(members[0]["mean"], hi)
+        placed = result.apply()
+        self.assertEqual([o.Name for o in placed], [lum.Name])
+        self.assertTrue(near(lum.Placement.Base, (3000.0, 3000.0, 2950.0), 1e-6))
+
+    @needs_solver
+    def test_two_luminaires_make_one_copy_reused_next_time(self):
+        doc, analysis, lum, target, _ = build_room(max_luminaires=2)
+        kwargs = dict(goal="maximize_mean_illuminance", iterations=30, seed=4,
+                      screening_photons=20000, confirmation_photons=100000)
+        first = lighting.optimize_placement(doc, target, output_dir=work_dir("opt2"), **kwargs)
+        self.assertEqual(len(first.placements), 2)
+        before = len(doc.Objects)
+        placed = first.apply()
+        self.assertEqual(len(doc.Objects), before + 1)  # one copy made
+        copy = placed[1]
+        self.assertEqual(copy.Label, f"{lum.Label}_copy1")
+        self.assertIn(copy, analysis.Group)
+        self.assertEqual(copy.LuminaireType, "Point")
+        for obj in placed:  # both over the desk, where the target wants them
+            self.assertTrue(near(obj.Placement.Base, (3000.0, 3000.0, 2950.0), 1e-6))
+        # The copy is now a luminaire of the analysis: the next run moves it, adds none.
+        second = lighting.optimize_placement(doc, target, output_dir=work_dir("opt3"), **kwargs)
+        self.assertEqual([p.obj for p in second.placements], [lum, copy])
+        second.apply()
+        self.assertEqual(len(doc.Objects), before + 1)
+
+    def test_bad_requests_name_the_problem(self):
+        doc, analysis, lum, target, domain = build_room()
+        with self.assertRaises(ValueError):
+            lighting.optimize_placement(doc, target, goal="maximize_joy",
+                                        output_dir=work_dir("bad"))
+        with self.assertRaises(ValueError):  # uniformity needs a required mean
+            lighting.optimize_placement(doc, target, goal="maximize_uniformity",
+                                        output_dir=work_dir("bad"))
+        domain.Template = None
+        with self.assertRaises(lighting.CheckError) as ctx:
+            lighting.optimize_placement(doc, target, goal="maximize_mean_illuminance",
+                                        output_dir=work_dir("bad"))
+        self.assertIn("no Template", str(ctx.exception.report.format()))
