@@ -113,6 +113,14 @@ class Optimize(DocTestCase):
         with self.assertRaises(ValueError):  # uniformity needs a required mean
             lighting.optimize_placement(doc, target, goal="maximize_uniformity",
                                         output_dir=work_dir("bad"))
+        twin = lighting.make_placement_domain(doc, doc.getObject("Floor"), "Face6", template=lum,
+                                              analysis=analysis)
+        doc.recompute()
+        with self.assertRaises(lighting.CheckError) as ctx:
+            lighting.optimize_placement(doc, target, goal="maximize_mean_illuminance",
+                                        output_dir=work_dir("bad"))
+        self.assertIn("both place", str(ctx.exception.report.format()))
+        doc.removeObject(twin.Name)
         domain.Template = None
         with self.assertRaises(lighting.CheckError) as ctx:
             lighting.optimize_placement(doc, target, goal="maximize_mean_illuminance",

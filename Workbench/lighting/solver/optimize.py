@@ -98,12 +98,19 @@ def placements(analysis: Any) -> Tuple[List[Placement], Report]:
     copies. Domains without a template are reported and skipped."""
     report = Report()
     out: List[Placement] = []
+    owner: Dict[str, Any] = {}  # template name -> the domain that places it
     for domain in analysis_mod.placement_domains(analysis):
         template = domain.Template
         if template is None:
             report.add("warning", f"Placement domain '{domain.Label}' has no Template luminaire: "
                                   "skipped", domain.Name)
             continue
+        if template.Name in owner:
+            report.add("error", f"Placement domains '{owner[template.Name].Label}' and "
+                                f"'{domain.Label}' both place '{template.Label}': give each its "
+                                "own Template", domain.Name)
+            continue
+        owner[template.Name] = domain
         count = int(domain.MaxLuminaires)
         if int(domain.MinLuminaires) != count:
             report.add("warning", f"Placement domain '{domain.Label}': the optimizer places "
