@@ -238,6 +238,48 @@ def commands_smoke():
     pump(0.2)
 
 
+def optimize_in_gui(doc):
+    """Lighting_Optimize on the office: one luminaire on the ceiling domain, maximise the
+    workplane's mean, Run on the worker thread, Apply the best, Undo (one step)."""
+    import FreeCADGui
+
+    from lighting.taskpanels import optimize_panel
+
+    domain = doc.getObject("CeilingDomain")
+    domain.MaxLuminaires, domain.MinLuminaires = 1, 1
+    doc.recompute()
+    template = domain.Template
+    before = [template.Placement.Base.x, template.Placement.Base.y, template.Placement.Base.z]
+    FreeCADGui.runCommand("Lighting_Optimize")
+    pump(0.3)
+    panel = optimize_panel.last_panel()
+    panel.target.setCurrentText(doc.getObject("Workplane").Label)
+    panel.goal.setCurrentIndex(panel.goal.findData("maximize_mean_illuminance"))
+    panel.iterations.setValue(8)
+    panel.screening.setValue(20000)
+    panel.confirmation.setValue(100000)
+    panel.buttons["run"].click()
+    start = time.monotonic()
+    while panel.job is not None and not (panel.job.finished and not panel.timer.isActive()):
+        pump(0.1)
+        if time.monotonic() - start > 120:
+            break
+    info = {"seconds": time.monotonic() - start, "status": panel.status.text(),
+            "rows": panel.table.rowCount(), "before_mm": before}
+    if panel.result is not None and panel.result.members:
+        best = panel.result.members[0]["positions_m"][template.Name]
+        info["best_mm"] = [1000.0 * x for x in best]
+        panel.buttons["apply"].click()
+        pump(0.2)
+        b = template.Placement.Base
+        info["applied_mm"] = [b.x, b.y, b.z]
+        doc.undo()
+        b = template.Placement.Base
+        info["after_undo_mm"] = [b.x, b.y, b.z]
+    STATUS["optimize"] = info
+    FreeCADGui.Control.closeDialog()
+
+
 def main():
     import FreeCAD
     import FreeCADGui
@@ -285,6 +327,7 @@ def main():
     screenshot(doc, "reopened")
     hide_for_view(doc, False)
     cancel_run(doc)
+    optimize_in_gui(doc)
 
 
 try:

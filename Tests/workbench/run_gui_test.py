@@ -87,7 +87,22 @@ def check(status: dict) -> list:
         problems.append(f"Cancel did not stop the run with partial results: {cancel}")
     elif cancel.get("stop_seconds") is None or cancel["stop_seconds"] > 10.0:
         problems.append(f"Cancel took {cancel.get('stop_seconds')} s")
+    problems.extend(check_optimize(status.get("optimize", {})))
     return problems
+
+
+def check_optimize(opt: dict) -> list:
+    """Lighting_Optimize found optima, Apply moved the template there, Undo put it back."""
+    def same(a, b):
+        return a is not None and b is not None and all(abs(x - y) < 1e-6 for x, y in zip(a, b))
+
+    if opt.get("rows", 0) < 1:
+        return [f"Lighting_Optimize listed no optimum: {opt}"]
+    if not same(opt.get("applied_mm"), opt.get("best_mm")):
+        return [f"Apply did not move the luminaire to the best optimum: {opt}"]
+    if not same(opt.get("after_undo_mm"), opt.get("before_mm")):
+        return [f"Undo did not restore the luminaire: {opt}"]
+    return []
 
 
 HEADLESS = """

@@ -208,6 +208,19 @@ class CommandRun(BaseCommand):
         _show_analysis_panel(active_analysis(create=True), autostart=True)
 
 
+class CommandOptimize(BaseCommand):
+    NAME, ICON = "Lighting_Optimize", "Lighting_Optimize"
+    MENU = "Optimize placement"
+    TIP = ("Find where the placement domains' luminaires should go for a lighting intention "
+           "(every statistically indistinguishable optimum, then Apply)")
+
+    def Activated(self) -> None:  # noqa: N802
+        from lighting.taskpanels.optimize_panel import OptimizeTaskPanel
+
+        FreeCADGui.Control.closeDialog()
+        FreeCADGui.Control.showDialog(OptimizeTaskPanel(active_analysis(create=True)))
+
+
 class CommandResults(BaseCommand):
     NAME, ICON = "Lighting_Results", "Lighting_Results"
     MENU = "Results"
@@ -236,11 +249,12 @@ class CommandClearResults(BaseCommand):
 
 
 ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPlacementDomain,
-       CommandCheck, CommandExport, CommandRun, CommandResults, CommandClearResults)
+       CommandCheck, CommandExport, CommandRun, CommandOptimize, CommandResults,
+       CommandClearResults)
 MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_Target", "Lighting_Grid",
                   "Lighting_PlacementDomain"]
-RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Results",
-                "Lighting_ClearResults"]
+RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Optimize",
+                "Lighting_Results", "Lighting_ClearResults"]
 
 
 def register() -> None:

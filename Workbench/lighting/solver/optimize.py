@@ -172,15 +172,22 @@ def _error(text: str) -> Report:
     return report
 
 
-def run_optimization(analysis: Any, target: Any, goal: str, min_mean_lux: Optional[float],
-                     min_uniformity: Optional[float], iterations: int, seed: int,
-                     output_dir: str,
-                     progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
-                     screening_photons: Optional[int] = None,
-                     confirmation_photons: Optional[int] = None) -> PlacementResult:
-    """Export, add the copies, search, and return the ISOC."""
+@dataclass
+class PreparedSearch:
+    """What the search needs, made on the GUI thread (the export reads the document)."""
+
+    placements: List[Placement]
+    scene_file: str
+    doc: Any
+    report: Report
+
+
+def prepare(analysis: Any, target: Any, goal: str, min_mean_lux: Optional[float],
+            min_uniformity: Optional[float], iterations: int, seed: int,
+            output_dir: str) -> PreparedSearch:
+    """Check the domains, export the scene with the copies and the ``optimization`` block to
+    ``<output_dir>/optimization/scene.json``."""
     from lighting.export import scene as scene_mod
-    from lighting.solver import run
 
     placed, report = placements(analysis)
     if not report.ok:
@@ -196,11 +203,36 @@ def run_optimization(analysis: Any, target: Any, goal: str, min_mean_lux: Option
     exported.scene["optimization"] = block
     folder = os.path.join(output_dir, "optimization")
     scene_file = scene_mod.write_scene(exported, folder, analysis.MeshStorage)
+    return PreparedSearch(placed, scene_file, analysis.Document, report)
+
+
+def search(prepared: PreparedSearch,
+           progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
+           screening_photons: Optional[int] = None,
+           confirmation_photons: Optional[int] = None, cancel: Optional[Any] = None) -> PlacementResult:
+    """Run the optimizer on the prepared scene file; safe on a worker thread (the module
+    releases the GIL and touches no FreeCAD object). ``progress`` may return False to stop;
+    ``cancel`` (a ``lightsolver.CancelToken``) stops it within one trace."""
+    from lighting.solver import run
+
     module = run.load_module()
     try:
-        raw = module.optimize(scene_file, progress=progress,
+        raw = module.optimize(prepared.scene_file, progress=progress, cancel=cancel,
                               screening_photons=screening_photons,
                               confirmation_photons=confirmation_photons)
     except (RuntimeError, ValueError) as exc:
         raise SolverError(f"The optimizer rejected the problem: {exc}") from exc
-    return PlacementResult(raw, placed, scene_file, analysis.Document, report)
+    return PlacementResult(raw, prepared.placements, prepared.scene_file, prepared.doc,
+                           prepared.report)
+
+
+def run_optimization(analysis: Any, target: Any, goal: str, min_mean_lux: Optional[float],
+                     min_uniformity: Optional[float], iterations: int, seed: int,
+                     output_dir: str,
+                     progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
+                     screening_photons: Optional[int] = None,
+                     confirmation_photons: Optional[int] = None) -> PlacementResult:
+    """Prepare, then search, on the calling thread."""
+    prepared = prepare(analysis, target, goal, min_mean_lux, min_uniformity, iterations, seed,
+                       output_dir)
+    return search(prepared, progress, screening_photons, confirmation_photons)
