@@ -209,7 +209,8 @@ def prepare(analysis: Any, target: Any, goal: str, min_mean_lux: Optional[float]
 def search(prepared: PreparedSearch,
            progress: Optional[Callable[[Dict[str, Any]], Any]] = None,
            screening_photons: Optional[int] = None,
-           confirmation_photons: Optional[int] = None, cancel: Optional[Any] = None) -> PlacementResult:
+           confirmation_photons: Optional[int] = None,
+           cancel: Optional[Any] = None) -> PlacementResult:
     """Run the optimizer on the prepared scene file; safe on a worker thread (the module
     releases the GIL and touches no FreeCAD object). ``progress`` may return False to stop;
     ``cancel`` (a ``lightsolver.CancelToken``) stops it within one trace."""
