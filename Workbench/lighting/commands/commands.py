@@ -170,14 +170,19 @@ class CommandPlacementDomain(BaseCommand):
             f"analysis={_analysis_arg()})"])
 
 
-def _show_analysis_panel(analysis: Any, **options: Any) -> Any:
-    """Closes any open task dialog and opens the analysis panel; returns the panel."""
-    from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
-
+def _show_panel(make_panel: Any, analysis: Any, **options: Any) -> Any:
+    """Closes any open task dialog and opens ``make_panel(analysis, **options)``; returns it."""
     FreeCADGui.Control.closeDialog()
-    panel = AnalysisTaskPanel(analysis, **options)
+    panel = make_panel(analysis, **options)
     FreeCADGui.Control.showDialog(panel)
     return panel
+
+
+def _show_analysis_panel(analysis: Any, **options: Any) -> Any:
+    """The analysis panel (Check, Export, Run, Results)."""
+    from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
+
+    return _show_panel(AnalysisTaskPanel, analysis, **options)
 
 
 class CommandCheck(BaseCommand):
@@ -217,8 +222,7 @@ class CommandOptimize(BaseCommand):
     def Activated(self) -> None:  # noqa: N802
         from lighting.taskpanels.optimize_panel import OptimizeTaskPanel
 
-        FreeCADGui.Control.closeDialog()
-        FreeCADGui.Control.showDialog(OptimizeTaskPanel(active_analysis(create=True)))
+        _show_panel(OptimizeTaskPanel, active_analysis(create=True))
 
 
 class CommandResults(BaseCommand):
