@@ -121,6 +121,12 @@ class Optimize(DocTestCase):
                                         output_dir=work_dir("bad"))
         self.assertIn("both place", str(ctx.exception.report.format()))
         doc.removeObject(twin.Name)
+        other = lighting.make_analysis(doc, name="OtherAnalysis")
+        domain.Template = lighting.make_luminaire(doc, kind="Point", analysis=other)
+        with self.assertRaises(lighting.CheckError) as ctx:  # not exported by this analysis
+            lighting.optimize_placement(doc, target, goal="maximize_mean_illuminance",
+                                        analysis=analysis, output_dir=work_dir("bad"))
+        self.assertIn("is not a luminaire of the analysis", str(ctx.exception.report.format()))
         domain.Template = None
         with self.assertRaises(lighting.CheckError) as ctx:
             lighting.optimize_placement(doc, target, goal="maximize_mean_illuminance",

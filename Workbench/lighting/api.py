@@ -24,17 +24,12 @@ def _analysis(doc_or_analysis: Any, analysis: Any = None, create: bool = False) 
         if analysis is not None:
             raise KeyError(f"No Lighting analysis named {analysis!r} in '{doc.Name}'")
         if not create:
-            raise CheckError(_report("error", f"Document '{doc.Name}' has no Lighting analysis"))
+            raise CheckError(Report.one("error",
+                                        f"Document '{doc.Name}' has no Lighting analysis"))
         from lighting.objects.factory import make_analysis
 
         found = make_analysis(doc)
     return found
-
-
-def _report(level: str, text: str) -> Report:
-    report = Report()
-    report.add(level, text)
-    return report
 
 
 def _console_log(level: str, text: str) -> None:

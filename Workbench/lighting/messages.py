@@ -60,6 +60,13 @@ class Report:
             raise ValueError(f"unknown message level {level!r}")
         self.messages.append(Message(level, text, object_name))
 
+    @classmethod
+    def one(cls, level: str, text: str) -> "Report":
+        """A report holding a single message."""
+        report = cls()
+        report.add(level, text)
+        return report
+
     def extend(self, problems: Iterable[tuple], object_name: Optional[str] = None) -> None:
         """Append (level, text) pairs, e.g. from an object's ``check()``."""
         for level, text in problems:

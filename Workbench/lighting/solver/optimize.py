@@ -158,18 +158,13 @@ def with_copies(scene: Dict[str, Any], placed: List[Placement]) -> Dict[str, Any
         if p.name in by_name:
             continue
         if p.template.Name not in by_name:
-            raise CheckError(_error(f"Template '{p.template.Label}' of placement domain "
-                                    f"'{p.domain.Label}' is not a luminaire of the analysis"))
+            raise CheckError(Report.one(
+                "error", f"Template '{p.template.Label}' of placement domain "
+                         f"'{p.domain.Label}' is not a luminaire of the analysis"))
         entry = dict(by_name[p.template.Name], name=p.name)
         scene["luminaires"].append(entry)
         by_name[p.name] = entry
     return scene
-
-
-def _error(text: str) -> Report:
-    report = Report()
-    report.add("error", text)
-    return report
 
 
 @dataclass
