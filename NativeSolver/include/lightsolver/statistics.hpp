@@ -32,8 +32,17 @@ struct Estimate {
 };
 
 /// Wilson score interval for `hits` successes in `n` trials at critical value `z`, as fractions
-/// (multiply by the estimate's scale). The lower bound is exactly 0 at zero hits.
+/// (multiply by the estimate's scale). Always 0 <= low <= hits/n <= high <= 1 in double (the
+/// fraction computed as double(hits) / double(n)); exactly 0 at zero hits and exactly 1 at
+/// n hits. [0, 1] for n = 0; throws std::invalid_argument for hits > n.
 std::pair<double, double> wilson_interval(std::uint64_t hits, std::uint64_t n, double z);
+
+/// Largest photon count of one run, whatever max_bounces (docs/statistics.md, "Overflow").
+inline constexpr std::uint64_t kMaxPhotons = 10'000'000'000'000ull;
+
+/// Largest photon count whose 64-bit tallies cannot overflow: min(kMaxPhotons,
+/// (2^64 - 1) / (max_bounces + 1)^2), since a path deposits at most max_bounces + 1 times on a bin.
+std::uint64_t max_photons(std::uint32_t max_bounces);
 
 /// Two-sided standard-normal critical value: P(|Z| <= z) = confidence (0.95 -> 1.95996).
 double z_for_confidence(double confidence);
@@ -41,6 +50,8 @@ double z_for_confidence(double confidence);
 /// Estimate from a tally over `paths` photon paths. `scale` converts a per-path mean deposit to
 /// the reported unit (lux: Phi_total / area). If no path deposited twice, the counts are
 /// binomial and the Wilson score interval is used; otherwise mean ± z·sigma (clamped at 0).
+/// Invariant: ci_low <= mean <= ci_high, ci_low >= 0, all finite. Throws std::invalid_argument
+/// for a negative or non-finite scale, std::overflow_error if a number would not be finite.
 Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double confidence);
 
 /// Outcome of comparing two estimates at a confidence level.

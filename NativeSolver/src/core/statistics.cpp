@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace lightsolver {
 
@@ -39,15 +41,44 @@ double variance_of_mean(const Tally& t, std::uint64_t n) {
 }  // namespace
 
 std::pair<double, double> wilson_interval(std::uint64_t hits, std::uint64_t n, double z) {
+  if (hits > n) throw std::invalid_argument("wilson_interval: more hits than trials");
+  if (n == 0) return {0.0, 1.0};  // no trial, no information
   const double nd = static_cast<double>(n), p = static_cast<double>(hits) / nd;
   const double z2n = z * z / nd;
   const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
   const double half = z / (1.0 + z2n) * std::sqrt(p * (1.0 - p) / nd + 0.25 * z2n / nd);
-  // At zero hits centre == half analytically; rounding must not leave a positive bound.
-  return {hits == 0 ? 0.0 : std::max(0.0, centre - half), centre + half};
+  // The Wilson interval is the set of q with |p - q| <= z sqrt(q (1 - q) / n): it lies in [0, 1]
+  // and holds p itself, exactly 0 at zero hits and exactly 1 at n hits. Rounding the centre and
+  // half-width can miss those by a few ulps (at p = 1 the upper end came out one ulp below 1), so
+  // the edges are set exactly and the bounds clamped to [0, p] and [p, 1]: honest, because the
+  // exact bounds lie there and the clamp moves a rounded bound by those few ulps only.
+  const double low = hits == 0 ? 0.0 : centre - half;
+  const double high = hits == n ? 1.0 : centre + half;
+  return {std::clamp(low, 0.0, p), std::clamp(high, p, 1.0)};
 }
 
+std::uint64_t max_photons(std::uint32_t max_bounces) {
+  // A path traces at most max_bounces + 1 segments and deposits at most once per segment on a
+  // bin, so c <= B + 1 and Q = sum c^2 <= N (B + 1)^2 (S and the ray-segment count are smaller).
+  const unsigned __int128 per_path =
+      static_cast<unsigned __int128>(max_bounces + 1ull) * (max_bounces + 1ull);
+  const unsigned __int128 fits = std::numeric_limits<std::uint64_t>::max() / per_path;
+  return static_cast<std::uint64_t>(std::min<unsigned __int128>(fits, kMaxPhotons));
+}
+
+namespace {
+
+bool finite(const Estimate& e) {
+  return std::isfinite(e.mean) && std::isfinite(e.sigma) && std::isfinite(e.ci_low) &&
+         std::isfinite(e.ci_high);
+}
+
+}  // namespace
+
 Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double confidence) {
+  if (!(scale >= 0.0 && std::isfinite(scale))) {
+    throw std::invalid_argument("make_estimate: scale must be finite and >= 0");
+  }
   Estimate e;
   e.hits = t.sum;
   if (paths == 0) return e;
@@ -55,19 +86,29 @@ Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double
   const double n = static_cast<double>(paths);
   const double p = static_cast<double>(t.sum) / n;
   e.mean = scale * p;
-  if (t.sum_sq == t.sum) {
+  if (t.sum_sq == t.sum && t.sum <= paths) {
     // Each path deposited at most once (c_i in {0,1} <=> Q == S): binomial counts, for which
-    // the Wilson score interval keeps its coverage at small and zero counts.
+    // the Wilson score interval keeps its coverage at small and zero counts. Its fractions hold
+    // p, and multiplying by scale > 0 rounds monotonically, so the bounds hold the mean.
     const auto [low, high] = wilson_interval(t.sum, paths, z);
     e.binomial = true;
     e.sigma = scale * std::sqrt(std::max(0.0, p * (1.0 - p)) / n);
     e.ci_low = scale * low;
     e.ci_high = scale * high;
-    return e;
+  } else {
+    e.sigma = scale * std::sqrt(variance_of_mean(t, paths));
+    e.ci_low = std::max(0.0, e.mean - z * e.sigma);  // a - b <= a in floating point for b >= 0
+    e.ci_high = e.mean + z * e.sigma;
   }
-  e.sigma = scale * std::sqrt(variance_of_mean(t, paths));
-  e.ci_low = std::max(0.0, e.mean - z * e.sigma);
-  e.ci_high = e.mean + z * e.sigma;
+  // Containment by construction above; kept as an invariant here so no later change can break
+  // it. Non-finite numbers cannot arise from validated scenes (docs/statistics.md, "Ranges"):
+  // reaching this throw means a bug, which must not reach a results file as inf or NaN.
+  e.ci_low = std::min(e.ci_low, e.mean);
+  e.ci_high = std::max(e.ci_high, e.mean);
+  if (!finite(e)) {
+    throw std::overflow_error("make_estimate: non-finite estimate (scale " + std::to_string(scale) +
+                              ", " + std::to_string(t.sum) + " hits)");
+  }
   return e;
 }
 

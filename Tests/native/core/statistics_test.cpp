@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include "scene_builders.hpp"
 
@@ -31,8 +35,8 @@ TEST(Statistics, PerPathVarianceIsExact) {
 
 TEST(Statistics, HugeCountsKeepPrecision) {
   // 5 * 10^11 paths each depositing exactly twice: S = 10^12, Q = 2 * 10^12, N Q = S^2.
-  const Estimate e = make_estimate({1'000'000'000'000ull, 2'000'000'000'000ull},
-                                   500'000'000'000ull, 1.0, 0.95);
+  const Estimate e =
+      make_estimate({1'000'000'000'000ull, 2'000'000'000'000ull}, 500'000'000'000ull, 1.0, 0.95);
   EXPECT_DOUBLE_EQ(e.mean, 2.0);
   EXPECT_EQ(e.sigma, 0.0);
 }
@@ -231,6 +235,150 @@ TEST(Statistics, EstimateRecordsWhichIntervalItUsed) {
   EXPECT_DOUBLE_EQ(e.ci_low, 2.0 * low);
   EXPECT_DOUBLE_EQ(e.ci_high, 2.0 * high);
   EXPECT_EQ(wilson_interval(0, 50, 2.0).first, 0.0);
+}
+
+}  // namespace
+}  // namespace lightsolver::test
+
+// Every interval holds its estimate, exactly, at the edges where rounding bites: p = 0 and
+// p = 1 (a closed black room where each path deposits once gave ci_high one ulp below the
+// mean), one hit or one miss in 1..10^13 trials, scales from 1e-300 to 1e12 including ones
+// that are not powers of two, and per-path tallies with S^2 at or next to N Q.
+namespace lightsolver::test {
+namespace {
+
+std::vector<std::uint64_t> edge_trial_counts() {
+  std::vector<std::uint64_t> n = {1, 2, 3};
+  for (int k = 2; k <= 43; ++k) {  // 2^43 ~ 8.8e12
+    n.push_back((1ull << k) - 1);
+    n.push_back((1ull << k) + 1);
+  }
+  for (std::uint64_t p = 10; p <= 10'000'000'000'000ull; p *= 10) n.push_back(p);
+  return n;
+}
+
+const double kEdgeScales[] = {1e-300, 1e-100, 3.7e-7, 0.1,  1.0 / 3.0, 0.7,
+                              1.0,    100.0,  1e6,    1e12, 0.0};
+const double kEdgeConfidences[] = {0.5, 0.68, 0.9, 0.95, 0.99, 0.999, 0.999999, 0.9999994};
+
+// Counts every failure instead of stopping at the first, so a regression shows its extent.
+struct Containment {
+  int checked = 0, failed = 0;
+  std::string first_failure;
+  void check(const Tally& t, std::uint64_t n, double scale, double confidence) {
+    const Estimate e = make_estimate(t, n, scale, confidence);
+    ++checked;
+    const bool ok = std::isfinite(e.mean) && std::isfinite(e.sigma) && std::isfinite(e.ci_low) &&
+                    std::isfinite(e.ci_high) && e.ci_low >= 0.0 && e.ci_low <= e.mean &&
+                    e.mean <= e.ci_high && e.sigma >= 0.0;
+    if (!ok && failed++ == 0) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf,
+                    "S=%llu Q=%llu N=%llu scale=%.17g c=%g: [%.17g, %.17g] mean %.17g",
+                    (unsigned long long)t.sum, (unsigned long long)t.sum_sq, (unsigned long long)n,
+                    scale, confidence, e.ci_low, e.ci_high, e.mean);
+      first_failure = buf;
+    }
+  }
+};
+
+TEST(Statistics, BinomialIntervalsContainTheirEstimateAtTheEdges) {
+  Containment c;
+  for (const std::uint64_t n : edge_trial_counts()) {
+    for (const std::uint64_t hits : {std::uint64_t(0), std::uint64_t(1), n - 1, n}) {
+      if (hits > n) continue;
+      for (const double scale : kEdgeScales) {
+        for (const double conf : kEdgeConfidences) c.check({hits, hits}, n, scale, conf);
+      }
+    }
+  }
+  EXPECT_EQ(c.failed, 0) << "of " << c.checked << "; first: " << c.first_failure;
+  EXPECT_GT(c.checked, 30'000);
+}
+
+TEST(Statistics, PerPathIntervalsContainTheirEstimateAtTheEdges) {
+  Containment c;
+  for (const std::uint64_t n : edge_trial_counts()) {
+    for (const std::uint64_t k : {std::uint64_t(2), std::uint64_t(3), std::uint64_t(1001)}) {
+      if (n > max_photons(1000)) continue;  // k <= max_bounces + 1: as large as a run can be
+      std::vector<Tally> tallies = {
+          {n * k, n * k * k},                  // every path k times: S^2 = N Q, sigma 0
+          {n * k + 1, n * k * k + 2 * k + 1},  // one path once more: S^2 just below N Q
+          {k, k * k},                          // a single path deposited k times
+          {n + 1, n + 3},                      // every path once, one path twice: p > 1
+      };
+      if (n >= 2) tallies.push_back({n * k - 1, n * k * k - 2 * k + 1});  // one path once less
+      for (const Tally& t : tallies) {
+        for (const double scale : kEdgeScales) {
+          for (const double conf : kEdgeConfidences) c.check(t, n, scale, conf);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(c.failed, 0) << "of " << c.checked << "; first: " << c.first_failure;
+  EXPECT_GT(c.checked, 30'000);
+}
+
+TEST(Statistics, EveryPathOnceGivesAnUpperBoundEqualToTheMean) {
+  // The closed black room: N paths, each deposits exactly once, p = 1. Wilson's upper end is
+  // exactly 1 there, so ci_high is exactly the mean, not one ulp below it.
+  for (const std::uint64_t n : {1ull, 3ull, 1000ull, 123'457ull, 1ull << 40}) {
+    const Estimate e = make_estimate({n, n}, n, 100.0, 0.95);
+    EXPECT_EQ(e.mean, 100.0);
+    EXPECT_EQ(e.ci_high, 100.0) << n;
+    EXPECT_LE(e.ci_low, 100.0);
+    EXPECT_TRUE(e.binomial);
+  }
+  const auto [low, high] = wilson_interval(7, 7, 3.0);
+  EXPECT_EQ(high, 1.0);
+  EXPECT_LT(low, 1.0);
+  EXPECT_EQ(wilson_interval(0, 0, 2.0), std::make_pair(0.0, 1.0));
+  EXPECT_THROW(wilson_interval(8, 7, 2.0), std::invalid_argument);
+}
+
+TEST(Statistics, BinomialSigmaIsPinned) {
+  // 25 hits in 100 paths at scale 4: sigma = 4 sqrt(0.25 * 0.75 / 100) = sqrt(0.03). The
+  // optimizer's comparisons use sigma, not the Wilson bounds: a doubled sigma must fail here.
+  const Estimate e = make_estimate({25, 25}, 100, 4.0, 0.95);
+  ASSERT_TRUE(e.binomial);
+  EXPECT_DOUBLE_EQ(e.mean, 1.0);
+  EXPECT_NEAR(e.sigma, 0.17320508075688773, 1e-15);
+}
+
+TEST(Statistics, PerPathSigmaIsPinned) {
+  // Five paths depositing 0, 2, 0, 2, 1 times: S = 5, Q = 9. Sample variance
+  // (9 - 25/5) / 4 = 1, variance of the mean 1/5; at scale 10 sigma = 10 sqrt(0.2).
+  const Estimate e = make_estimate({5, 9}, 5, 10.0, 0.95);
+  ASSERT_FALSE(e.binomial);
+  EXPECT_DOUBLE_EQ(e.mean, 10.0);
+  EXPECT_NEAR(e.sigma, 4.47213595499958, 1e-13);
+  const double z = z_for_confidence(0.95);
+  EXPECT_NEAR(e.ci_low, 10.0 - z * 4.47213595499958, 1e-12);
+  EXPECT_NEAR(e.ci_high, 10.0 + z * 4.47213595499958, 1e-12);
+}
+
+TEST(Statistics, EstimatesAreFiniteOrRefused) {
+  EXPECT_THROW(make_estimate({1, 1}, 10, INFINITY, 0.95), std::invalid_argument);
+  EXPECT_THROW(make_estimate({1, 1}, 10, -1.0, 0.95), std::invalid_argument);
+  EXPECT_THROW(make_estimate({1, 1}, 10, NAN, 0.95), std::invalid_argument);
+  // A scale no validated scene reaches (flux / area <= 10^12 lm / 10^-12 m2 per luminaire):
+  // mean ± z sigma would overflow; refused rather than reported as inf.
+  EXPECT_THROW(make_estimate({2002, 2002 * 1001}, 2, 1e306, 0.95), std::overflow_error);
+}
+
+TEST(Statistics, PhotonMaximumKeepsTalliesFromOverflowing) {
+  constexpr std::uint64_t kAll = std::numeric_limits<std::uint64_t>::max();
+  EXPECT_EQ(max_photons(0), kMaxPhotons);
+  EXPECT_EQ(max_photons(1000), kMaxPhotons);  // the default max_bounces: 10^13 photons
+  for (const std::uint32_t b : {0u, 1000u, 3000u, 4000u, 100'000u, 1'000'000u, 4'000'000'000u}) {
+    // Q <= N (B + 1)^2 must fit in 64 bits; S and the ray-segment count, N (B + 1), are smaller.
+    const unsigned __int128 per_path = static_cast<unsigned __int128>(b + 1ull) * (b + 1ull);
+    const std::uint64_t n = max_photons(b);
+    EXPECT_GE(n, 1u) << b;
+    EXPECT_LE(n * per_path, kAll) << b;
+    if (n < kMaxPhotons) EXPECT_GT((n + 1) * per_path, kAll) << "not the largest for " << b;
+  }
+  EXPECT_LT(max_photons(1'000'000), 20'000'000u);  // (2^64 - 1) / (10^6 + 1)^2 = 18446707
 }
 
 }  // namespace
