@@ -100,6 +100,24 @@ struct Scene {
 /// Flux of a directional luminaire: illuminance normal to the beam times the projected area.
 double directional_flux_lm(const Luminaire& l);
 
+/// Input ranges (docs/scene-format.md, "Ranges"). Values beyond them have no physical use and
+/// are errors; within them every result is a finite number (docs/statistics.md).
+namespace limits {
+inline constexpr double kMinGridEdge_m = 1e-6;     ///< grid edges and grid cell edges: 1 um
+inline constexpr double kMinArea_m2 = 1e-12;       ///< a grid cell, a surface target: (1 um)^2
+inline constexpr double kMaxCoordinate_m = 1e9;    ///< |x|, |y|, |z| of points and edges
+inline constexpr double kMaxFlux_lm = 1e12;        ///< one luminaire (also derived fluxes)
+inline constexpr double kMaxIlluminance_lx = 1e7;  ///< directional (sunlight: ~1e5 lx)
+inline constexpr double kMaxIntensity_cd = 1e15;   ///< photometric peak, as scaled
+inline constexpr std::uint64_t kMaxGridCells = 10'000'000;  ///< one grid, and all grids together
+inline constexpr std::uint32_t kMaxBounces = 1'000'000;     ///< settings.max_bounces
+}  // namespace limits
+
+/// Throws InputError(file, where) unless 1 <= photons <= max_photons(max_bounces)
+/// (statistics.hpp: at most 10^13, fewer where the 64-bit tallies could overflow).
+void check_photon_count(std::uint64_t photons, std::uint32_t max_bounces, const std::string& file,
+                        const std::string& where);
+
 /// Checks every value (ranges, NaN, references, areas); drops degenerate triangles with a
 /// warning. Throws InputError naming the field. Called by the loaders; call it yourself after
 /// building a Scene by hand.

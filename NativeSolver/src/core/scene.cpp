@@ -1,10 +1,15 @@
 // Scene queries and validation shared by every way of building a scene (file, Python, tests).
-#include <glm/geometric.hpp>
-
-#include <cmath>
-#include <string>
-
 #include "lightsolver/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+
+#include "lightsolver/photometry.hpp"
+#include "lightsolver/statistics.hpp"
 
 namespace lightsolver {
 
@@ -35,6 +40,30 @@ double directional_flux_lm(const Luminaire& l) {
 
 namespace {
 
+// Numbers in messages: 6 significant digits, so 1e-30 does not print as 0.000000.
+std::string show(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+void check_photon_count(std::uint64_t photons, std::uint32_t max_bounces, const std::string& file,
+                        const std::string& where) {
+  if (photons == 0) throw InputError(file, where, "must be at least 1");
+  const std::uint64_t most = max_photons(max_bounces);
+  if (photons > most) {
+    throw InputError(file, where,
+                     "at most " + std::to_string(most) + " photons in one run with max_bounces = " +
+                         std::to_string(max_bounces) + " (got " + std::to_string(photons) +
+                         "): 10^13 at most, and few enough that the 64-bit sums of squared "
+                         "per-path counts cannot overflow (docs/statistics.md)");
+  }
+}
+
+namespace {
+
 class Validator {
  public:
   explicit Validator(Scene& s) : s_(s) {}
@@ -45,11 +74,24 @@ class Validator {
 
   void run() {
     for (std::size_t i = 0; i < s_.materials.size(); ++i) material(i);
-    for (std::size_t i = 0; i < s_.meshes.size(); ++i) mesh(i);
+    std::unordered_map<std::string, std::size_t> mesh_names;
+    for (std::size_t i = 0; i < s_.meshes.size(); ++i) {
+      const auto [first, inserted] = mesh_names.emplace(s_.meshes[i].name, i);
+      if (!inserted) {
+        fail(at("meshes", i, "name"), "duplicate mesh name \"" + s_.meshes[i].name +
+                                          "\" (also meshes[" + std::to_string(first->second) +
+                                          "]): mesh names must be unique");
+      }
+      mesh(i);
+    }
     if (s_.luminaires.empty()) fail("luminaires", "the scene has no luminaire");
     for (std::size_t i = 0; i < s_.luminaires.size(); ++i) luminaire(i);
     if (s_.targets.empty()) fail("targets", "the scene has no target to report");
     for (std::size_t i = 0; i < s_.targets.size(); ++i) target(i);
+    if (grid_cells_ > limits::kMaxGridCells) {
+      fail("targets",
+           "the grids have " + std::to_string(grid_cells_) + " cells together, more than 10^7");
+    }
     settings();
   }
 
@@ -62,16 +104,27 @@ class Validator {
     return key ? s + "." + key : s;
   }
   void unit_interval(const std::string& where, double v) const {
-    if (!(v >= 0.0 && v <= 1.0)) fail(where, "must lie in 0..1 (got " + std::to_string(v) + ")");
+    if (!(v >= 0.0 && v <= 1.0)) fail(where, "must lie in 0..1 (got " + show(v) + ")");
   }
-  void finite(const std::string& where, const glm::dvec3& v) const {
+  // Points and edges: finite, and within 10^9 m of the origin (beyond any geographic use; the
+  // solver re-centres in double, but the float tracer needs a bounded extent).
+  void coordinates(const std::string& where, const glm::dvec3& v) const {
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
       fail(where, "coordinates must be finite numbers");
     }
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (largest > limits::kMaxCoordinate_m) {
+      fail(where, "coordinate " + show(largest) + " m is beyond 10^9 m, beyond any physical use");
+    }
   }
-  void nonzero(const std::string& where, const glm::dvec3& v) const {
-    finite(where, v);
-    if (glm::length(v) == 0.0) fail(where, "must not be the zero vector");
+  // Directions: any finite non-zero length (they are normalised).
+  void direction(const std::string& where, const glm::dvec3& v) const {
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+      fail(where, "coordinates must be finite numbers");
+    }
+    const double length = glm::length(v);
+    if (!(length > 0.0)) fail(where, "must not be the zero vector");
+    if (!std::isfinite(length)) fail(where, "too long to normalise (give a unit vector)");
   }
 
   void material(std::size_t i) {
@@ -97,7 +150,7 @@ class Validator {
       fail(at("meshes", i, "material"), "unknown material");
     }
     for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-      finite(at("meshes", i, "vertices") + "[" + std::to_string(v) + "]", m.vertices[v]);
+      coordinates(at("meshes", i, "vertices") + "[" + std::to_string(v) + "]", m.vertices[v]);
     }
     std::size_t kept = 0;
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
@@ -127,23 +180,28 @@ class Validator {
     return !(c > 1e-7 * glm::length(e1) * glm::length(e2));
   }
 
+  static double area_m2(const Mesh& m) {
+    double area = 0.0;
+    for (const auto& t : m.triangles) {
+      area += 0.5 * glm::length(glm::cross(m.vertices[t[1]] - m.vertices[t[0]],
+                                           m.vertices[t[2]] - m.vertices[t[0]]));
+    }
+    return area;
+  }
+
   void luminaire(std::size_t i) {
     Luminaire& l = s_.luminaires[i];
     using T = Luminaire::Type;
-    if (l.type != T::Directional && !(l.flux_lm >= 0.0 && std::isfinite(l.flux_lm))) {
-      fail(at("luminaires", i, "flux_lm"),
-           "must be a finite value >= 0 (got " + std::to_string(l.flux_lm) + ")");
-    }
     if (l.type == T::Point || l.type == T::Spot || l.type == T::Photometric) {
-      finite(at("luminaires", i, "position"), l.position);
+      coordinates(at("luminaires", i, "position"), l.position);
     }
     if (l.type == T::Spot || l.type == T::Directional) {
-      nonzero(at("luminaires", i, "direction"), l.direction);
+      direction(at("luminaires", i, "direction"), l.direction);
       l.direction = glm::normalize(l.direction);
     }
     if (l.type == T::Spot) spot_angles(i, l);
     if (l.type == T::Photometric) {
-      nonzero(at("luminaires", i, "aim"), l.aim);
+      direction(at("luminaires", i, "aim"), l.aim);
       l.aim = glm::normalize(l.aim);
       if (!l.sampler) fail(at("luminaires", i, "file"), "no photometric data loaded");
       if (!std::isfinite(l.rotation_deg)) fail(at("luminaires", i, "rotation_deg"), "not finite");
@@ -152,11 +210,58 @@ class Validator {
       parallelogram("luminaires", i, l.corner, l.edge1, l.edge2, "the area is zero");
     }
     if (l.type == T::Directional) {
-      if (!(l.illuminance_lx >= 0.0)) fail(at("luminaires", i, "illuminance_lx"), "must be >= 0");
-      if (std::abs(glm::dot(glm::normalize(glm::cross(l.edge1, l.edge2)), l.direction)) < 1e-9) {
-        fail(at("luminaires", i, "direction"), "the beam runs parallel to its parallelogram");
-      }
-      l.flux_lm = directional_flux_lm(l);
+      directional(i, l);
+    } else {
+      flux(i, l);
+    }
+    if (l.type == T::Photometric) peak_intensity(i, l);
+  }
+
+  void flux(std::size_t i, const Luminaire& l) {
+    const std::string where = at("luminaires", i, "flux_lm");
+    if (!(l.flux_lm >= 0.0 && std::isfinite(l.flux_lm))) {
+      const char* from = l.type == Luminaire::Type::Photometric ? " (emitted, from the file)" : "";
+      fail(where, "must be a finite value >= 0 (got " + show(l.flux_lm) + from + ")");
+    }
+    // The photometric flux is the file's integrated candela times flux_lm / the file's lamp
+    // lumens, times its TILT factor: the product is what is bounded.
+    const double emitted = l.flux_lm * photometric_tilt_factor(l);
+    if (!(emitted <= limits::kMaxFlux_lm)) {
+      fail(where,
+           "emits " + show(emitted) + " lm, more than 10^12 lm: beyond any physical light source");
+    }
+  }
+
+  void directional(std::size_t i, Luminaire& l) {
+    const std::string where = at("luminaires", i, "illuminance_lx");
+    if (!(l.illuminance_lx >= 0.0 && std::isfinite(l.illuminance_lx))) {
+      fail(where, "must be a finite value >= 0 (got " + show(l.illuminance_lx) + ")");
+    }
+    if (l.illuminance_lx > limits::kMaxIlluminance_lx) {
+      fail(where, "more than 10^7 lx (got " + show(l.illuminance_lx) +
+                      "; direct sunlight is about 10^5 lx)");
+    }
+    if (std::abs(glm::dot(glm::normalize(glm::cross(l.edge1, l.edge2)), l.direction)) < 1e-9) {
+      fail(at("luminaires", i, "direction"), "the beam runs parallel to its parallelogram");
+    }
+    l.flux_lm = directional_flux_lm(l);
+    if (!(l.flux_lm <= limits::kMaxFlux_lm)) {
+      fail(where, "the beam carries " + show(l.flux_lm) +
+                      " lm (illuminance_lx x the opening's area across the beam), more than "
+                      "10^12 lm: beyond any physical light source");
+    }
+  }
+
+  // The scaled table's peak: the file's candela times emitted flux / the file's integrated flux.
+  void peak_intensity(std::size_t i, const Luminaire& l) {
+    if (!l.photometry || l.photometry->candela.empty()) return;
+    const double peak_cd =
+        *std::max_element(l.photometry->candela.begin(), l.photometry->candela.end()) *
+        (l.flux_lm / l.sampler->integrated_flux_lm());
+    if (!(peak_cd <= limits::kMaxIntensity_cd)) {
+      fail(at("luminaires", i, "file"), "peak intensity " + show(peak_cd) +
+                                            " cd (as scaled) is more than 10^15 cd: beyond any "
+                                            "physical light source");
     }
   }
 
@@ -172,9 +277,11 @@ class Validator {
   // corner + s*edge1 + t*edge2 with a non-zero area (area luminaires, sun openings, grids).
   void parallelogram(const char* list, std::size_t i, const glm::dvec3& corner,
                      const glm::dvec3& e1, const glm::dvec3& e2, const char* what) {
-    finite(at(list, i, "corner"), corner);
-    nonzero(at(list, i, "edge1"), e1);
-    nonzero(at(list, i, "edge2"), e2);
+    coordinates(at(list, i, "corner"), corner);
+    coordinates(at(list, i, "edge1"), e1);
+    coordinates(at(list, i, "edge2"), e2);
+    if (glm::length(e1) == 0.0) fail(at(list, i, "edge1"), "must not be the zero vector");
+    if (glm::length(e2) == 0.0) fail(at(list, i, "edge2"), "must not be the zero vector");
     if (glm::length(glm::cross(e1, e2)) <= 1e-9 * glm::length(e1) * glm::length(e2)) {
       fail(at(list, i, "edge2"), std::string("edge1 and edge2 are parallel: ") + what);
     }
@@ -182,27 +289,66 @@ class Validator {
 
   void target(std::size_t i) {
     const Target& t = s_.targets[i];
-    if (t.type == Target::Type::Surface) {
-      if (t.mesh < 0 || t.mesh >= static_cast<int>(s_.meshes.size())) {
-        fail(at("targets", i, "mesh"), "unknown mesh");
-      }
-      if (s_.meshes[t.mesh].triangles.empty()) {
-        fail(at("targets", i, "mesh"),
-             "mesh \"" + s_.meshes[t.mesh].name + "\" has zero area (no usable triangle)");
-      }
-      return;
+    if (t.type == Target::Type::Grid) return grid(i, t);
+    if (t.mesh < 0 || t.mesh >= static_cast<int>(s_.meshes.size())) {
+      fail(at("targets", i, "mesh"), "unknown mesh");
     }
+    const Mesh& m = s_.meshes[t.mesh];
+    if (m.triangles.empty()) {
+      fail(at("targets", i, "mesh"), "mesh \"" + m.name + "\" has zero area (no usable triangle)");
+    }
+    const double area = area_m2(m);
+    if (!(area >= limits::kMinArea_m2)) {
+      fail(at("targets", i, "mesh"), "mesh \"" + m.name + "\" has an area of " + show(area) +
+                                         " m2, below (1 um)^2 = 1e-12 m2");
+    }
+  }
+
+  // Grids divide flux by their cells' areas: sizes below 1 um are below any physical use (a
+  // 1 mm cell is fine) and would only make the estimates huge and meaningless.
+  void grid(std::size_t i, const Target& t) {
     parallelogram("targets", i, t.corner, t.edge1, t.edge2, "the grid has zero area");
-    if (t.nu == 0 || t.nv == 0) fail(at("targets", i, "cells"), "need at least 1x1 cells");
+    const double u_m = glm::length(t.edge1), v_m = glm::length(t.edge2);
+    for (const auto& [key, length] : {std::pair{"edge1", u_m}, std::pair{"edge2", v_m}}) {
+      if (length < limits::kMinGridEdge_m) {
+        fail(at("targets", i, key), "is " + show(length) + " m long, shorter than 1 um");
+      }
+    }
+    const std::string cells = at("targets", i, "cells");
+    if (t.nu == 0 || t.nv == 0) fail(cells, "need at least 1x1 cells");
+    const std::uint64_t count = std::uint64_t(t.nu) * t.nv;
+    if (count > limits::kMaxGridCells) {
+      fail(cells, std::to_string(count) + " cells, more than 10^7 in one grid");
+    }
+    grid_cells_ += count;
+    if (u_m / t.nu < limits::kMinGridEdge_m || v_m / t.nv < limits::kMinGridEdge_m) {
+      fail(cells, "cells of " + show(u_m / t.nu) + " x " + show(v_m / t.nv) +
+                      " m: a cell edge is shorter than 1 um");
+    }
+    const double cell_m2 = glm::length(glm::cross(t.edge1, t.edge2)) / double(count);
+    if (cell_m2 < limits::kMinArea_m2) {
+      fail(cells, "a cell's area is " + show(cell_m2) + " m2, below (1 um)^2 = 1e-12 m2");
+    }
   }
 
   void settings() {
-    if (s_.settings.photons == 0) fail("settings.photons", "must be at least 1");
+    if (s_.settings.max_bounces > limits::kMaxBounces) {
+      fail("settings.max_bounces",
+           "must be <= 1000000 (got " + std::to_string(s_.settings.max_bounces) + ")");
+    }
+    check_photon_count(s_.settings.photons, s_.settings.max_bounces, s_.source_file,
+                       "settings.photons");
     const double c = s_.settings.confidence;
     if (!(c > 0.0 && c < 1.0)) fail("settings.confidence", "must lie strictly between 0 and 1");
+    if (c < 0.5) {
+      s_.warnings.push_back("settings.confidence: " + show(c) +
+                            " gives intervals narrower than one standard deviation; "
+                            "0.95 is usual");
+    }
   }
 
   Scene& s_;
+  std::uint64_t grid_cells_ = 0;
 };
 
 }  // namespace

@@ -193,7 +193,11 @@ Target read_target(const JsonNode& n, const Scene& scene) {
     if (cells.array_size() != 2) cells.fail("expected [nu, nv]");
     const std::uint64_t nu = cells[0].unsigned_integer(), nv = cells[1].unsigned_integer();
     if (nu == 0 || nv == 0) cells.fail("a grid needs at least 1x1 cells");
-    if (nu * nv > 10'000'000ull) cells.fail("more than 10^7 cells in one grid");
+    // Each factor first: nu * nv must not wrap around in 64 bits before the comparison.
+    if (nu > limits::kMaxGridCells || nv > limits::kMaxGridCells ||
+        nu * nv > limits::kMaxGridCells) {
+      cells.fail("more than 10^7 cells in one grid");
+    }
     t.nu = static_cast<std::uint32_t>(nu);
     t.nv = static_cast<std::uint32_t>(nv);
   } else {
@@ -208,7 +212,7 @@ Settings read_settings(const JsonNode& n) {
   if (n.has("photons")) s.photons = n.at("photons").unsigned_integer();
   if (n.has("max_bounces")) {
     const std::uint64_t b = n.at("max_bounces").unsigned_integer();
-    if (b > 1'000'000) n.at("max_bounces").fail("must be <= 1000000");
+    if (b > limits::kMaxBounces) n.at("max_bounces").fail("must be <= 1000000");
     s.max_bounces = static_cast<std::uint32_t>(b);
   }
   if (n.has("seed")) s.seed = n.at("seed").unsigned_integer();

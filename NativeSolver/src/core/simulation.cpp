@@ -193,7 +193,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.seed = options.seed.value_or(scene.settings.seed);
   r.confidence = options.confidence.value_or(scene.settings.confidence);
   r.target_accuracy = options.target_accuracy;
-  if (r.photons_requested == 0) throw InputError("", "photons", "must be at least 1");
+  check_photon_count(r.photons_requested, scene.settings.max_bounces, "", "photons");
   if (!(r.confidence > 0.0 && r.confidence < 1.0)) {
     throw InputError("", "confidence", "must lie strictly between 0 and 1");
   }
