@@ -155,7 +155,11 @@ Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
     if (n.has("aim")) l.aim = n.at("aim").vec3();
     l.rotation_deg = n.number_or("rotation_deg", 0.0);
     std::optional<double> flux;
-    if (n.has("flux_lm")) flux = n.at("flux_lm").number();
+    if (n.has("flux_lm")) {
+      flux = n.at("flux_lm").number();
+      // Checked here so the message names the scene file (load_photometric knows only the field).
+      if (!(*flux >= 0.0)) n.at("flux_lm").fail("must be a finite value >= 0");
+    }
     l.file = n.at("file").string();
     load_photometric(l, (fs::path(base_dir) / l.file).lexically_normal().string(), flux,
                      n.path() + ".flux_lm");

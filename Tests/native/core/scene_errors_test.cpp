@@ -2,6 +2,8 @@
 // crash, hang or silent nonsense; recoverable problems produce warnings.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -234,6 +236,178 @@ TEST(SceneErrors, SpotAndAreaGeometryChecks) {
   EXPECT_NE(error_of(replaced(valid_scene(), lamp, area))
                 .find("luminaires[0].edge2: must not be the zero vector"),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace lightsolver::test
+
+namespace lightsolver::test {
+namespace {
+
+// Every error docs/scene-format.md states, one check each: the message names the file and the
+// field. `patch` replaces `from` in the valid scene.
+void expect_error(const std::string& from, const std::string& to, const std::string& expected) {
+  const std::string e = error_of(replaced(valid_scene(), from, to));
+  EXPECT_NE(e.find("scene.json: " + expected), std::string::npos)
+      << "expected \"" << expected << "\" in: " << e;
+}
+
+const std::string kLamp =
+    R"({"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]})";
+const std::string kFloorTarget = R"({"name": "floor", "type": "surface", "mesh": "floor"})";
+const std::string kMaterial = R"("white": {"type": "diffuse", "reflectance": 0.7})";
+const std::string kTriangles = R"("triangles": [[0,1,2],[0,2,3]])";
+
+TEST(SceneErrorsDocumented, MissingTopLevelKeys) {
+  const std::string v = valid_scene();
+  for (const char* key : {"format", "materials", "meshes", "luminaires", "targets"}) {
+    nlohmann::json doc = nlohmann::json::parse(v);
+    doc.erase(key);
+    const std::string e = error_of(doc.dump());
+    EXPECT_NE(e.find(std::string("scene.json: missing required key \"") + key + "\""),
+              std::string::npos)
+        << e;
+  }
+  EXPECT_EQ(error_of(replaced(v, R"(,
+  "settings": {"photons": 1000})",
+                              "")),
+            "<no error>");  // settings are optional
+}
+
+TEST(SceneErrorsDocumented, MaterialRanges) {
+  expect_error(kMaterial, R"("white": {"type": "mirror", "reflectance": -0.1})",
+               "materials.white.reflectance: must lie in 0..1 (got -0.1)");
+  expect_error(kMaterial, R"("white": {"type": "glass", "ior": 0.9})",
+               "materials.white.ior: must lie in 1..10");
+  expect_error(kMaterial, R"("white": {"type": "glass", "ior": 11})",
+               "materials.white.ior: must lie in 1..10");
+  expect_error(kMaterial, R"("white": {"type": "glass", "transmittance": 1.5})",
+               "materials.white.transmittance: must lie in 0..1");
+  expect_error(kMaterial, R"("white": {"type": "glass", "transmittance": -0.5})",
+               "materials.white.transmittance: must lie in 0..1");
+  expect_error(kMaterial, R"("white": {"type": "glossy", "reflectance": 0.6, "specular": 0.5})",
+               "materials.white: reflectance + specular must not exceed 1");
+  expect_error(kMaterial, R"("white": {"type": "glossy", "specular": 1.2})",
+               "materials.white.specular: must lie in 0..1");
+  expect_error(kMaterial, R"("white": {"type": "glossy", "roughness": 2})",
+               "materials.white.roughness: must lie in 0..1");
+  expect_error(kMaterial, R"("white": {"type": "glass", "thin": 1})",
+               "materials.white.thin: expected true or false");
+  // At the limits: accepted.
+  EXPECT_EQ(error_of(replaced(valid_scene(), kMaterial,
+                              R"("white": {"type": "glossy", "reflectance": 0.5, "specular": 0.5,
+                                 "roughness": 1})")),
+            "<no error>");
+}
+
+TEST(SceneErrorsDocumented, MeshNamesAreUnique) {
+  const std::string mesh = R"({"name": "floor", "material": "white",
+              "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "triangles": [[0,1,2],[0,2,3]]})";
+  expect_error(mesh, mesh + ", " + mesh,
+               "meshes[1].name: duplicate mesh name \"floor\" (also meshes[0])");
+  Scene s = scene_from_json(valid_scene(), "scene.json", kData);
+  s.meshes.push_back(s.meshes[0]);  // in memory too
+  EXPECT_THROW(validate(s), InputError);
+  s.meshes[1].name = "floor 2";
+  EXPECT_NO_THROW(validate(s));
+}
+
+TEST(SceneErrorsDocumented, MeshGeometry) {
+  expect_error(kTriangles, R"("triangles": [[0,1,2],[0,2]])",
+               "meshes[0].triangles[1]: expected [i, j, k] (3 vertex indices)");
+  expect_error(kTriangles, R"("triangles": [[0,1,2,3]])",
+               "meshes[0].triangles[0]: expected [i, j, k]");
+  expect_error("[1,1,0],", "[1,1],", "meshes[0].vertices[2]: expected [x, y, z]");
+  expect_error(kTriangles, R"("triangles": [[0,1,-2]])",
+               "meshes[0].triangles[0][2]: must be >= 0 (got -2)");
+  expect_error(kTriangles, kTriangles + R"(, "file": "triangle.ply")",
+               "meshes[0]: give either \"file\" or inline geometry");
+  expect_error(R"(, "triangles": [[0,1,2],[0,2,3]])", "",
+               "meshes[0]: missing required key \"triangles\"");
+}
+
+TEST(SceneErrorsDocumented, TransformShapeAndLastRow) {
+  auto with = [](const std::string& t) { return kTriangles + R"(, "transform": )" + t; };
+  expect_error(kTriangles, with("[[1,0,0,0],[0,1,0,0],[0,0,1,0]]"),
+               "meshes[0].transform: expected a 4x4 matrix (4 rows of 4 numbers)");
+  expect_error(kTriangles, with("[[1,0,0,0],[0,1,0,0],[0,0,1],[0,0,0,1]]"),
+               "meshes[0].transform[2]: expected a row of 4 numbers");
+  expect_error(kTriangles, with("[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,1,1]]"),
+               "meshes[0].transform[3]: the last row of an affine transform must be [0, 0, 0, 1]");
+  expect_error(kTriangles, with("[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,2]]"),
+               "meshes[0].transform[3]: the last row");
+  const Scene s = scene_from_json(
+      replaced(valid_scene(), kTriangles, with("[[1,0,0,2.5],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
+      "scene.json", kData);
+  EXPECT_EQ(s.meshes[0].vertices[1], glm::dvec3(3.5, 0, 0));  // applied to the vertices
+}
+
+TEST(SceneErrorsDocumented, SpotAngles) {
+  auto spot = [](const std::string& beam, const std::string& field) {
+    return R"({"name": "s", "type": "spot", "flux_lm": 100, "position": [0,0,2],
+      "direction": [0,0,-1], "beam_angle_deg": )" +
+           beam + R"(, "field_angle_deg": )" + field + "}";
+  };
+  expect_error(kLamp, spot("20", "361"), "luminaires[0].field_angle_deg: must be <= 360");
+  expect_error(kLamp, spot("0", "40"),
+               "luminaires[0].beam_angle_deg: need 0 < beam_angle_deg < field_angle_deg");
+  expect_error(kLamp, spot("40", "40"), "luminaires[0].beam_angle_deg: need 0 < beam_angle_deg");
+  expect_error(kLamp, spot("20", "40").replace(spot("20", "40").find("[0,0,-1]"), 8, "[0,0,0]"),
+               "luminaires[0].direction: must not be the zero vector");
+  EXPECT_EQ(error_of(replaced(valid_scene(), kLamp, spot("180", "360"))), "<no error>");
+}
+
+TEST(SceneErrorsDocumented, DirectionalBeamParallelToItsOpening) {
+  const std::string sun = R"({"name": "sun", "type": "directional", "direction": [1,0,0],
+      "corner": [0,0,2], "edge1": [1,0,0], "edge2": [0,1,0], "illuminance_lx": 1000})";
+  expect_error(kLamp, sun, "luminaires[0].direction: the beam runs parallel to its parallelogram");
+  expect_error(kLamp, replaced(sun, "1000", "-1"),
+               "luminaires[0].illuminance_lx: must be a finite value >= 0 (got -1)");
+  expect_error(kLamp, replaced(sun, "[0,1,0]", "[2,0,0]"),
+               "luminaires[0].edge2: edge1 and edge2 are parallel: the area is zero");
+  EXPECT_EQ(error_of(replaced(valid_scene(), kLamp, replaced(sun, "[1,0,0],", "[1,0,-1],"))),
+            "<no error>");
+}
+
+TEST(SceneErrorsDocumented, PhotometricFluxAndFile) {
+  const std::string lum = R"({"name": "d", "type": "photometric", "file": "FILE",
+      "position": [0.5,0.5,2], "flux_lm": 1000})";
+  const std::string file = std::string(LIGHTSOLVER_SOURCE_DIR) + "/Resources/luminaires/";
+  expect_error(kLamp, replaced(replaced(lum, "FILE", file + "downlight.ies"), "1000", "-1"),
+               "luminaires[0].flux_lm: must be a finite value >= 0");
+  const std::string missing =
+      error_of(replaced(valid_scene(), kLamp, replaced(lum, "FILE", "none.ies")));
+  EXPECT_NE(missing.find("none.ies"), std::string::npos) << missing;
+}
+
+TEST(SceneErrorsDocumented, GridCells) {
+  const std::string grid = R"({"name": "g", "type": "grid", "corner": [0,0,1],
+      "edge1": [1,0,0], "edge2": [0,1,0], "cells": CELLS})";
+  auto with = [&](const std::string& cells) { return replaced(grid, "CELLS", cells); };
+  expect_error(kFloorTarget, with("[0, 4]"), "targets[0].cells: a grid needs at least 1x1 cells");
+  expect_error(kFloorTarget, with("[4, 0]"), "targets[0].cells: a grid needs at least 1x1 cells");
+  expect_error(kFloorTarget, with("[10000, 1001]"),
+               "targets[0].cells: more than 10^7 cells in one grid");
+  expect_error(kFloorTarget, with("[4]"), "targets[0].cells: expected [nu, nv]");
+  expect_error(kFloorTarget, with("[4, 2.5]"), "targets[0].cells[1]: expected a non-negative");
+  EXPECT_EQ(error_of(replaced(valid_scene(), kFloorTarget, with("[1000, 1000]"))), "<no error>");
+}
+
+TEST(SceneErrorsDocumented, Settings) {
+  const std::string photons = R"("photons": 1000)";
+  expect_error(photons, R"("photons": 1000, "max_bounces": 1000001)",
+               "settings.max_bounces: must be <= 1000000");
+  expect_error(photons, R"("photons": 1000, "max_bounces": -1)",
+               "settings.max_bounces: must be >= 0");
+  expect_error(photons, R"("photons": 1000, "confidence": 0)",
+               "settings.confidence: must lie strictly between 0 and 1");
+  expect_error(photons, R"("photons": 1000, "seed": 1.5)",
+               "settings.seed: expected a non-negative");
+  expect_error(photons, R"("photons": 1000, "threads": 2)", "settings.threads: unknown key");
+  EXPECT_EQ(
+      error_of(replaced(valid_scene(), photons,
+                        R"("photons": 1000, "max_bounces": 0, "seed": 18446744073709551615)")),
+      "<no error>");
 }
 
 }  // namespace
