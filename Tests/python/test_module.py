@@ -150,9 +150,10 @@ def test_stop_reason_and_time_limit():
     assert time.monotonic() - start < 10
     assert r["stop_reason"] == "time" and not r["partial"] and r["max_seconds"] == 0.5
     assert 0 < r["photons"] < 10 ** 13 and any("time limit" in w for w in r["warnings"])
-    s.max_seconds = 0.5  # the scene's limit, used when solve() gives none
+    s.max_seconds = 0.5  # the scene's limit, used when solve() gives no photon count
+    s.photons = 10 ** 13
     assert s.max_seconds == 0.5
-    assert lightsolver.solve(s, photons=10 ** 13)["stop_reason"] == "time"
+    assert lightsolver.solve(s)["stop_reason"] == "time"
     s.max_seconds = None
     assert s.max_seconds is None
     with pytest.raises(ValueError, match="max_seconds"):

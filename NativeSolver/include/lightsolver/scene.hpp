@@ -80,8 +80,8 @@ struct Settings {
   std::uint32_t max_bounces = 1000;
   std::uint64_t seed = 1;
   double confidence = 0.95;
-  /// Time limit of the tracing (s, finite, > 0); unset: none, except accuracy runs without an
-  /// explicit photon count (SolveOptions::max_seconds).
+  /// Time limit of the tracing (s, finite, > 0) of runs without an explicit photon count;
+  /// unset: none, except accuracy runs (SolveOptions::max_seconds).
   std::optional<double> max_seconds;
 };
 

@@ -44,7 +44,8 @@ struct SolveOptions {
   /// the stopping point is deterministic for a seed unless the time limit ends the run.
   std::optional<double> target_accuracy;
   /// Time limit of the tracing in seconds, checked between batches (finite, > 0). Default:
-  /// scene.settings.max_seconds; when neither is set, runs have no time limit except accuracy
+  /// scene.settings.max_seconds when `photons` is not given (an explicit count is traced to
+  /// the end unless this is set); when neither is set, runs have no time limit except accuracy
   /// runs without an explicit photon count, which stop after kDefaultAccuracySeconds. Where a
   /// time limit ends a run depends on the machine's speed.
   std::optional<double> max_seconds;

@@ -81,12 +81,15 @@ std::uint64_t photons_for_goal(const detail::PreparedScene& s, const detail::Tal
 
 // The photon count and time limit of one run. An accuracy goal without an explicit photon
 // count gets a large budget bounded by time; scene.settings.photons is not an explicit count
-// (it is the default of runs without a goal).
+// (it is the default of runs without a goal). The scene's time limit is a default like its
+// photon count: an explicit count (the optimizer's evaluations, --photons) is traced to the
+// end unless an explicit time limit is given too.
 void plan_run(const Scene& scene, const SolveOptions& o, Results& r) {
   const bool open_budget = o.target_accuracy && !o.photons;
   r.photons_requested =
       o.photons ? *o.photons : open_budget ? kAccuracyPhotonBudget : scene.settings.photons;
-  r.max_seconds = o.max_seconds ? o.max_seconds : scene.settings.max_seconds;
+  r.max_seconds = o.max_seconds;
+  if (!r.max_seconds && !o.photons) r.max_seconds = scene.settings.max_seconds;
   if (!r.max_seconds && open_budget) r.max_seconds = kDefaultAccuracySeconds;
   if (r.max_seconds && !(std::isfinite(*r.max_seconds) && *r.max_seconds > 0.0)) {
     throw InputError(scene.source_file, "max_seconds", "must be a finite number of seconds > 0");

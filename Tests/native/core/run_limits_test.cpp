@@ -69,6 +69,25 @@ TEST(RunLimits, AnExplicitPhotonCountStaysTheBudget) {
   EXPECT_FALSE(plain.max_seconds.has_value());
 }
 
+TEST(RunLimits, TheScenesTimeLimitIsADefaultLikeItsPhotonCount) {
+  // A limit so short that any run of more than one batch (2^14 photons) would be cut by it.
+  Scene s = lit_room(1'000'000);
+  s.settings.max_seconds = 1e-6;
+  const Results from_scene = solve(s, SolveOptions{});
+  EXPECT_EQ(from_scene.stop_reason, kStopTime);
+  EXPECT_EQ(from_scene.photons, 1u << 14);  // at least one batch, then the limit
+  // An explicit count (an optimizer evaluation, --photons) is traced to the end...
+  SolveOptions o;
+  o.photons = 200'000;
+  const Results explicit_count = solve(s, o);
+  EXPECT_EQ(explicit_count.stop_reason, kStopPhotons);
+  EXPECT_EQ(explicit_count.photons, 200'000u);
+  EXPECT_FALSE(explicit_count.max_seconds.has_value());
+  // ...unless an explicit time limit comes with it.
+  o.max_seconds = 1e-6;
+  EXPECT_EQ(solve(s, o).photons, 1u << 14);
+}
+
 TEST(RunLimits, ATimeLimitEndsAHugeRunWithAForecast) {
   const Scene s = lit_room(10'000);
   SolveOptions o;
@@ -121,7 +140,7 @@ TEST(RunLimits, ATimeLimitBeforeTheGoalIsReportedAsSuch) {
 }
 
 TEST(RunLimits, CancelIsTheStopReasonOfAPartialRun) {
-  const Scene s = lit_room(1'000'000);
+  const Scene s = lit_room(200'000);
   std::atomic<bool> cancel{true};
   SolveOptions o;
   o.cancel = &cancel;
