@@ -39,13 +39,16 @@ class ProgressBar {
   bool operator()(std::uint64_t done, std::uint64_t total) {
     const double elapsed = std::chrono::duration<double>(clock::now() - start_).count();
     if (!tty_ || elapsed < 1.0) return true;
-    const int width = 40, filled = static_cast<int>(width * double(done) / double(total));
+    const double fraction = std::min(1.0, this->fraction(done, total, elapsed));
+    const int width = 40, filled = static_cast<int>(width * fraction);
     std::fprintf(stderr, "\r[%s%s] %5.1f%%  %.1f s", std::string(filled, '#').c_str(),
-                 std::string(width - filled, '.').c_str(), 100.0 * double(done) / double(total),
-                 elapsed);
+                 std::string(width - filled, '.').c_str(), 100.0 * fraction, elapsed);
     drawn_ = true;
     return true;
   }
+  // What the run is expected to cost: an accuracy run's bar then measures the photons it is
+  // expected to need (not its 1e10 budget), or the time limit when that comes first.
+  void expect(const lightsolver::RunForecast& f) { forecast_ = f; }
   ~ProgressBar() {
     if (drawn_) std::fputc('\n', stderr);
   }
@@ -57,7 +60,15 @@ class ProgressBar {
   }
 
  private:
+  double fraction(std::uint64_t done, std::uint64_t total, double elapsed) const {
+    if (!forecast_) return double(done) / double(total);
+    const double by_photons = double(done) / double(std::max<std::uint64_t>(forecast_->photons, 1));
+    return forecast_->max_seconds ? std::max(by_photons, elapsed / *forecast_->max_seconds)
+                                  : by_photons;
+  }
+
   using clock = std::chrono::steady_clock;
+  std::optional<lightsolver::RunForecast> forecast_;
   clock::time_point start_ = clock::now();
   bool tty_ = isatty(STDERR_FILENO);
   bool drawn_ = false;
@@ -133,6 +144,7 @@ int run(const RunArgs& a) {
   {
     ProgressBar bar;
     opt.forecast = [&](const lightsolver::RunForecast& f) {
+      bar.expect(f);
       if (f.seconds > 60.0) bar.note(forecast_text(f, a.accuracy));
     };
     results = lightsolver::solve(scene, opt, std::ref(bar));
