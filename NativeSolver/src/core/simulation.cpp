@@ -79,6 +79,20 @@ std::uint64_t photons_for_goal(const detail::PreparedScene& s, const detail::Tal
   return need >= double(budget) ? budget : std::max(photons, static_cast<std::uint64_t>(need));
 }
 
+// What the rest of the run will cost at the rate of its first `traced_s` seconds.
+RunForecast make_forecast(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                          const Results& r, double traced_s) {
+  RunForecast f;
+  f.photons_per_second = double(r.photons) / traced_s;
+  f.accuracy_goal = r.target_accuracy.has_value();
+  f.photons = f.accuracy_goal ? photons_for_goal(s, t, r.photons, r.confidence,
+                                                 *r.target_accuracy, r.photons_requested)
+                              : r.photons_requested;
+  f.seconds = double(f.photons) / f.photons_per_second;
+  f.max_seconds = r.max_seconds;
+  return f;
+}
+
 // The photon count and time limit of one run. An accuracy goal without an explicit photon
 // count gets a large budget bounded by time; scene.settings.photons is not an explicit count
 // (it is the default of runs without a goal). The scene's time limit is a default like its
@@ -289,15 +303,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
       const double traced_s = seconds_since(tracing_start);
       if (forecast_due && traced_s >= 0.5 && r.photons < r.photons_requested) {
         forecast_due = false;
-        RunForecast f;
-        f.photons_per_second = double(r.photons) / traced_s;
-        f.accuracy_goal = accuracy_mode;
-        f.photons = accuracy_mode ? photons_for_goal(prepared, tallies, r.photons, r.confidence,
-                                                     *r.target_accuracy, r.photons_requested)
-                                  : r.photons_requested;
-        f.seconds = double(f.photons) / f.photons_per_second;
-        f.max_seconds = r.max_seconds;
-        options.forecast(f);
+        options.forecast(make_forecast(prepared, tallies, r, traced_s));
       }
       if (progress && !progress(r.photons, r.photons_requested)) {
         if (r.photons < r.photons_requested) r.stop_reason = kStopCancelled;
