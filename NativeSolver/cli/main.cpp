@@ -1,15 +1,18 @@
 // lightsolver: command-line front end. `lightsolver run SCENE.json` traces and prints a table.
-#include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
-#include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
+#include <optional>
+#include <string>
 
+#include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
@@ -36,19 +39,36 @@ class ProgressBar {
   bool operator()(std::uint64_t done, std::uint64_t total) {
     const double elapsed = std::chrono::duration<double>(clock::now() - start_).count();
     if (!tty_ || elapsed < 1.0) return true;
-    const int width = 40, filled = static_cast<int>(width * double(done) / double(total));
+    const double fraction = std::min(1.0, this->fraction(done, total, elapsed));
+    const int width = 40, filled = static_cast<int>(width * fraction);
     std::fprintf(stderr, "\r[%s%s] %5.1f%%  %.1f s", std::string(filled, '#').c_str(),
-                 std::string(width - filled, '.').c_str(), 100.0 * double(done) / double(total),
-                 elapsed);
+                 std::string(width - filled, '.').c_str(), 100.0 * fraction, elapsed);
     drawn_ = true;
     return true;
   }
+  // What the run is expected to cost: an accuracy run's bar then measures the photons it is
+  // expected to need (not its 1e10 budget), or the time limit when that comes first.
+  void expect(const lightsolver::RunForecast& f) { forecast_ = f; }
   ~ProgressBar() {
     if (drawn_) std::fputc('\n', stderr);
   }
+  // A line of its own on stderr (the bar, if drawn, continues below it).
+  void note(const std::string& text) {
+    if (drawn_) std::fputc('\n', stderr);
+    std::fprintf(stderr, "%s\n", text.c_str());
+    std::fflush(stderr);
+  }
 
  private:
+  double fraction(std::uint64_t done, std::uint64_t total, double elapsed) const {
+    if (!forecast_) return double(done) / double(total);
+    const double by_photons = double(done) / double(std::max<std::uint64_t>(forecast_->photons, 1));
+    return forecast_->max_seconds ? std::max(by_photons, elapsed / *forecast_->max_seconds)
+                                  : by_photons;
+  }
+
   using clock = std::chrono::steady_clock;
+  std::optional<lightsolver::RunForecast> forecast_;
   clock::time_point start_ = clock::now();
   bool tty_ = isatty(STDERR_FILENO);
   bool drawn_ = false;
@@ -57,7 +77,7 @@ class ProgressBar {
 struct RunArgs {
   std::string scene, out, backend = "auto";
   std::optional<std::uint64_t> photons, seed;
-  std::optional<double> confidence, accuracy;
+  std::optional<double> confidence, accuracy, max_seconds;
   int threads = 0;
   bool quiet = false;
 };
@@ -70,26 +90,69 @@ lightsolver::SolveOptions options_from(const RunArgs& a) {
   opt.threads = a.threads;
   opt.backend = a.backend;
   opt.target_accuracy = a.accuracy;
+  opt.max_seconds = a.max_seconds;
   opt.cancel = &g_interrupted;
   return opt;
 }
 
+// "0.8 s", "45 s", "4 min 10 s", "3 h 20 min", "2.5 days".
+std::string duration_text(double s) {
+  char buf[64];
+  if (s < 10) {
+    std::snprintf(buf, sizeof buf, "%.2g s", s);
+  } else if (s < 59.5) {
+    std::snprintf(buf, sizeof buf, "%.0f s", s);
+  } else if (s < 3600) {
+    const long t = std::lround(s);
+    std::snprintf(buf, sizeof buf, "%ld min %ld s", t / 60, t % 60);
+  } else if (s < 86400) {
+    const long m = std::lround(s / 60);
+    std::snprintf(buf, sizeof buf, "%ld h %ld min", m / 60, m % 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.3g days", s / 86400);
+  }
+  return buf;
+}
+
+// The line printed when a run is expected to last more than a minute, e.g. "tracing 1e+09
+// photons, about 4 min 10 s at 4e+06 photons/s".
+std::string forecast_text(const lightsolver::RunForecast& f, std::optional<double> accuracy) {
+  char head[160];
+  if (f.accuracy_goal) {
+    std::snprintf(head, sizeof head, "accuracy ±%g %%: about %.3g photons needed", 100 * *accuracy,
+                  double(f.photons));
+  } else {
+    std::snprintf(head, sizeof head, "tracing %.3g photons", double(f.photons));
+  }
+  char rate[64];
+  std::snprintf(rate, sizeof rate, " at %.2g photons/s", f.photons_per_second);
+  std::string text = head + (", about " + duration_text(f.seconds)) + rate;
+  if (f.max_seconds) {
+    text += f.seconds > *f.max_seconds
+                ? "; the time limit (" + duration_text(*f.max_seconds) + ") will end it first"
+                : " (time limit " + duration_text(*f.max_seconds) + ")";
+  }
+  return text;
+}
+
 int run(const RunArgs& a) {
+  if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");  // before any tracing
   const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
-  const lightsolver::SolveOptions opt = options_from(a);
+  lightsolver::SolveOptions opt = options_from(a);
   std::signal(SIGINT, on_sigint);
   lightsolver::Results results;
   {
     ProgressBar bar;
+    opt.forecast = [&](const lightsolver::RunForecast& f) {
+      bar.expect(f);
+      if (f.seconds > 60.0) bar.note(forecast_text(f, a.accuracy));
+    };
     results = lightsolver::solve(scene, opt, std::ref(bar));
   }
   std::signal(SIGINT, SIG_DFL);
   if (!a.quiet) std::cout << lightsolver::results_table(results);
-  if (!a.out.empty()) {
-    std::ofstream out(a.out);
-    out << lightsolver::results_to_json(results);
-    if (!out) throw std::runtime_error("cannot write " + a.out);
-  }
+  if (!a.out.empty())
+    lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(results));
   return results.partial ? 130 : 0;  // 128 + SIGINT, as shells report an interrupted command
 }
 
@@ -115,9 +178,8 @@ int cost(const RunArgs& a, std::uint64_t max_photons) {
     opt.photons = n;
     last = lightsolver::solve(scene, opt);
     if (last.partial) break;
-    std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(n),
-                last.seconds, 100.0 * worst_relative_half_width(last),
-                double(n) / std::max(last.seconds, 1e-9));
+    std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(n), last.seconds,
+                100.0 * worst_relative_half_width(last), double(n) / std::max(last.seconds, 1e-9));
   }
   if (last.photons == 0) return 130;
   const double w = worst_relative_half_width(last), rate = double(last.photons) / last.seconds;
@@ -131,6 +193,7 @@ int cost(const RunArgs& a, std::uint64_t max_photons) {
 }
 
 int photometry(const std::string& file, const std::string& plot) {
+  if (!plot.empty()) lightsolver::check_writable(plot, "plot");
   const lightsolver::PhotometricData data = lightsolver::load_photometry(file);
   std::cout << lightsolver::photometry_summary(data);
   if (!plot.empty()) {
@@ -159,11 +222,19 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--threads", ra.threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   run_cmd->add_option("--backend", ra.backend, kBackendHelp)->check(CLI::IsMember(kBackends));
-  run_cmd->add_option("--out", ra.out, "Write results JSON here");
-  run_cmd->add_option("--accuracy", ra.accuracy,
-                      "Stop when every target's CI half-width is at most this fraction of its "
-                      "mean (e.g. 0.02); --photons is then the budget")
+  run_cmd->add_option("--out", ra.out,
+                      "Write results JSON here (checked before tracing, written atomically)");
+  run_cmd
+      ->add_option("--accuracy", ra.accuracy,
+                   "Stop when every target's CI half-width is at most this fraction of its "
+                   "mean (e.g. 0.02); --photons is then the budget, else up to 1e10 photons "
+                   "within --max-seconds")
       ->check(CLI::Range(1e-6, 0.999));
+  run_cmd
+      ->add_option("--max-seconds", ra.max_seconds,
+                   "Stop tracing after this many seconds (overrides settings.max_seconds; "
+                   "default: none, 300 for --accuracy without --photons)")
+      ->check(CLI::PositiveNumber);
   run_cmd->add_flag("--quiet,-q", ra.quiet, "Do not print the table");
 
   RunArgs ca;

@@ -6,11 +6,11 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "lightsolver/optimizer/scene_problem.hpp"
+#include "lightsolver/output_file.hpp"
 
 namespace lightsolver::cli {
 namespace {
@@ -68,6 +68,7 @@ void print_summary(const opt::SceneProblem& p, const opt::OptimizationResult& r)
 }
 
 int run_optimize(OptimizeArgs& a) {
+  if (!a.out.empty()) check_writable(a.out, "results file");  // before any search
   const opt::SceneProblem problem = opt::load_problem(a.scene);
   if (a.static_n) a.overrides.screening_photons = 0;
   opt::Control control;
@@ -82,11 +83,7 @@ int run_optimize(OptimizeArgs& a) {
   const opt::OptimizationResult r = opt::run_problem(problem, a.overrides, control);
   std::signal(SIGINT, SIG_DFL);
   print_summary(problem, r);
-  if (!a.out.empty()) {
-    std::ofstream out(a.out);
-    out << opt::problem_result_json(problem, r) << "\n";
-    if (!out) throw std::runtime_error("cannot write " + a.out);
-  }
+  if (!a.out.empty()) write_file_atomically(a.out, opt::problem_result_json(problem, r) + "\n");
   return r.stop == opt::StopReason::kCancelled && g_stop.load() ? 130 : 0;
 }
 
@@ -102,7 +99,8 @@ void add_optimize_command(CLI::App& app) {
   cmd->add_option("--iterations", args->overrides.iterations,
                   "VNS iterations (overrides search.max_iterations)");
   cmd->add_option("--seed", args->overrides.seed, "Search seed (overrides search.seed)");
-  cmd->add_option("--out", args->out, "Write the ISOC and statistics as JSON here");
+  cmd->add_option("--out", args->out,
+                  "Write the ISOC and statistics as JSON here (checked before the search)");
   cmd->add_option("--threads", args->overrides.threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--screening-photons", args->overrides.screening_photons,

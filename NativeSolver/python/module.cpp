@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <cmath>
 #include <memory>
 
 #include "lightsolver/scene_io.hpp"
@@ -97,6 +98,7 @@ py::dict results_dict(const Results& r) {
   d["photons"] = r.photons;
   d["photons_requested"] = r.photons_requested;
   d["partial"] = r.partial;
+  d["stop_reason"] = r.stop_reason;
   d["seconds"] = r.seconds;
   d["backend"] = r.backend;
   d["confidence"] = r.confidence;
@@ -104,6 +106,7 @@ py::dict results_dict(const Results& r) {
   d["ray_segments"] = r.ray_segments;
   d["total_flux_lm"] = r.total_flux_lm;
   d["warnings"] = r.warnings;
+  if (r.max_seconds) d["max_seconds"] = *r.max_seconds;
   if (r.target_accuracy) {
     d["target_accuracy"] = *r.target_accuracy;
     d["accuracy_met"] = r.accuracy_met;
@@ -117,7 +120,8 @@ py::dict results_dict(const Results& r) {
 py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   std::optional<std::uint64_t> seed, std::optional<double> confidence,
                   int threads, const std::string& backend, py::object progress,
-                  std::optional<CancelToken> cancel, std::optional<double> target_accuracy) {
+                  std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
+                  std::optional<double> max_seconds) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
   // solve() validates the copy (and reports dropped triangles among the warnings).
   const Scene snapshot = scene;
@@ -128,6 +132,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   opt.threads = threads;
   opt.backend = backend;
   opt.target_accuracy = target_accuracy;
+  opt.max_seconds = max_seconds;
   CancelToken token = cancel.value_or(CancelToken{});
   opt.cancel = token.flag.get();
   std::exception_ptr callback_error;
@@ -320,6 +325,14 @@ PYBIND11_MODULE(lightsolver, m) {
           "confidence", [](const Scene& s) { return s.settings.confidence; },
           [](Scene& s, double v) { s.settings.confidence = v; })
       .def_property(
+          "max_seconds", [](const Scene& s) { return s.settings.max_seconds; },
+          [](Scene& s, std::optional<double> v) {
+            if (v && !(std::isfinite(*v) && *v > 0.0))
+              throw py::value_error("max_seconds must be a finite number of seconds > 0");
+            s.settings.max_seconds = v;
+          },
+          "Time limit of the tracing in seconds, or None")
+      .def_property(
           "max_bounces", [](const Scene& s) { return s.settings.max_bounces; },
           [](Scene& s, std::uint32_t v) { s.settings.max_bounces = v; })
       .def_property_readonly("warnings", [](const Scene& s) { return s.warnings; })
@@ -348,8 +361,12 @@ PYBIND11_MODULE(lightsolver, m) {
         py::arg("seed") = py::none(), py::arg("confidence") = py::none(), py::arg("threads") = 0,
         py::arg("backend") = "auto", py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
+        py::arg("max_seconds") = py::none(),
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
         "progress(done, total) may return False to stop; the result is then marked partial. "
-        "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean.");
+        "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean; "
+        "without photons the budget is 1e10 photons within max_seconds (default 300 s). "
+        "max_seconds limits the tracing time (default: Scene.max_seconds). The dict's "
+        "stop_reason says which limit ended the run: photons, accuracy, time or cancelled.");
   bind_optimizer(m);  // lightsolver.optimize
 }

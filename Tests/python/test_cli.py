@@ -1,5 +1,7 @@
-"""The command-line program: help, version, the table, results JSON, errors, Ctrl-C."""
+"""The command-line program: help, version, the table, results JSON, errors, Ctrl-C, output
+paths checked before tracing and written atomically, time limits and accuracy budgets."""
 import json
+import os
 import signal
 import subprocess
 import time
@@ -50,8 +52,14 @@ def test_errors_name_the_file_and_field(cli, tmp_path):
     assert "broken.json: luminaires[0].flux_lm: must be a finite value >= 0" in r.stderr
     r = run(cli, "run", str(tmp_path / "missing.json"))
     assert r.returncode != 0 and "missing.json" in r.stderr
-    r = run(cli, "run", str(bad), "--confidence", "2")
-    assert r.returncode != 0
+
+
+
+def test_a_bad_confidence_is_named(cli, room_scene):
+    # A valid scene, so the option is the only thing wrong.
+    r = run(cli, "run", str(room_scene), "--photons", "1000", "--confidence", "2")
+    assert r.returncode != 0 and "--confidence" in r.stderr, r.stderr
+    assert "photons" not in r.stdout  # nothing traced
 
 
 def test_ctrl_c_stops_cleanly_with_partial_results(cli, room_scene, tmp_path):
@@ -65,6 +73,7 @@ def test_ctrl_c_stops_cleanly_with_partial_results(cli, room_scene, tmp_path):
     assert "PARTIAL" in stdout
     res = json.loads(out.read_text())
     assert res["partial"] and 0 < res["photons"] < 5_000_000_000
+    assert res["stop_reason"] == "cancelled"
     assert res["targets"][0]["mean_lux"] > 0
 
 
@@ -87,6 +96,7 @@ def test_run_to_an_accuracy_goal(cli, room_scene, tmp_path):
     res = json.loads(out.read_text())
     assert res["accuracy_met"] and res["target_accuracy"] == 0.05
     assert res["photons"] < 100_000_000 and not res["partial"]
+    assert res["stop_reason"] == "accuracy"
     for t in res["targets"]:
         assert (t["ci_high_lux"] - t["ci_low_lux"]) / 2 <= 0.05 * t["mean_lux"]
 
@@ -103,3 +113,115 @@ def test_photometry_summary_and_plot(cli, tmp_path):
     bad.write_text("IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3\n")
     r = run(cli, "photometry", str(bad))
     assert r.returncode == 1 and "bad.ies" in r.stderr and "line" in r.stderr
+
+
+# A run of days: if an output path were only checked after tracing, these tests would time out.
+DAYS = "10000000000000"
+
+
+def run_fast(cli, *args):
+    """A command that must fail at once; returns (result, seconds)."""
+    start = time.monotonic()
+    r = subprocess.run([cli, *args], capture_output=True, text=True, timeout=30)
+    return r, time.monotonic() - start
+
+
+def test_unwritable_out_fails_before_tracing(cli, room_scene, tmp_path):
+    # Root ignores permission bits, so unwritable paths are made otherwise: a missing folder, a
+    # folder as the target, a regular file used as a folder, and /proc (no new files there).
+    (tmp_path / "folder").mkdir()
+    (tmp_path / "plain").write_text("keep")
+    cases = {tmp_path / "missing" / "r.json": "does not exist",
+             tmp_path / "folder": "it is a folder",
+             tmp_path / "plain" / "r.json": "is not a folder",
+             "/proc/lightsolver-test.json": "cannot create files in '/proc'"}
+    for out, why in cases.items():
+        r, seconds = run_fast(cli, "run", str(room_scene), "--photons", DAYS, "--out", str(out))
+        assert r.returncode == 1, (out, r.stderr)
+        assert f"error: cannot write the results file '{out}'" in r.stderr and why in r.stderr
+        assert seconds < 20 and r.stdout == ""  # nothing traced
+    assert sorted(os.listdir(tmp_path)) == ["folder", "plain"]  # nothing created
+    assert os.listdir(tmp_path / "folder") == [] and (tmp_path / "plain").read_text() == "keep"
+    assert not os.path.exists("/proc/lightsolver-test.json")
+
+
+def test_an_existing_file_survives_a_failed_write(cli, room_scene):
+    # /proc/version exists and can be read, but nothing can be created next to it: the write
+    # is refused before tracing and the file is untouched.
+    before = open("/proc/version").read()
+    r, _ = run_fast(cli, "run", str(room_scene), "--photons", DAYS, "--out", "/proc/version")
+    assert r.returncode == 1 and "'/proc/version'" in r.stderr
+    assert open("/proc/version").read() == before
+
+
+def test_results_are_replaced_atomically(cli, room_scene, tmp_path):
+    out = tmp_path / "r.json"
+    out.write_text("previous results")
+    os.symlink(out, tmp_path / "link.json")
+    for seed in ("1", "2"):
+        r = run(cli, "run", str(room_scene), "--photons", "20000", "--seed", seed, "-q",
+                "--out", str(tmp_path / "link.json"))
+        assert r.returncode == 0, r.stderr
+        assert json.loads(out.read_text())["seed"] == int(seed)
+    assert sorted(os.listdir(tmp_path)) == ["link.json", "r.json"]  # no temporary file left
+    assert os.path.islink(tmp_path / "link.json")
+
+
+def test_optimize_and_plot_outputs_are_checked_first(cli, tmp_path):
+    from conftest import SOURCE_DIR
+    room = SOURCE_DIR / "Examples" / "optimization" / "small_room" / "small_room.json"
+    r, _ = run_fast(cli, "optimize", str(room), "--iterations", "100000",
+                    "--out", str(tmp_path / "missing" / "isoc.json"))
+    assert r.returncode == 1 and "cannot write the results file" in r.stderr, r.stderr
+    assert r.stdout == ""  # no iteration was searched
+    ies = SOURCE_DIR / "Resources/luminaires/wallwasher.ies"
+    r, _ = run_fast(cli, "photometry", str(ies), "--plot", str(tmp_path))
+    assert r.returncode == 1 and "cannot write the plot" in r.stderr and r.stdout == ""
+    png = tmp_path / "polar.png"
+    for _ in range(2):
+        r, _ = run_fast(cli, "photometry", str(ies), "--plot", str(png))
+        assert r.returncode == 0, r.stderr
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert os.listdir(tmp_path) == ["polar.png"]
+
+
+def test_time_limit_ends_a_long_run_with_an_estimate(cli, room_scene, tmp_path):
+    out = tmp_path / "r.json"
+    r, seconds = run_fast(cli, "run", str(room_scene), "--photons", DAYS, "--max-seconds", "1.5",
+                          "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert seconds < 20
+    # Printed once the first batches give a rate, because the run would last over a minute.
+    assert "tracing 1e+13 photons, about " in r.stderr and " photons/s" in r.stderr
+    assert "the time limit (1.5 s) will end it first" in r.stderr
+    assert "stopped: time limit 1.5 s" in r.stdout and "PARTIAL" not in r.stdout
+    res = json.loads(out.read_text())
+    assert res["stop_reason"] == "time" and res["max_seconds"] == 1.5 and not res["partial"]
+    assert 0 < res["photons"] < int(DAYS) and res["photons_requested"] == int(DAYS)
+    assert any("machine's speed" in w for w in res["warnings"])
+    r = run(cli, "run", str(room_scene), "--photons", "20000", "-q")
+    assert r.returncode == 0 and r.stderr == ""  # short runs print no estimate
+    r = run(cli, "run", str(room_scene), "--max-seconds", "0")
+    assert r.returncode != 0 and "--max-seconds" in r.stderr
+
+
+def test_accuracy_without_photons_is_not_capped_by_the_scene(cli, room_scene, tmp_path):
+    doc = json.loads(room_scene.read_text())
+    doc["settings"]["photons"] = 10_000  # far too few for +-2 %
+    scene = tmp_path / "room.json"
+    scene.write_text(json.dumps(doc))
+    out = tmp_path / "r.json"
+    r = run(cli, "run", str(scene), "--accuracy", "0.02", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert "stopped: accuracy goal ±2 % met" in r.stdout
+    res = json.loads(out.read_text())
+    assert res["stop_reason"] == "accuracy" and res["accuracy_met"]
+    assert res["photons"] > 10_000 and res["photons_requested"] == 10_000_000_000
+    assert res["max_seconds"] == 300 and not res["warnings"]
+    for t in res["targets"]:
+        assert (t["ci_high_lux"] - t["ci_low_lux"]) / 2 <= 0.02 * t["mean_lux"]
+    # An explicit photon count stays the budget: the goal is then missed, with a warning.
+    r = run(cli, "run", str(scene), "--accuracy", "0.02", "--photons", "10000", "--out", str(out))
+    res = json.loads(out.read_text())
+    assert r.returncode == 0 and res["stop_reason"] == "photons" and not res["accuracy_met"]
+    assert "max_seconds" not in res and res["warnings"]

@@ -137,6 +137,31 @@ def test_target_accuracy_keyword():
     assert (walls["ci_high_lux"] - walls["ci_low_lux"]) / 2 <= 0.02 * walls["mean_lux"]
 
 
+def test_stop_reason_and_time_limit():
+    r = lightsolver.solve(unit_room(0.5), photons=100_000)
+    assert r["stop_reason"] == "photons" and "max_seconds" not in r
+    s = unit_room(0.5)
+    s.photons = 10_000  # not a budget for an accuracy goal: only an explicit count is
+    r = lightsolver.solve(s, target_accuracy=0.01)
+    assert r["stop_reason"] == "accuracy" and r["accuracy_met"] and r["photons"] > 10_000
+    assert r["photons_requested"] == 10_000_000_000 and r["max_seconds"] == 300
+    start = time.monotonic()
+    r = lightsolver.solve(s, photons=10 ** 13, max_seconds=0.5)
+    assert time.monotonic() - start < 10
+    assert r["stop_reason"] == "time" and not r["partial"] and r["max_seconds"] == 0.5
+    assert 0 < r["photons"] < 10 ** 13 and any("time limit" in w for w in r["warnings"])
+    s.max_seconds = 0.5  # the scene's limit, used when solve() gives no photon count
+    s.photons = 10 ** 13
+    assert s.max_seconds == 0.5
+    assert lightsolver.solve(s)["stop_reason"] == "time"
+    s.max_seconds = None
+    assert s.max_seconds is None
+    with pytest.raises(ValueError, match="max_seconds"):
+        s.max_seconds = -1.0
+    with pytest.raises(lightsolver.InputError, match="max_seconds"):
+        lightsolver.solve(s, max_seconds=float("nan"))
+
+
 def test_photometric_light_from_python():
     from conftest import SOURCE_DIR
     s = lightsolver.Scene()

@@ -4,10 +4,11 @@
     /usr/bin/python3 Tests/workbench/run_tests.py SUITE [unittest args...]
 
 SUITE is a module ``test_<SUITE>.py`` of this folder (objects, export, check, solver,
-persistence, example, optimize). ``freecadcmd script.py`` always exits 0, so the suite runs through
-``freecadcmd -c`` and ``sys.exit`` (see fc_runner.py). The workbench is installed into a
-throw-away FreeCAD user folder (FREECAD_USER_HOME, ``Mod/Lighting`` symlink) — the layout
-scripts/install-workbench.sh creates — so the user's own FreeCAD settings are untouched.
+persistence, example, optimize, files). ``freecadcmd script.py`` always exits 0, so the
+suite runs through ``freecadcmd -c`` and ``sys.exit`` (see fc_runner.py). The workbench is
+installed into a throw-away FreeCAD user folder (FREECAD_USER_HOME, ``Mod/Lighting``
+symlink) — the layout scripts/install-workbench.sh creates — so the user's own FreeCAD
+settings are untouched.
 
 Exit status: 0 passed, 1 failed, 77 every test skipped (ctest SKIP_RETURN_CODE).
 Environment: LIGHTSOLVER_PYTHONPATH (solver module folder), LIGHTSOLVER_CLI (CLI program),

@@ -80,6 +80,9 @@ struct Settings {
   std::uint32_t max_bounces = 1000;
   std::uint64_t seed = 1;
   double confidence = 0.95;
+  /// Time limit of the tracing (s, finite, > 0) of runs without an explicit photon count;
+  /// unset: none, except accuracy runs (SolveOptions::max_seconds).
+  std::optional<double> max_seconds;
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

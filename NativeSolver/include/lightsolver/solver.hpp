@@ -15,6 +15,21 @@
 
 namespace lightsolver {
 
+/// Photon budget of an accuracy run without an explicit photon count.
+inline constexpr std::uint64_t kAccuracyPhotonBudget = 10'000'000'000ull;
+/// Time limit (s) of an accuracy run without an explicit photon count or time limit.
+inline constexpr double kDefaultAccuracySeconds = 300.0;
+
+/// What a run is expected to cost, measured on its first batches.
+struct RunForecast {
+  std::uint64_t photons = 0;        ///< expected photons: the requested count or, with an
+                                    ///< accuracy goal, extrapolated from the interval widths
+  double photons_per_second = 0.0;  ///< tracing rate so far
+  double seconds = 0.0;             ///< expected tracing time for `photons` at that rate
+  std::optional<double> max_seconds;  ///< the time limit, when one applies
+  bool accuracy_goal = false;         ///< `photons` is an extrapolation to the accuracy goal
+};
+
 /// Overrides of the scene's settings for one run, and how to run it.
 struct SolveOptions {
   std::optional<std::uint64_t> photons;  ///< default: scene.settings.photons
@@ -23,14 +38,32 @@ struct SolveOptions {
   int threads = 0;                       ///< 0: all cores
   std::string backend = "auto";          ///< "auto", "embree" (and "vulkan" where built)
   /// Stop as soon as every target's CI half-width is at most this fraction of its mean (e.g.
-  /// 0.02); `photons` is then the budget. Batches double from 2^14 photons, so the stopping
-  /// point is deterministic for a seed.
+  /// 0.02). `photons`, when given, is then the budget; without it the budget is
+  /// kAccuracyPhotonBudget photons bounded by the time limit (scene.settings.photons does not
+  /// count: it is the default of runs without a goal). Batches double from 2^14 photons, so
+  /// the stopping point is deterministic for a seed unless the time limit ends the run.
   std::optional<double> target_accuracy;
+  /// Time limit of the tracing in seconds, checked between batches (finite, > 0). Default:
+  /// scene.settings.max_seconds when `photons` is not given (an explicit count is traced to
+  /// the end unless this is set); when neither is set, runs have no time limit except accuracy
+  /// runs without an explicit photon count, which stop after kDefaultAccuracySeconds. Where a
+  /// time limit ends a run depends on the machine's speed.
+  std::optional<double> max_seconds;
   const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current batch
+  /// Called once, when the first batches give a tracing rate: what the run is expected to
+  /// cost (the CLI prints it for runs longer than a minute).
+  std::function<void(const RunForecast&)> forecast;
 };
 
 /// Called between batches with photons traced so far and the total; return false to cancel.
 using ProgressFn = std::function<bool(std::uint64_t done, std::uint64_t total)>;
+
+/// Why a run ended: "photons" (the requested count was traced), "accuracy" (every target met
+/// the goal), "time" (the time limit), "cancelled" (cancel flag or progress callback).
+inline constexpr const char* kStopPhotons = "photons";
+inline constexpr const char* kStopAccuracy = "accuracy";
+inline constexpr const char* kStopTime = "time";
+inline constexpr const char* kStopCancelled = "cancelled";
 
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
 /// grid / its area) and `cells` holds every cell, row by row (index = iv * nu + iu).
@@ -46,11 +79,13 @@ struct TargetResult {
 
 struct Results {
   std::vector<TargetResult> targets;
-  std::uint64_t photons = 0;            ///< traced (== requested unless partial)
-  std::uint64_t photons_requested = 0;
+  std::uint64_t photons = 0;            ///< traced (== requested when stop_reason is "photons")
+  std::uint64_t photons_requested = 0;  ///< the count or budget asked for
   bool partial = false;                 ///< stopped early by cancel or progress callback
   std::optional<double> target_accuracy;  ///< the goal, when one was set
   bool accuracy_met = false;            ///< every target reached target_accuracy
+  std::string stop_reason = kStopPhotons;  ///< which limit ended the run (kStop*)
+  std::optional<double> max_seconds;       ///< the time limit that applied, if any
   double seconds = 0.0;
   std::string backend;
   double confidence = 0.95;

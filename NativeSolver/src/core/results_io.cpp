@@ -38,6 +38,19 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
+// Which limit ended the run, in words for the table's footer.
+std::string stop_text(const Results& r) {
+  if (r.stop_reason == kStopAccuracy) {
+    return "stopped: accuracy goal " + fmt("±%g %%", 100.0 * r.target_accuracy.value_or(0.0)) +
+           " met";
+  }
+  if (r.stop_reason == kStopTime) {
+    return "stopped: time limit " + fmt("%g s", r.max_seconds.value_or(0.0));
+  }
+  if (r.stop_reason == kStopCancelled) return "stopped: cancelled";
+  return "stopped: photon count reached";
+}
+
 }  // namespace
 
 std::string results_to_json(const Results& r) {
@@ -45,6 +58,7 @@ std::string results_to_json(const Results& r) {
                       {"photons", r.photons},
                       {"photons_requested", r.photons_requested},
                       {"partial", r.partial},
+                      {"stop_reason", r.stop_reason},
                       {"seconds", r.seconds},
                       {"backend", r.backend},
                       {"confidence", r.confidence},
@@ -52,6 +66,7 @@ std::string results_to_json(const Results& r) {
                       {"ray_segments", r.ray_segments},
                       {"total_flux_lm", r.total_flux_lm},
                       {"warnings", r.warnings}};
+  if (r.max_seconds) j["max_seconds"] = *r.max_seconds;
   if (r.target_accuracy) {
     j["target_accuracy"] = *r.target_accuracy;
     j["accuracy_met"] = r.accuracy_met;
@@ -83,9 +98,9 @@ std::string results_table(const Results& r) {
     out << "\n";
   }
   std::snprintf(line, sizeof line,
-                "%llu photons%s, %.0f%% confidence intervals, %s backend, %.2f s\n",
+                "%llu photons%s, %.0f%% confidence intervals, %s backend, %.2f s; %s\n",
                 static_cast<unsigned long long>(r.photons), r.partial ? " (PARTIAL)" : "",
-                100.0 * r.confidence, r.backend.c_str(), r.seconds);
+                100.0 * r.confidence, r.backend.c_str(), r.seconds, stop_text(r).c_str());
   out << line;
   for (const auto& w : r.warnings) out << "warning: " << w << "\n";
   return out.str();

@@ -211,7 +211,7 @@ Target read_target(const JsonNode& n, const Scene& scene) {
 }
 
 Settings read_settings(const JsonNode& n) {
-  n.require_object({"photons", "max_bounces", "seed", "confidence"});
+  n.require_object({"photons", "max_bounces", "seed", "confidence", "max_seconds"});
   Settings s;
   if (n.has("photons")) s.photons = n.at("photons").unsigned_integer();
   if (n.has("max_bounces")) {
@@ -221,6 +221,10 @@ Settings read_settings(const JsonNode& n) {
   }
   if (n.has("seed")) s.seed = n.at("seed").unsigned_integer();
   s.confidence = n.number_or("confidence", s.confidence);
+  if (n.has("max_seconds")) {
+    s.max_seconds = n.at("max_seconds").number();  // finite
+    if (!(*s.max_seconds > 0.0)) n.at("max_seconds").fail("must be > 0 (seconds)");
+  }
   return s;
 }
 

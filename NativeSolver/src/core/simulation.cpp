@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
@@ -63,6 +64,61 @@ bool accuracy_reached(const detail::PreparedScene& s, const detail::TallyBlock& 
   return true;
 }
 
+// Photons that would bring the worst target to the accuracy goal (interval width ~ 1/sqrt(N)),
+// from the tallies so far; `budget` while a target has no hit yet.
+std::uint64_t photons_for_goal(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                               std::uint64_t photons, double confidence, double goal,
+                               std::uint64_t budget) {
+  double worst = 0.0;
+  for (const std::uint32_t bin : s.target_bin) {
+    const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
+    if (e.hits == 0 || !(e.mean > 0.0)) return budget;
+    worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / (goal * e.mean));
+  }
+  const double need = double(photons) * worst * worst;
+  return need >= double(budget) ? budget : std::max(photons, static_cast<std::uint64_t>(need));
+}
+
+// What the rest of the run will cost at the rate of its first `traced_s` seconds.
+RunForecast make_forecast(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                          const Results& r, double traced_s) {
+  RunForecast f;
+  f.photons_per_second = double(r.photons) / traced_s;
+  f.accuracy_goal = r.target_accuracy.has_value();
+  f.photons = f.accuracy_goal ? photons_for_goal(s, t, r.photons, r.confidence,
+                                                 *r.target_accuracy, r.photons_requested)
+                              : r.photons_requested;
+  f.seconds = double(f.photons) / f.photons_per_second;
+  f.max_seconds = r.max_seconds;
+  return f;
+}
+
+// The photon count and time limit of one run. An accuracy goal without an explicit photon
+// count gets a large budget bounded by time; scene.settings.photons is not an explicit count
+// (it is the default of runs without a goal). The scene's time limit is a default like its
+// photon count: an explicit count (the optimizer's evaluations, --photons) is traced to the
+// end unless an explicit time limit is given too.
+void plan_run(const Scene& scene, const SolveOptions& o, Results& r) {
+  const bool open_budget = o.target_accuracy && !o.photons;
+  // The open budget stays within what exact 64-bit tallies allow at this max_bounces.
+  const std::uint64_t budget =
+      std::min(kAccuracyPhotonBudget, max_photons(scene.settings.max_bounces));
+  r.photons_requested = o.photons ? *o.photons : open_budget ? budget : scene.settings.photons;
+  r.max_seconds = o.max_seconds;
+  if (!r.max_seconds && !o.photons) r.max_seconds = scene.settings.max_seconds;
+  if (!r.max_seconds && open_budget) r.max_seconds = kDefaultAccuracySeconds;
+  if (r.max_seconds && !(std::isfinite(*r.max_seconds) && *r.max_seconds > 0.0)) {
+    throw InputError(scene.source_file, "max_seconds", "must be a finite number of seconds > 0");
+  }
+}
+
+// A batch that would end well past the time limit is shortened to end near it.
+std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double seconds_left) {
+  if (!(photons_per_second > 0.0)) return n;
+  const double fits = std::max(photons_per_second * seconds_left, double(1u << 14));
+  return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
+}
+
 TargetResult make_target(const Target& t, const detail::PreparedScene& s,
                          const detail::TallyBlock& tallies, std::uint32_t bin,
                          std::uint64_t photons, double confidence) {
@@ -101,11 +157,26 @@ void add_warnings(const Scene& scene, Results& r) {
                          "; their remaining light is lost, so results are biased low");
   }
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
-  if (r.target_accuracy && !r.accuracy_met && !r.partial) {
+  if (r.target_accuracy && !r.accuracy_met && r.stop_reason == kStopPhotons) {
     r.warnings.push_back(
         "the photon budget ran out before every target reached the requested "
         "accuracy");
   }
+}
+
+// A time limit makes the stopping point depend on the machine: say so, and what it cost.
+void add_stop_warnings(Results& r) {
+  if (r.stop_reason != kStopTime) return;
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%g", *r.max_seconds);
+  std::string w = std::string("the time limit (") + limit + " s) ended the run after " +
+                  std::to_string(r.photons) + " photons";
+  if (r.target_accuracy) {
+    w += ", before every target reached the requested accuracy";
+  } else {
+    w += " of the " + std::to_string(r.photons_requested) + " requested";
+  }
+  r.warnings.push_back(w + "; where a time limit stops a run depends on the machine's speed");
 }
 
 // Rigid: the linear part is orthonormal and the last row is (0, 0, 0, 1).
@@ -189,7 +260,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   const Scene& scene = state_->scene;
   const detail::PreparedScene& prepared = state_->prepared;
   Results r;
-  r.photons_requested = options.photons.value_or(scene.settings.photons);
+  plan_run(scene, options, r);
   r.seed = options.seed.value_or(scene.settings.seed);
   r.confidence = options.confidence.value_or(scene.settings.confidence);
   r.target_accuracy = options.target_accuracy;
@@ -208,24 +279,43 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
     tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
     const bool accuracy_mode = r.target_accuracy.has_value();
     const auto tracing_start = Clock::now();
+    bool forecast_due = static_cast<bool>(options.forecast);
     while (r.photons < r.photons_requested) {
-      if (options.cancel && options.cancel->load()) break;
+      if (options.cancel && options.cancel->load()) {
+        r.stop_reason = kStopCancelled;
+        break;
+      }
       const double elapsed = seconds_since(tracing_start);
-      const std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode,
-                                         elapsed > 0.0 ? double(r.photons) / elapsed : 0.0);
+      const double rate = elapsed > 0.0 ? double(r.photons) / elapsed : 0.0;
+      if (r.max_seconds && r.photons > 0 && elapsed >= *r.max_seconds) {
+        r.stop_reason = kStopTime;
+        break;
+      }
+      std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode, rate);
+      if (r.max_seconds) n = fit_time_limit(n, rate, *r.max_seconds - elapsed);
       arena.execute([&] { state_->backend->trace(r.photons, n, r.seed, tallies); });
       r.photons += n;
       if (accuracy_mode &&
           accuracy_reached(prepared, tallies, r.photons, r.confidence, *r.target_accuracy)) {
         r.accuracy_met = true;
+        r.stop_reason = kStopAccuracy;
         break;
       }
-      if (progress && !progress(r.photons, r.photons_requested)) break;
+      // The first batches include warm-up; half a second of tracing gives a usable rate.
+      const double traced_s = seconds_since(tracing_start);
+      if (forecast_due && traced_s >= 0.5 && r.photons < r.photons_requested) {
+        forecast_due = false;
+        options.forecast(make_forecast(prepared, tallies, r, traced_s));
+      }
+      if (progress && !progress(r.photons, r.photons_requested)) {
+        if (r.photons < r.photons_requested) r.stop_reason = kStopCancelled;
+        break;
+      }
     }
   } else {
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
-  r.partial = r.photons < r.photons_requested && !r.accuracy_met;
+  r.partial = r.stop_reason == kStopCancelled;
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
@@ -233,6 +323,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
                                     r.photons, r.confidence));
   }
   add_warnings(scene, r);
+  add_stop_warnings(r);
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);
   return r;

@@ -8,10 +8,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "lightsolver/output_file.hpp"
 #include "photometry_internal.hpp"
 
 // Static implementation: private to this file, so it cannot clash with another user of stb.
 #define STB_IMAGE_WRITE_STATIC
+#define STBI_WRITE_NO_STDIO  // encoded in memory, written by write_file_atomically
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
@@ -161,8 +163,14 @@ void write_polar_plot_png(const PhotometricData& data, const std::string& path) 
   char label[64];
   std::snprintf(label, sizeof label, "MAX %.0f CD", peak);
   canvas.text(12, kSize - 26, label, kText);
-  if (!stbi_write_png(path.c_str(), kSize, kSize, 3, canvas.data(), kSize * 3))
-    throw std::runtime_error(path + ": cannot write the PNG file");
+  // Encoded in memory, then written atomically: a failed write never leaves half a PNG.
+  std::string png;
+  const auto append = [](void* context, void* bytes, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(bytes), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, kSize, kSize, 3, canvas.data(), kSize * 3))
+    throw std::runtime_error(path + ": cannot encode the PNG image");
+  write_file_atomically(path, png);
 }
 
 }  // namespace lightsolver

@@ -6,21 +6,23 @@ from __future__ import annotations
 import struct
 from typing import List, Sequence, Tuple
 
+from lighting import files
+
 
 def write_ply(path: str, vertices: Sequence[Sequence[float]],
               triangles: Sequence[Sequence[int]]) -> None:
-    """Write a binary PLY with ``double x, y, z`` vertices and ``uchar/uint`` index lists."""
+    """Write a binary PLY with ``double x, y, z`` vertices and ``uchar/uint`` index lists
+    (atomically: a failed write leaves the previous file)."""
     header = ("ply\nformat binary_little_endian 1.0\ncomment written by the FreeCAD Lighting "
               f"workbench, metres\nelement vertex {len(vertices)}\nproperty double x\n"
               "property double y\nproperty double z\n"
               f"element face {len(triangles)}\nproperty list uchar uint vertex_indices\n"
               "end_header\n")
-    with open(path, "wb") as stream:
-        stream.write(header.encode("ascii"))
-        pack_v = struct.Struct("<3d").pack
-        stream.write(b"".join(pack_v(*v) for v in vertices))
-        pack_f = struct.Struct("<B3I").pack
-        stream.write(b"".join(pack_f(3, *t) for t in triangles))
+    pack_v = struct.Struct("<3d").pack
+    pack_f = struct.Struct("<B3I").pack
+    files.write_bytes(path, b"".join([header.encode("ascii"),
+                                      b"".join(pack_v(*v) for v in vertices),
+                                      b"".join(pack_f(3, *t) for t in triangles)]))
 
 
 def read_ply(path: str) -> Tuple[List[Tuple[float, float, float]], List[Tuple[int, int, int]]]:

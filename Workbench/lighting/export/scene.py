@@ -10,14 +10,13 @@ from __future__ import annotations
 import json
 import os
 import re
-import shutil
 import tempfile
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import FreeCAD
 
-from lighting import __version__
+from lighting import __version__, files
 from lighting.export import collect, ply
 from lighting.export.materials import MaterialResolver, MaterialSpec, window_part_kinds
 from lighting.export.tessellate import (FaceTriangles, MeshBuilder, largest_triangle,
@@ -333,13 +332,6 @@ def dumps_scene(scene: Dict[str, Any]) -> str:
     return text + "\n"
 
 
-def _write_text(path: str, text: str) -> None:
-    tmp = f"{path}.tmp{os.getpid()}"
-    with open(tmp, "w", encoding="utf-8") as stream:
-        stream.write(text)
-    os.replace(tmp, path)
-
-
 def _copy_photometry(luminaire: Dict[str, Any], directory: str) -> Dict[str, Any]:
     """Photometric files are copied next to the scene (``photometry/``), so the scene folder
     is self-contained; the entry then names the copy relative to the scene file."""
@@ -348,14 +340,14 @@ def _copy_photometry(luminaire: Dict[str, Any], directory: str) -> Dict[str, Any
         return luminaire
     rel = f"photometry/{_safe_file_name(luminaire['name'])}_{os.path.basename(source)}"
     os.makedirs(os.path.join(directory, "photometry"), exist_ok=True)
-    shutil.copyfile(source, os.path.join(directory, rel))
+    files.copy_file(source, os.path.join(directory, rel))
     return dict(luminaire, file=rel)
 
 
 def write_scene(result: ExportResult, directory: str, storage: str = "Auto") -> str:
     """Write ``scene.json`` (and ``meshes/*.ply`` for PLY storage) into ``directory``."""
     try:
-        os.makedirs(directory, exist_ok=True)
+        files.check_folder(directory, "scene folder")
         scene = dict(result.scene)
         use_ply = storage == "PLY" or (storage == "Auto" and
                                        result.triangle_count > INLINE_LIMIT_TRIANGLES)
@@ -369,7 +361,7 @@ def write_scene(result: ExportResult, directory: str, storage: str = "Auto") -> 
             scene["meshes"] = meshes
         scene["luminaires"] = [_copy_photometry(lum, directory) for lum in scene["luminaires"]]
         path = os.path.join(directory, SCENE_FILE)
-        _write_text(path, dumps_scene(scene))
+        files.write_text(path, dumps_scene(scene))
     except OSError as exc:
         raise ExportError(f"Cannot write the scene to '{directory}': {exc}") from exc
     result.scene_file = path

@@ -15,6 +15,7 @@ import threading
 import time
 from typing import Any, Callable, Dict, Optional
 
+from lighting import files
 from lighting.export import scene as scene_mod
 from lighting.messages import CancelledError, CheckError, LightingError, Report, SolverError
 from lighting.solver import check as check_mod
@@ -131,6 +132,12 @@ class AnalysisRun:
         self.stage = "solve"
         self.started = time.monotonic()
         s = self._settings
+        self.results_file = os.path.join(os.path.dirname(self.scene_file),
+                                         scene_mod.RESULTS_FILE)
+        try:  # before tracing: an hour of work must not be lost to an unwritable folder
+            files.check_writable(self.results_file, "results file")
+        except OSError as exc:
+            raise SolverError(str(exc)) from exc
         self._token = run.make_cancel_token()
         self.total = s["photons"]
         data = self._solve_once(s["photons"], 0, progress)
@@ -146,10 +153,10 @@ class AnalysisRun:
         if self._cancelled and float(data.get("photons", 0)) <= 0:
             raise CancelledError("The analysis was cancelled before any photon was traced")
         self.data = data
-        self.results_file = os.path.join(os.path.dirname(self.scene_file),
-                                         scene_mod.RESULTS_FILE)
-        with open(self.results_file, "w", encoding="utf-8") as stream:
-            json.dump(data, stream, indent=1)
+        try:
+            files.write_text(self.results_file, json.dumps(data, indent=1))
+        except OSError as exc:
+            raise SolverError(str(exc)) from exc
         return data
 
     def _rewrite_photons(self, photons: int) -> None:
@@ -157,8 +164,7 @@ class AnalysisRun:
         with open(self.scene_file, encoding="utf-8") as stream:
             scene = json.load(stream)
         scene.setdefault("settings", {})["photons"] = int(photons)
-        with open(self.scene_file, "w", encoding="utf-8") as stream:
-            stream.write(scene_mod.dumps_scene(scene))
+        files.write_text(self.scene_file, scene_mod.dumps_scene(scene))
 
     def apply(self) -> results_mod.AnalysisResult:
         """Results stage (main thread): store the results in the document."""
