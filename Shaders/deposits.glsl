@@ -47,15 +47,18 @@ void deposit(uint bin) {
   }
 }
 
-// Adds this pass's complete counts; returns the floor for the next pass, or 0 when done.
+// Adds this pass's complete counts; returns the floor for the next pass, or 0 when done. Fully
+// unrolled: with no loop left, lavapipe's loop limit (trace.comp) cannot stop it half-way.
 uint deposits_flush() {
   uint largest = 0u;
-  for (uint i = 0u; i < dep_size; ++i) {
-    const uint bin = dep_key[i] - 1u;
-    const uint64_t c = uint64_t(dep_count[i]);
-    atomicAdd(tallies[2u * bin], c);
-    atomicAdd(tallies[2u * bin + 1u], c * c);
-    largest = max(largest, dep_key[i]);
+  [[unroll]] for (uint i = 0u; i < kMaxDeposits; ++i) {
+    if (i < dep_size) {
+      const uint bin = dep_key[i] - 1u;
+      const uint64_t c = uint64_t(dep_count[i]);
+      atomicAdd(tallies[2u * bin], c);
+      atomicAdd(tallies[2u * bin + 1u], c * c);
+      largest = max(largest, dep_key[i]);
+    }
   }
   return dep_refused ? largest : 0u;
 }

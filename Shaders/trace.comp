@@ -1,9 +1,18 @@
 #version 460
 // Photon tracer: one invocation traces paths first_path + i in a grid-stride loop (the dispatch
 // is capped at 65535 groups), each exactly as the Embree backend does (embree_backend.cpp).
+//
+// Mesa's lavapipe ends every loop of a shader invocation once the invocation (8 SIMD lanes
+// together) has run 65535 loop iterations in all (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS): a
+// path of hundreds of bounces would silently stop mid-flight. So before a path's deposits are
+// added, a probe loop checks that the limit was never reached; if it was, the path's deposits
+// are dropped and the path is queued to be traced again, alone in its workgroup (a fresh
+// budget). A path that even alone needs more is counted as cut, and the results say so. Real
+// GPUs have no such limit: the probe always passes.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
+#extension GL_EXT_control_flow_attributes : require
 
 layout(local_size_x_id = 0) in;
 
@@ -41,17 +50,51 @@ void trace_path(uint64_t id, bool first_pass) {
   }
 }
 
+// True once lavapipe's loop limit has cut loops short: the probe's loop then stops early. Its
+// bound and expected hash are push constants, so no compiler can fold the loop away.
+bool loop_limit_reached() {
+  uint h = 0u;
+  for (uint i = 0u; i < pc.probe_iterations; ++i) h = h * 1664525u + 1013904223u;
+  return h != pc.probe_hash;
+}
+
+// Traces path `offset` of this dispatch from deposit floor `floor_key` (0: from the start) and
+// adds its deposits. Returns 0 when done, else 1 + the floor from which it must be traced again:
+// its deposits since then were dropped because the loop limit cut the path short.
+uint trace_whole_path(uint offset, uint floor_key) {
+  bool first_pass = floor_key == 0u;
+  for (;;) {  // one pass per iteration (see deposits.glsl)
+    const uint64_t segments = g_segments, capped = g_capped;
+    deposits_begin(floor_key);
+    trace_path(pc.first_path + uint64_t(offset), first_pass);
+    if (loop_limit_reached()) {
+      g_segments = segments;  // counted when the path is traced anew
+      g_capped = capped;
+      return floor_key + 1u;
+    }
+    floor_key = deposits_flush();  // loop-free (unrolled), so the limit cannot cut it
+    if (floor_key == 0u) return 0u;
+    first_pass = false;
+  }
+  return floor_key + 1u;  // only when the limit ended this loop between two passes
+}
+
 void main() {
-  const uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-  for (uint i = gl_GlobalInvocationID.x; i < pc.path_count; i += stride) {
-    uint floor_key = 0u;
-    bool first_pass = true;
-    do {
-      deposits_begin(floor_key);
-      trace_path(pc.first_path + uint64_t(i), first_pass);
-      floor_key = deposits_flush();
-      first_pass = false;
-    } while (floor_key != 0u);
+  if (pc.retry != 0u) {
+    if (gl_LocalInvocationIndex != 0u) return;  // one path per workgroup: alone in its lanes
+    const uvec2 path = retry_paths[gl_WorkGroupID.x];
+    if (trace_whole_path(path.x, path.y) != 0u) atomicAdd(counters[2], 1ul);  // cut for good
+  } else {
+    // The host gives each invocation at most one path (kPathsPerSubmit), so a limit reached
+    // here cannot end this loop before a path it owns was traced.
+    const uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    for (uint i = gl_GlobalInvocationID.x; i < pc.path_count; i += stride) {
+      const uint again = trace_whole_path(i, 0u);
+      if (again != 0u) {
+        retry_paths[atomicAdd(retry_dispatch[0], 1u)] = uvec2(i, again - 1u);
+        atomicAdd(counters[3], 1ul);
+      }
+    }
   }
   if (g_segments != 0ul) atomicAdd(counters[0], g_segments);
   if (g_capped != 0ul) atomicAdd(counters[1], g_capped);

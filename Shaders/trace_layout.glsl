@@ -83,12 +83,20 @@ layout(std430, set = 0, binding = 5) readonly buffer Luminaires { LuminaireGpu l
 layout(std430, set = 0, binding = 6) readonly buffer LuminaireCdf { uint64_t cdf53[]; };
 layout(std430, set = 0, binding = 7) readonly buffer Grids { GridGpu grids[]; };
 layout(std430, set = 0, binding = 8) buffer Tallies { uint64_t tallies[]; };  // S, Q per bin
-layout(std430, set = 0, binding = 9) buffer Counters { uint64_t counters[]; };  // segments, capped
+// Ray segments, paths capped at max_bounces, paths cut short for good by the device's loop limit,
+// paths queued to be traced again (trace.comp).
+layout(std430, set = 0, binding = 9) buffer Counters { uint64_t counters[]; };
 layout(std430, set = 0, binding = 10) readonly buffer Photometrics { PhotoGpu photometrics[]; };
 layout(std430, set = 0, binding = 11) readonly buffer PhotoFloats { float photo_floats[]; };
 // ceil-type 53-bit thresholds: cell c is chosen for the first c with rng_u53() < photo_cdf53[c].
 layout(std430, set = 0, binding = 12) readonly buffer PhotoCdf { uint64_t photo_cdf53[]; };
 layout(std430, set = 0, binding = 13) readonly buffer Instances { Instance instances[]; };
+// Paths to trace again, each alone in its workgroup (see trace.comp): the first three words are
+// the VkDispatchIndirectCommand of that retry dispatch, then (path offset, deposit floor) pairs.
+layout(std430, set = 0, binding = 14) buffer Retry {
+  uint retry_dispatch[4];
+  uvec2 retry_paths[];
+};
 
 layout(push_constant) uniform Push {
   uint64_t first_path;
@@ -98,6 +106,9 @@ layout(push_constant) uniform Push {
   uint luminaire_count;
   uint grid_count;
   uint instance_count;
+  uint retry;             // 1: trace the paths listed in Retry, one per workgroup
+  uint probe_iterations;  // loop_limit_reached(): iterations of the probe loop ...
+  uint probe_hash;        // ... and the hash they give when every one of them ran
   uint pad;
 } pc;
 

@@ -104,6 +104,8 @@ py::dict results_dict(const Results& r) {
   d["confidence"] = r.confidence;
   d["seed"] = r.seed;
   d["ray_segments"] = r.ray_segments;
+  d["capped_paths"] = r.capped_paths;
+  d["cut_paths"] = r.cut_paths;
   d["total_flux_lm"] = r.total_flux_lm;
   d["warnings"] = r.warnings;
   if (r.max_seconds) d["max_seconds"] = *r.max_seconds;

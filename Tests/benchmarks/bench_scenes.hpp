@@ -65,10 +65,8 @@ inline Scene cornell_box() {
   add_material(s, "white", Material::Type::Diffuse, 0.75);
   add_material(s, "block", Material::Type::Diffuse, 0.6);
   s.meshes.push_back(room_mesh("room", 0, {0, 0, 0}, {5.5, 5.5, 5.5}, 4));
-  for (auto [lo, hi] : {std::pair{glm::dvec3(1, 1, 0), glm::dvec3(2.6, 2.6, 1.6)},
-                        std::pair{glm::dvec3(3, 3, 0), glm::dvec3(4.6, 4.6, 3.3)}}) {
-    s.meshes.push_back(test::solid_box_mesh("block", 1, lo, hi, 2));
-  }
+  s.meshes.push_back(test::solid_box_mesh("short block", 1, {1, 1, 0}, {2.6, 2.6, 1.6}, 2));
+  s.meshes.push_back(test::solid_box_mesh("tall block", 1, {3, 3, 0}, {4.6, 4.6, 3.3}, 2));
   s.luminaires.push_back(ceiling_panel({2.2, 2.2, 5.5}, 1.1, 10'000));
   s.targets.push_back(test::surface("room", 0));
   s.targets.push_back(test::grid("workplane", {0.5, 0.5, 0.8}, {4.5, 0, 0}, {0, 4.5, 0}, 10, 10));
@@ -84,7 +82,8 @@ inline Scene million_triangles() {
   s.meshes.push_back(room_mesh("hall", 0, {0, 0, 0}, {20, 20, 4}, 8));
   for (int i = 0; i < 8; ++i) {
     for (int j = 0; j < 8; ++j) {
-      s.meshes.push_back(sphere_mesh("s", 1, {1.25 + 2.5 * i, 1.25 + 2.5 * j, 1.0}, 0.8, 250, 32));
+      const std::string name = "sphere " + std::to_string(i) + "," + std::to_string(j);
+      s.meshes.push_back(sphere_mesh(name, 1, {1.25 + 2.5 * i, 1.25 + 2.5 * j, 1.0}, 0.8, 250, 32));
     }
   }
   for (int i = 0; i < 4; ++i) {

@@ -92,6 +92,9 @@ struct Results {
   std::uint64_t seed = 0;
   std::uint64_t ray_segments = 0;
   std::uint64_t capped_paths = 0;       ///< paths still alive at max_bounces (bias, warned)
+  /// Paths a device's own loop limit stopped even when traced alone (Mesa lavapipe ends a
+  /// shader after 65535 loop iterations); their light is missing (bias, warned).
+  std::uint64_t cut_paths = 0;
   double total_flux_lm = 0.0;
   Warnings warnings;
 };

@@ -64,6 +64,8 @@ std::string results_to_json(const Results& r) {
                       {"confidence", r.confidence},
                       {"seed", r.seed},
                       {"ray_segments", r.ray_segments},
+                      {"capped_paths", r.capped_paths},
+                      {"cut_paths", r.cut_paths},
                       {"total_flux_lm", r.total_flux_lm},
                       {"warnings", r.warnings}};
   if (r.max_seconds) j["max_seconds"] = *r.max_seconds;

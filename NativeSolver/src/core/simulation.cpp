@@ -156,6 +156,13 @@ void add_warnings(const Scene& scene, Results& r) {
                          std::to_string(scene.settings.max_bounces) +
                          "; their remaining light is lost, so results are biased low");
   }
+  if (r.cut_paths > 0) {
+    r.warnings.push_back(std::to_string(r.cut_paths) + " photon path(s) on the " + r.backend +
+                         " backend were longer than its device can run (Mesa lavapipe stops a "
+                         "shader after 65535 loop iterations, even for a path traced alone); "
+                         "their light is lost, so results are biased low: use the embree backend "
+                         "for this scene");
+  }
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
   if (r.target_accuracy && !r.accuracy_met && r.stop_reason == kStopPhotons) {
     r.warnings.push_back(
@@ -318,6 +325,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.partial = r.stop_reason == kStopCancelled;
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
+  r.cut_paths = tallies.cut_paths;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
     r.targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
                                     r.photons, r.confidence));

@@ -112,14 +112,24 @@ void Algorithm::write_descriptors(const std::vector<const Buffer*>& buffers) {
                          nullptr);
 }
 
-void Algorithm::record(VkCommandBuffer cmd, std::uint32_t groups, const void* push) const {
+void Algorithm::bind(VkCommandBuffer cmd, const void* push) const {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_layout_, 0, 1, &set_, 0,
                           nullptr);
   if (push_bytes_ > 0) {
     vkCmdPushConstants(cmd, pipeline_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes_, push);
   }
+}
+
+void Algorithm::record(VkCommandBuffer cmd, std::uint32_t groups, const void* push) const {
+  bind(cmd, push);
   vkCmdDispatch(cmd, groups, 1, 1);
+}
+
+void Algorithm::record_indirect(VkCommandBuffer cmd, const Buffer& args, VkDeviceSize offset,
+                                const void* push) const {
+  bind(cmd, push);
+  vkCmdDispatchIndirect(cmd, args.handle(), offset);
 }
 
 }  // namespace lightsolver::vkw

@@ -30,8 +30,13 @@ class Algorithm {
 
   /// Records bind + push constants + vkCmdDispatch(groups, 1, 1).
   void record(VkCommandBuffer cmd, std::uint32_t groups, const void* push) const;
+  /// Records bind + push constants + vkCmdDispatchIndirect reading the group counts from `args`
+  /// at `offset` (a VkDispatchIndirectCommand written by an earlier dispatch).
+  void record_indirect(VkCommandBuffer cmd, const Buffer& args, VkDeviceSize offset,
+                       const void* push) const;
 
  private:
+  void bind(VkCommandBuffer cmd, const void* push) const;
   void create_layouts(std::size_t bindings);
   void create_pipeline(std::span<const std::uint32_t> spirv, const std::vector<SpecConstant>& spec);
   void write_descriptors(const std::vector<const Buffer*>& buffers);

@@ -97,13 +97,16 @@ struct TracePush {
   std::uint32_t luminaire_count;
   std::uint32_t grid_count;
   std::uint32_t instance_count;
+  std::uint32_t retry;             // 1: trace the paths queued in the retry list, one per group
+  std::uint32_t probe_iterations;  // lavapipe's loop limit probe (trace.comp)
+  std::uint32_t probe_hash;
   std::uint32_t pad;
 };
 
 static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
 static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
-static_assert(sizeof(TracePush) == 40);
+static_assert(sizeof(TracePush) == 56);
 
 /// Specialisation constant ids of trace.comp (0 is the workgroup size).
 enum SpecId : std::uint32_t {
@@ -140,6 +143,7 @@ enum Binding : std::uint32_t {
   kPhotoFloats,
   kPhotoCdf,
   kInstances,
+  kRetry,
   kBindingCount
 };
 

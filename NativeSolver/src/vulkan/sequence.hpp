@@ -29,7 +29,8 @@ class Sequence {
   VkFence fence_ = VK_NULL_HANDLE;
 };
 
-/// Makes earlier compute/transfer writes visible to later compute, transfer and host access.
+/// Makes earlier compute/transfer writes visible to later compute, transfer, indirect-dispatch
+/// and host access.
 void memory_barrier(VkCommandBuffer cmd);
 
 /// Copies `bytes` into `dst`: directly when it is mapped, otherwise through a staging buffer.

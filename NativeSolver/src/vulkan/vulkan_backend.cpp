@@ -21,6 +21,24 @@ constexpr std::uint32_t kWorkgroupSize = 64;
 // Paths per submission: short enough that no dispatch approaches a driver watchdog (about 2 s
 // on desktop GPUs), long enough to amortise the submit (lavapipe: ~0.1-0.5 s per submission).
 constexpr std::uint64_t kPathsPerSubmit = 1u << 16;
+// One path per invocation (trace.comp relies on it: lavapipe's loop limit must not be able to
+// end the grid-stride loop before an invocation's path was traced).
+static_assert(kPathsPerSubmit <= 65535ull * kWorkgroupSize);
+// Ray segments, capped paths, paths cut for good, paths traced again.
+constexpr std::uint32_t kCounters = 4;
+
+// lavapipe's loop-limit probe (trace.comp): a few iterations of a 32-bit LCG from 0.
+constexpr std::uint32_t kProbeIterations = 4;
+constexpr std::uint32_t probe_hash() {
+  std::uint32_t h = 0;
+  for (std::uint32_t i = 0; i < kProbeIterations; ++i) h = h * 1664525u + 1013904223u;
+  return h;
+}
+
+// The retry list: a VkDispatchIndirectCommand {x, 1, 1} (x counted up by the shader, one group
+// per path) and a pad word, then one (path offset, deposit floor) pair per path of a submit.
+constexpr std::uint32_t kRetryHeader[4] = {0, 1, 1, 0};
+constexpr std::size_t kRetryBytes = sizeof(kRetryHeader) + kPathsPerSubmit * 2 * sizeof(std::uint32_t);
 
 struct LuminaireBuffer {
   gpu::Binding binding;
@@ -48,13 +66,15 @@ class VulkanBackend final : public Backend {
     add_buffer("grids", data_.grids.data(), bytes_of(data_.grids));
     const std::size_t tally_bytes = 2 * sizeof(std::uint64_t) * s.bins.size();
     add_buffer("tallies", nullptr, tally_bytes);
-    add_buffer("counters", nullptr, 2 * sizeof(std::uint64_t));
+    add_buffer("counters", nullptr, kCounters * sizeof(std::uint64_t));
     add_buffer("photometric luminaires", data_.photometrics.data(), bytes_of(data_.photometrics));
     add_buffer("photometric tables", data_.photo_floats.data(), bytes_of(data_.photo_floats));
     add_buffer("photometric CDF", data_.photo_cdf53.data(), bytes_of(data_.photo_cdf53));
     add_buffer("instances", data_.instances.data(), bytes_of(data_.instances));
-    readback_.emplace(ctx_, tally_bytes + 2 * sizeof(std::uint64_t), vkw::MemoryKind::Readback,
-                      "tally readback");
+    add_buffer("retry list", nullptr, kRetryBytes);
+    vkw::upload(ctx_, buffers_[gpu::kRetry], kRetryHeader, sizeof(kRetryHeader));
+    readback_.emplace(ctx_, tally_bytes + kCounters * sizeof(std::uint64_t),
+                      vkw::MemoryKind::Readback, "tally readback");
     data_.geometry = {};  // on the device now
     build_pipeline();
   }
@@ -114,15 +134,19 @@ class VulkanBackend final : public Backend {
         vkCmdFillBuffer(cmd, buffers_[gpu::kCounters].handle(), 0, VK_WHOLE_SIZE, 0);
       }
       vkw::memory_barrier(cmd);  // clears or the previous batch's atomics come first
-      const gpu::TracePush push{first + done,
-                                seed,
-                                static_cast<std::uint32_t>(n),
-                                s_.max_bounces,
-                                static_cast<std::uint32_t>(data_.luminaires.size()),
-                                static_cast<std::uint32_t>(data_.grids.size()),
-                                static_cast<std::uint32_t>(data_.instances.size()),
-                                0};
+      gpu::TracePush push{first + done,
+                          seed,
+                          static_cast<std::uint32_t>(n),
+                          s_.max_bounces,
+                          static_cast<std::uint32_t>(data_.luminaires.size()),
+                          static_cast<std::uint32_t>(data_.grids.size()),
+                          static_cast<std::uint32_t>(data_.instances.size()),
+                          0,
+                          kProbeIterations,
+                          probe_hash(),
+                          0};
       trace_->record(cmd, groups(n), &push);
+      record_retries(cmd, push);
       done += n;
       if (done == count) record_readback(cmd);
       seq_.submit_and_wait("tracing photons");
@@ -180,13 +204,25 @@ class VulkanBackend final : public Backend {
         std::clamp<std::uint64_t>((paths + kWorkgroupSize - 1) / kWorkgroupSize, 1, limit));
   }
 
+  // The paths the main dispatch queued (lavapipe's loop limit cut them short) are traced again,
+  // one per workgroup (the others' invocations return at once), which gives each the whole
+  // limit; then the queue is emptied.
+  // Zero groups on devices without the limit.
+  void record_retries(VkCommandBuffer cmd, gpu::TracePush push) {
+    vkw::memory_barrier(cmd);
+    push.retry = 1;
+    trace_->record_indirect(cmd, buffers_[gpu::kRetry], 0, &push);
+    vkw::memory_barrier(cmd);
+    vkCmdFillBuffer(cmd, buffers_[gpu::kRetry].handle(), 0, sizeof(std::uint32_t), 0);
+  }
+
   void record_readback(VkCommandBuffer cmd) {
     vkw::memory_barrier(cmd);
     const vkw::Buffer& tallies = buffers_[gpu::kTallies];
-    const VkDeviceSize tally_bytes = readback_->size() - 2 * sizeof(std::uint64_t);
+    const VkDeviceSize tally_bytes = readback_->size() - kCounters * sizeof(std::uint64_t);
     const VkBufferCopy t{0, 0, tally_bytes};
     vkCmdCopyBuffer(cmd, tallies.handle(), readback_->handle(), 1, &t);
-    const VkBufferCopy c{0, tally_bytes, 2 * sizeof(std::uint64_t)};
+    const VkBufferCopy c{0, tally_bytes, kCounters * sizeof(std::uint64_t)};
     vkCmdCopyBuffer(cmd, buffers_[gpu::kCounters].handle(), readback_->handle(), 1, &c);
     vkw::memory_barrier(cmd);
   }
@@ -199,6 +235,8 @@ class VulkanBackend final : public Backend {
     }
     out.ray_segments += v[2 * out.bins.size()];
     out.capped_paths += v[2 * out.bins.size() + 1];
+    out.cut_paths += v[2 * out.bins.size() + 2];
+    out.retried_paths += v[2 * out.bins.size() + 3];
   }
 
   const PreparedScene& s_;            // owned by the caller (Simulation), updated in place
