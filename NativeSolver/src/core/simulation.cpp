@@ -233,6 +233,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
                                     r.photons, r.confidence));
   }
   add_warnings(scene, r);
+  r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);
   return r;
