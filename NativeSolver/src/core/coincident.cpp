@@ -1,19 +1,30 @@
 #include "core/coincident.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <glm/common.hpp>
-#include <glm/ext/vector_int3_sized.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vector_relational.hpp>
 #include <map>
 #include <tuple>
 
+#include "core/coincident_grid.hpp"
+
 namespace lightsolver::detail {
 namespace {
+
+using coincident_grid::Entry;
+using coincident_grid::for_each_cell;
+using coincident_grid::Grid;
+using coincident_grid::kLevelBias;
+using coincident_grid::level_of;
 
 using glm::dvec2;
 using glm::dvec3;
@@ -135,98 +146,13 @@ double coplanar_overlap_m2(const Triangle& t, const Triangle& o, double tol_m) {
   return area;
 }
 
-// --- hierarchical grid -------------------------------------------------------------------------
-
-// A triangle lives in the cells of size 2^level (level: the smallest one at least as large as
-// its padded box) that its box touches, at most 8. Each triangle then looks up the cells of its
-// own and every coarser level it touches, so every pair whose boxes overlap is met once.
-int level_of(const dvec3& lo, const dvec3& hi) {
-  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-12});
-  int e = 0;
-  std::frexp(extent, &e);  // extent <= 2^e
-  return e;
-}
-
-std::uint64_t mix(std::uint64_t h) {  // splitmix64 finaliser
-  h ^= h >> 30;
-  h *= 0xbf58476d1ce4e5b9ull;
-  h ^= h >> 27;
-  h *= 0x94d049bb133111ebull;
-  return h ^ (h >> 31);
-}
-
-// Colliding keys merge two cells: more candidates, never a missed one.
-std::uint64_t cell_key(int level, std::int64_t x, std::int64_t y, std::int64_t z) {
-  std::uint64_t h = mix(static_cast<std::uint64_t>(level + 1024));
-  h = mix(h ^ static_cast<std::uint64_t>(x));
-  h = mix(h ^ static_cast<std::uint64_t>(y));
-  return mix(h ^ static_cast<std::uint64_t>(z));
-}
-
-template <class F>
-void for_each_cell(int level, const dvec3& lo, const dvec3& hi, F&& f) {
-  const double inv = std::ldexp(1.0, -level);
-  const auto c0 = glm::i64vec3(glm::floor(lo * inv)), c1 = glm::i64vec3(glm::floor(hi * inv));
-  for (auto x = c0.x; x <= c1.x; ++x)
-    for (auto y = c0.y; y <= c1.y; ++y)
-      for (auto z = c0.z; z <= c1.z; ++z) f(cell_key(level, x, y, z));
-}
-
-struct Entry {
-  std::uint64_t key;
-  std::uint32_t mesh, tri;
-  bool operator<(const Entry& o) const {
-    return std::tie(key, mesh, tri) < std::tie(o.key, o.mesh, o.tri);
-  }
-};
-
-// Sorted entries plus an open-addressing table from cell key to its entry range.
-class Grid {
- public:
-  explicit Grid(std::vector<Entry> entries) : entries_(std::move(entries)) {
-    std::sort(entries_.begin(), entries_.end());
-    run_end_.resize(entries_.size());
-    std::size_t cells = 0;
-    for (std::size_t i = entries_.size(); i-- > 0;) {
-      const bool last = i + 1 == entries_.size();
-      const bool same_run = !last && entries_[i + 1].key == entries_[i].key &&
-                            entries_[i + 1].mesh == entries_[i].mesh;
-      run_end_[i] = same_run ? run_end_[i + 1] : static_cast<std::uint32_t>(i + 1);
-      cells += last || entries_[i + 1].key != entries_[i].key;
-    }
-    std::size_t capacity = 16;
-    while (capacity < 2 * cells) capacity *= 2;
-    slots_.assign(capacity, {0, 0, 0});
-    for (std::size_t i = 0; i < entries_.size();) {
-      std::size_t j = i;
-      while (j < entries_.size() && entries_[j].key == entries_[i].key) ++j;
-      std::size_t s = entries_[i].key & (capacity - 1);
-      while (slots_[s].end != 0) s = (s + 1) & (capacity - 1);
-      slots_[s] = {entries_[i].key, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j)};
-      i = j;
-    }
-  }
-  // Entries [begin, end) of a cell; begin == end when empty.
-  std::pair<std::uint32_t, std::uint32_t> find(std::uint64_t key) const {
-    for (std::size_t s = key & (slots_.size() - 1);; s = (s + 1) & (slots_.size() - 1)) {
-      if (slots_[s].end == 0) return {0, 0};
-      if (slots_[s].key == key) return {slots_[s].begin, slots_[s].end};
-    }
-  }
-  const Entry& entry(std::uint32_t i) const { return entries_[i]; }
-  std::uint32_t run_end(std::uint32_t i) const { return run_end_[i]; }
-
- private:
-  struct Slot {
-    std::uint64_t key;
-    std::uint32_t begin, end;
-  };
-  std::vector<Entry> entries_;
-  std::vector<std::uint32_t> run_end_;  // end of the entries with this entry's key and mesh
-  std::vector<Slot> slots_;
-};
-
 // --- the rule ---------------------------------------------------------------------------------
+
+struct Hit {
+  std::size_t gt, go;  // global triangles: the reference (target) one, the other
+  double area_m2, move_m;
+  bool operator<(const Hit& o) const { return std::tie(gt, go) < std::tie(o.gt, o.go); }
+};
 
 struct Move {
   std::uint32_t mesh, vertex;
@@ -251,28 +177,43 @@ class Detector {
   CoincidentGeometry run() {
     std::vector<Entry> entries;
     level_.resize(tris_.size());
-    std::vector<int> levels;
     for (std::size_t g = 0; g < tris_.size(); ++g) {
       dvec3 lo, hi;
       padded_bounds(g, lo, hi);
       level_[g] = level_of(lo, hi);
-      levels.push_back(level_[g]);
       for_each_cell(level_[g], lo, hi, [&](std::uint64_t key) {
         entries.push_back({key, tris_.mesh(g), static_cast<std::uint32_t>(g)});
       });
     }
-    std::sort(levels.begin(), levels.end());
-    levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+    const std::vector<std::uint64_t> partner_levels = levels_of_partners();
     const Grid grid(std::move(entries));
-    std::vector<std::uint32_t> seen(tris_.size(), 0);
-    for (std::size_t g = 0; g < tris_.size(); ++g) {
-      dvec3 lo, hi;
-      padded_bounds(g, lo, hi);
-      for (auto l = std::lower_bound(levels.begin(), levels.end(), level_[g]); l != levels.end();
-           ++l) {
-        for_each_cell(*l, lo, hi, [&](std::uint64_t key) { visit_cell(grid, key, g, seen); });
+    struct Local {
+      std::vector<std::uint32_t> seen;  // stamps: g + 1 of the last triangle that met it
+      std::vector<Hit> hits;
+    };
+    tbb::enumerable_thread_specific<Local> locals;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris_.size(), 4096), [&](const auto& r) {
+      Local& local = locals.local();
+      local.seen.resize(tris_.size(), 0);
+      for (std::size_t g = r.begin(); g != r.end(); ++g) {
+        const std::uint64_t levels = partner_levels[tris_.mesh(g)] >> (level_[g] + kLevelBias);
+        if (levels == 0) continue;
+        dvec3 lo, hi;
+        padded_bounds(g, lo, hi);
+        for (int l = 0; l < 64 - level_[g] - kLevelBias; ++l) {
+          if (!(levels >> l & 1)) continue;
+          for_each_cell(level_[g] + l, lo, hi, [&](std::uint64_t key) {
+            visit_cell(grid, key, g, local.seen, local.hits);
+          });
+        }
       }
-    }
+    });
+    std::vector<Hit> hits;
+    for (const Local& local : locals) hits.insert(hits.end(), local.hits.begin(), local.hits.end());
+    // Sorted, the rule sees the pairs in one order whatever the threads did: sums are exact
+    // repeats from run to run.
+    std::sort(hits.begin(), hits.end());
+    for (const Hit& h : hits) apply_rule(h);
     return finish();
   }
 
@@ -281,6 +222,37 @@ class Detector {
     std::vector<bool> in(s.meshes.size());
     for (std::size_t m = 0; m < in.size(); ++m) in[m] = !movable[m];
     return in;
+  }
+
+  // Per mesh, the grid levels holding triangles of meshes it is relevant with (bit l: level
+  // l - kLevelBias): a triangle looks only there, so a million triangles of one material
+  // around a few of another cost a few lookups each.
+  std::vector<std::uint64_t> levels_of_partners() const {
+    const std::size_t n = s_.meshes.size();
+    std::vector<std::uint64_t> own(n, 0);
+    for (std::size_t g = 0; g < tris_.size(); ++g)
+      own[tris_.mesh(g)] |= 1ull << (level_[g] + kLevelBias);
+    std::vector<std::array<int, 64>> by_material(s_.materials.size(), std::array<int, 64>{});
+    std::array<int, 64> all{}, targets{}, others{};
+    for (std::size_t m = 0; m < n; ++m) {
+      for (int b = 0; b < 64; ++b) {
+        const int has = own[m] >> b & 1;
+        all[b] += has;
+        (is_target_[m] ? targets : others)[b] += has;
+        if (!is_target_[m]) by_material[s_.meshes[m].material][b] += has;
+      }
+    }
+    std::vector<std::uint64_t> out(n, 0);
+    for (std::size_t m = 0; m < n; ++m) {
+      for (int b = 0; b < 64; ++b) {
+        const int has = own[m] >> b & 1;
+        const bool any =
+            is_target_[m] ? all[b] - has > 0
+                          : targets[b] > 0 || others[b] - by_material[s_.meshes[m].material][b] > 0;
+        if (any) out[m] |= 1ull << b;
+      }
+    }
+    return out;
   }
 
   void padded_bounds(std::size_t g, dvec3& lo, dvec3& hi) const {
@@ -296,7 +268,7 @@ class Detector {
   }
 
   void visit_cell(const Grid& grid, std::uint64_t key, std::size_t g,
-                  std::vector<std::uint32_t>& seen) {
+                  std::vector<std::uint32_t>& seen, std::vector<Hit>& hits) const {
     const std::uint32_t mesh = tris_.mesh(g);
     auto [i, end] = grid.find(key);
     while (i < end) {
@@ -309,11 +281,11 @@ class Detector {
       // Same-level pairs are met from both sides: keep one. Stamps drop a cell's repeats.
       if ((level_[e.tri] == level_[g] && e.tri <= g) || seen[e.tri] == g + 1) continue;
       seen[e.tri] = static_cast<std::uint32_t>(g + 1);
-      test_pair(g, e.tri);
+      test_pair(g, e.tri, hits);
     }
   }
 
-  void test_pair(std::size_t g1, std::size_t g2) {
+  void test_pair(std::size_t g1, std::size_t g2, std::vector<Hit>& hits) const {
     dvec3 lo1, hi1, lo2, hi2;
     padded_bounds(g1, lo1, hi1);
     padded_bounds(g2, lo2, hi2);
@@ -328,28 +300,27 @@ class Detector {
     for (const dvec3& p : o.p) magnitude = glm::max(magnitude, glm::abs(p));
     const double tol_m = kToleranceMargin * ray_offset_along(t.n, magnitude);
     const double area = coplanar_overlap_m2(t, o, tol_m);
-    if (area == 0.0) return;
-    apply_rule(gt, t, go, o, area, kMoveFactor * tol_m);
+    if (area > 0.0) hits.push_back({gt, go, area, kMoveFactor * tol_m});
   }
 
   // Same-facing: the other triangle steps back behind the target (the lit side, with its grids
   // and flush luminaires, is untouched). Back to back: the smaller triangle steps toward its own
   // front, the side the other one hides, so the disturbance stays as local as possible.
-  void apply_rule(std::size_t gt, const Triangle& t, std::size_t go, const Triangle& o, double area,
-                  double move_m) {
-    const std::uint32_t mt = tris_.mesh(gt), mo = tris_.mesh(go);
+  void apply_rule(const Hit& h) {
+    const Triangle t = tris_.get(h.gt), o = tris_.get(h.go);
+    const std::uint32_t mt = tris_.mesh(h.gt), mo = tris_.mesh(h.go);
     const bool same_facing = glm::dot(t.n, o.n) > 0.0;
     using K = Coincidence::Kind;
     if (!is_target_[mt]) {
-      found_[{mt, mo, K::Materials}] += area;
+      found_[{mt, mo, K::Materials}] += h.area_m2;
     } else if (is_target_[mo] && same_facing) {
-      found_[{mt, mo, K::TargetsArbitrary}] += area;
+      found_[{mt, mo, K::TargetsArbitrary}] += h.area_m2;
     } else {
-      found_[{mt, mo, is_target_[mo] ? K::TargetsResolved : K::TargetOnSurface}] += area;
+      found_[{mt, mo, is_target_[mo] ? K::TargetsResolved : K::TargetOnSurface}] += h.area_m2;
       if (same_facing || o.area_m2 < t.area_m2) {
-        add_move(go, -t.n, move_m);
+        add_move(h.go, -t.n, h.move_m);
       } else {
-        add_move(gt, t.n, move_m);
+        add_move(h.gt, t.n, h.move_m);
       }
     }
   }
