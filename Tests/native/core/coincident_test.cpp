@@ -187,6 +187,34 @@ TEST_P(Coincident, FlushPanelCeilingTargetAndFloorTargetInARoom) {
   expect_area(warning_naming(r.warnings, "floor probe", "room"), 0.25);
 }
 
+// A room exported twice, once as the target (finely meshed) and once as the building shell
+// (faces not sharing vertices): every photon must end on the target, even from a panel flush
+// with the ceiling, here and 4000 km out (georeferenced).
+TEST_P(Coincident, RoomExportedTwiceTheTargetCopyGetsAllFlux) {
+  for (const dvec3 offset : {dvec3(0.0), dvec3(4.1e6, 6.3e6, 310.0)}) {
+    Scene s;
+    const int black = add_material(s, "black", Material::Type::Diffuse, 0.0);
+    s.meshes.push_back(room_mesh("shell", black, offset, offset + dvec3(4, 3, 2.5), 1));
+    s.meshes.push_back(room_mesh("room", black, offset, offset + dvec3(4, 3, 2.5), 3));
+    s.targets.push_back(surface("room", 1));
+    s.luminaires.push_back(point_light(offset + dvec3(1.3, 2.1, 1.7), 2000.0));
+    Luminaire flush;
+    flush.name = "flush panel";
+    flush.type = Luminaire::Type::Area;
+    flush.corner = offset + dvec3(1, 1, 2.5);
+    flush.edge1 = {0, 0.6, 0};
+    flush.edge2 = {0.6, 0, 0};
+    flush.flux_lm = 1000.0;
+    s.luminaires.push_back(flush);
+    const Results r = run(s, 200'000);
+    const TargetResult& t = r.targets[0];
+    EXPECT_EQ(t.estimate.hits, r.photons) << "photons lost to the shell, offset " << offset.x;
+    EXPECT_NEAR(t.estimate.mean * t.area_m2, 3000.0, 1e-9 * 3000.0);
+    const double area = 2 * (4 * 3 + 4 * 2.5 + 3 * 2.5);
+    expect_area(warning_naming(r.warnings, "room", "shell"), area);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, Coincident, ::testing::ValuesIn(backends()));
 
 // --- detection alone (backend-independent) -----------------------------------------------------
