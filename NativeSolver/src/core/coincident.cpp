@@ -89,7 +89,7 @@ class SceneTriangles {
 // --- 2-D overlap by Sutherland-Hodgman --------------------------------------------------------
 
 struct Polygon {
-  std::array<dvec2, 12> v;  // a triangle clipped by three half-planes has at most 6 vertices
+  std::array<dvec2, 24> v;  // a clip at most doubles the count, whatever rounding does
   int n = 0;
 };
 

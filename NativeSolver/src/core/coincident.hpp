@@ -3,8 +3,8 @@
 // one plane, within the tracer's robustness tolerance, and overlapping. A ray tracer returns
 // whichever of two coplanar triangles it meets first, so a target lying on another surface
 // would get an arbitrary share of the light arriving there. Prepare detects such pairs, moves
-// the hidden triangle a few float ULPs out of the way so the target is met first on every
-// backend, and reports what it found.
+// the hidden triangle out of the way by four ray offsets (float ULPs at its coordinates) so the
+// target is met first on every backend, and reports what it found.
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>

@@ -327,6 +327,31 @@ TEST(CoincidentDetection, SlabBehindATargetStepsBackAndMovableMeshesAreExcluded)
   }
 }
 
+// A target box in a room's corner: its bottom and its side against the wall are back to back
+// with the room, and smaller, so they step into the floor and into the wall; the corner vertex
+// moves along both.
+TEST(CoincidentDetection, TargetBoxInACornerStepsIntoFloorAndWall) {
+  Scene s;
+  const int grey = add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  s.meshes.push_back(room_mesh("room", grey, {0, 0, 0}, {4, 3, 2.5}));
+  s.meshes.push_back(solid_box_mesh("box", grey, {0, 1, 0}, {1, 2, 0.8}));
+  s.targets.push_back(surface("box", 1));
+  const auto p = prepared(s);
+  ASSERT_EQ(p.warnings.size(), 1u);
+  expect_area(warning_naming(p.warnings, "box", "room"), 1.0 + 0.8);
+  const auto& box = s.meshes[1].vertices;
+  const auto& v = p.meshes[1].vertices;
+  for (std::size_t i = 0; i < box.size(); ++i) {
+    const glm::vec3 before(box[i] - p.origin), after(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    EXPECT_EQ(after.x < before.x, box[i].x == 0.0) << i;
+    EXPECT_EQ(after.z < before.z, box[i].z == 0.0) << i;
+    EXPECT_EQ(after.y, before.y) << i;
+    EXPECT_LT(glm::length(after - before), 1e-3f) << i;
+  }
+  for (std::size_t k = 0; k + 1 < p.meshes[0].vertices.size(); ++k)
+    EXPECT_EQ(p.meshes[0].vertices[k], float(s.meshes[0].vertices[k / 3][k % 3] - p.origin[k % 3]));
+}
+
 // About a million triangles, mostly a finely tessellated floor under a target and a rug of
 // another material: detection must stay about linear (a quadratic one would take hours).
 TEST(CoincidentDetection, MillionTriangleFloorStaysFast) {
