@@ -30,11 +30,20 @@ glm::dvec3 scene_centre(const Scene& s) {
 
 vec3 local(const glm::dvec3& p, const glm::dvec3& origin) { return vec3(p - origin); }
 
-PreparedMesh prepare_mesh(const Mesh& m, const glm::dvec3& origin, double& area_m2) {
+// `displacement`: per vertex, empty when the mesh is not moved (coincident surfaces). The
+// target area stays that of the mesh as given; normals follow the moved triangles.
+PreparedMesh prepare_mesh(const Mesh& m, const glm::dvec3& origin,
+                          const std::vector<glm::dvec3>& displacement, double& area_m2) {
   PreparedMesh out;
   out.material = m.material;
   out.vertices.reserve(m.vertices.size() * 3 + 1);
-  for (const auto& v : m.vertices) {
+  std::vector<glm::dvec3> moved;
+  if (!displacement.empty()) {
+    moved = m.vertices;
+    for (std::size_t i = 0; i < moved.size(); ++i) moved[i] += displacement[i];
+  }
+  const std::vector<glm::dvec3>& at = displacement.empty() ? m.vertices : moved;
+  for (const auto& v : at) {
     const vec3 p = local(v, origin);
     out.vertices.insert(out.vertices.end(), {p.x, p.y, p.z});
   }
@@ -47,7 +56,8 @@ PreparedMesh prepare_mesh(const Mesh& m, const glm::dvec3& origin, double& area_
     const glm::dvec3 c =
         glm::cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
     area_m2 += 0.5 * glm::length(c);
-    out.normals.push_back(vec3(glm::normalize(c)));
+    out.normals.push_back(
+        vec3(glm::normalize(glm::cross(at[t[1]] - at[t[0]], at[t[2]] - at[t[0]]))));
   }
   return out;
 }
@@ -101,9 +111,18 @@ PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movabl
   out.origin = scene_centre(scene);
   out.materials = scene.materials;
   out.max_bounces = scene.settings.max_bounces;
+  std::vector<bool> is_target(scene.meshes.size()), is_movable(scene.meshes.size());
+  for (const auto& t : scene.targets) {
+    if (t.type == Target::Type::Surface) is_target.at(t.mesh) = true;
+  }
+  for (std::size_t i : movable) is_movable.at(i) = true;
+  CoincidentGeometry coincident = find_coincident(scene, out.origin, is_target, is_movable);
+  out.coincidences = std::move(coincident.pairs);
+  out.warnings = coincidence_warnings(scene, out.coincidences);
   std::vector<double> mesh_area(scene.meshes.size());
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-    out.meshes.push_back(prepare_mesh(scene.meshes[i], out.origin, mesh_area[i]));
+    out.meshes.push_back(
+        prepare_mesh(scene.meshes[i], out.origin, coincident.displacements[i], mesh_area[i]));
     out.triangle_count += scene.meshes[i].triangles.size();
   }
   for (const auto& t : scene.targets) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/coincident.hpp"
 #include "lightsolver/scene.hpp"
 
 namespace lightsolver::detail {
@@ -58,10 +59,13 @@ struct PreparedScene {
   double total_flux_lm = 0.0;
   std::uint32_t max_bounces = 1000;
   std::size_t triangle_count = 0;
+  std::vector<Coincidence> coincidences; // coplanar overlapping meshes (coincident.hpp)
+  Warnings warnings;                     // for Results::warnings: the coincidences, in words
 };
 
 // Builds the tracer-side scene. The Scene must have passed validate(). Meshes whose indices
-// are listed in `movable` are marked for instancing.
+// are listed in `movable` are marked for instancing. Coincident static surfaces are detected
+// and the hidden one moved behind the target (coincident.hpp); movable meshes are not checked.
 PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movable = {});
 
 // Re-derives the luminaires and their flux CDF after Scene::luminaires changed.

@@ -332,6 +332,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   }
   add_warnings(scene, r);
   add_stop_warnings(r);
+  r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);
   return r;
