@@ -246,8 +246,12 @@ TEST_P(HardCases, TinyTargetInAHugeHallHasHonestIntervals) {
   ASSERT_LT(photons * p, 3.5);
   const int seeds = on_vulkan() ? 40 : 300;
   int covered = 0, zero_hit_runs = 0;
+  double sum = 0.0, sum_sq = 0.0, reported_var = 0.0;
   for (int seed = 1; seed <= seeds; ++seed) {
     const Estimate e = run(s, photons, 7919ull * seed, 0.95).targets[0].estimate;
+    sum += e.mean;
+    sum_sq += e.mean * e.mean;
+    reported_var += e.sigma * e.sigma / seeds;
     const bool holds = e.ci_low <= exact && exact <= e.ci_high;
     covered += holds;
     if (e.hits == 0) {
@@ -259,6 +263,13 @@ TEST_P(HardCases, TinyTargetInAHugeHallHasHonestIntervals) {
   EXPECT_NEAR(covered, seeds * expected, tolerance)
       << covered << " of " << seeds << " runs covered, expected " << expected;
   EXPECT_GT(zero_hit_runs, 0) << "no run without a hit: the case is not exercised";
+  // The reported sigma against the scatter of the means over seeds. Relative sd of the ratio:
+  // sample variance sqrt(2 / (seeds - 1) + kurtosis / seeds), kurtosis 1 / lambda for these
+  // Poisson-like counts, and the mean reported variance about 1 / sqrt(lambda seeds); 4 sd.
+  const double lambda = photons * p;
+  const double scatter = (sum_sq - sum * sum / seeds) / (seeds - 1);
+  const double rel_sd = std::sqrt(2.0 / (seeds - 1) + 2.0 / (lambda * seeds));
+  EXPECT_NEAR(scatter / reported_var, 1.0, 4.0 * rel_sd) << "reported sigma does not match";
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, HardCases, ::testing::ValuesIn(backends()));
