@@ -165,9 +165,12 @@ TEST_P(HardCases, SolidGlassSphereAroundALampConservesEnergy) {
   s.targets.push_back(surface("room", 0));
   s.luminaires.push_back(point_light(centre + dvec3(0.4, 0.0, 0.0), 1000.0));
   if (on_vulkan()) {
-    // Measured: 48 of 100'000 photons vanish on Vulkan (5 even leave the closed room), none on
-    // Embree, all among paths of 100 to 1000 TIR bounces. Reported; not fixed here.
-    GTEST_SKIP() << "Vulkan loses photons after hundreds of TIR bounces in a faceted ball";
+    // Measured with 50'000 photons, seed 11, the ball alone in a closed black box: Vulkan loses
+    // 5 (24 x 48 facets) and 2175 (48 x 96 facets, lamp at 0.8 R) photons that Embree keeps
+    // (Embree: 0, and 272 capped at max_bounces). Instrumenting trace.comp showed most of them
+    // end on a miss whose ray starts 2 to 10 m from its centre (radius 0.5 m, no surface there): a
+    // corrupt hit after a grazing TIR bounce, not NaN. Reported to the lead, not fixed here.
+    GTEST_SKIP() << "Vulkan loses photons after grazing TIR bounces in a faceted ball";
   }
   expect_all_flux_received(run(s, 200'000), "glass ball");
 }
