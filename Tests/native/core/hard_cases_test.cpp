@@ -165,12 +165,16 @@ TEST_P(HardCases, SolidGlassSphereAroundALampConservesEnergy) {
   s.targets.push_back(surface("room", 0));
   s.luminaires.push_back(point_light(centre + dvec3(0.4, 0.0, 0.0), 1000.0));
   if (on_vulkan()) {
-    // Measured with 50'000 photons, seed 11, the ball alone in a closed black box: Vulkan loses
-    // 5 (24 x 48 facets) and 2175 (48 x 96 facets, lamp at 0.8 R) photons that Embree keeps
-    // (Embree: 0, and 272 capped at max_bounces). Instrumenting trace.comp showed most of them
-    // end on a miss whose ray starts 2 to 10 m from its centre (radius 0.5 m, no surface there): a
-    // corrupt hit after a grazing TIR bounce, not NaN. Reported to the lead, not fixed here.
-    GTEST_SKIP() << "Vulkan loses photons after grazing TIR bounces in a faceted ball";
+    // Measured with 50'000 photons, seed 11, the ball alone in a closed black box: lavapipe
+    // loses 5 (24 x 48 facets) and 2175 (48 x 96 facets) photons that Embree keeps (Embree: 0,
+    // and 272 capped at max_bounces, counted and warned). The lost paths end on a BVH miss from
+    // inside the ball (finite origin and direction; retracing from there towards the centre also
+    // misses), always after 4000 to 40000 traversal steps in that invocation: llvmpipe ends
+    // every loop once a shader invocation has run 65535 loop iterations in all
+    // (LP_MAX_TGSI_LOOP_ITERATIONS, shared by the lanes of a SIMD bundle), so long paths are
+    // cut short silently. A real GPU has no such limit; the backend should split long paths
+    // across dispatches, or at least count them as capped. Reported to the lead.
+    GTEST_SKIP() << "lavapipe's 65535-iteration loop limit silently ends long TIR paths";
   }
   expect_all_flux_received(run(s, 200'000), "glass ball");
 }
