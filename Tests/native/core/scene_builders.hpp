@@ -2,7 +2,9 @@
 // Scenes for the closed-form tests, built in code so each test states its geometry exactly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <numbers>
@@ -187,6 +189,61 @@ inline double corner_factor_perpendicular(double a, double depth, double y) {
 // Confidence for closed-form checks: a 5-sigma two-sided interval, so a correct solver fails a
 // single check with probability 6e-7 (the seeds are fixed anyway) while a wrong one cannot hide.
 constexpr double kCheckConfidence = 0.9999994;
+
+// One face of a room: the rectangle corner + s*e1 + t*e2 (front e1 x e2) triangulated around a
+// slit of `m` segments of length `eps` along e1 through `slit_mid`, so that 2m triangles are
+// slivers (two edges of ~1 m, one of `eps`) fanning out to the corners corner and
+// corner + e1 + e2. Only the four corners lie on the rectangle's border, so faces built this way
+// meet their neighbours edge to edge (no T-junctions): a closed, watertight room of slivers.
+inline void add_slit_face(Mesh& mesh, dvec3 corner, dvec3 e1, dvec3 e2, dvec3 slit_mid, int m,
+                          double eps) {
+  const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+  const std::uint32_t A = base, B = base + 1, C = base + 2, D = base + 3, P = base + 4;
+  mesh.vertices.insert(mesh.vertices.end(), {corner, corner + e1, corner + e1 + e2, corner + e2});
+  const dvec3 along = glm::normalize(e1) * eps;
+  for (int k = 0; k <= m; ++k) mesh.vertices.push_back(slit_mid + (k - 0.5 * m) * along);
+  const auto last = P + static_cast<std::uint32_t>(m);
+  mesh.triangles.push_back({A, B, last});  // below the slit (side of A and B)
+  for (std::uint32_t k = last; k > P; --k) mesh.triangles.push_back({A, k, k - 1});
+  mesh.triangles.push_back({A, P, D});  // left of the slit
+  mesh.triangles.push_back({C, D, P});  // above the slit (side of C and D)
+  for (std::uint32_t k = P; k < last; ++k) mesh.triangles.push_back({C, k, k + 1});
+  mesh.triangles.push_back({B, C, last});  // right of the slit
+}
+
+// Longest edge over the altitude onto it: 1 for a well-shaped triangle, huge for a sliver.
+inline double aspect_ratio(dvec3 a, dvec3 b, dvec3 c) {
+  const double l = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+  return l * l / glm::length(glm::cross(b - a, c - a));
+}
+
+// UV sphere of `stacks` x `slices` facets with outward fronts (a solid glass ball).
+inline Mesh sphere_mesh(const std::string& name, int material, dvec3 centre, double radius,
+                        int stacks, int slices) {
+  Mesh m;
+  m.name = name;
+  m.material = material;
+  const double pi = std::numbers::pi;
+  for (int i = 0; i <= stacks; ++i) {
+    const double theta = pi * i / stacks;
+    // The poles exactly, so that their `slices` copies coincide (a watertight cap).
+    const double st = i == 0 || i == stacks ? 0.0 : std::sin(theta);
+    const double ct = i == 0 ? 1.0 : i == stacks ? -1.0 : std::cos(theta);
+    for (int j = 0; j < slices; ++j) {
+      const double phi = 2.0 * pi * j / slices;
+      m.vertices.push_back(centre + radius * dvec3(st * std::cos(phi), st * std::sin(phi), ct));
+    }
+  }
+  auto v = [&](int i, int j) { return static_cast<std::uint32_t>(i * slices + (j % slices)); };
+  for (int i = 0; i < stacks; ++i) {
+    for (int j = 0; j < slices; ++j) {
+      // Counter-clockwise seen from outside: theta grows downward, phi eastward.
+      if (i > 0) m.triangles.push_back({v(i, j), v(i + 1, j), v(i, j + 1)});
+      if (i + 1 < stacks) m.triangles.push_back({v(i, j + 1), v(i + 1, j), v(i + 1, j + 1)});
+    }
+  }
+  return m;
+}
 
 // The backends every closed-form test runs on.
 inline std::vector<std::string> backends() {

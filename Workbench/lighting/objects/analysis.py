@@ -29,8 +29,8 @@ class Analysis(BaseProxy):
                         "Photon paths to trace (when TargetAccuracy is 0)", 200000),
         "TargetAccuracy": Prop("App::PropertyFloat", "Solver",
                                "Wanted relative half-width of every target's Em confidence "
-                               "interval (0.05 = +-5 %); 0 = trace exactly Photons. A pilot run "
-                               "with Photons estimates the count needed", 0.0),
+                               "interval (0.05 = +-5 %); 0 = trace exactly Photons. Tracing stops "
+                               "as soon as every target reaches it (within MaxPhotons)", 0.0),
         "MaxPhotons": Prop("App::PropertyInteger", "Solver",
                            "Upper limit on photons when TargetAccuracy is used", 20000000),
         "Confidence": Prop("App::PropertyFloat", "Solver",

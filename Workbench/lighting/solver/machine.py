@@ -9,7 +9,6 @@ only after the solver succeeded, so a failure never damages the document."""
 from __future__ import annotations
 
 import json
-import math
 import os
 import threading
 import time
@@ -23,24 +22,7 @@ from lighting.solver import results as results_mod
 from lighting.solver import run, store
 
 STAGES = ("idle", "check", "prepare", "solve", "results", "done", "failed", "cancelled")
-#: Margin on the photon count estimated for a target accuracy.
-ACCURACY_SAFETY = 1.1
-
 ProgressFn = Callable[[int, int], Any]
-
-
-def photons_for_accuracy(data: Dict[str, Any], photons: int, accuracy: float) -> int:
-    """Photons needed so every target's Em CI half-width is ``accuracy`` x Em, estimated from
-    a run with ``photons`` photons (CI ~ 1/sqrt(N))."""
-    needed = photons
-    for tgt in data.get("targets", []):
-        mean = float(tgt.get("mean_lux", 0.0))
-        half = 0.5 * (float(tgt.get("ci_high_lux", 0.0)) - float(tgt.get("ci_low_lux", 0.0)))
-        if mean <= 0.0:
-            return 2 ** 62  # no light on a target: as many as allowed
-        relative = half / mean
-        needed = max(needed, int(math.ceil(photons * (relative / accuracy) ** 2 * ACCURACY_SAFETY)))
-    return needed
 
 
 class AnalysisRun:
@@ -120,15 +102,17 @@ class AnalysisRun:
             return not self._cancelled
         return callback
 
-    def _solve_once(self, photons: int, offset: int, outer: Optional[ProgressFn]) -> Dict[str, Any]:
+    def _solve_once(self, photons: int, offset: int, outer: Optional[ProgressFn],
+                    accuracy: Optional[float] = None) -> Dict[str, Any]:
         s = self._settings
         return results_mod.normalise(run.solve_file(
             self.scene_file, photons, s["seed"], s["confidence"], s["threads"], s["backend"],
-            self._progress(offset, outer), self._token))
+            self._progress(offset, outer), self._token, accuracy))
 
     def solve(self, progress: Optional[ProgressFn] = None) -> Dict[str, Any]:
-        """Solve stage (blocking; safe on a worker thread). With a target accuracy, a pilot run
-        with ``Photons`` estimates the count needed and a second run traces it."""
+        """Solve stage (blocking; safe on a worker thread). With a target accuracy the solver's
+        own stopping rule traces until every target's half-width is at most that fraction of its
+        mean (or MaxPhotons run out: the solver warns), so the goal is met, not predicted."""
         self.stage = "solve"
         self.started = time.monotonic()
         s = self._settings
@@ -139,17 +123,14 @@ class AnalysisRun:
         except OSError as exc:
             raise SolverError(str(exc)) from exc
         self._token = run.make_cancel_token()
-        self.total = s["photons"]
-        data = self._solve_once(s["photons"], 0, progress)
-        if s["accuracy"] > 0.0 and not self._cancelled and not data.get("partial"):
-            needed = min(photons_for_accuracy(data, s["photons"], s["accuracy"]),
-                         s["max_photons"])
-            if needed > s["photons"]:
-                self.log("info", f"Target accuracy {s['accuracy']:g}: tracing {needed} photons "
-                                 f"(pilot: {s['photons']})")
-                self.total = s["photons"] + needed
-                data = self._solve_once(needed, s["photons"], progress)
-                self._rewrite_photons(needed)
+        accuracy = s["accuracy"] if s["accuracy"] > 0.0 else None
+        photons = s["max_photons"] if accuracy else s["photons"]
+        self.total = photons
+        data = self._solve_once(photons, 0, progress, accuracy)
+        if accuracy and not data.get("partial"):
+            self.log("info", f"Target accuracy {accuracy:g}: traced {int(data['photons'])} "
+                             f"photons (at most {photons})")
+            self._rewrite_photons(int(data["photons"]))
         if self._cancelled and float(data.get("photons", 0)) <= 0:
             raise CancelledError("The analysis was cancelled before any photon was traced")
         self.data = data

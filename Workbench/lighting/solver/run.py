@@ -117,8 +117,10 @@ def make_cancel_token() -> Optional[Any]:
 
 def solve_file(scene_file: str, photons: int, seed: int, confidence: float, threads: int = 0,
                backend: str = "auto", progress: Optional[ProgressFn] = None,
-               cancel: Optional[Any] = None) -> Dict[str, Any]:
-    """Load ``scene_file`` and trace it; returns the solver's results dictionary.
+               cancel: Optional[Any] = None,
+               target_accuracy: Optional[float] = None) -> Dict[str, Any]:
+    """Load ``scene_file`` and trace it; returns the solver's results dictionary. With
+    ``target_accuracy``, ``photons`` is the budget and the solver stops at the goal.
 
     Raises SolverUnavailableError, or SolverError with the solver's own message."""
     module = load_module()
@@ -131,6 +133,8 @@ def solve_file(scene_file: str, photons: int, seed: int, confidence: float, thre
                               "progress": progress, "cancel": cancel}
     if backend and backend != "auto":
         kwargs["backend"] = backend
+    if target_accuracy:
+        kwargs["target_accuracy"] = float(target_accuracy)
     try:
         results = module.solve(scene, **kwargs)
     except TypeError as exc:
