@@ -312,11 +312,13 @@ class Detector {
     const bool same_facing = glm::dot(t.n, o.n) > 0.0;
     using K = Coincidence::Kind;
     if (!is_target_[mt]) {
+      // Tracing is double-sided and nothing moves: from either side either material is seen.
       found_[{mt, mo, K::Materials}] += h.area_m2;
     } else if (is_target_[mo] && same_facing) {
       found_[{mt, mo, K::TargetsArbitrary}] += h.area_m2;
     } else {
-      found_[{mt, mo, is_target_[mo] ? K::TargetsResolved : K::TargetOnSurface}] += h.area_m2;
+      const K kind = !same_facing ? K::Contact : K::TargetOnSurface;
+      found_[{mt, mo, kind}] += h.area_m2;
       if (same_facing || o.area_m2 < t.area_m2) {
         add_move(h.go, -t.n, h.move_m);
       } else {
@@ -449,10 +451,7 @@ Warnings coincidence_warnings(const Scene& scene, const std::vector<Coincidence>
                       " (coplanar, overlapping over " + area +
                       "): light arriving from the target's front is counted on the target");
         break;
-      case Coincidence::Kind::TargetsResolved:
-        out.push_back("target meshes " + quoted(a.name) + " and " + quoted(b.name) +
-                      " lie back to back (coplanar, overlapping over " + area +
-                      "): each counts the light arriving at its own front");
+      case Coincidence::Kind::Contact:  // an object standing on a surface: nothing to say
         break;
       case Coincidence::Kind::TargetsArbitrary:
         out.push_back("target meshes " + quoted(a.name) + " and " + quoted(b.name) +

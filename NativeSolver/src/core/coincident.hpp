@@ -19,7 +19,9 @@ namespace lightsolver::detail {
 struct Coincidence {
   enum class Kind {
     TargetOnSurface,   ///< `a` is a target mesh, `b` is not: the target gets the light
-    TargetsResolved,   ///< two target meshes back to back: each gets its own front's light
+    /// back to back, at least one a target (furniture standing on a floor target): each side
+    /// keeps the light arriving at its own front; nothing is arbitrary, so it is not warned
+    Contact,
     TargetsArbitrary,  ///< two target meshes facing the same way: the share is arbitrary
     Materials,         ///< two non-target meshes with different materials: arbitrary material
   };
