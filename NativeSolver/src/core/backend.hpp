@@ -16,8 +16,8 @@ namespace lightsolver::detail {
 struct TallyBlock {
   std::vector<Tally> bins;
   std::uint64_t ray_segments = 0;
-  std::uint64_t capped_paths = 0;  // paths stopped by max_bounces while still alive
-  std::uint64_t cut_paths = 0;     // paths a device's loop limit stopped (lavapipe; not counted)
+  std::uint64_t capped_paths = 0;   // paths stopped by max_bounces while still alive
+  std::uint64_t cut_paths = 0;      // paths a device's loop limit stopped (lavapipe; not counted)
   std::uint64_t retried_paths = 0;  // paths traced again after the loop limit cut them (Vulkan)
 
   explicit TallyBlock(std::size_t n = 0) : bins(n) {}

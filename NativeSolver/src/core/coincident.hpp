@@ -18,7 +18,7 @@ namespace lightsolver::detail {
 /// Two meshes with coplanar, overlapping triangles, and the overlapping area.
 struct Coincidence {
   enum class Kind {
-    TargetOnSurface,   ///< `a` is a target mesh, `b` is not: the target gets the light
+    TargetOnSurface,  ///< `a` is a target mesh, `b` is not: the target gets the light
     /// back to back, at least one a target (furniture standing on a floor target): each side
     /// keeps the light arriving at its own front; nothing is arbitrary, so it is not warned
     Contact,

@@ -85,8 +85,8 @@ RunForecast make_forecast(const detail::PreparedScene& s, const detail::TallyBlo
   RunForecast f;
   f.photons_per_second = double(r.photons) / traced_s;
   f.accuracy_goal = r.target_accuracy.has_value();
-  f.photons = f.accuracy_goal ? photons_for_goal(s, t, r.photons, r.confidence,
-                                                 *r.target_accuracy, r.photons_requested)
+  f.photons = f.accuracy_goal ? photons_for_goal(s, t, r.photons, r.confidence, *r.target_accuracy,
+                                                 r.photons_requested)
                               : r.photons_requested;
   f.seconds = double(f.photons) / f.photons_per_second;
   f.max_seconds = r.max_seconds;

@@ -38,7 +38,8 @@ constexpr std::uint32_t probe_hash() {
 // The retry list: a VkDispatchIndirectCommand {x, 1, 1} (x counted up by the shader, one group
 // per path) and a pad word, then one (path offset, deposit floor) pair per path of a submit.
 constexpr std::uint32_t kRetryHeader[4] = {0, 1, 1, 0};
-constexpr std::size_t kRetryBytes = sizeof(kRetryHeader) + kPathsPerSubmit * 2 * sizeof(std::uint32_t);
+constexpr std::size_t kRetryBytes =
+    sizeof(kRetryHeader) + kPathsPerSubmit * 2 * sizeof(std::uint32_t);
 
 struct LuminaireBuffer {
   gpu::Binding binding;

@@ -8,9 +8,8 @@
 #include "core/backend.hpp"
 #include "core/prepared_scene.hpp"
 #include "lightsolver/solver.hpp"
-#include "vulkan_test_util.hpp"
-
 #include "native/core/scene_builders.hpp"
+#include "vulkan_test_util.hpp"
 
 namespace lightsolver::test {
 namespace {
