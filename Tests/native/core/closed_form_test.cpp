@@ -21,23 +21,10 @@ double patch_mean(const std::function<double(dvec3)>& f, dvec3 c, dvec3 e1, dvec
   return sum / (n * n);
 }
 
-void expect_in_ci(const Estimate& e, double exact, double max_rel_half_width,
-                  const std::string& what) {
-  EXPECT_LE(e.ci_low, exact) << what << ": mean " << e.mean << " exact " << exact;
-  EXPECT_GE(e.ci_high, exact) << what << ": mean " << e.mean << " exact " << exact;
-  EXPECT_LT(0.5 * (e.ci_high - e.ci_low), max_rel_half_width * exact) << what << " CI too wide";
-}
-
 class ClosedForm : public ::testing::TestWithParam<std::string> {
  protected:
   Results run(Scene s, std::uint64_t photons, std::uint64_t seed = 7) {
-    validate(s);
-    SolveOptions o;
-    o.photons = photons;
-    o.seed = seed;
-    o.confidence = kCheckConfidence;
-    o.backend = GetParam();
-    return solve(s, o);
+    return run_on_backend(GetParam(), std::move(s), photons, seed);
   }
 };
 

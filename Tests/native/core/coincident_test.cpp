@@ -83,23 +83,10 @@ void expect_area(const std::string& warning, double exact_m2) {
   EXPECT_NEAR(area_in(warning), exact_m2, 1e-9 * exact_m2) << warning;
 }
 
-void expect_in_ci(const Estimate& e, double exact, double max_rel_half_width,
-                  const std::string& what) {
-  EXPECT_LE(e.ci_low, exact) << what << ": mean " << e.mean << " exact " << exact;
-  EXPECT_GE(e.ci_high, exact) << what << ": mean " << e.mean << " exact " << exact;
-  EXPECT_LT(0.5 * (e.ci_high - e.ci_low), max_rel_half_width * exact) << what << " CI too wide";
-}
-
 class Coincident : public ::testing::TestWithParam<std::string> {
  protected:
   Results run(Scene s, std::uint64_t photons) {
-    validate(s);
-    SolveOptions o;
-    o.photons = photons;
-    o.seed = 11;
-    o.confidence = kCheckConfidence;
-    o.backend = GetParam();
-    return solve(s, o);
+    return run_on_backend(GetParam(), std::move(s), photons, 11);
   }
 };
 

@@ -17,13 +17,7 @@ class HardCases : public ::testing::TestWithParam<std::string> {
 
   Results run(Scene s, std::uint64_t photons, std::uint64_t seed = 11,
               double confidence = kCheckConfidence) {
-    validate(s);
-    SolveOptions o;
-    o.photons = photons;
-    o.seed = seed;
-    o.confidence = confidence;
-    o.backend = GetParam();
-    return solve(s, o);
+    return run_on_backend(GetParam(), std::move(s), photons, seed, confidence);
   }
 };
 

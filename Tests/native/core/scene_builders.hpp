@@ -190,6 +190,27 @@ inline double corner_factor_perpendicular(double a, double depth, double y) {
 // single check with probability 6e-7 (the seeds are fixed anyway) while a wrong one cannot hide.
 constexpr double kCheckConfidence = 0.9999994;
 
+// One run of `s` on `backend` at `confidence`: the closed-form suites' common call.
+inline Results run_on_backend(const std::string& backend, Scene s, std::uint64_t photons,
+                              std::uint64_t seed, double confidence = kCheckConfidence) {
+  validate(s);
+  SolveOptions o;
+  o.photons = photons;
+  o.seed = seed;
+  o.confidence = confidence;
+  o.backend = backend;
+  return solve(s, o);
+}
+
+// The exact value lies inside the reported interval AND the interval is narrow (half-width
+// below max_rel_half_width of the exact value), so a wrong solver cannot pass by being noisy.
+inline void expect_in_ci(const Estimate& e, double exact, double max_rel_half_width,
+                         const std::string& what) {
+  EXPECT_LE(e.ci_low, exact) << what << ": mean " << e.mean << " exact " << exact;
+  EXPECT_GE(e.ci_high, exact) << what << ": mean " << e.mean << " exact " << exact;
+  EXPECT_LT(0.5 * (e.ci_high - e.ci_low), max_rel_half_width * exact) << what << " CI too wide";
+}
+
 // One face of a room: the rectangle corner + s*e1 + t*e2 (front e1 x e2) triangulated around a
 // slit of `m` segments of length `eps` along e1 through `slit_mid`, so that 2m triangles are
 // slivers (two edges of ~1 m, one of `eps`) fanning out to the corners corner and

@@ -10,21 +10,9 @@ namespace {
 class Stability : public ::testing::TestWithParam<std::string> {
  protected:
   Results run(Scene s, std::uint64_t photons, double confidence = kCheckConfidence) {
-    validate(s);
-    SolveOptions o;
-    o.photons = photons;
-    o.seed = 11;
-    o.confidence = confidence;
-    o.backend = GetParam();
-    return solve(s, o);
+    return run_on_backend(GetParam(), std::move(s), photons, 11, confidence);
   }
 };
-
-void expect_in_ci(const Estimate& e, double exact, double max_rel, const std::string& what) {
-  EXPECT_LE(e.ci_low, exact) << what << " mean " << e.mean;
-  EXPECT_GE(e.ci_high, exact) << what << " mean " << e.mean;
-  EXPECT_LT(e.ci_high - e.ci_low, 2 * max_rel * exact) << what;
-}
 
 TEST_P(Stability, GrazingSunlightFollowsCosine) {
   // 88 degrees from the normal: E = E_normal cos(88 deg), 3.5 % of the normal value.
