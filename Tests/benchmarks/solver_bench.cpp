@@ -50,6 +50,13 @@ void BM_ScenePrepareAndBuild(benchmark::State& state) {
   state.counters["triangles"] = double(detail::prepare(scene).triangle_count);
 }
 
+// Prepare alone (re-centring, float geometry, bins and the coincident-surface check, which
+// runs on all cores): beside BM_ScenePrepareAndBuild it shows what the check adds to a run.
+void BM_ScenePrepare(benchmark::State& state) {
+  const Scene& scene = scene_by_index(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(detail::prepare(scene));
+}
+
 // Random rays: origins uniform in the scene's box, directions uniform on the sphere, one
 // rtcIntersect1 each, spread over TBB workers exactly as the photon tracer spreads paths.
 void BM_RawEmbreeRandomRays(benchmark::State& state) {
@@ -186,6 +193,7 @@ BENCHMARK(BM_ScenePrepareAndBuild)
     ->Arg(1)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime();
+BENCHMARK(BM_ScenePrepare)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_MoveOneMesh)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_RawEmbreeRandomRays)
     ->Args({0, 4'000'000})
