@@ -1,7 +1,10 @@
 // GPU scene layout shared by every shader. Must match NativeSolver/src/vulkan/gpu_layout.hpp
 // (std430; every struct is a multiple of 16 bytes so C++ and GLSL agree without padding rules).
+// Binding numbers come from trace_bindings.h, which the C++ side includes too.
 #ifndef LIGHTSOLVER_SCENE_LAYOUT_GLSL
 #define LIGHTSOLVER_SCENE_LAYOUT_GLSL
+
+#include "trace_bindings.h"
 
 const uint kNone = 0xFFFFFFFFu;
 
@@ -21,8 +24,10 @@ struct Tri {
   vec3 v2; uint pad;
 };
 
-layout(std430, set = 0, binding = 0) readonly buffer Nodes { Node nodes[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Tris { Tri tris[]; };
-layout(std430, set = 0, binding = 2) readonly buffer TriNormals { vec4 tri_normals[]; };
+layout(std430, set = 0, binding = LS_BINDING_NODES) readonly buffer Nodes { Node nodes[]; };
+layout(std430, set = 0, binding = LS_BINDING_TRIS) readonly buffer Tris { Tri tris[]; };
+layout(std430, set = 0, binding = LS_BINDING_TRI_NORMALS) readonly buffer TriNormals {
+  vec4 tri_normals[];
+};
 
 #endif

@@ -14,7 +14,9 @@
 #extension GL_EXT_shader_atomic_int64 : require
 #extension GL_EXT_control_flow_attributes : require
 
-layout(local_size_x_id = 0) in;
+#include "trace_bindings.h"
+
+layout(local_size_x_id = LS_SPEC_WORKGROUP_SIZE) in;
 
 #include "philox.glsl"
 #include "sampling.glsl"

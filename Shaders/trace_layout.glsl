@@ -1,25 +1,27 @@
-// Bindings, push constants and specialisation constants of trace.comp. Must match
-// NativeSolver/src/vulkan/gpu_layout.hpp.
+// Bindings, push constants and specialisation constants of trace.comp. Structs and push
+// constants must match NativeSolver/src/vulkan/gpu_layout.hpp (sizes asserted there); binding
+// numbers and constant ids come from trace_bindings.h, which the C++ side includes too.
 #ifndef LIGHTSOLVER_TRACE_LAYOUT_GLSL
 #define LIGHTSOLVER_TRACE_LAYOUT_GLSL
 
 #include "scene_layout.glsl"
+#include "trace_bindings.h"
 
 // Feature switches: the pipeline is specialised per scene so that a scene only pays for the
 // materials, luminaires and targets it contains (dead branches are removed by the driver).
-layout(constant_id = 1) const bool HAS_DIFFUSE = true;
-layout(constant_id = 2) const bool HAS_MIRROR = true;
-layout(constant_id = 3) const bool HAS_GLASS = true;
-layout(constant_id = 4) const bool HAS_GLOSSY = true;
-layout(constant_id = 5) const bool HAS_POINT = true;
-layout(constant_id = 6) const bool HAS_SPOT = true;
-layout(constant_id = 7) const bool HAS_AREA = true;
-layout(constant_id = 8) const bool HAS_DIRECTIONAL = true;
-layout(constant_id = 9) const bool HAS_GRIDS = true;
-layout(constant_id = 10) const bool HAS_SURFACE_BINS = true;
-layout(constant_id = 11) const bool MANY_LUMINAIRES = true;
-layout(constant_id = 12) const bool HAS_PHOTOMETRIC = true;
-layout(constant_id = 13) const bool HAS_INSTANCES = true;  // movable meshes
+layout(constant_id = LS_SPEC_HAS_DIFFUSE) const bool HAS_DIFFUSE = true;
+layout(constant_id = LS_SPEC_HAS_MIRROR) const bool HAS_MIRROR = true;
+layout(constant_id = LS_SPEC_HAS_GLASS) const bool HAS_GLASS = true;
+layout(constant_id = LS_SPEC_HAS_GLOSSY) const bool HAS_GLOSSY = true;
+layout(constant_id = LS_SPEC_HAS_POINT) const bool HAS_POINT = true;
+layout(constant_id = LS_SPEC_HAS_SPOT) const bool HAS_SPOT = true;
+layout(constant_id = LS_SPEC_HAS_AREA) const bool HAS_AREA = true;
+layout(constant_id = LS_SPEC_HAS_DIRECTIONAL) const bool HAS_DIRECTIONAL = true;
+layout(constant_id = LS_SPEC_HAS_GRIDS) const bool HAS_GRIDS = true;
+layout(constant_id = LS_SPEC_HAS_SURFACE_BINS) const bool HAS_SURFACE_BINS = true;
+layout(constant_id = LS_SPEC_MANY_LUMINAIRES) const bool MANY_LUMINAIRES = true;
+layout(constant_id = LS_SPEC_HAS_PHOTOMETRIC) const bool HAS_PHOTOMETRIC = true;
+layout(constant_id = LS_SPEC_HAS_INSTANCES) const bool HAS_INSTANCES = true;  // movable meshes
 
 const uint kDiffuse = 0u, kMirror = 1u, kGlass = 2u, kGlossy = 3u;          // Material::Type
 const uint kPoint = 0u, kSpot = 1u, kArea = 2u, kDirectional = 3u, kPhotometric = 4u;  // Luminaire
@@ -76,24 +78,40 @@ struct GridGpu {
   vec3 dv; uint pad;
 };
 
-layout(std430, set = 0, binding = 3) readonly buffer Meshes { MeshInfo meshes[]; };
-layout(std430, set = 0, binding = 4) readonly buffer Materials { MaterialGpu materials[]; };
-layout(std430, set = 0, binding = 5) readonly buffer Luminaires { LuminaireGpu luminaires[]; };
+layout(std430, set = 0, binding = LS_BINDING_MESHES) readonly buffer Meshes { MeshInfo meshes[]; };
+layout(std430, set = 0, binding = LS_BINDING_MATERIALS) readonly buffer Materials {
+  MaterialGpu materials[];
+};
+layout(std430, set = 0, binding = LS_BINDING_LUMINAIRES) readonly buffer Luminaires {
+  LuminaireGpu luminaires[];
+};
 // ceil(cdf * 2^53): luminaire i is chosen for the first i with rng_u53() < cdf53[i].
-layout(std430, set = 0, binding = 6) readonly buffer LuminaireCdf { uint64_t cdf53[]; };
-layout(std430, set = 0, binding = 7) readonly buffer Grids { GridGpu grids[]; };
-layout(std430, set = 0, binding = 8) buffer Tallies { uint64_t tallies[]; };  // S, Q per bin
+layout(std430, set = 0, binding = LS_BINDING_LUMINAIRE_CDF) readonly buffer LuminaireCdf {
+  uint64_t cdf53[];
+};
+layout(std430, set = 0, binding = LS_BINDING_GRIDS) readonly buffer Grids { GridGpu grids[]; };
+layout(std430, set = 0, binding = LS_BINDING_TALLIES) buffer Tallies {
+  uint64_t tallies[];  // S, Q per bin
+};
 // Ray segments, paths capped at max_bounces, paths cut short for good by the device's loop limit,
 // paths queued to be traced again (trace.comp).
-layout(std430, set = 0, binding = 9) buffer Counters { uint64_t counters[]; };
-layout(std430, set = 0, binding = 10) readonly buffer Photometrics { PhotoGpu photometrics[]; };
-layout(std430, set = 0, binding = 11) readonly buffer PhotoFloats { float photo_floats[]; };
+layout(std430, set = 0, binding = LS_BINDING_COUNTERS) buffer Counters { uint64_t counters[]; };
+layout(std430, set = 0, binding = LS_BINDING_PHOTOMETRICS) readonly buffer Photometrics {
+  PhotoGpu photometrics[];
+};
+layout(std430, set = 0, binding = LS_BINDING_PHOTO_FLOATS) readonly buffer PhotoFloats {
+  float photo_floats[];
+};
 // ceil-type 53-bit thresholds: cell c is chosen for the first c with rng_u53() < photo_cdf53[c].
-layout(std430, set = 0, binding = 12) readonly buffer PhotoCdf { uint64_t photo_cdf53[]; };
-layout(std430, set = 0, binding = 13) readonly buffer Instances { Instance instances[]; };
+layout(std430, set = 0, binding = LS_BINDING_PHOTO_CDF) readonly buffer PhotoCdf {
+  uint64_t photo_cdf53[];
+};
+layout(std430, set = 0, binding = LS_BINDING_INSTANCES) readonly buffer Instances {
+  Instance instances[];
+};
 // Paths to trace again, each alone in its workgroup (see trace.comp): the first three words are
 // the VkDispatchIndirectCommand of that retry dispatch, then (path offset, deposit floor) pairs.
-layout(std430, set = 0, binding = 14) buffer Retry {
+layout(std430, set = 0, binding = LS_BINDING_RETRY) buffer Retry {
   uint retry_dispatch[4];
   uvec2 retry_paths[];
 };

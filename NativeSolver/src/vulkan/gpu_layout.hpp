@@ -1,7 +1,12 @@
 #pragma once
 // C++ twins of the std430 structs in Shaders/scene_layout.glsl and Shaders/trace_layout.glsl.
 // Every struct is a multiple of 16 bytes of 4-byte fields, so both sides agree byte for byte.
+// Binding numbers and specialisation constant ids come from Shaders/trace_bindings.h, which the
+// GLSL includes too; the tables at the end add the GLSL names.
 #include <cstdint>
+#include <iterator>
+
+#include "trace_bindings.h"  // Shaders/, on the include path of every target embedding shaders
 
 namespace lightsolver::detail::gpu {
 
@@ -108,43 +113,112 @@ static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) 
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
 static_assert(sizeof(TracePush) == 56);
 
-/// Specialisation constant ids of trace.comp (0 is the workgroup size).
+/// Specialisation constant ids of trace.comp; the numbers come from Shaders/trace_bindings.h.
 enum SpecId : std::uint32_t {
-  kWorkgroupSize = 0,
-  kHasDiffuse,
-  kHasMirror,
-  kHasGlass,
-  kHasGlossy,
-  kHasPoint,
-  kHasSpot,
-  kHasArea,
-  kHasDirectional,
-  kHasGrids,
-  kHasSurfaceBins,
-  kManyLuminaires,
-  kHasPhotometric,
-  kHasInstances,
-  kSpecCount
+  kWorkgroupSize = LS_SPEC_WORKGROUP_SIZE,
+  kHasDiffuse = LS_SPEC_HAS_DIFFUSE,
+  kHasMirror = LS_SPEC_HAS_MIRROR,
+  kHasGlass = LS_SPEC_HAS_GLASS,
+  kHasGlossy = LS_SPEC_HAS_GLOSSY,
+  kHasPoint = LS_SPEC_HAS_POINT,
+  kHasSpot = LS_SPEC_HAS_SPOT,
+  kHasArea = LS_SPEC_HAS_AREA,
+  kHasDirectional = LS_SPEC_HAS_DIRECTIONAL,
+  kHasGrids = LS_SPEC_HAS_GRIDS,
+  kHasSurfaceBins = LS_SPEC_HAS_SURFACE_BINS,
+  kManyLuminaires = LS_SPEC_MANY_LUMINAIRES,
+  kHasPhotometric = LS_SPEC_HAS_PHOTOMETRIC,
+  kHasInstances = LS_SPEC_HAS_INSTANCES,
+  kSpecCount = LS_SPEC_COUNT
 };
 
-/// Bindings of trace.comp, in order.
+/// Storage-buffer bindings (descriptor set 0) of trace.comp; the numbers come from
+/// Shaders/trace_bindings.h.
 enum Binding : std::uint32_t {
-  kNodes,
-  kTris,
-  kTriNormals,
-  kMeshes,
-  kMaterials,
-  kLuminaires,
-  kLuminaireCdf,
-  kGrids,
-  kTallies,
-  kCounters,
-  kPhotometrics,
-  kPhotoFloats,
-  kPhotoCdf,
-  kInstances,
-  kRetry,
-  kBindingCount
+  kNodes = LS_BINDING_NODES,
+  kTris = LS_BINDING_TRIS,
+  kTriNormals = LS_BINDING_TRI_NORMALS,
+  kMeshes = LS_BINDING_MESHES,
+  kMaterials = LS_BINDING_MATERIALS,
+  kLuminaires = LS_BINDING_LUMINAIRES,
+  kLuminaireCdf = LS_BINDING_LUMINAIRE_CDF,
+  kGrids = LS_BINDING_GRIDS,
+  kTallies = LS_BINDING_TALLIES,
+  kCounters = LS_BINDING_COUNTERS,
+  kPhotometrics = LS_BINDING_PHOTOMETRICS,
+  kPhotoFloats = LS_BINDING_PHOTO_FLOATS,
+  kPhotoCdf = LS_BINDING_PHOTO_CDF,
+  kInstances = LS_BINDING_INSTANCES,
+  kRetry = LS_BINDING_RETRY,
+  kBindingCount = LS_BINDING_COUNT
 };
+
+/// A storage buffer of trace.comp: its binding, the GLSL block bound there and the name that
+/// errors use.
+struct BufferInfo {
+  Binding binding;
+  const char* block;
+  const char* label;
+};
+
+/// Every buffer, in binding order: the backend creates its buffers from this table (the
+/// descriptor set binds row i at binding i), and bindings_test checks the compiled shader's
+/// bindings and block names against it.
+inline constexpr BufferInfo kBuffers[] = {
+    {kNodes, "Nodes", "BVH nodes"},
+    {kTris, "Tris", "triangles"},
+    {kTriNormals, "TriNormals", "triangle normals"},
+    {kMeshes, "Meshes", "meshes"},
+    {kMaterials, "Materials", "materials"},
+    {kLuminaires, "Luminaires", "luminaires"},
+    {kLuminaireCdf, "LuminaireCdf", "luminaire CDF"},
+    {kGrids, "Grids", "grids"},
+    {kTallies, "Tallies", "tallies"},
+    {kCounters, "Counters", "counters"},
+    {kPhotometrics, "Photometrics", "photometric luminaires"},
+    {kPhotoFloats, "PhotoFloats", "photometric tables"},
+    {kPhotoCdf, "PhotoCdf", "photometric CDF"},
+    {kInstances, "Instances", "instances"},
+    {kRetry, "Retry", "retry list"},
+};
+
+/// A specialisation constant of trace.comp and its GLSL name (the workgroup size has none in
+/// SPIR-V: it is the x of the WorkgroupSize built-in).
+struct SpecInfo {
+  SpecId id;
+  const char* name;
+};
+
+/// Every specialisation constant, in id order (checked against the shader by bindings_test).
+inline constexpr SpecInfo kSpecConstants[] = {
+    {kWorkgroupSize, "local_size_x"},
+    {kHasDiffuse, "HAS_DIFFUSE"},
+    {kHasMirror, "HAS_MIRROR"},
+    {kHasGlass, "HAS_GLASS"},
+    {kHasGlossy, "HAS_GLOSSY"},
+    {kHasPoint, "HAS_POINT"},
+    {kHasSpot, "HAS_SPOT"},
+    {kHasArea, "HAS_AREA"},
+    {kHasDirectional, "HAS_DIRECTIONAL"},
+    {kHasGrids, "HAS_GRIDS"},
+    {kHasSurfaceBins, "HAS_SURFACE_BINS"},
+    {kManyLuminaires, "MANY_LUMINAIRES"},
+    {kHasPhotometric, "HAS_PHOTOMETRIC"},
+    {kHasInstances, "HAS_INSTANCES"},
+};
+
+// Row i must be number i: no gap, no duplicate, no row missing (trace_bindings.h numbers them
+// 0..count-1, and the descriptor set layout binds buffers_[i] at binding i).
+constexpr bool numbered_in_order() {
+  for (std::uint32_t i = 0; i < std::size(kBuffers); ++i) {
+    if (kBuffers[i].binding != i) return false;
+  }
+  for (std::uint32_t i = 0; i < std::size(kSpecConstants); ++i) {
+    if (kSpecConstants[i].id != i) return false;
+  }
+  return true;
+}
+static_assert(std::size(kBuffers) == kBindingCount && std::size(kSpecConstants) == kSpecCount);
+static_assert(numbered_in_order(), "kBuffers / kSpecConstants must list 0, 1, 2, ... in order");
 
 }  // namespace lightsolver::detail::gpu

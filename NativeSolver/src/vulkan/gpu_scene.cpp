@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "lightsolver/photometry.hpp"
 
@@ -72,24 +73,24 @@ std::vector<vkw::SpecConstant> features(const PreparedScene& s) {
                                         [](const PreparedMesh& m) { return m.bin >= 0; });
   using M = Material::Type;
   using L = Luminaire::Type;
-  const bool on[] = {uses_material(M::Diffuse),
-                     uses_material(M::Mirror),
-                     uses_material(M::Glass),
-                     uses_material(M::Glossy),
-                     uses_luminaire(L::Point),
-                     uses_luminaire(L::Spot),
-                     uses_luminaire(L::Area),
-                     uses_luminaire(L::Directional),
-                     !s.grids.empty(),
-                     surface_bins,
-                     s.luminaires.size() > 1,
-                     uses_luminaire(L::Photometric),
-                     std::any_of(s.meshes.begin(), s.meshes.end(),
-                                 [](const PreparedMesh& m) { return m.movable; })};
+  const bool movable = std::any_of(s.meshes.begin(), s.meshes.end(),
+                                   [](const PreparedMesh& m) { return m.movable; });
+  // By id, not by position: the ids come from Shaders/trace_bindings.h.
+  const std::pair<gpu::SpecId, bool> on[] = {{gpu::kHasDiffuse, uses_material(M::Diffuse)},
+                                             {gpu::kHasMirror, uses_material(M::Mirror)},
+                                             {gpu::kHasGlass, uses_material(M::Glass)},
+                                             {gpu::kHasGlossy, uses_material(M::Glossy)},
+                                             {gpu::kHasPoint, uses_luminaire(L::Point)},
+                                             {gpu::kHasSpot, uses_luminaire(L::Spot)},
+                                             {gpu::kHasArea, uses_luminaire(L::Area)},
+                                             {gpu::kHasDirectional, uses_luminaire(L::Directional)},
+                                             {gpu::kHasGrids, !s.grids.empty()},
+                                             {gpu::kHasSurfaceBins, surface_bins},
+                                             {gpu::kManyLuminaires, s.luminaires.size() > 1},
+                                             {gpu::kHasPhotometric, uses_luminaire(L::Photometric)},
+                                             {gpu::kHasInstances, movable}};
   std::vector<vkw::SpecConstant> out;
-  for (std::uint32_t id = gpu::kHasDiffuse; id < gpu::kSpecCount; ++id) {
-    out.push_back({id, on[id - gpu::kHasDiffuse] ? 1u : 0u});
-  }
+  for (const auto& [id, value] : on) out.push_back({id, value ? 1u : 0u});
   return out;
 }
 

@@ -41,40 +41,34 @@ constexpr std::uint32_t kRetryHeader[4] = {0, 1, 1, 0};
 constexpr std::size_t kRetryBytes =
     sizeof(kRetryHeader) + kPathsPerSubmit * 2 * sizeof(std::uint32_t);
 
-struct LuminaireBuffer {
-  gpu::Binding binding;
-  const char* name;
-  const void* data;
+// What a buffer holds: `bytes` in all, the first `upload_bytes` of them uploaded from `data`
+// (buffers the shader writes upload nothing, the retry list only its header).
+struct Contents {
   std::size_t bytes;
+  const void* data = nullptr;
+  std::size_t upload_bytes = 0;
 };
 
 template <class T>
-std::size_t bytes_of(const std::vector<T>& v) {
-  return v.size() * sizeof(T);
+Contents whole(const std::vector<T>& v) {
+  const std::size_t bytes = v.size() * sizeof(T);
+  return {bytes, v.data(), bytes};
 }
+
+// The buffers pack_luminaires() rewrites.
+constexpr gpu::Binding kLuminaireBindings[] = {
+    gpu::kLuminaires, gpu::kLuminaireCdf, gpu::kPhotometrics, gpu::kPhotoFloats, gpu::kPhotoCdf};
 
 class VulkanBackend final : public Backend {
  public:
+  // One buffer per row of gpu::kBuffers, in binding order (buffers_[b] is bound at binding b).
   explicit VulkanBackend(const PreparedScene& s) : s_(s), data_(pack_scene(s)), seq_(ctx_) {
-    const GpuGeometry& g = data_.geometry;
-    add_buffer("BVH nodes", g.nodes.data(), bytes_of(g.nodes));
-    add_buffer("triangles", g.tris.data(), bytes_of(g.tris));
-    add_buffer("triangle normals", g.normals.data(), bytes_of(g.normals));
-    add_buffer("meshes", data_.meshes.data(), bytes_of(data_.meshes));
-    add_buffer("materials", data_.materials.data(), bytes_of(data_.materials));
-    add_buffer("luminaires", data_.luminaires.data(), bytes_of(data_.luminaires));
-    add_buffer("luminaire CDF", data_.cdf53.data(), bytes_of(data_.cdf53));
-    add_buffer("grids", data_.grids.data(), bytes_of(data_.grids));
-    const std::size_t tally_bytes = 2 * sizeof(std::uint64_t) * s.bins.size();
-    add_buffer("tallies", nullptr, tally_bytes);
-    add_buffer("counters", nullptr, kCounters * sizeof(std::uint64_t));
-    add_buffer("photometric luminaires", data_.photometrics.data(), bytes_of(data_.photometrics));
-    add_buffer("photometric tables", data_.photo_floats.data(), bytes_of(data_.photo_floats));
-    add_buffer("photometric CDF", data_.photo_cdf53.data(), bytes_of(data_.photo_cdf53));
-    add_buffer("instances", data_.instances.data(), bytes_of(data_.instances));
-    add_buffer("retry list", nullptr, kRetryBytes);
-    vkw::upload(ctx_, buffers_[gpu::kRetry], kRetryHeader, sizeof(kRetryHeader));
-    readback_.emplace(ctx_, tally_bytes + kCounters * sizeof(std::uint64_t),
+    for (const gpu::BufferInfo& info : gpu::kBuffers) {
+      const Contents c = contents(info.binding);
+      buffers_.push_back(make_buffer(info.binding, c.bytes));
+      upload(info.binding, c);
+    }
+    readback_.emplace(ctx_, tally_bytes() + kCounters * sizeof(std::uint64_t),
                       vkw::MemoryKind::Readback, "tally readback");
     data_.geometry = {};  // on the device now
     build_pipeline();
@@ -84,26 +78,21 @@ class VulkanBackend final : public Backend {
   // only when the set of luminaire types (its specialisation) or a buffer's size changes.
   void luminaires_changed() override {
     const auto old_features = data_.features;
-    const std::size_t old_bytes[] = {bytes_of(data_.luminaires), bytes_of(data_.cdf53),
-                                     bytes_of(data_.photometrics), bytes_of(data_.photo_floats),
-                                     bytes_of(data_.photo_cdf53)};
+    std::size_t old_bytes[std::size(kLuminaireBindings)];
+    for (std::size_t i = 0; i < std::size(kLuminaireBindings); ++i) {
+      old_bytes[i] = contents(kLuminaireBindings[i]).bytes;
+    }
     pack_luminaires(s_, data_);
-    const LuminaireBuffer parts[] = {
-        {gpu::kLuminaires, "luminaires", data_.luminaires.data(), bytes_of(data_.luminaires)},
-        {gpu::kLuminaireCdf, "luminaire CDF", data_.cdf53.data(), bytes_of(data_.cdf53)},
-        {gpu::kPhotometrics, "photometric luminaires", data_.photometrics.data(),
-         bytes_of(data_.photometrics)},
-        {gpu::kPhotoFloats, "photometric tables", data_.photo_floats.data(),
-         bytes_of(data_.photo_floats)},
-        {gpu::kPhotoCdf, "photometric CDF", data_.photo_cdf53.data(), bytes_of(data_.photo_cdf53)}};
     bool resized = false;
-    for (std::size_t i = 0; i < std::size(parts); ++i) {
-      if (parts[i].bytes != old_bytes[i]) {
-        replace_buffer(parts[i].binding, parts[i].name, parts[i].bytes);
+    for (std::size_t i = 0; i < std::size(kLuminaireBindings); ++i) {
+      const gpu::Binding b = kLuminaireBindings[i];
+      const Contents c = contents(b);
+      if (c.bytes != old_bytes[i]) {
+        trace_.reset();  // its descriptor set refers to the old buffer
+        buffers_[b] = make_buffer(b, c.bytes);
         resized = true;
       }
-      if (parts[i].bytes > 0)
-        vkw::upload(ctx_, buffers_[parts[i].binding], parts[i].data, parts[i].bytes);
+      upload(b, c);
     }
     if (resized || !same(old_features, data_.features)) build_pipeline();
   }
@@ -118,7 +107,7 @@ class VulkanBackend final : public Backend {
     }
     const std::size_t k = it - data_.instance_roots.begin();
     data_.instances[k] = pack_instance(*it, transform);
-    vkw::upload(ctx_, buffers_[gpu::kInstances], data_.instances.data(), bytes_of(data_.instances));
+    upload(gpu::kInstances, contents(gpu::kInstances));
   }
 
   std::string name() const override { return "vulkan"; }
@@ -156,11 +145,59 @@ class VulkanBackend final : public Backend {
   }
 
  private:
-  void add_buffer(const char* name, const void* data, std::size_t bytes) {
-    check_size(name, bytes);
-    // Empty arrays still need a valid binding: 16 bytes of zeros.
-    buffers_.emplace_back(ctx_, std::max<std::size_t>(bytes, 16), vkw::MemoryKind::Device, name);
-    if (data) vkw::upload(ctx_, buffers_.back(), data, bytes);
+  // What each binding holds. No default: a binding added to trace_bindings.h without a case
+  // here draws -Wswitch at compile time and throws on the first run. The geometry cases are
+  // only valid in the constructor (the host copy is dropped once uploaded).
+  Contents contents(gpu::Binding binding) const {
+    const GpuGeometry& g = data_.geometry;
+    switch (binding) {
+      case gpu::kNodes:
+        return whole(g.nodes);
+      case gpu::kTris:
+        return whole(g.tris);
+      case gpu::kTriNormals:
+        return whole(g.normals);
+      case gpu::kMeshes:
+        return whole(data_.meshes);
+      case gpu::kMaterials:
+        return whole(data_.materials);
+      case gpu::kLuminaires:
+        return whole(data_.luminaires);
+      case gpu::kLuminaireCdf:
+        return whole(data_.cdf53);
+      case gpu::kGrids:
+        return whole(data_.grids);
+      case gpu::kTallies:
+        return {tally_bytes()};
+      case gpu::kCounters:
+        return {kCounters * sizeof(std::uint64_t)};
+      case gpu::kPhotometrics:
+        return whole(data_.photometrics);
+      case gpu::kPhotoFloats:
+        return whole(data_.photo_floats);
+      case gpu::kPhotoCdf:
+        return whole(data_.photo_cdf53);
+      case gpu::kInstances:
+        return whole(data_.instances);
+      case gpu::kRetry:
+        return {kRetryBytes, kRetryHeader, sizeof(kRetryHeader)};
+      case gpu::kBindingCount:
+        break;
+    }
+    throw std::logic_error("Vulkan backend: no contents for binding " + std::to_string(binding));
+  }
+
+  std::size_t tally_bytes() const { return 2 * sizeof(std::uint64_t) * s_.bins.size(); }
+
+  // Empty arrays still need a valid binding: 16 bytes of zeros.
+  vkw::Buffer make_buffer(gpu::Binding binding, std::size_t bytes) const {
+    const char* label = gpu::kBuffers[binding].label;
+    check_size(label, bytes);
+    return vkw::Buffer(ctx_, std::max<std::size_t>(bytes, 16), vkw::MemoryKind::Device, label);
+  }
+
+  void upload(gpu::Binding binding, const Contents& c) {
+    if (c.upload_bytes > 0) vkw::upload(ctx_, buffers_[binding], c.data, c.upload_bytes);
   }
 
   void check_size(const char* name, std::size_t bytes) const {
@@ -172,14 +209,6 @@ class VulkanBackend final : public Backend {
                                std::to_string(s_.triangle_count) +
                                " triangles); use --backend embree");
     }
-  }
-
-  void replace_buffer(gpu::Binding binding, const char* name, std::size_t bytes) {
-    trace_.reset();  // its descriptor set refers to the old buffer
-    buffers_.erase(buffers_.begin() + binding);
-    check_size(name, bytes);
-    buffers_.emplace(buffers_.begin() + binding, ctx_, std::max<std::size_t>(bytes, 16),
-                     vkw::MemoryKind::Device, name);
   }
 
   void build_pipeline() {
@@ -220,10 +249,10 @@ class VulkanBackend final : public Backend {
   void record_readback(VkCommandBuffer cmd) {
     vkw::memory_barrier(cmd);
     const vkw::Buffer& tallies = buffers_[gpu::kTallies];
-    const VkDeviceSize tally_bytes = readback_->size() - kCounters * sizeof(std::uint64_t);
-    const VkBufferCopy t{0, 0, tally_bytes};
+    const VkDeviceSize tally_size = readback_->size() - kCounters * sizeof(std::uint64_t);
+    const VkBufferCopy t{0, 0, tally_size};
     vkCmdCopyBuffer(cmd, tallies.handle(), readback_->handle(), 1, &t);
-    const VkBufferCopy c{0, tally_bytes, kCounters * sizeof(std::uint64_t)};
+    const VkBufferCopy c{0, tally_size, kCounters * sizeof(std::uint64_t)};
     vkCmdCopyBuffer(cmd, buffers_[gpu::kCounters].handle(), readback_->handle(), 1, &c);
     vkw::memory_barrier(cmd);
   }
@@ -243,7 +272,7 @@ class VulkanBackend final : public Backend {
   const PreparedScene& s_;            // owned by the caller (Simulation), updated in place
   GpuSceneData data_;                 // host copy of what is small and may change
   vkw::Context ctx_;                  // destroyed after everything created from it
-  std::vector<vkw::Buffer> buffers_;  // indexed by gpu::Binding
+  std::vector<vkw::Buffer> buffers_;  // indexed by gpu::Binding, one per row of gpu::kBuffers
   std::optional<vkw::Buffer> readback_;
   std::optional<vkw::Algorithm> trace_;
   vkw::Sequence seq_;
