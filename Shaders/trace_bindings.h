@@ -26,20 +26,20 @@
 #define LS_BINDING_COUNT 15
 
 // Specialisation constants (GLSL name). Ids 1.. switch features off for scenes without them.
-#define LS_SPEC_WORKGROUP_SIZE 0   // local_size_x
-#define LS_SPEC_HAS_DIFFUSE 1      // HAS_DIFFUSE
-#define LS_SPEC_HAS_MIRROR 2       // HAS_MIRROR
-#define LS_SPEC_HAS_GLASS 3        // HAS_GLASS
-#define LS_SPEC_HAS_GLOSSY 4       // HAS_GLOSSY
-#define LS_SPEC_HAS_POINT 5        // HAS_POINT
-#define LS_SPEC_HAS_SPOT 6         // HAS_SPOT
-#define LS_SPEC_HAS_AREA 7         // HAS_AREA
-#define LS_SPEC_HAS_DIRECTIONAL 8  // HAS_DIRECTIONAL
-#define LS_SPEC_HAS_GRIDS 9        // HAS_GRIDS
-#define LS_SPEC_HAS_SURFACE_BINS 10  // HAS_SURFACE_BINS
-#define LS_SPEC_MANY_LUMINAIRES 11   // MANY_LUMINAIRES
-#define LS_SPEC_HAS_PHOTOMETRIC 12   // HAS_PHOTOMETRIC
-#define LS_SPEC_HAS_INSTANCES 13     // HAS_INSTANCES: movable meshes
+#define LS_SPEC_WORKGROUP_SIZE 0    // local_size_x
+#define LS_SPEC_HAS_DIFFUSE 1       // HAS_DIFFUSE
+#define LS_SPEC_HAS_MIRROR 2        // HAS_MIRROR
+#define LS_SPEC_HAS_GLASS 3         // HAS_GLASS
+#define LS_SPEC_HAS_GLOSSY 4        // HAS_GLOSSY
+#define LS_SPEC_HAS_POINT 5         // HAS_POINT: read nowhere (emit()'s fallback branch)
+#define LS_SPEC_HAS_SPOT 6          // HAS_SPOT
+#define LS_SPEC_HAS_AREA 7          // HAS_AREA
+#define LS_SPEC_HAS_DIRECTIONAL 8   // HAS_DIRECTIONAL
+#define LS_SPEC_HAS_GRIDS 9         // HAS_GRIDS
+#define LS_SPEC_HAS_SURFACE_BINS 10 // HAS_SURFACE_BINS
+#define LS_SPEC_MANY_LUMINAIRES 11  // MANY_LUMINAIRES
+#define LS_SPEC_HAS_PHOTOMETRIC 12  // HAS_PHOTOMETRIC
+#define LS_SPEC_HAS_INSTANCES 13    // HAS_INSTANCES: movable meshes
 #define LS_SPEC_COUNT 14
 
 #endif
