@@ -55,9 +55,9 @@ std::string literal(std::span<const std::uint32_t> words) {
 }
 
 struct Module {
-  std::map<std::uint32_t, std::string> names;  // OpName
-  std::map<std::uint32_t, std::map<std::uint32_t, std::uint32_t>>
-      decorations;                                                 // id -> dec -> value
+  using Decorations = std::map<std::uint32_t, std::uint32_t>;      // decoration -> its operand
+  std::map<std::uint32_t, std::string> names;                      // OpName
+  std::map<std::uint32_t, Decorations> decorations;                // per id
   std::map<std::uint32_t, std::uint32_t> pointee;                  // pointer type -> type
   std::map<std::uint32_t, std::uint32_t> variables;                // variable -> its type
   std::map<std::uint32_t, std::vector<std::uint32_t>> composites;  // spec composites
