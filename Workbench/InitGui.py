@@ -1,8 +1,10 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """FreeCAD module "Lighting": GUI initialisation.
 
-Only the workbench class is defined here; commands, view providers and task panels are
-imported in ``Initialize`` (first activation), so FreeCAD's start-up stays fast.
+The workbench class is defined here; commands and task panels are imported in ``Initialize``
+(first activation), so FreeCAD's start-up stays fast. The document observer that gives
+Lighting objects their view providers (lighting/viewproviders/observer.py) is installed at
+start-up, so objects made by scripts and files opened before the first activation get them.
 FreeCAD runs this file with exec() and separate globals/locals: module-level names are not
 visible inside the class, hence the imports inside the methods."""
 
@@ -43,3 +45,7 @@ class LightingWorkbench(Workbench):  # noqa: F821 - FreeCAD provides Workbench h
 
 
 Gui.addWorkbench(LightingWorkbench())  # noqa: F821 - FreeCAD provides Gui here
+
+import lighting.viewproviders.observer as _lighting_observer  # noqa: E402
+
+_lighting_observer.install()

@@ -2,7 +2,8 @@
 
 Opens the example office with the Lighting workbench, runs the analysis through the
 Lighting_Run command while a heartbeat timer measures how long the event loop stalls, saves
-screenshots of the 3D view before, after and after save + reopen, measures their colours and
+screenshots of the 3D view before, after and after save + reopen, measures their colours,
+checks that colours follow display and results changes made outside the task panel, and
 writes everything to status.json. Always ends the process with os._exit."""
 import json
 import os
@@ -184,6 +185,39 @@ def run_analysis(doc):
     FreeCADGui.Control.closeDialog()
 
 
+def display_updates(doc):
+    """With no task panel open, colours follow the document through the view providers'
+    updateData (App code never paints): a script changing the colour map, Clear results,
+    Undo of the clear."""
+    import FreeCADGui
+
+    analysis = doc.getObject("LightingAnalysis")
+    workplane = doc.getObject("Workplane")
+
+    def state():
+        diffuse = workplane.ViewObject.DiffuseColor
+        colours = {tuple(round(c, 3) for c in col[:3]) for col in diffuse}
+        holder = getattr(analysis.ViewObject.Proxy, "legend_holder", None)
+        return {"distinct": len(colours), "has_results": workplane.HasResults,
+                "grey": all(max(c) - min(c) < 0.01 for c in colours),
+                "legend_nodes": holder.getNumChildren() if holder is not None else None}
+    info = {"start": state()}
+    analysis.ColorMap = "Grey"
+    pump(0.3)
+    info["grey_map"] = state()
+    analysis.ColorMap = "Rainbow"
+    pump(0.3)
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(analysis)
+    FreeCADGui.runCommand("Lighting_ClearResults")
+    pump(0.3)
+    info["cleared"] = state()
+    doc.undo()
+    pump(0.3)
+    info["undone"] = state()
+    STATUS["display"] = info
+
+
 def commands_smoke():
     """The toolbar commands on a plain slab: create every object from a selection, undo,
     Check and Export through their commands."""
@@ -326,6 +360,7 @@ def main():
     STATUS["mean_lux_reopened"] = doc.getObject("Workplane").MeanLux
     screenshot(doc, "reopened")
     hide_for_view(doc, False)
+    display_updates(doc)
     cancel_run(doc)
     optimize_in_gui(doc)
 

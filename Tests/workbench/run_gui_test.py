@@ -82,12 +82,30 @@ def check(status: dict) -> list:
     if after.get("colourful_fraction", 0) and images.get("reopened", {}).get(
             "colourful_fraction", 0) < 0.5 * after["colourful_fraction"]:
         problems.append("colours lost after save and reopen")
+    problems.extend(check_display(status.get("display", {})))
     cancel = status.get("cancel", {})
     if cancel.get("stage") != "cancelled" or not cancel.get("partial"):
         problems.append(f"Cancel did not stop the run with partial results: {cancel}")
     elif cancel.get("stop_seconds") is None or cancel["stop_seconds"] > 10.0:
         problems.append(f"Cancel took {cancel.get('stop_seconds')} s")
     problems.extend(check_optimize(status.get("optimize", {})))
+    return problems
+
+
+def check_display(display: dict) -> list:
+    """Colours and legend followed a script's colour map change, Clear results and Undo."""
+    start, grey = display.get("start", {}), display.get("grey_map", {})
+    cleared, undone = display.get("cleared", {}), display.get("undone", {})
+    problems = []
+    if not (start.get("distinct", 0) >= 4 and start.get("legend_nodes")):
+        problems.append(f"no colours or legend before the display checks: {display}")
+    if not (grey.get("grey") and grey.get("distinct", 0) >= 4):
+        problems.append(f"ColorMap = Grey set by a script did not repaint: {grey}")
+    if cleared.get("has_results") or cleared.get("distinct") != 1 or cleared.get("legend_nodes"):
+        problems.append(f"Clear results left colours or the legend: {cleared}")
+    if not (undone.get("has_results") and undone.get("distinct", 0) >= 4
+            and undone.get("legend_nodes")):
+        problems.append(f"Undo of Clear results did not bring the colours back: {undone}")
     return problems
 
 

@@ -4,8 +4,8 @@
     /usr/bin/python3 Tests/workbench/run_tests.py SUITE [unittest args...]
 
 SUITE is a module ``test_<SUITE>.py`` of this folder (objects, export, check, solver,
-persistence, example, optimize, files). ``freecadcmd script.py`` always exits 0, so the
-suite runs through ``freecadcmd -c`` and ``sys.exit`` (see fc_runner.py). The workbench is
+persistence, example, optimize, files, app_imports). ``freecadcmd script.py`` always exits 0,
+so the suite runs through ``freecadcmd -c`` and ``sys.exit`` (see fc_runner.py). The workbench is
 installed into a throw-away FreeCAD user folder (FREECAD_USER_HOME, ``Mod/Lighting``
 symlink) — the layout scripts/install-workbench.sh creates — so the user's own FreeCAD
 settings are untouched.

@@ -22,7 +22,6 @@ class Analysis(BaseProxy):
     """Solver settings and results of one lighting calculation."""
 
     TYPE = TYPE
-    VIEW_PROVIDER = ("analysis", "ViewProviderAnalysis")
     PROPERTIES = {
         # Solver
         "Photons": Prop("App::PropertyInteger", "Solver",
@@ -82,31 +81,6 @@ class Analysis(BaseProxy):
         "ResultsJson": Prop("App::PropertyString", "Results",
                             "The last results (lightsolver.results/1 JSON)", "", HIDDEN),
     }
-
-    def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
-        """Besides the migration: files saved headless open with their objects visible."""
-        super().onDocumentRestored(obj)
-        import FreeCAD
-
-        if FreeCAD.GuiUp:
-            from PySide import QtCore
-
-            from lighting.viewproviders.restore import after_restore
-
-            doc = obj.Document
-            QtCore.QTimer.singleShot(0, lambda: after_restore(doc))
-
-    def onChanged(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
-        """Repaint the result colours when the display settings change (GUI only)."""
-        if prop in ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend"):
-            import FreeCAD
-
-            if not self.has_all_properties(obj):  # still being set up or restored
-                return
-            if FreeCAD.GuiUp and getattr(obj, "ViewObject", None) is not None:
-                from lighting.viewproviders import coloring
-
-                coloring.refresh(obj)
 
 
 def _in_some_analysis(obj: Any) -> bool:

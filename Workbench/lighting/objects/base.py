@@ -6,14 +6,12 @@ FreeCAD-render's ``Render/base.py`` does, instead of ``hasattr`` ladders. The sa
 missing properties to objects restored from files written by older versions
 (:meth:`BaseProxy.onDocumentRestored`), so documents migrate without code per property.
 
-Proxies work headless (freecadcmd); view providers live in ``lighting.viewproviders`` and are
-only attached when ``FreeCAD.GuiUp`` (the FEM workbench pattern).
+Proxies are App code: they work headless (freecadcmd) and never import GUI code. View
+providers live in ``lighting.viewproviders``; the GUI attaches them (viewproviders/observer.py).
 """
 from __future__ import annotations
 
 from typing import Any, Dict, NamedTuple, Optional, Sequence
-
-import FreeCAD
 
 # Property editor modes
 NORMAL = 0
@@ -55,8 +53,6 @@ class BaseProxy:
     TYPE: str = "Lighting::Base"
     #: Declarative property table, completed by subclasses.
     PROPERTIES: Dict[str, Prop] = {}
-    #: View provider (module under lighting.viewproviders, class), attached when GuiUp.
-    VIEW_PROVIDER: Optional[tuple] = None
 
     def __init__(self, obj: Any) -> None:
         obj.Proxy = self
@@ -87,23 +83,11 @@ class BaseProxy:
                 setattr(obj, name, prop.default)
             obj.setEditorMode(name, prop.mode)
 
-    @classmethod
-    def has_all_properties(cls, obj: Any) -> bool:
-        """True once every property of the table exists on ``obj``."""
-        existing = set(obj.PropertiesList)
-        return all(name in existing for name in cls.PROPERTIES)
-
     # -- FreeCAD hooks -------------------------------------------------------------------
     def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
-        """Migrate objects from older files: add new properties with their defaults; give
-        objects saved by freecadcmd (no GuiDocument.xml) their view provider in the GUI."""
+        """Migrate objects from older files: add new properties with their defaults."""
         self.Type = self.TYPE
         self.ensure_properties(obj)
-        if FreeCAD.GuiUp and self.VIEW_PROVIDER is not None:
-            from PySide import QtCore
-
-            doc, name = obj.Document, obj.Name
-            QtCore.QTimer.singleShot(0, lambda: attach_view_provider(doc.getObject(name)))
 
     def execute(self, obj: Any) -> None:
         """Recompute; subclasses with geometry override this."""
@@ -120,26 +104,6 @@ class BaseProxy:
 
     def loads(self, state: Optional[dict]) -> None:
         return None
-
-
-def attach_view_provider(obj: Any) -> None:
-    """Give ``obj`` its Lighting view provider if the GUI is up and it has none yet."""
-    if obj is None or not FreeCAD.GuiUp:
-        return
-    proxy = getattr(obj, "Proxy", None)
-    spec = getattr(proxy, "VIEW_PROVIDER", None)
-    vobj = getattr(obj, "ViewObject", None)
-    if spec is None or vobj is None:
-        return
-    current = getattr(vobj, "Proxy", None)
-    if current is not None and not isinstance(current, (int, float, str)):
-        return  # FreeCAD reports a missing proxy as 0
-    import importlib
-
-    module = importlib.import_module(f"lighting.viewproviders.{spec[0]}")
-    proxy = getattr(module, spec[1])(vobj)
-    if getattr(proxy, "ViewObject", None) is None:  # FreeCAD did not call attach()
-        proxy.attach(vobj)
 
 
 def proxy_type(obj: Any) -> str:

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """make_* functions creating the Lighting objects (like FEM's ObjectsFem.py).
 
-They work headless; with the GUI up they attach the view providers. Lengths in the Python
-API are metres (``height_m``), flux in lumens (``flux_lm``)."""
+They are App code and work headless; in the GUI, lighting/viewproviders/observer.py gives
+the new objects their view providers. Lengths in the Python API are metres (``height_m``),
+flux in lumens (``flux_lm``)."""
 from __future__ import annotations
 
 from typing import Any, Iterable, Optional, Sequence, Tuple, Union
@@ -21,14 +22,6 @@ def _vec_mm(point_m: Vec) -> FreeCAD.Vector:
     return FreeCAD.Vector(x, y, z) * M_TO_MM
 
 
-def _attach_view(obj: Any, module: str = "", cls: str = "") -> None:
-    """The FEM pattern: view providers only when the GUI is up."""
-    if FreeCAD.GuiUp:
-        from lighting.objects.base import attach_view_provider
-
-        attach_view_provider(obj)
-
-
 def _add_to_analysis(obj: Any, analysis: Optional[Any]) -> None:
     if analysis is not None:
         analysis.addObject(obj)
@@ -45,7 +38,6 @@ def make_analysis(doc: Any, name: str = "LightingAnalysis", photons: Optional[in
         obj.Photons = int(photons)
     if seed is not None:
         obj.Seed = int(seed)
-    _attach_view(obj, "analysis", "ViewProviderAnalysis")
     return obj
 
 
@@ -74,7 +66,6 @@ def make_luminaire(doc: Any, position_m: Vec = (0.0, 0.0, 2.5), kind: str = "Are
     obj.FieldAngle = field_angle_deg
     aim_vec = FreeCAD.Vector(*aim) if not isinstance(aim, FreeCAD.Vector) else aim
     obj.Placement = FreeCAD.Placement(_vec_mm(position_m), rotation_for_aim(aim_vec))
-    _attach_view(obj, "luminaire", "ViewProviderLuminaire")
     _add_to_analysis(obj, analysis)
     return obj
 
@@ -94,7 +85,6 @@ def make_face_target(doc: Any, faces: Iterable[Tuple[Any, Union[str, Sequence[st
     obj.TargetType = "Faces"
     obj.References = links
     obj.RequiredLux = float(required_lux)
-    _attach_view(obj, "target", "ViewProviderTarget")
     _add_to_analysis(obj, analysis)
     return obj
 
@@ -116,7 +106,6 @@ def make_grid_target(doc: Any, base: Any, face: Optional[str] = None, height_m: 
     obj.Spacing = spacing_m * M_TO_MM
     obj.RequiredLux = float(required_lux)
     obj.RequiredUniformity = float(required_uniformity)
-    _attach_view(obj, "target", "ViewProviderTarget")
     _add_to_analysis(obj, analysis)
     return obj
 
@@ -136,6 +125,5 @@ def make_placement_domain(doc: Any, base: Any, face: str, resolution_m: float = 
     obj.MountingOffset = offset_m * M_TO_MM
     obj.EdgeMargin = edge_margin_m * M_TO_MM
     obj.Template = template
-    _attach_view(obj, "placement_domain", "ViewProviderPlacementDomain")
     _add_to_analysis(obj, analysis)
     return obj

@@ -26,7 +26,6 @@ class Luminaire(BaseProxy):
     reports maintained illuminance Em (EN 12464-1)."""
 
     TYPE = TYPE
-    VIEW_PROVIDER = ("luminaire", "ViewProviderLuminaire")
     PROPERTIES = {
         "LuminaireType": Prop("App::PropertyEnumeration", "Luminaire",
                               "Emission model: Point (isotropic), Spot (beam/field angles), "

@@ -25,7 +25,6 @@ class PlacementDomain(BaseProxy):
     """Candidate luminaire positions on one planar face."""
 
     TYPE = TYPE
-    VIEW_PROVIDER = ("placement_domain", "ViewProviderPlacementDomain")
     PROPERTIES = {
         "Base": Prop("App::PropertyLinkSub", "Domain", "The planar face luminaires may be placed on"),
         "Resolution": Prop("App::PropertyLength", "Domain", "Spacing of candidate positions", 600.0),

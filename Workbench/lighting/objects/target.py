@@ -88,7 +88,6 @@ class Target(BaseProxy):
     """Illuminance target (faces or grid) with its stored results."""
 
     TYPE = TYPE
-    VIEW_PROVIDER = ("target", "ViewProviderTarget")
     PROPERTIES = {
         "TargetType": Prop("App::PropertyEnumeration", "Target",
                            "Faces: mean illuminance on the selected faces' front side; Grid: "

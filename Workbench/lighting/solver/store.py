@@ -1,13 +1,12 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Keep results in the document: the analysis holds the results JSON and run facts, each
 target its Em, Emin, Emax, U0, CIs and grid cells — saved in the .FCStd, so a reopened file
-shows them without re-running. Writes are one undoable transaction."""
+shows them without re-running. Writes are one undoable transaction. Nothing here paints: in
+the GUI the view providers repaint when these properties change (their ``updateData``)."""
 from __future__ import annotations
 
 import json
 from typing import Any, Dict, Optional, Tuple
-
-import FreeCAD
 
 from lighting.objects import analysis as analysis_mod
 from lighting.objects.target import RESULT_FLOATS, RESULT_LISTS
@@ -80,7 +79,6 @@ def apply_to_document(analysis: Any, data: Dict[str, Any], scene_file: str = "",
         _set(analysis, "Status", "partial results (cancelled)" if result.partial else "done")
     finally:
         doc.commitTransaction()
-    _refresh_view(analysis)
     return result
 
 
@@ -112,7 +110,6 @@ def clear(analysis: Any) -> None:
         _set(analysis, "Status", "not run")
     finally:
         doc.commitTransaction()
-    _refresh_view(analysis)
 
 
 def set_status(analysis: Any, text: str) -> None:
@@ -124,9 +121,3 @@ def set_scene_file(analysis: Any, path: str) -> None:
     """Record the last exported scene file without an undo step."""
     _set(analysis, "SceneFile", path)
 
-
-def _refresh_view(analysis: Any) -> None:
-    if FreeCAD.GuiUp:
-        from lighting.viewproviders import coloring
-
-        coloring.refresh(analysis)

@@ -13,6 +13,10 @@ import FreeCAD
 from lighting.colormap import Scale
 from lighting.viewproviders.base import ViewProviderBase
 
+#: App properties of the analysis whose change repaints its targets and legend: the display
+#: settings and the results (cleared or stored).
+REPAINT_ON = ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend",
+              "ResultsJson")
 LEGEND_STEPS = 32
 LEGEND_TICKS = 6
 # Legend rectangle in the legend camera's coordinates (x, y in -1..1 over the viewport).
@@ -144,6 +148,13 @@ class ViewProviderAnalysis(ViewProviderBase):
     def onChanged(self, vobj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
         if prop == "Visibility" and getattr(self, "legend_root", None) is not None:
             self._refresh_later()
+
+    def updateData(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
+        """Results or display settings changed (by the task panel, a script, undo...)."""
+        if prop in REPAINT_ON and getattr(self, "legend_root", None) is not None:
+            from lighting.viewproviders import coloring
+
+            coloring.refresh_later(obj)
 
     def update_legend(self, scale: Optional[Scale]) -> None:
         """Show the legend of ``scale`` (None hides it)."""

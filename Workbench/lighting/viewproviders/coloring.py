@@ -3,7 +3,9 @@
 
 Colours come from the analysis' ColorMap and scale (Auto: 0 to a round maximum over its
 targets; Fixed: ScaleMinLux..ScaleMaxLux). The values live in App properties, so a reopened
-document is painted again without re-running."""
+document is painted again without re-running. Painting is triggered from the GUI only: the
+view providers' ``updateData`` calls :func:`refresh_later` when a result or display property
+changes (App code never calls in here)."""
 from __future__ import annotations
 
 from typing import Any, List, Optional
@@ -99,3 +101,32 @@ def refresh_target(target: Any) -> None:
         refresh(analysis)
     else:
         paint_target(target, None)
+
+
+_pending: set = set()
+
+
+def refresh_later(obj: Any) -> None:
+    """Repaint an analysis (targets and legend) or a target once control returns to the event
+    loop: after FreeCAD's own update of the shape (which resets face colours), and once for
+    the many property changes of a results transaction."""
+    from PySide import QtCore
+
+    doc_name, name = obj.Document.Name, obj.Name
+    key = (doc_name, name)
+    if key in _pending:
+        return
+    _pending.add(key)
+
+    def repaint() -> None:
+        _pending.discard(key)
+        doc = FreeCAD.listDocuments().get(doc_name)
+        found = doc.getObject(name) if doc is not None else None
+        if found is None:  # closed or deleted meanwhile
+            return
+        if proxy_type(found) == analysis_mod.TYPE:
+            refresh(found)
+        else:
+            refresh_target(found)
+
+    QtCore.QTimer.singleShot(0, repaint)

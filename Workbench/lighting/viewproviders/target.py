@@ -47,32 +47,6 @@ class ViewProviderTarget(ViewProviderBase):
 
     def updateData(self, obj: Any, prop: str) -> None:  # noqa: N802
         if prop in REPAINT_ON:
-            _repaint_later(obj)
-
-
-_pending: set = set()
-
-
-def _repaint_later(obj: Any) -> None:
-    """Repaint after FreeCAD's own update of the shape (which resets face colours); several
-    property changes in a row cause one repaint."""
-    from PySide import QtCore
-
-    name, doc = obj.Name, obj.Document
-    key = (doc.Name, name)
-    if key in _pending:
-        return
-    _pending.add(key)
-
-    def repaint() -> None:
-        _pending.discard(key)
-        try:
-            target = doc.getObject(name)
-        except Exception:  # noqa: BLE001 - document closed meanwhile
-            return
-        if target is not None:
             from lighting.viewproviders import coloring
 
-            coloring.refresh_target(target)
-
-    QtCore.QTimer.singleShot(0, repaint)
+            coloring.refresh_later(obj)

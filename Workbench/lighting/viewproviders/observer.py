@@ -1,0 +1,98 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""GUI side of the Lighting objects: which view provider each object gets, and when.
+
+App code never imports GUI code (Tests/workbench/test_app_imports.py checks it), so the App
+factories and proxies do not attach view providers. A document observer, installed by
+InitGui.py when the GUI starts, does:
+- an object created in the GUI (a command, a script in the console) gets its view provider
+  as soon as its Lighting proxy is set (synchronously: ``make_*`` returns it ready);
+- a document being opened gets, once it is read, the view providers its file lacks (files
+  saved by freecadcmd have no GuiDocument.xml) and ``restore.after_restore`` for the Arch
+  objects and the visibility such files lose.
+Results colours come from the view providers' ``updateData`` (see coloring.py)."""
+from __future__ import annotations
+
+import importlib
+from typing import Any, Dict, Optional, Tuple
+
+import FreeCAD
+
+from lighting.objects.base import proxy_type
+
+#: Lighting proxy type -> (module under lighting.viewproviders, class).
+VIEW_PROVIDERS: Dict[str, Tuple[str, str]] = {
+    "Lighting::Analysis": ("analysis", "ViewProviderAnalysis"),
+    "Lighting::Luminaire": ("luminaire", "ViewProviderLuminaire"),
+    "Lighting::Target": ("target", "ViewProviderTarget"),
+    "Lighting::PlacementDomain": ("placement_domain", "ViewProviderPlacementDomain"),
+}
+
+_observer: Optional["LightingObserver"] = None
+_restoring: set = set()
+
+
+def _has_python_view_provider(vobj: Any) -> bool:
+    current = getattr(vobj, "Proxy", None)
+    return current is not None and not isinstance(current, (int, float, str))  # missing: 0
+
+
+def attach_view_provider(obj: Any) -> bool:
+    """Give a Lighting object its view provider unless it has one; True if attached."""
+    spec = VIEW_PROVIDERS.get(proxy_type(obj)) if obj is not None else None
+    vobj = getattr(obj, "ViewObject", None) if spec is not None else None
+    if vobj is None or _has_python_view_provider(vobj):
+        return False
+    module = importlib.import_module(f"lighting.viewproviders.{spec[0]}")
+    proxy = getattr(module, spec[1])(vobj)
+    if getattr(proxy, "ViewObject", None) is None:  # FreeCAD did not call attach()
+        proxy.attach(vobj)
+    return True
+
+
+def finish_restore(doc_name: str) -> None:
+    """After a document was read: missing view providers, then ``after_restore``."""
+    _restoring.discard(doc_name)
+    doc = FreeCAD.listDocuments().get(doc_name)
+    if doc is None:
+        return
+    kinds = set()
+    for obj in doc.Objects:
+        kind = proxy_type(obj)
+        if kind:
+            kinds.add(kind)
+            attach_view_provider(obj)
+    if "Lighting::Analysis" in kinds:
+        from lighting.viewproviders.restore import after_restore
+
+        after_restore(doc)
+
+
+class LightingObserver:
+    """App document observer (FreeCAD.addDocumentObserver) living in the GUI."""
+
+    def slotChangedObject(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API)
+        if prop != "Proxy" or not proxy_type(obj):
+            return
+        try:
+            doc = obj.Document
+            if getattr(doc, "Restoring", False):
+                # The file may bring its own view providers (GuiDocument.xml is read after
+                # the objects): look once it is fully open.
+                if doc.Name not in _restoring:
+                    _restoring.add(doc.Name)
+                    from PySide import QtCore
+
+                    name = doc.Name
+                    QtCore.QTimer.singleShot(0, lambda: finish_restore(name))
+            else:
+                attach_view_provider(obj)
+        except Exception as exc:  # noqa: BLE001 - a view provider must never break the model
+            FreeCAD.Console.PrintWarning(f"Lighting: no view provider for {obj.Name}: {exc}\n")
+
+
+def install() -> None:
+    """Register the observer once (InitGui.py, at GUI start-up)."""
+    global _observer
+    if _observer is None:
+        _observer = LightingObserver()
+        FreeCAD.addDocumentObserver(_observer)
