@@ -56,26 +56,8 @@ Mesh mesh_from_numpy(const std::string& name, int material,
   return m;
 }
 
-py::dict estimate_dict(const Estimate& e) {
-  py::dict d;
-  d["mean_lux"] = e.mean;
-  d["ci_low_lux"] = e.ci_low;
-  d["ci_high_lux"] = e.ci_high;
-  d["sigma_lux"] = e.sigma;
-  d["hits"] = e.hits;
-  return d;
-}
-
-py::dict target_dict(const TargetResult& t) {
-  py::dict d = estimate_dict(t.estimate);
-  d["name"] = t.name;
-  d["type"] = t.is_grid ? "grid" : "surface";
-  d["area_m2"] = t.area_m2;
-  if (!t.is_grid) return d;
-  d["cells_uv"] = py::make_tuple(t.nu, t.nv);
-  d["min_lux"] = t.min_lux;
-  d["max_lux"] = t.max_lux;
-  d["uniformity"] = t.uniformity;
+// Grid cells as numpy arrays of shape (nv, nu), added beside the results layout for scripts.
+void add_cell_arrays(const TargetResult& t, py::dict d) {
   const std::vector<py::ssize_t> shape{t.nv, t.nu};
   py::array_t<double> lux(shape), lo(shape), hi(shape);
   py::array_t<std::uint64_t> hits(shape);
@@ -89,33 +71,16 @@ py::dict target_dict(const TargetResult& t) {
   d["cells_ci_low_lux"] = lo;
   d["cells_ci_high_lux"] = hi;
   d["cells_hits"] = hits;
-  return d;
 }
 
+// One layout: the C++ serializer's text (what `lightsolver run --out` writes), read by Python's
+// json module, so the two cannot drift; numpy cell arrays are added beside it, not instead.
 py::dict results_dict(const Results& r) {
-  py::dict d;
-  d["format"] = "lightsolver.results/1";
-  d["photons"] = r.photons;
-  d["photons_requested"] = r.photons_requested;
-  d["partial"] = r.partial;
-  d["stop_reason"] = r.stop_reason;
-  d["seconds"] = r.seconds;
-  d["backend"] = r.backend;
-  d["confidence"] = r.confidence;
-  d["seed"] = r.seed;
-  d["ray_segments"] = r.ray_segments;
-  d["capped_paths"] = r.capped_paths;
-  d["cut_paths"] = r.cut_paths;
-  d["total_flux_lm"] = r.total_flux_lm;
-  d["warnings"] = r.warnings;
-  if (r.max_seconds) d["max_seconds"] = *r.max_seconds;
-  if (r.target_accuracy) {
-    d["target_accuracy"] = *r.target_accuracy;
-    d["accuracy_met"] = r.accuracy_met;
+  py::dict d = py::module_::import("json").attr("loads")(results_to_json(r));
+  py::list targets = d["targets"];
+  for (std::size_t i = 0; i < r.targets.size(); ++i) {
+    if (r.targets[i].is_grid) add_cell_arrays(r.targets[i], targets[i].cast<py::dict>());
   }
-  py::list targets;
-  for (const auto& t : r.targets) targets.append(target_dict(t));
-  d["targets"] = targets;
   return d;
 }
 

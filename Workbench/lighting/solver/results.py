@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Results: normalise the solver's output, keep it in the document, format the table."""
+"""Results: the solver's layout as plain data, kept in the document, formatted as a table."""
 from __future__ import annotations
 
 import json
@@ -18,45 +18,19 @@ def _float(value: Any, default: float = 0.0) -> float:
     return number if math.isfinite(number) else default
 
 
-def _flat(value: Any) -> List[float]:
-    """A numpy array (nv, nu) or nested/flat list as a flat row-by-row list of floats."""
-    if value is None:
-        return []
-    if hasattr(value, "ravel"):
-        return [float(x) for x in value.ravel()]
-    out: List[float] = []
-    for item in value:
-        if isinstance(item, (list, tuple)):
-            out.extend(float(x) for x in item)
-        else:
-            out.append(float(item))
-    return out
+#: Grid-cell numpy arrays that ``lightsolver.solve()`` adds beside the results layout.
+CELL_ARRAYS = ("cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits")
 
 
 def normalise(raw: Dict[str, Any]) -> Dict[str, Any]:
-    """The solver's results (Python API: numpy cell arrays; CLI: ``cells`` list) as a
-    JSON-ready dictionary in the CLI's ``lightsolver.results/1`` layout."""
-    out: Dict[str, Any] = {}
-    for key, value in raw.items():
-        if key == "targets":
-            continue
-        out[key] = value.tolist() if hasattr(value, "tolist") else value
-    out.setdefault("format", RESULTS_FORMAT)
-    targets = []
-    for tgt in raw.get("targets", []):
-        entry = {k: (v.tolist() if hasattr(v, "tolist") else v) for k, v in tgt.items()
-                 if not k.startswith("cells_") or k == "cells_uv"}
-        if "cells_lux" in tgt:
-            lux = _flat(tgt.get("cells_lux"))
-            low = _flat(tgt.get("cells_ci_low_lux")) or lux
-            high = _flat(tgt.get("cells_ci_high_lux")) or lux
-            hits = _flat(tgt.get("cells_hits")) or [0.0] * len(lux)
-            entry["cells"] = [{"lux": a, "ci_low_lux": b, "ci_high_lux": c, "hits": int(d)}
-                              for a, b, c, d in zip(lux, low, high, hits)]
-        if "cells_uv" in entry:
-            entry["cells_uv"] = [int(x) for x in entry["cells_uv"]]
-        targets.append(entry)
-    out["targets"] = targets
+    """The solver's results as plain JSON data in the ``lightsolver.results/1`` layout.
+
+    ``lightsolver.solve()`` already returns the layout the CLI writes (one C++ serializer,
+    docs/schemas/results.schema.json); only the numpy cell arrays it adds beside it are dropped,
+    so results from either source are stored alike."""
+    out = {key: value for key, value in raw.items() if key != "targets"}
+    out["targets"] = [{k: v for k, v in tgt.items() if k not in CELL_ARRAYS}
+                      for tgt in raw.get("targets", [])]
     return out
 
 
