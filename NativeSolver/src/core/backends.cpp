@@ -29,7 +29,7 @@ std::string auto_description() {
   std::vector<std::string> gpu, cpu;
   for (const BackendEntry& e : backend_entries()) (e.gpu ? gpu : cpu).push_back(e.name);
   std::string cpu_part = cpu.empty() ? "" : cpu.front();
-  if (gpu.empty()) return cpu_part;
+  if (gpu.empty()) return cpu_part + " (this build has no GPU backend)";
   return "a real GPU through " + spoken_list(gpu) + " when one is usable" +
          (cpu.empty() ? "" : ", else " + cpu_part);
 }
