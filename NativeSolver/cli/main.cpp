@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "backend_option.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
@@ -22,17 +23,6 @@
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-
-// --backend for `run` and `cost`: the choices and their help come from the library's registry,
-// so they list exactly the backends built.
-void add_backend_option(CLI::App* command, std::string& backend) {
-  std::string help = "Tracing backend:";
-  for (const lightsolver::BackendInfo& b : lightsolver::backends())
-    help += " " + b.name + " (" + b.description + ");";
-  help.back() = '.';
-  command->add_option("--backend", backend, help)
-      ->check(CLI::IsMember(lightsolver::backend_names()));
-}
 
 void on_sigint(int) { g_interrupted.store(true); }
 
@@ -234,7 +224,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   run_cmd->add_option("--threads", ra.threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
-  add_backend_option(run_cmd, ra.backend);
+  lightsolver::cli::add_backend_option(run_cmd, ra.backend);
   run_cmd->add_option("--out", ra.out,
                       "Write results JSON here (checked before tracing, written atomically)");
   run_cmd
@@ -260,7 +250,7 @@ int main(int argc, char** argv) {
   cost_cmd->add_option("--confidence", ca.confidence, "Confidence level")
       ->check(CLI::Range(0.0, 1.0));
   cost_cmd->add_option("--threads", ca.threads, "Worker threads (0: all cores)");
-  add_backend_option(cost_cmd, ca.backend);
+  lightsolver::cli::add_backend_option(cost_cmd, ca.backend);
 
   std::string photometry_file, plot_file;
   CLI::App* photometry_cmd = app.add_subcommand(
