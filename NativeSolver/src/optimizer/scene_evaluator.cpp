@@ -195,8 +195,7 @@ Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std
   return u;
 }
 
-SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads,
-                               const std::string& backend)
+SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const std::string& backend)
     : problem_(problem),
       simulation_(problem.scene, Simulation::Options{backend, threads, problem.movable_meshes()}),
       confidence_(problem.search.confidence) {}
