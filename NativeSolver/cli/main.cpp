@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 
+#include "backend_option.hpp"
+#include "lightsolver/backends.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -21,14 +23,6 @@
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-
-#ifdef LIGHTSOLVER_HAVE_VULKAN
-const std::vector<std::string> kBackends = {"auto", "embree", "vulkan"};
-const char* const kBackendHelp = "auto (a GPU if present, else embree), embree or vulkan";
-#else
-const std::vector<std::string> kBackends = {"auto", "embree"};
-const char* const kBackendHelp = "auto or embree";
-#endif
 
 void on_sigint(int) { g_interrupted.store(true); }
 
@@ -75,7 +69,7 @@ class ProgressBar {
 };
 
 struct RunArgs {
-  std::string scene, out, backend = "auto";
+  std::string scene, out, backend = lightsolver::kAutoBackend;
   std::optional<std::uint64_t> photons, seed;
   std::optional<double> confidence, accuracy, max_seconds;
   int threads = 0;
@@ -192,6 +186,15 @@ int cost(const RunArgs& a, std::uint64_t max_photons) {
   return g_interrupted ? 130 : 0;
 }
 
+// `lightsolver backends`: the registry with what this machine can start (loads GPU drivers).
+int list_backends() {
+  for (const lightsolver::BackendInfo& b : lightsolver::available_backends()) {
+    std::printf("%-8s %-9s %-13s %s\n", b.name.c_str(), b.gpu ? "GPU" : "",
+                b.available.value_or(false) ? "available" : "not available", b.description.c_str());
+  }
+  return 0;
+}
+
 int photometry(const std::string& file, const std::string& plot) {
   if (!plot.empty()) lightsolver::check_writable(plot, "plot");
   const lightsolver::PhotometricData data = lightsolver::load_photometry(file);
@@ -221,7 +224,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   run_cmd->add_option("--threads", ra.threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
-  run_cmd->add_option("--backend", ra.backend, kBackendHelp)->check(CLI::IsMember(kBackends));
+  lightsolver::cli::add_backend_option(run_cmd, ra.backend);
   run_cmd->add_option("--out", ra.out,
                       "Write results JSON here (checked before tracing, written atomically)");
   run_cmd
@@ -247,7 +250,7 @@ int main(int argc, char** argv) {
   cost_cmd->add_option("--confidence", ca.confidence, "Confidence level")
       ->check(CLI::Range(0.0, 1.0));
   cost_cmd->add_option("--threads", ca.threads, "Worker threads (0: all cores)");
-  cost_cmd->add_option("--backend", ca.backend, kBackendHelp)->check(CLI::IsMember(kBackends));
+  lightsolver::cli::add_backend_option(cost_cmd, ca.backend);
 
   std::string photometry_file, plot_file;
   CLI::App* photometry_cmd = app.add_subcommand(
@@ -257,12 +260,16 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   photometry_cmd->add_option("--plot", plot_file, "Write a polar diagram (PNG) here");
 
+  CLI::App* backends_cmd = app.add_subcommand(
+      "backends", "List the tracing backends of this build and whether each can start here");
+
   lightsolver::cli::add_optimize_command(app);  // runs from its own callback
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);
     if (*cost_cmd) return cost(ca, max_photons);
     if (*photometry_cmd) return photometry(photometry_file, plot_file);
+    if (*backends_cmd) return list_backends();
   } catch (const lightsolver::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 1;

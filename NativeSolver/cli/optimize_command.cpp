@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 
+#include "backend_option.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "lightsolver/output_file.hpp"
 
@@ -103,6 +104,7 @@ void add_optimize_command(CLI::App& app) {
                   "Write the ISOC and statistics as JSON here (checked before the search)");
   cmd->add_option("--threads", args->overrides.threads, "Worker threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
+  add_backend_option(cmd, args->overrides.backend);
   cmd->add_option("--screening-photons", args->overrides.screening_photons,
                   "n: photons of the first trace of every candidate");
   cmd->add_option("--confirmation-photons", args->overrides.confirmation_photons,

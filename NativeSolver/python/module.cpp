@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "lightsolver/backends.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_bindings.hpp"
@@ -317,6 +318,23 @@ PYBIND11_MODULE(lightsolver, m) {
                              })
       .def_property_readonly("total_flux_lm", &Scene::total_flux_lm);
 
+  m.def(
+      "backends",
+      [] {
+        py::list out;
+        for (const BackendInfo& b : available_backends()) {
+          py::dict d;
+          d["name"] = b.name;
+          d["description"] = b.description;
+          d["gpu"] = b.gpu;
+          d["available"] = b.available.value_or(false);
+          out.append(d);
+        }
+        return out;
+      },
+      "The values solve(backend=...) accepts, \"auto\" first, then every backend built: dicts "
+      "with name, description, gpu (traces through a GPU API) and available (a device it can "
+      "start on exists here; finding out loads the GPU drivers)");
   m.def("load_scene", &load_scene, py::arg("path"), "Read and validate a scene file");
   m.def(
       "scene_from_json",
@@ -326,7 +344,7 @@ PYBIND11_MODULE(lightsolver, m) {
       py::arg("text"), py::arg("base_dir") = ".", "Parse scene JSON text");
   m.def("solve", &solve_py, py::arg("scene"), py::arg("photons") = py::none(),
         py::arg("seed") = py::none(), py::arg("confidence") = py::none(), py::arg("threads") = 0,
-        py::arg("backend") = "auto", py::arg("progress") = py::none(),
+        py::arg("backend") = kAutoBackend, py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
         py::arg("max_seconds") = py::none(),
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "

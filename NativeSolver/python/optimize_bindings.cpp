@@ -89,9 +89,9 @@ py::dict optimize_py(py::object scene, py::object optimization,
                      std::optional<std::uint64_t> iterations, std::optional<std::uint64_t> seed,
                      std::optional<std::uint64_t> screening_photons,
                      std::optional<std::uint64_t> confirmation_photons, int threads,
-                     py::object progress, py::object cancel) {
+                     py::object progress, py::object cancel, const std::string& backend) {
   const opt::SceneProblem problem = problem_from(scene, optimization);
-  opt::RunOverrides o{iterations, seed, screening_photons, confirmation_photons, threads};
+  opt::RunOverrides o{iterations, seed, screening_photons, confirmation_photons, threads, backend};
   std::atomic<bool> stop{false};
   opt::Control control;
   control.cancel = &stop;
@@ -126,6 +126,7 @@ void bind_optimizer(py::module_& m) {
         py::arg("iterations") = py::none(), py::arg("seed") = py::none(),
         py::arg("screening_photons") = py::none(), py::arg("confirmation_photons") = py::none(),
         py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("cancel") = py::none(),
+        py::arg("backend") = lightsolver::kAutoBackend,
         R"(Search a scene's optimization block for the best configurations.
 
 scene: a scene file path (its "optimization" block is used unless `optimization` is given) or a
@@ -134,6 +135,7 @@ iterations, seed, screening_photons (n), confirmation_photons (N): override the 
 progress: called after every iteration with a dict (iteration, k, best=(mean, lo, hi) or None,
     isoc_size, total_photons, update_seconds, trace_seconds, other_seconds); return False to stop.
 cancel: a CancelToken; cancel() from another thread stops the search within one trace.
+backend: a name from backends() ("auto": a real GPU when one is usable, else Embree).
 Returns the result as a dict (format lightsolver.optimization/1): isoc members with cells,
 values, objective and constraint estimates and "scene" (world positions), siisoc, counters,
 history. The GIL is released while searching.)");

@@ -17,6 +17,7 @@
 #include "core/prepared_scene.hpp"
 #include "core/sampling.hpp"
 #include "core/scatter.hpp"
+#include "embree/embree_backend.hpp"
 #include "embree/embree_scene.hpp"
 #include "lightsolver/rng.hpp"
 #include "lightsolver/simulation.hpp"

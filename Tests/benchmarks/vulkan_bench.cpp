@@ -7,6 +7,7 @@
 #include "bench_util.hpp"
 #include "core/backend.hpp"
 #include "core/prepared_scene.hpp"
+#include "embree/embree_backend.hpp"
 #include "vulkan/vulkan_backend.hpp"
 
 namespace lightsolver::bench {

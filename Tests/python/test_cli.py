@@ -225,3 +225,27 @@ def test_accuracy_without_photons_is_not_capped_by_the_scene(cli, room_scene, tm
     res = json.loads(out.read_text())
     assert r.returncode == 0 and res["stop_reason"] == "photons" and not res["accuracy_met"]
     assert "max_seconds" not in res and res["warnings"]
+
+
+def test_backend_choices_and_help_come_from_the_registry(cli, room_scene):
+    names = [b["name"] for b in lightsolver.backends()]
+    for command in ("run", "cost"):
+        r = run(cli, command, "--help")
+        assert r.returncode == 0
+        help_text = " ".join(r.stdout.split())  # CLI11 may wrap long descriptions
+        for b in lightsolver.backends():
+            assert f"{b['name']} ({' '.join(b['description'].split())})" in help_text, help_text
+    r = run(cli, "run", str(room_scene), "--photons", "1000", "--backend", "cuda")
+    assert r.returncode != 0
+    assert "cuda" in r.stderr and all(name in r.stderr for name in names), r.stderr
+
+
+def test_backends_command_lists_the_registry_with_availability(cli):
+    r = run(cli, "backends")
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    listed = lightsolver.backends()
+    assert [line.split()[0] for line in lines] == [b["name"] for b in listed]
+    for line, b in zip(lines, listed):
+        assert ("not available" in line) == (not b["available"]), line
+        assert (line.split()[1] == "GPU") == b["gpu"], line

@@ -173,3 +173,30 @@ def test_photometric_light_from_python():
     assert cells[1:3, 1:3].min() > 2 * cells[0, 0]  # a downlight: bright under, dim in corners
     with pytest.raises(lightsolver.InputError, match="missing.ies"):
         s.add_photometric_light("x", "/nowhere/missing.ies", [0, 0, 3])
+
+
+def test_backends_are_the_registry_and_each_traces_on_its_own_name():
+    listed = lightsolver.backends()
+    names = [b["name"] for b in listed]
+    assert names[0] == "auto" and "embree" in names and len(set(names)) == len(names)
+    for b in listed:
+        assert set(b) == {"name", "description", "gpu", "available"} and b["description"]
+    by_name = {b["name"]: b for b in listed}
+    assert by_name["embree"]["available"] and not by_name["embree"]["gpu"]
+    assert by_name["auto"]["available"] and not by_name["auto"]["gpu"]
+    for name in names[1:]:
+        if by_name[name]["available"]:
+            r = lightsolver.solve(unit_room(), photons=2_000, seed=1, backend=name)
+            assert r["backend"] == name
+        else:  # reported missing: refused, never traced somewhere else
+            with pytest.raises(RuntimeError):
+                lightsolver.solve(unit_room(), photons=2_000, seed=1, backend=name)
+
+
+def test_an_unknown_backend_is_refused_with_the_registry_names():
+    with pytest.raises(ValueError) as err:
+        lightsolver.solve(unit_room(), photons=1_000, backend="cuda")
+    message = str(err.value)
+    assert '"cuda"' in message
+    for b in lightsolver.backends():
+        assert b["name"] in message, message

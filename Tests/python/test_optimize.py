@@ -117,3 +117,24 @@ def test_cli_reports_a_bad_block(cli: str, tmp_path: Path) -> None:
     p = subprocess.run([cli, "optimize", str(bad)], capture_output=True, text=True, timeout=60)
     assert p.returncode == 1
     assert "optimization.search.strategy" in p.stderr
+
+
+def test_backend_choice_reaches_the_search(cli: str, tmp_path: Path) -> None:
+    names = [b["name"] for b in lightsolver.backends()]
+    with pytest.raises(ValueError) as err:
+        lightsolver.optimize(SMALL_ROOM, iterations=1, backend="cuda")
+    assert all(name in str(err.value) for name in names), err.value
+    r = lightsolver.optimize(SMALL_ROOM, iterations=1, seed=2, threads=2, backend="embree")
+    assert r["counters"]["iterations"] == 1
+    help_text = " ".join(subprocess.run([cli, "optimize", "--help"], capture_output=True,
+                                        text=True, timeout=60).stdout.split())
+    assert all(f"{name} (" in help_text for name in names), help_text
+    if "vulkan" in names:  # without a driver, asking for vulkan must fail, not fall back
+        env = {"PATH": "/usr/bin:/bin", "VK_ICD_FILENAMES": str(tmp_path / "none.json")}
+        args = [cli, "optimize", str(SMALL_ROOM), "--iterations", "1", "-q", "--backend"]
+        bad = subprocess.run(args + ["vulkan"], capture_output=True, text=True, timeout=120,
+                             env=env)
+        assert bad.returncode != 0 and "Vulkan" in bad.stderr, bad.stderr
+        good = subprocess.run(args + ["auto"], capture_output=True, text=True, timeout=120,
+                              env=env)
+        assert good.returncode == 0, good.stderr

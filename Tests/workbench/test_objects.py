@@ -1,5 +1,6 @@
 """Document objects: EN 12464-1 grid rule, defaults, scene entries, undo, migration."""
 import math
+import os
 import unittest
 
 import FreeCAD
@@ -9,7 +10,7 @@ from lighting import standards
 from lighting.objects import luminaire as luminaire_mod
 from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
-from wbtest import DocTestCase, build_office
+from wbtest import DocTestCase, build_office, needs_solver, work_dir
 
 V = FreeCAD.Vector
 
@@ -154,3 +155,47 @@ class Objects(DocTestCase):
         entry = domain_mod.metadata_entry(domain)
         self.assertEqual(entry["max_luminaires"], 6)
         self.assertEqual(len(entry["candidates"]), len(points))
+
+
+class BackendProperty(DocTestCase):
+    """The analysis' Backend choices are the solver's registry, with a fallback without it."""
+
+    @needs_solver
+    def test_choices_are_the_solver_registry(self):
+        import lightsolver  # on sys.path once needs_solver has found it
+
+        analysis = lighting.make_analysis(FreeCAD.newDocument("Backends"))
+        names = [b["name"] for b in lightsolver.backends()]
+        self.assertEqual(names[0], "auto")
+        self.assertEqual(analysis.getEnumerationsOfProperty("Backend"), names)
+        self.assertEqual(analysis.Backend, "auto")
+
+    def test_without_the_module_the_fallback_list_is_used(self):
+        from lighting.objects import analysis as analysis_mod
+        from lighting.solver import run
+
+        saved = run.backend_names
+        run.backend_names = lambda: None  # as when lightsolver cannot be imported
+        try:
+            analysis = lighting.make_analysis(FreeCAD.newDocument("NoSolver"))
+        finally:
+            run.backend_names = saved
+        self.assertEqual(analysis.getEnumerationsOfProperty("Backend"),
+                         list(analysis_mod.FALLBACK_BACKENDS))
+        self.assertEqual(analysis.Backend, "auto")
+
+    def test_a_value_this_build_lacks_survives_reopening(self):
+        from lighting.objects import analysis as analysis_mod
+
+        doc = FreeCAD.newDocument("OtherBuild")
+        analysis = lighting.make_analysis(doc)
+        # As saved by a build with a backend this one lacks.
+        analysis.Backend = analysis.getEnumerationsOfProperty("Backend") + ["cuda"]
+        analysis.Backend = "cuda"
+        name, path = analysis.Name, os.path.join(work_dir("backend"), "other_build.FCStd")
+        doc.saveAs(path)
+        FreeCAD.closeDocument(doc.Name)
+        analysis = FreeCAD.openDocument(path).getObject(name)
+        self.assertEqual(analysis.Backend, "cuda")
+        self.assertEqual(analysis.getEnumerationsOfProperty("Backend"),
+                         analysis_mod.backend_choices() + ["cuda"])

@@ -52,10 +52,9 @@ class Backend {
   }
 };
 
-std::unique_ptr<Backend> make_embree_backend(const PreparedScene& scene);
-
-/// The backend named "auto", "embree" (or others where built) for a prepared scene. When
-/// "auto" had to fall back (a GPU that failed to start), the reason is appended to `notes`.
+/// The backend named "auto" or one of the registry's names (lightsolver/backends.hpp) for a
+/// prepared scene; an unknown name is an InputError listing the names built. When "auto" had
+/// to fall back (a GPU that failed to start), the reason is appended to `notes`.
 std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedScene& scene,
                                       std::vector<std::string>& notes);
 

@@ -1,5 +1,7 @@
 // The CPU backend: rtcIntersect1 per segment, a few paths interleaved per worker, paths spread
 // over TBB workers. Tallies are integer counts, so the result is independent of the schedule.
+#include "embree/embree_backend.hpp"
+
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
 #include <tbb/blocked_range.h>
@@ -11,7 +13,6 @@
 #include <glm/mat3x3.hpp>
 #include <limits>
 
-#include "core/backend.hpp"
 #include "core/emitters.hpp"
 #include "core/path_deposits.hpp"
 #include "core/scatter.hpp"

@@ -195,9 +195,9 @@ Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std
   return u;
 }
 
-SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads)
+SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const std::string& backend)
     : problem_(problem),
-      simulation_(problem.scene, Simulation::Options{"auto", threads, problem.movable_meshes()}),
+      simulation_(problem.scene, Simulation::Options{backend, threads, problem.movable_meshes()}),
       confidence_(problem.search.confidence) {}
 
 void SceneEvaluator::apply(const std::vector<double>& values) {
@@ -248,7 +248,7 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
   if (o.seed) opt.seed = *o.seed;
   if (o.screening_photons) opt.screening_photons = *o.screening_photons;
   if (o.confirmation_photons) opt.confirmation_photons = *o.confirmation_photons;
-  SceneEvaluator evaluator(problem, o.threads);
+  SceneEvaluator evaluator(problem, o.threads, o.backend);
   return optimize(problem.domain, problem.intention, evaluator, opt, control);
 }
 

@@ -213,7 +213,7 @@ VkMemoryPropertyFlags Context::memory_flags(std::uint32_t type) const {
   return memory_.memoryTypes[type].propertyFlags;
 }
 
-bool Context::gpu_available() {
+bool Context::device_available(bool allow_cpu) {
   try {
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.apiVersion = VK_API_VERSION_1_2;
@@ -226,7 +226,8 @@ bool Context::gpu_available() {
       for (VkPhysicalDevice d : physical_devices(instance)) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(d, &p);
-        found = found || (p.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU && suitable(d));
+        found =
+            found || ((allow_cpu || p.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) && suitable(d));
       }
     } catch (const std::exception&) {
       found = false;

@@ -43,7 +43,10 @@ class Context {
   VkMemoryPropertyFlags memory_flags(std::uint32_t type) const;
 
   /// True when a suitable device that is not a CPU implementation exists. Never throws.
-  static bool gpu_available();
+  static bool gpu_available() { return device_available(false); }
+  /// True when a suitable device exists, a CPU implementation counting when `allow_cpu`.
+  /// Never throws.
+  static bool device_available(bool allow_cpu);
 
   /// Validation-layer warnings and errors seen by any Context in this process.
   static std::size_t validation_message_count();

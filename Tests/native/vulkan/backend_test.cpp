@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "benchmarks/bench_scenes.hpp"
+#include "lightsolver/backends.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
@@ -177,6 +178,21 @@ TEST_F(VulkanBackendTest, UnknownBackendNamesTheChoices) {
   }
 }
 
+// The registry finds lavapipe (a CPU device) for "vulkan", while "auto" keeps to Embree unless a
+// real GPU is present.
+TEST_F(VulkanBackendTest, RegistrySeesTheDeviceAndAutoWantsARealGpu) {
+  bool listed = false;
+  for (const BackendInfo& b : available_backends()) {
+    if (b.name != "vulkan") continue;
+    listed = true;
+    EXPECT_TRUE(b.gpu);
+    EXPECT_TRUE(b.available.value_or(false)) << "no Vulkan device found";
+  }
+  EXPECT_TRUE(listed);
+  EXPECT_EQ(run(bench::cornell_box(), "auto", 1000, 1).backend,
+            detail::vulkan_gpu_available() ? "vulkan" : "embree");
+}
+
 // Run by ctest with VK_ICD_FILENAMES pointing at a file that does not exist.
 TEST(NoDevice, VulkanFailsClearlyAndAutoFallsBackToEmbree) {
   const char* icd = std::getenv("VK_ICD_FILENAMES");
@@ -184,6 +200,9 @@ TEST(NoDevice, VulkanFailsClearlyAndAutoFallsBackToEmbree) {
     GTEST_SKIP() << "needs VK_ICD_FILENAMES=<nonexistent file> (ctest test vulkan.no_device)";
   }
   EXPECT_FALSE(detail::vulkan_gpu_available());
+  for (const BackendInfo& b : available_backends()) {
+    EXPECT_EQ(b.available.value_or(true), b.name != "vulkan") << b.name;
+  }
   const Scene s = bench::cornell_box();
   try {
     run(s, "vulkan", 10, 1);

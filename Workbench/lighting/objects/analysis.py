@@ -9,9 +9,12 @@ from typing import Any, Dict, List, Optional
 
 from lighting.objects import luminaire, placement_domain, target
 from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY, objects_of_type
+from lighting.solver import run as solver_run
 
 TYPE = "Lighting::Analysis"
-BACKENDS = ("auto", "embree", "vulkan")
+#: Backend choices while the native module cannot be imported (documents still open then);
+#: otherwise they come from the solver's registry (backend_choices).
+FALLBACK_BACKENDS = ("auto", "embree", "vulkan")
 COLOR_MAPS = ("Rainbow", "Heat", "Grey")
 SCALE_MODES = ("Auto", "Fixed")
 MESH_STORAGE = ("Auto", "Inline", "PLY")
@@ -40,7 +43,9 @@ class Analysis(BaseProxy):
         "Seed": Prop("App::PropertyInteger", "Solver",
                      "Random seed: same scene + seed + photons give identical results", 1),
         "Backend": Prop("App::PropertyEnumeration", "Solver",
-                        "Tracing backend of the native solver", "auto", items=BACKENDS),
+                        "Tracing backend of the native solver: auto (a real GPU when one is "
+                        "usable, else the CPU) or one this solver build has", "auto",
+                        items=FALLBACK_BACKENDS),
         "Threads": Prop("App::PropertyInteger", "Solver", "Worker threads (0 = all cores)", 0),
         # Export
         "LinearDeflection": Prop("App::PropertyLength", "Export",
@@ -81,6 +86,25 @@ class Analysis(BaseProxy):
         "ResultsJson": Prop("App::PropertyString", "Results",
                             "The last results (lightsolver.results/1 JSON)", "", HIDDEN),
     }
+
+    @classmethod
+    def ensure_properties(cls, obj: Any, set_defaults: bool = False) -> None:
+        """The table's properties, then the Backend choices of this solver build."""
+        current = obj.Backend if "Backend" in obj.PropertiesList else None
+        super().ensure_properties(obj, set_defaults)
+        obj.Backend = backend_choices(current)
+        obj.Backend = current or "auto"
+
+
+def backend_choices(current: Optional[str] = None) -> List[str]:
+    """The Backend property's items: the solver's registry (``lightsolver.backends()``, "auto"
+    first) when the module can be imported, else FALLBACK_BACKENDS. A document's value that
+    this build lacks (saved where Vulkan was built) stays an item, so opening the file does not
+    change it; a run then fails with the solver's list of the backends it has."""
+    names = solver_run.backend_names() or list(FALLBACK_BACKENDS)
+    if current and current not in names:
+        names.append(current)
+    return names
 
 
 def _in_some_analysis(obj: Any) -> bool:

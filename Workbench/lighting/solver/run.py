@@ -9,9 +9,9 @@ Where the module is looked for, in order:
 4. ``sys.path`` as it is (a ``.pth`` file written by scripts/install-workbench.sh).
 
 API used (docs/scene-format.md): ``load_scene(path)``, ``solve(scene, photons=, seed=,
-confidence=, threads=, progress=, cancel=)`` returning the results dictionary,
-``CancelToken()``. ``solve`` releases the GIL, so it runs on a worker thread while the GUI
-stays responsive."""
+confidence=, threads=, backend=, progress=, cancel=)`` returning the results dictionary,
+``CancelToken()``, ``backends()`` (the backend registry). ``solve`` releases the GIL, so it
+runs on a worker thread while the GUI stays responsive."""
 from __future__ import annotations
 
 import glob
@@ -31,6 +31,7 @@ PARAM_GROUP = "User parameter:BaseApp/Preferences/Mod/Lighting"
 ProgressFn = Callable[[int, int], bool]
 
 _module: Optional[ModuleType] = None
+_backend_names: Optional[List[str]] = None
 
 
 def repository_root() -> str:
@@ -106,6 +107,19 @@ def solver_available() -> Tuple[bool, str]:
     except SolverUnavailableError as exc:
         return False, str(exc)
     return True, getattr(module, "__file__", MODULE_NAME)
+
+
+def backend_names() -> Optional[List[str]]:
+    """The backend names the solver accepts, "auto" first: ``lightsolver.backends()``, the
+    registry of the backends this build has. None when the module cannot be imported or
+    predates ``backends()``. Asked once per session (finding out loads the GPU drivers)."""
+    global _backend_names
+    if _backend_names is None:
+        try:
+            _backend_names = [str(b["name"]) for b in load_module().backends()]
+        except (SolverUnavailableError, AttributeError):
+            return None
+    return list(_backend_names)
 
 
 def make_cancel_token() -> Optional[Any]:

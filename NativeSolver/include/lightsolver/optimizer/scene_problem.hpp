@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "lightsolver/backends.hpp"
 #include "lightsolver/optimizer/domain.hpp"
 #include "lightsolver/optimizer/evaluator.hpp"
 #include "lightsolver/optimizer/intention.hpp"
@@ -112,8 +113,10 @@ Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std
 /// Evaluator over a Simulation that owns a copy of the problem's scene.
 class SceneEvaluator final : public Evaluator {
  public:
-  /// `threads` 0: all cores. Throws InputError as Simulation does.
-  SceneEvaluator(const SceneProblem& problem, int threads = 0);
+  /// `threads` 0: all cores; `backend`: a name from lightsolver::backends(). Throws InputError
+  /// as Simulation does.
+  SceneEvaluator(const SceneProblem& problem, int threads = 0,
+                 const std::string& backend = kAutoBackend);
   Evaluation evaluate(const EvaluationRequest& request) override;
   /// The simulation's scene with the last request applied.
   const Scene& scene() const { return simulation_.scene(); }
@@ -134,6 +137,7 @@ class SceneEvaluator final : public Evaluator {
 struct RunOverrides {
   std::optional<std::uint64_t> iterations, seed, screening_photons, confirmation_photons;
   int threads = 0;
+  std::string backend = kAutoBackend;  ///< a name from lightsolver::backends()
 };
 
 /// Builds a SceneEvaluator and runs optimize() with the problem's search settings.
