@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/json_reader.hpp"
+#include "core/scene_document.hpp"
 #include "lightsolver/scene_io.hpp"
 
 namespace lightsolver {
@@ -226,11 +227,8 @@ Settings read_settings(const JsonNode& n) {
   return s;
 }
 
-}  // namespace
-
-Scene scene_from_json(const std::string& text, const std::string& file,
-                      const std::string& base_dir) {
-  const nlohmann::json doc = detail::parse_json_text(text, file);
+// The scene of a parsed scene file.
+Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::string& base_dir) {
   const JsonNode root(doc, "", file);
   root.require_object({"format", "materials", "meshes", "luminaires", "targets", "settings",
                        "optimization", "metadata"});
@@ -263,13 +261,34 @@ Scene scene_from_json(const std::string& text, const std::string& file,
   return scene;
 }
 
-Scene load_scene(const std::string& path) {
+}  // namespace
+
+namespace detail {
+
+SceneDocument read_scene_document(const std::string& text, const std::string& file,
+                                  const std::string& base_dir) {
+  SceneDocument d;
+  d.json = parse_json_text(text, file);
+  d.scene = read_scene(d.json, file, base_dir);
+  return d;
+}
+
+SceneDocument load_scene_document(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the scene file");
   std::stringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(path, "", "cannot read the scene file");
-  return scene_from_json(text.str(), path, fs::path(path).parent_path().string());
+  return read_scene_document(text.str(), path, fs::path(path).parent_path().string());
 }
+
+}  // namespace detail
+
+Scene scene_from_json(const std::string& text, const std::string& file,
+                      const std::string& base_dir) {
+  return detail::read_scene_document(text, file, base_dir).scene;
+}
+
+Scene load_scene(const std::string& path) { return detail::load_scene_document(path).scene; }
 
 }  // namespace lightsolver
