@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "lightsolver/backends.hpp"
+#include "lightsolver/defaults.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_bindings.hpp"
@@ -24,6 +25,31 @@ struct CancelToken {
   void cancel() { flag->store(true); }
   bool cancelled() const { return flag->load(); }
 };
+
+Material::Type material_type(const std::string& type) {
+  if (type == "diffuse") return Material::Type::Diffuse;
+  if (type == "mirror") return Material::Type::Mirror;
+  if (type == "glass") return Material::Type::Glass;
+  if (type == "glossy") return Material::Type::Glossy;
+  throw py::value_error("unknown material type \"" + type + "\"");
+}
+
+// {type: {key: default}} for the keys a scene file may leave out (docs/scene-format.md).
+py::dict material_defaults_dict() {
+  using T = Material::Type;
+  const Material diffuse = default_material("", T::Diffuse),
+                 mirror = default_material("", T::Mirror), glass = default_material("", T::Glass),
+                 glossy = default_material("", T::Glossy);
+  py::dict d;
+  d["diffuse"] = py::dict(py::arg("reflectance") = diffuse.reflectance);
+  d["mirror"] = py::dict(py::arg("reflectance") = mirror.reflectance);
+  d["glass"] = py::dict(py::arg("ior") = glass.ior, py::arg("transmittance") = glass.transmittance,
+                        py::arg("thin") = glass.thin);
+  d["glossy"] =
+      py::dict(py::arg("reflectance") = glossy.reflectance, py::arg("specular") = glossy.specular,
+               py::arg("roughness") = glossy.roughness);
+  return d;
+}
 
 glm::dvec3 vec3_arg(const std::vector<double>& v, const char* name) {
   if (v.size() != 3) throw py::value_error(std::string(name) + ": expected 3 numbers");
@@ -131,7 +157,11 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
 PYBIND11_MODULE(lightsolver, m) {
   m.doc() = "Photon-tracing illuminance solver: lux with confidence intervals";
   m.attr("__version__") = version();
-  m.attr("SCENE_FORMAT") = "lightsolver.scene/1";
+  m.attr("SCENE_FORMAT") = kSceneFormat;
+  m.attr("RESULTS_FORMAT") = kResultsFormat;
+  m.attr("OPTIMIZATION_FORMAT") = kOptimizationFormat;
+  m.def("material_defaults", &material_defaults_dict,
+        "{type: {key: value}}: what a material gets for each key a scene file leaves out");
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -152,15 +182,8 @@ PYBIND11_MODULE(lightsolver, m) {
            [](Scene& s, const std::string& name, const std::string& type,
               std::optional<double> reflectance, double ior, double transmittance, bool thin,
               double specular, double roughness) {
-             Material mat;
-             mat.name = name;
-             if (type == "diffuse") mat.type = Material::Type::Diffuse;
-             else if (type == "mirror") mat.type = Material::Type::Mirror;
-             else if (type == "glass") mat.type = Material::Type::Glass;
-             else if (type == "glossy") mat.type = Material::Type::Glossy;
-             else throw py::value_error("unknown material type \"" + type + "\"");
-             const double fallback = type == "mirror" ? 0.9 : type == "glossy" ? 0.0 : 0.5;
-             mat.reflectance = reflectance.value_or(fallback);
+             Material mat = default_material(name, material_type(type));
+             mat.reflectance = reflectance.value_or(mat.reflectance);
              mat.ior = ior;
              mat.transmittance = transmittance;
              mat.thin = thin;
@@ -170,8 +193,11 @@ PYBIND11_MODULE(lightsolver, m) {
              s.materials.push_back(mat);
            },
            py::arg("name"), py::arg("type") = "diffuse", py::arg("reflectance") = py::none(),
-           py::arg("ior") = 1.52, py::arg("transmittance") = 1.0, py::arg("thin") = false,
-           py::arg("specular") = 0.5, py::arg("roughness") = 0.2)
+           py::arg("ior") = material_defaults::kGlassIor,
+           py::arg("transmittance") = material_defaults::kGlassTransmittance,
+           py::arg("thin") = material_defaults::kGlassThin,
+           py::arg("specular") = material_defaults::kGlossySpecular,
+           py::arg("roughness") = material_defaults::kGlossyRoughness)
       .def("add_mesh",
            [](Scene& s, const std::string& name, py::array vertices, py::array triangles,
               const std::string& material) {

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "lightsolver/optimizer/scene_problem.hpp"
+#include "lightsolver/scene_io.hpp"
 
 namespace py = pybind11;
 namespace opt = lightsolver::optimizer;
@@ -72,9 +73,9 @@ opt::SceneProblem problem_from(py::object scene, py::object optimization) {
   if (py::isinstance<py::str>(scene) || py::hasattr(scene, "__fspath__")) {
     const std::string path = py::str(py::module_::import("os").attr("fspath")(scene));
     if (optimization.is_none()) return opt::load_problem(path);
-    opt::SceneProblem p = opt::load_problem(path);  // block in the file is replaced
-    return opt::problem_from_scene(std::move(p.scene), dumps(optimization).cast<std::string>(),
-                                   path);
+    // The given block replaces the file's, which is neither read nor required.
+    return opt::problem_from_scene(lightsolver::load_scene(path),
+                                   dumps(optimization).cast<std::string>(), path);
   }
   if (optimization.is_none()) {
     throw py::value_error(

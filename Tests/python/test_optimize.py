@@ -86,6 +86,22 @@ def test_in_memory_scene_with_a_block_dict() -> None:
         lightsolver.optimize(scene)
 
 
+def test_a_file_with_a_given_block(tmp_path: Path) -> None:
+    # The given block replaces the file's: the file needs none, and a broken one is not read.
+    doc = json.loads(SMALL_ROOM.read_text())
+    block = doc.pop("optimization")
+    block["search"] = {"max_iterations": 1, "screening_photons": 0,
+                       "confirmation_photons": 20000}
+    plain = tmp_path / "plain.json"
+    plain.write_text(json.dumps(doc))
+    r = lightsolver.optimize(str(plain), optimization=block, threads=2)
+    assert r["counters"]["iterations"] == 1 and r["scene_file"] == str(plain)
+    doc["optimization"] = {"variables": "broken"}
+    broken = tmp_path / "broken.json"
+    broken.write_text(json.dumps(doc))
+    assert lightsolver.optimize(str(broken), optimization=block, threads=2)["isoc"] == r["isoc"]
+
+
 def test_bad_block_names_the_field(tmp_path: Path) -> None:
     doc = json.loads(SMALL_ROOM.read_text())
     doc["optimization"]["variables"][1]["cells"] = [3]

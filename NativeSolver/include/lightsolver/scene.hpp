@@ -9,8 +9,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
 
 namespace lightsolver {
@@ -18,18 +20,33 @@ namespace lightsolver {
 struct PhotometricData;    // photometry.hpp
 class PhotometricSampler;  // photometry.hpp
 
-/// Surface interaction model.
+/// Surface interaction model. Defaults are a diffuse material's (defaults.hpp); a mirror or
+/// glossy material built in code sets its reflectance, as default_material() does.
 struct Material {
   enum class Type { Diffuse, Mirror, Glass, Glossy };
   std::string name;
   Type type = Type::Diffuse;
-  double reflectance = 0.5;    ///< Lambertian (diffuse, glossy) or specular (mirror) albedo
-  double ior = 1.52;           ///< glass refractive index
-  double transmittance = 1.0;  ///< glass internal transmittance of one pass
-  bool thin = false;           ///< glass modelled as one sheet (a pane of two interfaces)
-  double specular = 0.5;       ///< glossy lobe albedo
-  double roughness = 0.2;      ///< glossy lobe roughness, GGX alpha = roughness^2
+  /// Lambertian (diffuse, glossy) or specular (mirror) albedo
+  double reflectance = material_defaults::kDiffuseReflectance;
+  double ior = material_defaults::kGlassIor;  ///< glass refractive index
+  /// glass internal transmittance of one pass
+  double transmittance = material_defaults::kGlassTransmittance;
+  /// glass modelled as one sheet (a pane of two interfaces)
+  bool thin = material_defaults::kGlassThin;
+  double specular = material_defaults::kGlossySpecular;    ///< glossy lobe albedo
+  double roughness = material_defaults::kGlossyRoughness;  ///< glossy roughness, GGX alpha = r^2
 };
+
+/// A material of `type` with every value a scene file may leave out at its default
+/// (docs/scene-format.md): the reflectance is the type's (mirror 0.9, glossy 0, else 0.5).
+inline Material default_material(std::string name, Material::Type type) {
+  Material m;
+  m.name = std::move(name);
+  m.type = type;
+  if (type == Material::Type::Mirror) m.reflectance = material_defaults::kMirrorReflectance;
+  if (type == Material::Type::Glossy) m.reflectance = material_defaults::kGlossyReflectance;
+  return m;
+}
 
 /// Triangle mesh in world coordinates (metres), transform already applied.
 struct Mesh {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "lightsolver/defaults.hpp"
 #include "lightsolver/solver.hpp"
 
 namespace lightsolver {
@@ -54,7 +55,7 @@ std::string stop_text(const Results& r) {
 }  // namespace
 
 std::string results_to_json(const Results& r) {
-  nlohmann::json j = {{"format", "lightsolver.results/1"},
+  nlohmann::json j = {{"format", kResultsFormat},
                       {"photons", r.photons},
                       {"photons_requested", r.photons_requested},
                       {"partial", r.partial},

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/json_reader.hpp"
+#include "core/scene_document.hpp"
 #include "lightsolver/scene_io.hpp"
 
 namespace lightsolver {
@@ -15,32 +16,30 @@ namespace {
 using detail::JsonNode;
 namespace fs = std::filesystem;
 
-constexpr const char* kFormat = "lightsolver.scene/1";
-
+// Keys left out keep default_material()'s values (lightsolver/defaults.hpp).
 Material read_material(const std::string& name, const JsonNode& n) {
   Material m;
-  m.name = name;
   const std::string type = n.at("type").string();
   if (type == "diffuse") {
     n.require_object({"type", "reflectance"});
-    m.type = Material::Type::Diffuse;
-    m.reflectance = n.number_or("reflectance", 0.5);
+    m = default_material(name, Material::Type::Diffuse);
+    m.reflectance = n.number_or("reflectance", m.reflectance);
   } else if (type == "mirror") {
     n.require_object({"type", "reflectance"});
-    m.type = Material::Type::Mirror;
-    m.reflectance = n.number_or("reflectance", 0.9);
+    m = default_material(name, Material::Type::Mirror);
+    m.reflectance = n.number_or("reflectance", m.reflectance);
   } else if (type == "glass") {
     n.require_object({"type", "ior", "transmittance", "thin"});
-    m.type = Material::Type::Glass;
-    m.ior = n.number_or("ior", 1.52);
-    m.transmittance = n.number_or("transmittance", 1.0);
-    m.thin = n.boolean_or("thin", false);
+    m = default_material(name, Material::Type::Glass);
+    m.ior = n.number_or("ior", m.ior);
+    m.transmittance = n.number_or("transmittance", m.transmittance);
+    m.thin = n.boolean_or("thin", m.thin);
   } else if (type == "glossy") {
     n.require_object({"type", "reflectance", "specular", "roughness"});
-    m.type = Material::Type::Glossy;
-    m.reflectance = n.number_or("reflectance", 0.0);
-    m.specular = n.number_or("specular", 0.5);
-    m.roughness = n.number_or("roughness", 0.2);
+    m = default_material(name, Material::Type::Glossy);
+    m.reflectance = n.number_or("reflectance", m.reflectance);
+    m.specular = n.number_or("specular", m.specular);
+    m.roughness = n.number_or("roughness", m.roughness);
   } else {
     n.at("type").fail("unknown material type \"" + type +
                       "\" (expected diffuse, mirror, glass or glossy)");
@@ -228,18 +227,15 @@ Settings read_settings(const JsonNode& n) {
   return s;
 }
 
-}  // namespace
-
-Scene scene_from_json(const std::string& text, const std::string& file,
-                      const std::string& base_dir) {
-  const nlohmann::json doc = detail::parse_json_text(text, file);
+// The scene of a parsed scene file.
+Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::string& base_dir) {
   const JsonNode root(doc, "", file);
   root.require_object({"format", "materials", "meshes", "luminaires", "targets", "settings",
                        "optimization", "metadata"});
   const std::string format = root.at("format").string();
-  if (format != kFormat) {
-    root.at("format").fail("unsupported format \"" + format + "\" (this solver reads \"" + kFormat +
-                           "\")");
+  if (format != kSceneFormat) {
+    root.at("format").fail("unsupported format \"" + format + "\" (this solver reads \"" +
+                           kSceneFormat + "\")");
   }
   Scene scene;
   scene.source_file = file;
@@ -265,13 +261,34 @@ Scene scene_from_json(const std::string& text, const std::string& file,
   return scene;
 }
 
-Scene load_scene(const std::string& path) {
+}  // namespace
+
+namespace detail {
+
+SceneDocument read_scene_document(const std::string& text, const std::string& file,
+                                  const std::string& base_dir) {
+  SceneDocument d;
+  d.json = parse_json_text(text, file);
+  d.scene = read_scene(d.json, file, base_dir);
+  return d;
+}
+
+SceneDocument load_scene_document(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the scene file");
   std::stringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(path, "", "cannot read the scene file");
-  return scene_from_json(text.str(), path, fs::path(path).parent_path().string());
+  return read_scene_document(text.str(), path, fs::path(path).parent_path().string());
 }
+
+}  // namespace detail
+
+Scene scene_from_json(const std::string& text, const std::string& file,
+                      const std::string& base_dir) {
+  return detail::read_scene_document(text, file, base_dir).scene;
+}
+
+Scene load_scene(const std::string& path) { return detail::load_scene_document(path).scene; }
 
 }  // namespace lightsolver

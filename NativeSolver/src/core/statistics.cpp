@@ -1,6 +1,8 @@
 #include "lightsolver/statistics.hpp"
 
 #include <algorithm>
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -12,20 +14,28 @@ double z_for_confidence(double confidence) {
   if (!(confidence > 0.0 && confidence < 1.0)) {
     throw std::invalid_argument("confidence must lie in (0, 1)");
   }
-  // Solve erfc(z / sqrt 2) = 1 - confidence. erfc keeps full relative precision for confidence
-  // close to 1, which a formula on erf would lose. Bisection is plenty: this runs once per call
-  // site, and 200 halvings of [0, 40] reach double resolution.
-  const double tail = 1.0 - confidence;
-  double lo = 0.0, hi = 40.0;
-  for (int i = 0; i < 200 && hi - lo > 0.0; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (mid == lo || mid == hi) break;
-    (std::erfc(mid / std::sqrt(2.0)) > tail ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  // z = sqrt(2) erf^-1(confidence). Near 1 the inverse of the complement keeps full relative
+  // precision (1 - confidence is exact there, Sterbenz); below 0.5 erf^-1 itself does, where
+  // 1 - confidence would round. Boost evaluates both in long double, so z is within about one
+  // ulp (docs/statistics.md).
+  using boost::math::constants::root_two;
+  const double t =
+      confidence < 0.5 ? boost::math::erf_inv(confidence) : boost::math::erfc_inv(1.0 - confidence);
+  return root_two<double>() * t;
 }
 
 namespace {
+
+// z of the last confidence this thread asked for: make_estimate runs per grid cell and the
+// optimizer compares thousands of times, always at the run's one confidence.
+double cached_z(double confidence) {
+  thread_local double cached_confidence = -1.0, z = 0.0;
+  if (confidence != cached_confidence) {
+    z = z_for_confidence(confidence);  // throws before the cache changes
+    cached_confidence = confidence;
+  }
+  return z;
+}
 
 // Per-path sample variance of the mean, (N Q - S^2) / (N^2 (N - 1)), with an exact integer
 // numerator: the textbook Q/N - mean^2 cancels catastrophically when most paths deposit alike.
@@ -82,7 +92,7 @@ Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double
   Estimate e;
   e.hits = t.sum;
   if (paths == 0) return e;
-  const double z = z_for_confidence(confidence);
+  const double z = cached_z(confidence);
   const double n = static_cast<double>(paths);
   const double p = static_cast<double>(t.sum) / n;
   e.mean = scale * p;
@@ -113,13 +123,7 @@ Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double
 }
 
 Relation compare(const Estimate& x, const Estimate& y, double confidence) {
-  // The optimizer compares thousands of times at one confidence: remember the last z.
-  thread_local double cached_confidence = -1.0, cached_z = 0.0;
-  if (confidence != cached_confidence) {
-    cached_z = z_for_confidence(confidence);
-    cached_confidence = confidence;
-  }
-  const double threshold = cached_z * std::hypot(x.sigma, y.sigma);
+  const double threshold = cached_z(confidence) * std::hypot(x.sigma, y.sigma);
   const double diff = x.mean - y.mean;
   if (diff > threshold) return Relation::Greater;
   if (-diff > threshold) return Relation::Less;

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "lightsolver/defaults.hpp"
 #include "lightsolver/optimizer/result.hpp"
 
 namespace lightsolver::optimizer {
@@ -71,7 +72,7 @@ std::string to_json(const OptimizationResult& r, int indent) {
   for (const ResultMember& m : r.isoc) isoc.push_back(member_json(m));
   json history = json::array();
   for (const IterationStats& s : r.history) history.push_back(iteration_json(s));
-  const json j = {{"format", "lightsolver.optimization/1"},
+  const json j = {{"format", kOptimizationFormat},
                   {"goal", r.goal == Goal::kMaximize ? "maximize" : "minimize"},
                   {"confidence", r.confidence},
                   {"stop", to_string(r.stop)},

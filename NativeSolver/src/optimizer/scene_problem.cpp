@@ -4,14 +4,12 @@
 #include "lightsolver/optimizer/scene_problem.hpp"
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <glm/geometric.hpp>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
+#include "core/scene_document.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "optimizer/placement_region.hpp"
 
@@ -421,6 +419,14 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
   return p;
 }
 
+// The block of a scene file read once by the shared loader, which checked everything else.
+SceneProblem problem_from_document(detail::SceneDocument d, const std::string& file) {
+  if (!d.json.contains("optimization")) {
+    throw InputError(file, "optimization", "the scene has no optimization block to run");
+  }
+  return read_block(std::move(d.scene), d.json.at("optimization"), file);
+}
+
 }  // namespace
 
 std::vector<std::string> SceneProblem::movable_meshes() const {
@@ -438,20 +444,11 @@ std::vector<std::string> SceneProblem::movable_meshes() const {
 
 SceneProblem problem_from_json(const std::string& text, const std::string& file,
                                const std::string& base_dir) {
-  Scene scene = scene_from_json(text, file, base_dir);  // checks everything but the block
-  const nlohmann::json doc = detail::parse_json_text(text, file);
-  if (!doc.contains("optimization")) {
-    throw InputError(file, "optimization", "the scene has no optimization block to run");
-  }
-  return read_block(std::move(scene), doc.at("optimization"), file);
+  return problem_from_document(detail::read_scene_document(text, file, base_dir), file);
 }
 
 SceneProblem load_problem(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the scene file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return problem_from_json(text.str(), path, std::filesystem::path(path).parent_path().string());
+  return problem_from_document(detail::load_scene_document(path), path);
 }
 
 SceneProblem problem_from_scene(Scene scene, const std::string& optimization_json,

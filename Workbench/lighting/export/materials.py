@@ -23,8 +23,13 @@ from dataclasses import dataclass
 from typing import Any, Dict, Optional, Tuple
 
 from lighting.compat import get_property, has_property, ifc_type
+from lighting.export import defaults
 
-GLASS_IOR = 1.52
+_SOLVER_DEFAULTS = defaults.material_defaults()
+#: The solver's glass refractive index and diffuse reflectance (lightsolver/defaults.hpp).
+GLASS_IOR = float(_SOLVER_DEFAULTS["glass"]["ior"])
+DIFFUSE_REFLECTANCE = float(_SOLVER_DEFAULTS["diffuse"]["reflectance"])
+#: Workbench defaults by role (IFC type, face orientation), not the solver's.
 DEFAULT_REFLECTANCE = {"ceiling": 0.7, "wall": 0.5, "floor": 0.2, "frame": 0.5,
                        "furniture": 0.5}
 DEFAULT_GLASS_TRANSMITTANCE = 0.9
@@ -43,7 +48,7 @@ class MaterialSpec:
 
     name: str
     kind: str = "diffuse"
-    reflectance: float = 0.5
+    reflectance: float = DIFFUSE_REFLECTANCE
     transmittance: float = 1.0  # light (total) transmittance of a pane, for glass
     thin: bool = False
     ior: float = GLASS_IOR

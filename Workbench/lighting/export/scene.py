@@ -17,7 +17,7 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 import FreeCAD
 
 from lighting import __version__, files
-from lighting.export import collect, ply
+from lighting.export import collect, defaults, ply
 from lighting.export.materials import MaterialResolver, MaterialSpec, window_part_kinds
 from lighting.export.tessellate import (FaceTriangles, MeshBuilder, largest_triangle,
                                         mesh_triangles, tessellate_faces, triangle_normal)
@@ -28,7 +28,7 @@ from lighting.objects import luminaire as luminaire_mod
 from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
 
-FORMAT = "lightsolver.scene/1"
+FORMAT = defaults.scene_format()
 SCENE_FILE = "scene.json"
 RESULTS_FILE = "results.json"
 INLINE_LIMIT_TRIANGLES = 20000

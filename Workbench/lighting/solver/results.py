@@ -7,7 +7,6 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
-RESULTS_FORMAT = "lightsolver.results/1"
 
 
 def _float(value: Any, default: float = 0.0) -> float:
