@@ -8,7 +8,6 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
 
-
 def _float(value: Any, default: float = 0.0) -> float:
     try:
         number = float(value)
