@@ -14,9 +14,9 @@ from lighting.colormap import Scale
 from lighting.viewproviders.base import ViewProviderBase
 
 #: App properties of the analysis whose change repaints its targets and legend: the display
-#: settings and the results (cleared or stored).
-REPAINT_ON = ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend",
-              "ResultsJson")
+#: settings and the group (a results object added or removed; the results object's own view
+#: provider repaints when its results change).
+REPAINT_ON = ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend", "Group")
 LEGEND_STEPS = 32
 LEGEND_TICKS = 6
 # Legend rectangle in the legend camera's coordinates (x, y in -1..1 over the viewport).
