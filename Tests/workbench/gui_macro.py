@@ -110,6 +110,13 @@ def stored_mean_lux(doc, name="Workplane"):
     return results_obj.mean_lux(found, name) if found is not None else None
 
 
+def lighting_view_providers(doc):
+    """Object name -> class name of the view provider, for the Lighting objects."""
+    return {o.Name: type(o.ViewObject.Proxy).__name__ for o in doc.Objects
+            if getattr(o, "Proxy", None) is not None
+            and type(o.Proxy).__module__.startswith("lighting")}
+
+
 def distinct_colours(obj):
     return len({tuple(round(c, 3) for c in col[:3]) for col in obj.ViewObject.DiffuseColor})
 
@@ -231,6 +238,35 @@ def display_updates(doc):
     pump(0.3)
     info["undone"] = state()
     STATUS["display"] = info
+
+
+def legacy_document(doc):
+    """A file as older versions wrote it (results JSON on the analysis, numbers on the
+    targets) opened in the GUI: the observer moves the JSON into a results object, which gets
+    its view provider and paints the grid."""
+    import FreeCAD
+
+    analysis, found = doc.getObject("LightingAnalysis"), stored(doc)
+    text = found.ResultsJson
+    analysis.removeObject(found)
+    doc.removeObject(found.Name)
+    analysis.addProperty("App::PropertyString", "ResultsJson", "Results")
+    analysis.ResultsJson = text
+    workplane = doc.getObject("Workplane")
+    workplane.addProperty("App::PropertyBool", "HasResults", "Results")
+    workplane.HasResults = True
+    path = os.path.join(OUT, "legacy.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    pump(0.3)
+    doc = FreeCAD.openDocument(path)
+    pump(1.0)
+    STATUS["legacy"] = {
+        "view_providers": lighting_view_providers(doc), "mean_lux": stored_mean_lux(doc),
+        "colours": distinct_colours(doc.getObject("Workplane")),
+        "legacy_props": sorted(f"{o.Name}.{p}" for o in doc.Objects for p in o.PropertiesList
+                               if p in ("ResultsJson", "HasResults")
+                               and o.Name in ("LightingAnalysis", "Workplane"))}
 
 
 def commands_smoke():
@@ -373,9 +409,7 @@ def main():
                                         and o.ViewObject.Visibility)
     STATUS["workplane_colours_reopened"] = distinct_colours(doc.getObject("Workplane"))
     STATUS["mean_lux_reopened"] = stored_mean_lux(doc)
-    STATUS["view_providers_reopened"] = {
-        o.Name: type(o.ViewObject.Proxy).__name__ for o in doc.Objects
-        if getattr(o, "Proxy", None) is not None and type(o.Proxy).__module__.startswith("lighting")}
+    STATUS["view_providers_reopened"] = lighting_view_providers(doc)
     from lighting.objects.base import proxy_type
 
     STATUS["result_props_on_inputs"] = sorted(
@@ -387,6 +421,7 @@ def main():
     display_updates(doc)
     cancel_run(doc)
     optimize_in_gui(doc)
+    legacy_document(doc)
 
 
 try:

@@ -89,6 +89,11 @@ def check(status: dict) -> list:
     if list(reopened_vps.values()).count("ViewProviderResults") != 1:
         problems.append(f"not one results object with its view provider after reopening: "
                         f"{reopened_vps}")
+    legacy = status.get("legacy", {})
+    if (list(legacy.get("view_providers", {}).values()).count("ViewProviderResults") != 1
+            or legacy.get("mean_lux") is None or legacy.get("legacy_props")
+            or legacy.get("colours", 0) < 2):
+        problems.append(f"a document with results stored the old way was not migrated: {legacy}")
     if status.get("result_props_on_inputs"):
         problems.append(f"results written onto input objects: {status['result_props_on_inputs']}")
     problems.extend(check_display(status.get("display", {})))

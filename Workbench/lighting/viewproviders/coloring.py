@@ -3,9 +3,9 @@
 
 Colours come from the analysis' ColorMap and scale (Auto: 0 to a round maximum over its
 targets; Fixed: ScaleMinLux..ScaleMaxLux); the values from the analysis' results object
-(objects/results.py), so a reopened document is painted again without re-running. Painting is triggered from the GUI only: the
-view providers' ``updateData`` calls :func:`refresh_later` when a result or display property
-changes (App code never calls in here)."""
+(objects/results.py), so a reopened document is painted again without re-running. Painting
+is triggered from the GUI only: the view providers' ``updateData`` calls :func:`refresh_later`
+when a result or display property changes (App code never calls in here)."""
 from __future__ import annotations
 
 from typing import Any, List, Optional
@@ -112,8 +112,8 @@ _pending: set = set()
 
 
 def refresh_later(obj: Any) -> None:
-    """Repaint an analysis (targets and legend), a results object's analysis, or a target once control returns to the event
-    loop: after FreeCAD's own update of the shape (which resets face colours), and once for
+    """Repaint an analysis (targets and legend), a results object's analysis, or a target once
+    control returns to the event loop: after FreeCAD's own update of the shape (which resets face colours), and once for
     the many property changes of a results transaction."""
     from PySide import QtCore
 
