@@ -267,6 +267,15 @@ def legacy_document(doc):
         "legacy_props": sorted(f"{o.Name}.{p}" for o in doc.Objects for p in o.PropertiesList
                                if p in ("ResultsJson", "HasResults")
                                and o.Name in ("LightingAnalysis", "Workplane"))}
+    # Deleting the analysis (what Std_Delete does, without its confirmation dialog) takes its
+    # results object along and keeps its members.
+    analysis = doc.getObject("LightingAnalysis")
+    doc.openTransaction("Delete")
+    if analysis.ViewObject.Proxy.onDelete(analysis.ViewObject, []):
+        doc.removeObject(analysis.Name)
+    doc.commitTransaction()
+    pump(0.3)
+    STATUS["legacy"]["after_delete"] = sorted(lighting_view_providers(doc).values())
 
 
 def commands_smoke():

@@ -94,6 +94,9 @@ def check(status: dict) -> list:
             or legacy.get("mean_lux") is None or legacy.get("legacy_props")
             or legacy.get("colours", 0) < 2):
         problems.append(f"a document with results stored the old way was not migrated: {legacy}")
+    left = legacy.get("after_delete", [])
+    if "ViewProviderResults" in left or "ViewProviderTarget" not in left:
+        problems.append(f"deleting the analysis did not take its results object along only: {left}")
     if status.get("result_props_on_inputs"):
         problems.append(f"results written onto input objects: {status['result_props_on_inputs']}")
     problems.extend(check_display(status.get("display", {})))

@@ -175,6 +175,14 @@ class ViewProviderAnalysis(ViewProviderBase):
         return list(getattr(self.Object, "Group", []))
 
     def onDelete(self, vobj: Any, subelements: Any) -> bool:  # noqa: N802
-        """Deleting the analysis keeps its members (they move to the document root)."""
-        FreeCAD.Console.PrintLog(f"Lighting: deleting analysis {vobj.Object.Name}\n")
+        """Deleting the analysis keeps its members (they move to the document root), but not
+        its results object: results without their analysis mean nothing (same undo step)."""
+        from lighting.objects import results
+
+        analysis = vobj.Object
+        FreeCAD.Console.PrintLog(f"Lighting: deleting analysis {analysis.Name}\n")
+        found = results.of_analysis(analysis)
+        if found is not None:
+            analysis.removeObject(found)
+            analysis.Document.removeObject(found.Name)
         return True
