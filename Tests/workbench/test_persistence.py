@@ -3,6 +3,7 @@ reopen, storing them is one undo step, input objects carry none, documents of ol
 (results on the analysis and its targets) are migrated."""
 import json
 import os
+import zipfile
 
 import FreeCAD
 
@@ -47,7 +48,7 @@ def inputs_with_results(doc):
 
 class Persistence(DocTestCase):
     def _reopen(self, doc, name="office.FCStd"):
-        path = os.path.join(work_dir("save"), name)
+        path = self.saved = os.path.join(work_dir("save"), name)
         doc.saveAs(path)
         FreeCAD.closeDocument(doc.Name)
         return FreeCAD.openDocument(path)
@@ -65,6 +66,12 @@ class Persistence(DocTestCase):
         stored = results_obj.of_analysis(analysis)
         self.assertIsNotNone(stored)
         # The derived properties are not saved: they are rebuilt from the JSON on restore.
+        for name in results_obj.DERIVED:
+            self.assertIn("Transient", stored.getPropertyStatus(name), name)
+        with zipfile.ZipFile(self.saved) as archive:
+            xml = archive.read("Document.xml").decode("utf-8")
+        self.assertEqual(xml.count("&quot;lightsolver.results/1&quot;"), 1)  # one copy
+        self.assertNotIn('value="420', xml)  # Em is in the JSON only
         self.assertEqual(results_obj.mean_lux(stored, "Workplane"), 420.0)
         self.assertEqual(results_obj.cells_lux(stored, "Workplane"),
                          [300.0 + 5.0 * i for i in range(48)])

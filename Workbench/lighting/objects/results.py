@@ -16,8 +16,6 @@ from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY, proxy_type
 
 TYPE = "Lighting::Results"
 _RO = READ_ONLY
-#: App::Property flag Prop_Transient: the value is not written to the file.
-PROP_TRANSIENT = 2
 
 #: Per-target float lists derived from the JSON (property -> targets[] key).
 PER_TARGET = {"MeanLux": "mean_lux", "CiLowLux": "ci_low_lux", "CiHighLux": "ci_high_lux",
