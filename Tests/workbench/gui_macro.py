@@ -96,6 +96,27 @@ def hide_for_view(doc, hide=True):
             obj.ViewObject.Visibility = not hide
 
 
+def stored(doc):
+    """The results object of the document's analysis (None without results)."""
+    from lighting.objects import results as results_obj
+
+    return results_obj.of_analysis(doc.getObject("LightingAnalysis"))
+
+
+def stored_mean_lux(doc, name="Workplane"):
+    from lighting.objects import results as results_obj
+
+    found = stored(doc)
+    return results_obj.mean_lux(found, name) if found is not None else None
+
+
+def lighting_view_providers(doc):
+    """Object name -> class name of the view provider, for the Lighting objects."""
+    return {o.Name: type(o.ViewObject.Proxy).__name__ for o in doc.Objects
+            if getattr(o, "Proxy", None) is not None
+            and type(o.Proxy).__module__.startswith("lighting")}
+
+
 def distinct_colours(obj):
     return len({tuple(round(c, 3) for c in col[:3]) for col in obj.ViewObject.DiffuseColor})
 
@@ -136,7 +157,8 @@ def cancel_run(doc):
     STATUS["cancel"] = {"stage": job.stage if job else None,
                         "stop_seconds": (time.monotonic() - state["clicked"])
                         if state["clicked"] else None,
-                        "partial": analysis.Partial, "photons": analysis.PhotonsTraced,
+                        "partial": bool(stored(doc) and stored(doc).Partial),
+                        "photons": stored(doc).Photons if stored(doc) else 0.0,
                         "status": analysis.Status}
     pump(0.3)
     FreeCADGui.Control.closeDialog()
@@ -198,7 +220,7 @@ def display_updates(doc):
         diffuse = workplane.ViewObject.DiffuseColor
         colours = {tuple(round(c, 3) for c in col[:3]) for col in diffuse}
         holder = getattr(analysis.ViewObject.Proxy, "legend_holder", None)
-        return {"distinct": len(colours), "has_results": workplane.HasResults,
+        return {"distinct": len(colours), "has_results": stored_mean_lux(doc) is not None,
                 "grey": all(max(c) - min(c) < 0.01 for c in colours),
                 "legend_nodes": holder.getNumChildren() if holder is not None else None}
     info = {"start": state()}
@@ -216,6 +238,44 @@ def display_updates(doc):
     pump(0.3)
     info["undone"] = state()
     STATUS["display"] = info
+
+
+def legacy_document(doc):
+    """A file as older versions wrote it (results JSON on the analysis, numbers on the
+    targets) opened in the GUI: the observer moves the JSON into a results object, which gets
+    its view provider and paints the grid."""
+    import FreeCAD
+
+    analysis, found = doc.getObject("LightingAnalysis"), stored(doc)
+    text = found.ResultsJson
+    analysis.removeObject(found)
+    doc.removeObject(found.Name)
+    analysis.addProperty("App::PropertyString", "ResultsJson", "Results")
+    analysis.ResultsJson = text
+    workplane = doc.getObject("Workplane")
+    workplane.addProperty("App::PropertyBool", "HasResults", "Results")
+    workplane.HasResults = True
+    path = os.path.join(OUT, "legacy.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    pump(0.3)
+    doc = FreeCAD.openDocument(path)
+    pump(1.0)
+    STATUS["legacy"] = {
+        "view_providers": lighting_view_providers(doc), "mean_lux": stored_mean_lux(doc),
+        "colours": distinct_colours(doc.getObject("Workplane")),
+        "legacy_props": sorted(f"{o.Name}.{p}" for o in doc.Objects for p in o.PropertiesList
+                               if p in ("ResultsJson", "HasResults")
+                               and o.Name in ("LightingAnalysis", "Workplane"))}
+    # Deleting the analysis (what Std_Delete does, without its confirmation dialog) takes its
+    # results object along and keeps its members.
+    analysis = doc.getObject("LightingAnalysis")
+    doc.openTransaction("Delete")
+    if analysis.ViewObject.Proxy.onDelete(analysis.ViewObject, []):
+        doc.removeObject(analysis.Name)
+    doc.commitTransaction()
+    pump(0.3)
+    STATUS["legacy"]["after_delete"] = sorted(lighting_view_providers(doc).values())
 
 
 def commands_smoke():
@@ -342,8 +402,8 @@ def main():
         return
     run_analysis(doc)
     STATUS["workplane_colours_after"] = distinct_colours(doc.getObject("Workplane"))
-    STATUS["mean_lux_gui"] = doc.getObject("Workplane").MeanLux
-    STATUS["photons_gui"] = doc.getObject("LightingAnalysis").PhotonsTraced
+    STATUS["mean_lux_gui"] = stored_mean_lux(doc)
+    STATUS["photons_gui"] = stored(doc).Photons if stored(doc) else 0.0
     hide_for_view(doc)
     screenshot(doc, "after")
     path = os.path.join(OUT, "solved.FCStd")
@@ -357,12 +417,20 @@ def main():
                                         if getattr(o, "ViewObject", None) is not None
                                         and o.ViewObject.Visibility)
     STATUS["workplane_colours_reopened"] = distinct_colours(doc.getObject("Workplane"))
-    STATUS["mean_lux_reopened"] = doc.getObject("Workplane").MeanLux
+    STATUS["mean_lux_reopened"] = stored_mean_lux(doc)
+    STATUS["view_providers_reopened"] = lighting_view_providers(doc)
+    from lighting.objects.base import proxy_type
+
+    STATUS["result_props_on_inputs"] = sorted(
+        f"{o.Name}.{p}" for o in doc.Objects for p in o.PropertiesList
+        if p in ("MeanLux", "CellsLux", "HasResults", "ResultsJson")
+        and proxy_type(o) != "Lighting::Results")
     screenshot(doc, "reopened")
     hide_for_view(doc, False)
     display_updates(doc)
     cancel_run(doc)
     optimize_in_gui(doc)
+    legacy_document(doc)
 
 
 try:

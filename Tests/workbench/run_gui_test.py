@@ -82,6 +82,23 @@ def check(status: dict) -> list:
     if after.get("colourful_fraction", 0) and images.get("reopened", {}).get(
             "colourful_fraction", 0) < 0.5 * after["colourful_fraction"]:
         problems.append("colours lost after save and reopen")
+    if status.get("mean_lux_reopened") != status.get("mean_lux_gui"):
+        problems.append(f"results changed by save and reopen: {status.get('mean_lux_gui')} -> "
+                        f"{status.get('mean_lux_reopened')}")
+    reopened_vps = status.get("view_providers_reopened", {})
+    if list(reopened_vps.values()).count("ViewProviderResults") != 1:
+        problems.append(f"not one results object with its view provider after reopening: "
+                        f"{reopened_vps}")
+    legacy = status.get("legacy", {})
+    if (list(legacy.get("view_providers", {}).values()).count("ViewProviderResults") != 1
+            or legacy.get("mean_lux") is None or legacy.get("legacy_props")
+            or legacy.get("colours", 0) < 2):
+        problems.append(f"a document with results stored the old way was not migrated: {legacy}")
+    left = legacy.get("after_delete", [])
+    if "ViewProviderResults" in left or "ViewProviderTarget" not in left:
+        problems.append(f"deleting the analysis did not take its results object along only: {left}")
+    if status.get("result_props_on_inputs"):
+        problems.append(f"results written onto input objects: {status['result_props_on_inputs']}")
     problems.extend(check_display(status.get("display", {})))
     cancel = status.get("cancel", {})
     if cancel.get("stage") != "cancelled" or not cancel.get("partial"):

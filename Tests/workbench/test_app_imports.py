@@ -331,7 +331,10 @@ class AppImports(DocTestCase):
             FreeCAD.GuiUp = was_up
         _fail_on("App code imports GUI modules", guard.violations)
         self.assertGreater(result["Workplane"].mean_lux, 0.0)
-        self.assertEqual(reopened["Workplane"].mean_lux, doc.getObject("Workplane").MeanLux)
+        from lighting.objects import results as results_obj
+
+        stored = results_obj.of_analysis(doc.getObject("LightingAnalysis"))
+        self.assertEqual(reopened["Workplane"].mean_lux, results_obj.mean_lux(stored, "Workplane"))
 
 if __name__ == "__main__":
     unittest.main()

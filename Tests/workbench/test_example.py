@@ -4,6 +4,7 @@ import subprocess
 
 import FreeCAD
 
+import lighting
 from wbtest import REPO, DocTestCase, needs_solver, work_dir
 
 SCRIPT = os.path.join(REPO, "Examples", "office.py")
@@ -25,7 +26,7 @@ class Example(DocTestCase):
         for label in ("Walls", "Window", "Desk", "Cabinet", "Workplane", "Desk top",
                       "North wall", "LightingAnalysis", "Luminaire04"):
             self.assertIn(label, labels)
-        self.assertFalse(doc.getObject("Workplane").HasResults)
+        self.assertIsNone(lighting.results(doc))
 
     @needs_solver
     def test_analyse_and_save(self):
@@ -40,6 +41,5 @@ class Example(DocTestCase):
         self.assertTrue(os.path.exists(scene))
         doc = FreeCAD.openDocument(out)
         grid = doc.getObject("Workplane")
-        self.assertTrue(grid.HasResults)
-        self.assertGreater(grid.MeanLux, 100.0)
+        self.assertGreater(lighting.results(doc)[grid.Name].mean_lux, 100.0)
         self.assertEqual(doc.getObject("LightingAnalysis").SceneFile, scene)

@@ -1,11 +1,20 @@
-"""Results survive save and reopen; storing them is one undo step."""
+"""Results live in one results object per analysis (objects/results.py): they survive save and
+reopen, storing them is one undo step, input objects carry none, documents of older versions
+(results on the analysis and its targets) are migrated."""
+import json
 import os
+import zipfile
 
 import FreeCAD
 
 import lighting
+from lighting.objects import results as results_obj
+from lighting.objects.base import proxy_type
 from lighting.solver import store
-from wbtest import DocTestCase, build_office, needs_solver, work_dir
+from wbtest import REPO, DocTestCase, build_office, needs_solver, work_dir
+
+#: Properties older versions wrote onto inputs; none may be on a target/luminaire/analysis now.
+RESULT_PROPS = set(store.LEGACY_TARGET) | set(store.LEGACY_ANALYSIS)
 
 
 def fake_results(doc):
@@ -27,9 +36,19 @@ def fake_results(doc):
         ]}
 
 
+def results_objects(doc):
+    return [o for o in doc.Objects if proxy_type(o) == results_obj.TYPE]
+
+
+def inputs_with_results(doc):
+    """'Object.Property' for every result property found on a non-results object."""
+    return sorted(f"{o.Name}.{p}" for o in doc.Objects for p in o.PropertiesList
+                  if p in RESULT_PROPS and proxy_type(o) != results_obj.TYPE)
+
+
 class Persistence(DocTestCase):
-    def _reopen(self, doc):
-        path = os.path.join(work_dir("save"), "office.FCStd")
+    def _reopen(self, doc, name="office.FCStd"):
+        path = self.saved = os.path.join(work_dir("save"), name)
         doc.saveAs(path)
         FreeCAD.closeDocument(doc.Name)
         return FreeCAD.openDocument(path)
@@ -41,16 +60,27 @@ class Persistence(DocTestCase):
         table = before.table()
         print("\n" + table)
         self.assertIn("FAIL", table)  # 420 lx < 500 lx required
+        self.assertEqual(inputs_with_results(doc), [])
         doc = self._reopen(doc)
-        grid = doc.getObject("Workplane")
-        self.assertTrue(grid.HasResults)
-        self.assertEqual(grid.MeanLux, 420.0)
-        self.assertEqual(list(grid.CellsLux), [300.0 + 5.0 * i for i in range(48)])
-        self.assertEqual(grid.MinCiLowLux, 290.0)
-        self.assertEqual(doc.getObject("NorthWall").CiHighLux, 145.0)
         analysis = doc.getObject("LightingAnalysis")
+        stored = results_obj.of_analysis(analysis)
+        self.assertIsNotNone(stored)
+        # The derived properties are not saved: they are rebuilt from the JSON on restore.
+        for name in results_obj.DERIVED:
+            self.assertIn("Transient", stored.getPropertyStatus(name), name)
+        with zipfile.ZipFile(self.saved) as archive:
+            xml = archive.read("Document.xml").decode("utf-8")
+        self.assertEqual(xml.count("&quot;lightsolver.results/1&quot;"), 1)  # one copy
+        self.assertNotIn('value="420', xml)  # Em is in the JSON only
+        self.assertEqual(results_obj.mean_lux(stored, "Workplane"), 420.0)
+        self.assertEqual(results_obj.cells_lux(stored, "Workplane"),
+                         [300.0 + 5.0 * i for i in range(48)])
+        self.assertEqual(results_obj.cells_lux(stored, "NorthWall"), [])
+        self.assertEqual(list(stored.CiHighLux), [430.0, 530.0, 145.0])
+        self.assertEqual(lighting.results(doc)["Workplane"].min_ci_lux, (290.0, 310.0))
         self.assertEqual(analysis.Status, "done")
-        self.assertEqual(list(analysis.SolverWarnings), ["a warning"])
+        self.assertEqual(list(stored.Warnings), ["a warning"])
+        self.assertEqual(stored.Photons, 1234.0)
         self.assertEqual(lighting.results(doc).table(), table)
         # The proxies work after the reopen (execute, checks).
         doc.recompute()
@@ -62,22 +92,77 @@ class Persistence(DocTestCase):
         doc.UndoMode = 1
         analysis = doc.getObject("LightingAnalysis")
         store.apply_to_document(analysis, fake_results(doc))
-        self.assertTrue(doc.getObject("Workplane").HasResults)
+        self.assertEqual(len(results_objects(doc)), 1)
         doc.undo()
-        self.assertFalse(doc.getObject("Workplane").HasResults)
-        self.assertEqual(analysis.ResultsJson, "")
-        doc.redo()
-        self.assertEqual(doc.getObject("Workplane").MeanLux, 420.0)
-        store.clear(analysis)
-        self.assertFalse(doc.getObject("DeskTop_target").HasResults)
+        self.assertEqual(results_objects(doc), [])
         self.assertIsNone(lighting.results(doc))
+        doc.redo()
+        self.assertEqual(lighting.results(doc)["Workplane"].mean_lux, 420.0)
+        # A second run updates the same object.
+        second = fake_results(doc)
+        second["targets"][0]["mean_lux"] = 400.0
+        store.apply_to_document(analysis, second)
+        self.assertEqual(len(results_objects(doc)), 1)
+        self.assertEqual(results_obj.mean_lux(results_objects(doc)[0], "Workplane"), 400.0)
+        store.clear(analysis)
+        self.assertEqual(results_objects(doc), [])
+        self.assertIsNone(lighting.results(doc))
+        self.assertEqual(analysis.Status, "not run")
+        doc.undo()
+        self.assertEqual(lighting.results(doc)["Workplane"].mean_lux, 400.0)
+
+    def test_old_document_is_migrated(self):
+        """A file of an older version: results on the analysis and its targets."""
+        doc = build_office()
+        analysis = doc.getObject("LightingAnalysis")
+        text = json.dumps(fake_results(doc))
+        analysis.addProperty("App::PropertyString", "ResultsJson", "Results")
+        analysis.addProperty("App::PropertyFloat", "PhotonsTraced", "Results")
+        analysis.ResultsJson, analysis.PhotonsTraced = text, 1234.0
+        grid = doc.getObject("Workplane")
+        grid.addProperty("App::PropertyFloat", "MeanLux", "Results")
+        grid.addProperty("App::PropertyFloatList", "CellsLux", "Results")
+        grid.MeanLux, grid.CellsLux = 420.0, [1.0, 2.0]
+        doc = self._reopen(doc, "old.FCStd")
+        result = lighting.results(doc)  # the first use migrates
+        self.assertEqual(result["Workplane"].mean_lux, 420.0)
+        self.assertEqual(len(results_objects(doc)), 1)
+        self.assertEqual(json.loads(results_objects(doc)[0].ResultsJson), json.loads(text))
+        self.assertEqual(inputs_with_results(doc), [])
 
     @needs_solver
     def test_solved_results_survive_reopen(self):
+        """After a run: one results object per analysis, holding JSON that the schema
+        validates; no target/luminaire/analysis carries result properties; save + reopen keeps
+        the results object and its JSON unchanged."""
+        import jsonschema
+
         doc = build_office(photons=50000)
+        second = lighting.make_analysis(doc, "SecondAnalysis", photons=20000)
+        lighting.make_luminaire(doc, (2.5, 2.0, 2.5), kind="Point", flux_lm=1000.0,
+                                name="SecondLamp", analysis=second)
+        lighting.make_grid_target(doc, doc.getObject("Workplane").Base[0], spacing_m=1.0,
+                                  name="SecondGrid", analysis=second)
+        doc.recompute()
         result = lighting.analyze(doc, output_dir=work_dir("solved"))
+        lighting.analyze(doc, analysis=second, output_dir=work_dir("solved2"))
+        found = results_objects(doc)
+        self.assertEqual(len(found), 2)
+        owners = sorted(results_obj.analysis_of(o).Name for o in found)
+        self.assertEqual(owners, ["LightingAnalysis", "SecondAnalysis"])
+        with open(os.path.join(REPO, "docs", "schemas", "results.schema.json"),
+                  encoding="utf-8") as stream:
+            schema = json.load(stream)
+        texts = {}
+        for obj in found:
+            jsonschema.validate(json.loads(obj.ResultsJson), schema)
+            texts[obj.Name] = obj.ResultsJson
+        self.assertEqual(inputs_with_results(doc), [])
         doc = self._reopen(doc)
         again = lighting.results(doc)
         self.assertEqual(again.table(), result.table())
-        self.assertEqual(list(doc.getObject("Workplane").CellsLux), result["Workplane"].cells_lux)
-        self.assertEqual(doc.getObject("LightingAnalysis").PhotonsTraced, 50000)
+        self.assertEqual({o.Name: o.ResultsJson for o in results_objects(doc)}, texts)
+        stored = results_obj.of_analysis(doc.getObject("LightingAnalysis"))
+        self.assertEqual(results_obj.cells_lux(stored, "Workplane"), result["Workplane"].cells_lux)
+        self.assertEqual(stored.Photons, 50000)
+        self.assertEqual(inputs_with_results(doc), [])

@@ -9,6 +9,7 @@ import FreeCAD
 import Part
 
 import lighting
+from lighting.objects import results as results_obj
 from lighting.solver import machine, run
 from wbtest import REPO, DocTestCase, build_office, needs_solver, work_dir
 
@@ -58,8 +59,9 @@ class Solver(DocTestCase):
             self.assertGreaterEqual(t.ci_high_lux, t.mean_lux)
         self.assertTrue(0.0 < grid.uniformity <= 1.0)
         self.assertAlmostEqual(grid.min_lux, min(grid.cells_lux), 9)
-        self.assertEqual(doc.getObject("Workplane").MeanLux, grid.mean_lux)
-        self.assertEqual(list(doc.getObject("Workplane").CellsLux), grid.cells_lux)
+        stored = results_obj.of_analysis(doc.getObject("LightingAnalysis"))
+        self.assertEqual(results_obj.mean_lux(stored, "Workplane"), grid.mean_lux)
+        self.assertEqual(results_obj.cells_lux(stored, "Workplane"), grid.cells_lux)
         self.assertEqual(result.photons, 100000)
         self.assertTrue(os.path.exists(result.results_file))
         # The same scene file solved directly (plain python3, same module): same numbers.
@@ -118,7 +120,7 @@ class Solver(DocTestCase):
         self.assertTrue(calls)
         self.assertTrue(result.partial)
         self.assertLess(result.photons, 4000000)
-        self.assertTrue(doc.getObject("LightingAnalysis").Partial)
+        self.assertTrue(results_obj.of_analysis(doc.getObject("LightingAnalysis")).Partial)
         self.assertIn("PARTIAL", result.table())
 
     @needs_solver

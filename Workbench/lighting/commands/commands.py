@@ -244,7 +244,12 @@ class CommandClearResults(BaseCommand):
 
     def IsActive(self) -> bool:  # noqa: N802
         analysis = active_analysis() if _doc() is not None else None
-        return analysis is not None and bool(analysis.ResultsJson)
+        if analysis is None:
+            return False
+        from lighting.objects import results
+
+        legacy = "ResultsJson" in analysis.PropertiesList  # not yet migrated (store.migrate)
+        return results.of_analysis(analysis) is not None or legacy
 
     def Activated(self) -> None:  # noqa: N802
         from lighting.solver import store

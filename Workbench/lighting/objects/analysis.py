@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Lighting analysis: a group holding solver settings, export settings and run results.
+"""Lighting analysis: a group holding solver settings, export settings and, once run, its
+results object (objects/results.py).
 
 It uses the luminaires, targets and placement domains in its group, plus those that belong
 to no analysis at all (so a simple model needs no drag and drop)."""
@@ -8,7 +9,7 @@ from __future__ import annotations
 from typing import Any, Dict, List, Optional
 
 from lighting.objects import luminaire, placement_domain, target
-from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY, objects_of_type
+from lighting.objects.base import BaseProxy, Prop, READ_ONLY, objects_of_type
 from lighting.solver import run as solver_run
 
 TYPE = "Lighting::Analysis"
@@ -22,7 +23,8 @@ _RO = READ_ONLY
 
 
 class Analysis(BaseProxy):
-    """Solver settings and results of one lighting calculation."""
+    """Solver and display settings of one lighting calculation; its group holds the inputs
+    it uses and its results object."""
 
     TYPE = TYPE
     PROPERTIES = {
@@ -75,16 +77,7 @@ class Analysis(BaseProxy):
         # Results (read only)
         "Status": Prop("App::PropertyString", "Results", "State of the last run", "not run", _RO),
         "SceneFile": Prop("App::PropertyString", "Results", "Last exported scene file", "", _RO),
-        "ResultsFile": Prop("App::PropertyString", "Results", "Last results file", "", _RO),
-        "PhotonsTraced": Prop("App::PropertyFloat", "Results", "Photon paths of the last run",
-                              0.0, _RO),
-        "SolveSeconds": Prop("App::PropertyFloat", "Results", "Solver time, s", 0.0, _RO),
-        "Partial": Prop("App::PropertyBool", "Results", "The last run was cancelled early",
-                        False, _RO),
-        "SolverWarnings": Prop("App::PropertyStringList", "Results", "Warnings of the last run",
-                               None, _RO),
-        "ResultsJson": Prop("App::PropertyString", "Results",
-                            "The last results (lightsolver.results/1 JSON)", "", HIDDEN),
+        # The results themselves live in the results object of the group (objects/results.py).
     }
 
     @classmethod

@@ -4,7 +4,8 @@
 Face targets report the mean illuminance on the front (outward) side of exactly the selected
 faces. Grid targets are a horizontal rectangle at work-plane height over a floor, slab, space
 or floor face, with a wall band left out and the EN 12464-1 spacing unless one is set.
-Results are kept in the "Results" properties, so a reopened document shows them."""
+A target is an input only: its results live in the analysis' results object
+(objects/results.py)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -15,50 +16,12 @@ import FreeCAD
 from lighting import standards
 from lighting.compat import ifc_type
 from lighting.geometry import face_index, global_shape, offset_for_display, referenced_faces
-from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY
+from lighting.objects.base import BaseProxy, Prop, READ_ONLY
 from lighting.units import MM_TO_M, M_TO_MM, vec_m
 
 TYPE = "Lighting::Target"
 TARGET_TYPES = ("Faces", "Grid")
 _RO = READ_ONLY
-
-#: Result properties written by the Results stage (name -> default).
-RESULT_FLOATS = ("MeanLux", "CiLowLux", "CiHighLux", "SigmaLux", "MinLux", "MaxLux",
-                 "Uniformity", "Hits", "AreaM2", "MinCiLowLux", "MinCiHighLux",
-                 "MaxCiLowLux", "MaxCiHighLux")
-RESULT_LISTS = ("CellsLux", "CellsCiLowLux", "CellsCiHighLux", "CellsHits")
-
-
-def _result_props() -> Dict[str, Prop]:
-    docs = {
-        "MeanLux": "Mean (maintained) illuminance Em, lx",
-        "CiLowLux": "Lower bound of Em's confidence interval, lx",
-        "CiHighLux": "Upper bound of Em's confidence interval, lx",
-        "SigmaLux": "Standard error of Em, lx",
-        "MinLux": "Smallest grid cell illuminance Emin, lx",
-        "MaxLux": "Largest grid cell illuminance Emax, lx",
-        "Uniformity": "U0 = Emin / Em",
-        "Hits": "Photon hits counted on the target",
-        "AreaM2": "Target area, m2",
-        "MinCiLowLux": "Lower CI bound of the Emin cell, lx",
-        "MinCiHighLux": "Upper CI bound of the Emin cell, lx",
-        "MaxCiLowLux": "Lower CI bound of the Emax cell, lx",
-        "MaxCiHighLux": "Upper CI bound of the Emax cell, lx",
-    }
-    props = {name: Prop("App::PropertyFloat", "Results", docs[name], 0.0, _RO, output=True)
-             for name in RESULT_FLOATS}
-    for name in RESULT_LISTS:
-        props[name] = Prop("App::PropertyFloatList", "Results",
-                           f"Grid cells row by row (index = iv*nu + iu): {name}", None, HIDDEN,
-                           output=True)
-    props["HasResults"] = Prop("App::PropertyBool", "Results",
-                               "True once an analysis stored results here", False, _RO,
-                               output=True)
-    props["ResultAnalysis"] = Prop("App::PropertyString", "Results",
-                                   "Name of the analysis that produced the results", "", _RO,
-                                   output=True)
-    return props
-
 
 @dataclass
 class GridRect:
@@ -85,7 +48,7 @@ class GridRect:
 
 
 class Target(BaseProxy):
-    """Illuminance target (faces or grid) with its stored results."""
+    """Illuminance target (faces or grid)."""
 
     TYPE = TYPE
     PROPERTIES = {
@@ -113,7 +76,6 @@ class Target(BaseProxy):
                             "office desk work: 500", 0.0),
         "RequiredUniformity": Prop("App::PropertyFloat", "Requirements",
                                    "Required uniformity U0 (0 = none); office task area: 0.60", 0.0),
-        **_result_props(),
     }
 
     def execute(self, obj: Any) -> None:

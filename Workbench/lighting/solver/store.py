@@ -1,16 +1,26 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Keep results in the document: the analysis holds the results JSON and run facts, each
-target its Em, Emin, Emax, U0, CIs and grid cells — saved in the .FCStd, so a reopened file
-shows them without re-running. Writes are one undoable transaction. Nothing here paints: in
-the GUI the view providers repaint when these properties change (their ``updateData``)."""
+"""Keep results in the document: one results object per analysis, in its group
+(objects/results.py), holds the results JSON and the files of the run; saved in the .FCStd, so
+a reopened file shows them without re-running. Targets, luminaires and the analysis' settings
+stay inputs: nothing is written onto them except the analysis' Status. Writes are one undoable
+transaction. Nothing here paints: in the GUI the view providers repaint when the results
+object changes (their ``updateData``)."""
 from __future__ import annotations
 
 import json
 from typing import Any, Dict, Optional, Tuple
 
 from lighting.objects import analysis as analysis_mod
-from lighting.objects.target import RESULT_FLOATS, RESULT_LISTS
-from lighting.solver.results import AnalysisResult, TargetResult
+from lighting.objects import results as results_obj
+from lighting.solver.results import AnalysisResult
+
+#: Properties that older versions wrote onto the analysis and onto its targets (migrate()).
+LEGACY_ANALYSIS = ("ResultsJson", "ResultsFile", "PhotonsTraced", "SolveSeconds", "Partial",
+                   "SolverWarnings")
+LEGACY_TARGET = ("MeanLux", "CiLowLux", "CiHighLux", "SigmaLux", "MinLux", "MaxLux",
+                 "Uniformity", "Hits", "AreaM2", "MinCiLowLux", "MinCiHighLux", "MaxCiLowLux",
+                 "MaxCiHighLux", "CellsLux", "CellsCiLowLux", "CellsCiHighLux", "CellsHits",
+                 "HasResults", "ResultAnalysis")
 
 
 def _required(analysis: Any) -> Dict[str, Tuple[float, float]]:
@@ -19,11 +29,7 @@ def _required(analysis: Any) -> Dict[str, Tuple[float, float]]:
 
 
 def _labels(analysis: Any) -> Dict[str, str]:
-    doc = analysis.Document
-    labels = {}
-    for obj in doc.Objects:
-        labels[obj.Name] = obj.Label
-    return labels
+    return {obj.Name: obj.Label for obj in analysis.Document.Objects}
 
 
 def _set(obj: Any, name: str, value: Any) -> None:
@@ -31,85 +37,88 @@ def _set(obj: Any, name: str, value: Any) -> None:
         setattr(obj, name, value)
 
 
-def _write_target(obj: Any, result: Optional[TargetResult], analysis_name: str) -> None:
-    if result is None:
-        for name in RESULT_FLOATS:
-            _set(obj, name, 0.0)
-        for name in RESULT_LISTS:
-            _set(obj, name, [])
-        _set(obj, "HasResults", False)
-        _set(obj, "ResultAnalysis", "")
-        return
-    values = {
-        "MeanLux": result.mean_lux, "CiLowLux": result.ci_low_lux,
-        "CiHighLux": result.ci_high_lux, "SigmaLux": result.sigma_lux, "Hits": result.hits,
-        "AreaM2": result.area_m2, "MinLux": result.min_lux or 0.0,
-        "MaxLux": result.max_lux or 0.0, "Uniformity": result.uniformity or 0.0,
-        "MinCiLowLux": result.min_ci_lux[0], "MinCiHighLux": result.min_ci_lux[1],
-        "MaxCiLowLux": result.max_ci_lux[0], "MaxCiHighLux": result.max_ci_lux[1],
-    }
-    for name, value in values.items():
-        _set(obj, name, float(value))
-    _set(obj, "CellsLux", list(result.cells_lux))
-    _set(obj, "CellsCiLowLux", list(result.cells_ci_low_lux))
-    _set(obj, "CellsCiHighLux", list(result.cells_ci_high_lux))
-    _set(obj, "CellsHits", list(result.cells_hits))
-    _set(obj, "HasResults", True)
-    _set(obj, "ResultAnalysis", analysis_name)
+def _make_results(analysis: Any) -> Any:
+    from lighting.objects.results import Results
+
+    obj = analysis.Document.addObject("App::FeaturePython", "LightingResults")
+    Results(obj)
+    obj.Label = f"{analysis.Label} results"
+    analysis.addObject(obj)
+    return obj
+
+
+def results_object(analysis: Any) -> Optional[Any]:
+    """The analysis' results object (migrating results stored the old way first), or None."""
+    migrate(analysis)
+    return results_obj.of_analysis(analysis)
 
 
 def apply_to_document(analysis: Any, data: Dict[str, Any], scene_file: str = "",
                       results_file: str = "") -> AnalysisResult:
-    """Store normalised results in the analysis and its targets (one undo step)."""
+    """Store results (``lightsolver.results/1`` layout, plain JSON data) in the analysis'
+    results object, created on the first run and updated by the next (one undo step)."""
     doc = analysis.Document
-    result = AnalysisResult.from_data(data, _labels(analysis), _required(analysis),
-                                      scene_file, results_file)
+    migrate(analysis)
     doc.openTransaction("Lighting results")
     try:
-        by_name = {t.name: t for t in result.targets}
-        for tgt in analysis_mod.targets(analysis):
-            _write_target(tgt, by_name.get(tgt.Name), analysis.Name)
-        _set(analysis, "ResultsJson", json.dumps(data, separators=(",", ":")))
+        obj = results_obj.of_analysis(analysis) or _make_results(analysis)
+        _set(obj, "SceneFile", scene_file)
+        _set(obj, "ResultsFile", results_file)
+        _set(obj, "ResultsJson", json.dumps(data, separators=(",", ":")))
         _set(analysis, "SceneFile", scene_file)
-        _set(analysis, "ResultsFile", results_file)
-        _set(analysis, "PhotonsTraced", float(result.photons))
-        _set(analysis, "SolveSeconds", float(result.seconds))
-        _set(analysis, "Partial", bool(result.partial))
-        _set(analysis, "SolverWarnings", list(result.warnings))
-        _set(analysis, "Status", "partial results (cancelled)" if result.partial else "done")
+        _set(analysis, "Status", "partial results (cancelled)" if data.get("partial") else "done")
     finally:
         doc.commitTransaction()
-    return result
+    return load_from_document(analysis)
 
 
 def load_from_document(analysis: Any) -> Optional[AnalysisResult]:
-    """The results stored in the analysis, or None if it has none."""
-    if not analysis.ResultsJson:
+    """The results of the analysis' results object, or None if it has none."""
+    obj = results_object(analysis)
+    data = results_obj.data(obj)
+    if data is None:
         return None
-    try:
-        data = json.loads(analysis.ResultsJson)
-    except ValueError:
-        return None
-    return AnalysisResult.from_data(data, _labels(analysis), _required(analysis),
-                                    analysis.SceneFile, analysis.ResultsFile)
+    return AnalysisResult.from_data(data, _labels(analysis), _required(analysis), obj.SceneFile,
+                                    obj.ResultsFile)
 
 
 def clear(analysis: Any) -> None:
-    """Remove stored results from the analysis and its targets (one undo step)."""
+    """Remove the analysis' results object (one undo step)."""
     doc = analysis.Document
+    migrate(analysis)
     doc.openTransaction("Clear lighting results")
     try:
-        for tgt in analysis_mod.targets(analysis):
-            if tgt.ResultAnalysis in ("", analysis.Name):
-                _write_target(tgt, None, analysis.Name)
-        _set(analysis, "ResultsJson", "")
-        _set(analysis, "PhotonsTraced", 0.0)
-        _set(analysis, "SolveSeconds", 0.0)
-        _set(analysis, "Partial", False)
-        _set(analysis, "SolverWarnings", [])
+        obj = results_obj.of_analysis(analysis)
+        if obj is not None:
+            analysis.removeObject(obj)
+            doc.removeObject(obj.Name)
         _set(analysis, "Status", "not run")
     finally:
         doc.commitTransaction()
+
+
+def migrate(analysis: Any) -> bool:
+    """Documents of older versions kept results on the analysis (ResultsJson, ...) and its
+    targets (MeanLux, CellsLux, ...): move the JSON into a results object and remove those
+    properties. Runs once, at the first use of the results (App) or when the GUI opened the
+    document; True if anything changed."""
+    legacy = [p for p in LEGACY_ANALYSIS if p in analysis.PropertiesList]
+    if not legacy:
+        return False
+    text = analysis.ResultsJson if "ResultsJson" in legacy else ""
+    files = analysis.ResultsFile if "ResultsFile" in legacy else ""
+    if text and results_obj.of_analysis(analysis) is None:
+        obj = _make_results(analysis)
+        obj.SceneFile = analysis.SceneFile
+        obj.ResultsFile = files
+        obj.ResultsJson = text
+    for name in legacy:
+        analysis.removeProperty(name)
+    for tgt in analysis_mod.targets(analysis):
+        for name in LEGACY_TARGET:
+            if name in tgt.PropertiesList:
+                tgt.removeProperty(name)
+    return True
 
 
 def set_status(analysis: Any, text: str) -> None:
@@ -120,4 +129,3 @@ def set_status(analysis: Any, text: str) -> None:
 def set_scene_file(analysis: Any, path: str) -> None:
     """Record the last exported scene file without an undo step."""
     _set(analysis, "SceneFile", path)
-

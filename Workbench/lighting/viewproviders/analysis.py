@@ -14,9 +14,9 @@ from lighting.colormap import Scale
 from lighting.viewproviders.base import ViewProviderBase
 
 #: App properties of the analysis whose change repaints its targets and legend: the display
-#: settings and the results (cleared or stored).
-REPAINT_ON = ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend",
-              "ResultsJson")
+#: settings and the group (a results object added or removed; the results object's own view
+#: provider repaints when its results change).
+REPAINT_ON = ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend", "Group")
 LEGEND_STEPS = 32
 LEGEND_TICKS = 6
 # Legend rectangle in the legend camera's coordinates (x, y in -1..1 over the viewport).
@@ -175,6 +175,14 @@ class ViewProviderAnalysis(ViewProviderBase):
         return list(getattr(self.Object, "Group", []))
 
     def onDelete(self, vobj: Any, subelements: Any) -> bool:  # noqa: N802
-        """Deleting the analysis keeps its members (they move to the document root)."""
-        FreeCAD.Console.PrintLog(f"Lighting: deleting analysis {vobj.Object.Name}\n")
+        """Deleting the analysis keeps its members (they move to the document root), but not
+        its results object: results without their analysis mean nothing (same undo step)."""
+        from lighting.objects import results
+
+        analysis = vobj.Object
+        FreeCAD.Console.PrintLog(f"Lighting: deleting analysis {analysis.Name}\n")
+        found = results.of_analysis(analysis)
+        if found is not None:
+            analysis.removeObject(found)
+            analysis.Document.removeObject(found.Name)
         return True

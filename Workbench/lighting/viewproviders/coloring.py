@@ -2,10 +2,10 @@
 """Paint targets by illuminance (GUI only): grids cell by cell, face targets by their mean.
 
 Colours come from the analysis' ColorMap and scale (Auto: 0 to a round maximum over its
-targets; Fixed: ScaleMinLux..ScaleMaxLux). The values live in App properties, so a reopened
-document is painted again without re-running. Painting is triggered from the GUI only: the
-view providers' ``updateData`` calls :func:`refresh_later` when a result or display property
-changes (App code never calls in here)."""
+targets; Fixed: ScaleMinLux..ScaleMaxLux); the values from the analysis' results object
+(objects/results.py), so a reopened document is painted again without re-running. Painting
+is triggered from the GUI only: the view providers' ``updateData`` calls :func:`refresh_later`
+when a result or display property changes (App code never calls in here)."""
 from __future__ import annotations
 
 from typing import Any, List, Optional
@@ -14,6 +14,7 @@ import FreeCAD
 
 from lighting.colormap import Scale, auto_scale
 from lighting.objects import analysis as analysis_mod
+from lighting.objects import results as results_mod
 from lighting.objects.base import objects_of_type, proxy_type
 
 #: Colour and transparency of targets without results.
@@ -22,16 +23,15 @@ NO_RESULT_FACES = ((0.45, 0.85, 0.45), 40)
 
 
 def analysis_of(target: Any) -> Optional[Any]:
-    """The analysis that produced the target's results, else one that uses the target."""
+    """The analysis whose results object has results for the target, else one that uses it."""
     doc = target.Document
-    if target.ResultAnalysis:
-        found = doc.getObject(target.ResultAnalysis)
-        if found is not None and proxy_type(found) == analysis_mod.TYPE:
-            return found
-    for candidate in objects_of_type(doc, analysis_mod.TYPE):
-        if any(t.Name == target.Name for t in analysis_mod.targets(candidate)):
+    users = [a for a in objects_of_type(doc, analysis_mod.TYPE)
+             if any(t.Name == target.Name for t in analysis_mod.targets(a))]
+    for candidate in users:
+        found = results_mod.of_analysis(candidate)
+        if found is not None and results_mod.index_of(found, target.Name) is not None:
             return candidate
-    return None
+    return users[0] if users else None
 
 
 def scale_for(analysis: Any) -> Scale:
@@ -39,16 +39,19 @@ def scale_for(analysis: Any) -> Scale:
     if analysis.ScaleMode == "Fixed":
         return Scale(float(analysis.ScaleMinLux), float(analysis.ScaleMaxLux), analysis.ColorMap)
     values: List[float] = []
-    for tgt in analysis_mod.targets(analysis):
-        if tgt.HasResults:
-            values.append(float(tgt.MeanLux))
-            values.extend(float(v) for v in tgt.CellsLux)
+    found = results_mod.of_analysis(analysis)
+    if found is not None:
+        for tgt in analysis_mod.targets(analysis):
+            mean = results_mod.mean_lux(found, tgt.Name)
+            if mean is not None:
+                values.append(mean)
+                values.extend(results_mod.cells_lux(found, tgt.Name))
     low, high = auto_scale(values)
     return Scale(low, high, analysis.ColorMap)
 
 
-def paint_target(target: Any, scale: Optional[Scale]) -> None:
-    """Colour one target's faces (or show it plain when it has no results)."""
+def paint_target(target: Any, scale: Optional[Scale], results: Optional[Any] = None) -> None:
+    """Colour one target's faces from a results object (plain when it has no results there)."""
     vobj = getattr(target, "ViewObject", None)
     if vobj is None or target.Shape.isNull():
         return
@@ -56,7 +59,8 @@ def paint_target(target: Any, scale: Optional[Scale]) -> None:
     if not faces:
         return
     proxy = getattr(vobj, "Proxy", None)
-    unlit = scale is not None and target.HasResults
+    mean = results_mod.mean_lux(results, target.Name) if results is not None else None
+    unlit = scale is not None and mean is not None
     if hasattr(proxy, "set_unlit"):
         proxy.set_unlit(unlit)
     if not unlit:
@@ -65,27 +69,28 @@ def paint_target(target: Any, scale: Optional[Scale]) -> None:
         vobj.DiffuseColor = [colour] * faces
         vobj.Transparency = transparency
         return
-    cells = list(target.CellsLux)
+    cells = results_mod.cells_lux(results, target.Name)
     if target.TargetType == "Grid" and len(cells) == faces:
         colours = scale.colours(cells)
     else:
-        colours = [scale.colour(float(target.MeanLux))] * faces
+        colours = [scale.colour(mean)] * faces
     vobj.Transparency = 0
     vobj.ShapeColor = colours[0]
     vobj.DiffuseColor = colours
 
 
 def refresh(analysis: Any) -> None:
-    """Repaint the analysis' targets and its legend."""
+    """Repaint the analysis' targets and its legend from its results object."""
     if not FreeCAD.GuiUp:
         return
     try:
         scale = scale_for(analysis)
+        found = results_mod.of_analysis(analysis)
         has_results = False
         for tgt in analysis_mod.targets(analysis):
-            mine = tgt.HasResults and tgt.ResultAnalysis in ("", analysis.Name)
+            mine = found is not None and results_mod.index_of(found, tgt.Name) is not None
             has_results = has_results or mine
-            paint_target(tgt, scale if mine else None)
+            paint_target(tgt, scale if mine else None, found if mine else None)
         vobj = getattr(analysis, "ViewObject", None)
         proxy = getattr(vobj, "Proxy", None) if vobj is not None else None
         if proxy is not None and hasattr(proxy, "update_legend"):
@@ -97,7 +102,7 @@ def refresh(analysis: Any) -> None:
 def refresh_target(target: Any) -> None:
     """Repaint a target with its analysis' scale (or plain without results)."""
     analysis = analysis_of(target)
-    if analysis is not None and target.HasResults:
+    if analysis is not None:
         refresh(analysis)
     else:
         paint_target(target, None)
@@ -107,8 +112,8 @@ _pending: set = set()
 
 
 def refresh_later(obj: Any) -> None:
-    """Repaint an analysis (targets and legend) or a target once control returns to the event
-    loop: after FreeCAD's own update of the shape (which resets face colours), and once for
+    """Repaint an analysis (targets and legend), a results object's analysis, or a target once
+    control returns to the event loop: after FreeCAD's own update of the shape (which resets face colours), and once for
     the many property changes of a results transaction."""
     from PySide import QtCore
 
@@ -126,6 +131,10 @@ def refresh_later(obj: Any) -> None:
             return
         if proxy_type(found) == analysis_mod.TYPE:
             refresh(found)
+        elif proxy_type(found) == results_mod.TYPE:
+            owner = results_mod.analysis_of(found)
+            if owner is not None:
+                refresh(owner)
         else:
             refresh_target(found)
 

@@ -8,7 +8,8 @@ InitGui.py when the GUI starts, does:
   as soon as its Lighting proxy is set (synchronously: ``make_*`` returns it ready);
 - a document being opened gets, once it is read, the view providers its file lacks (files
   saved by freecadcmd have no GuiDocument.xml) and ``restore.after_restore`` for the Arch
-  objects and the visibility such files lose.
+  objects and the visibility such files lose; results that older versions stored on the
+  analysis and its targets move into a results object (solver/store.py ``migrate``).
 Results colours come from the view providers' ``updateData`` (see coloring.py)."""
 from __future__ import annotations
 
@@ -25,6 +26,7 @@ VIEW_PROVIDERS: Dict[str, Tuple[str, str]] = {
     "Lighting::Luminaire": ("luminaire", "ViewProviderLuminaire"),
     "Lighting::Target": ("target", "ViewProviderTarget"),
     "Lighting::PlacementDomain": ("placement_domain", "ViewProviderPlacementDomain"),
+    "Lighting::Results": ("results", "ViewProviderResults"),
 }
 
 _observer: Optional["LightingObserver"] = None
@@ -62,7 +64,15 @@ def finish_restore(doc_name: str) -> None:
             kinds.add(kind)
             attach_view_provider(obj)
     if "Lighting::Analysis" in kinds:
+        from lighting.objects.analysis import TYPE
+        from lighting.objects.base import objects_of_type
+        from lighting.solver.store import migrate
         from lighting.viewproviders.restore import after_restore
+
+        for analysis in objects_of_type(doc, TYPE):
+            if migrate(analysis):  # results stored the old way: now a results object
+                for obj in doc.Objects:
+                    attach_view_provider(obj)
 
         after_restore(doc)
 

@@ -6,8 +6,9 @@ from typing import Any
 
 from lighting.viewproviders.base import ViewProviderBase, set_if_exists
 
-#: App properties whose change repaints the target.
-REPAINT_ON = ("Shape", "HasResults", "CellsLux", "MeanLux")
+#: App properties whose change repaints the target (its colours come from its analysis'
+#: results object, whose view provider repaints when they change).
+REPAINT_ON = ("Shape",)
 
 
 class ViewProviderTarget(ViewProviderBase):

@@ -1,0 +1,166 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Results object: one per analysis, in its group (FEM's result-object pattern).
+
+It holds the one copy of the solver's results document (``ResultsJson``, the
+``lightsolver.results/1`` layout of docs/schemas/results.schema.json) and the files of the run.
+Everything else on it is derived from that JSON when it is set and when the document is
+restored, and is *not* saved (transient): per-target Em and its interval, Emin/Emax/U0, the
+grid cells of every target concatenated, and the run facts. Input objects (targets,
+luminaires, the analysis' settings) never carry results."""
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, List, Optional
+
+from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY, proxy_type
+
+TYPE = "Lighting::Results"
+_RO = READ_ONLY
+
+#: Per-target float lists derived from the JSON (property -> targets[] key).
+PER_TARGET = {"MeanLux": "mean_lux", "CiLowLux": "ci_low_lux", "CiHighLux": "ci_high_lux",
+              "MinLux": "min_lux", "MaxLux": "max_lux", "Uniformity": "uniformity"}
+#: Grid cell values, all targets concatenated (property -> cells[] key).
+CELL_VALUES = {"CellsLux": "lux", "CellsCiLowLux": "ci_low_lux",
+               "CellsCiHighLux": "ci_high_lux"}
+
+
+def _derived() -> Dict[str, Prop]:
+    props = {
+        "TargetNames": Prop("App::PropertyStringList", "Results",
+                            "Object names of the targets, in the order of the lists below",
+                            None, _RO),
+        "CellCounts": Prop("App::PropertyIntegerList", "Results",
+                           "Grid cells of each target (0 for face targets)", None, HIDDEN),
+        "Photons": Prop("App::PropertyFloat", "Results", "Photon paths traced", 0.0, _RO),
+        "Seconds": Prop("App::PropertyFloat", "Results", "Solver time, s", 0.0, _RO),
+        "Partial": Prop("App::PropertyBool", "Results", "The run was cancelled early", False,
+                        _RO),
+        "Backend": Prop("App::PropertyString", "Results", "Tracing backend used", "", _RO),
+        "Warnings": Prop("App::PropertyStringList", "Results", "Solver warnings", None, _RO),
+    }
+    for name, key in PER_TARGET.items():
+        props[name] = Prop("App::PropertyFloatList", "Results",
+                           f"Per target (TargetNames order): {key}, 0 where not reported",
+                           None, _RO)
+    for name, key in CELL_VALUES.items():
+        props[name] = Prop("App::PropertyFloatList", "Results",
+                           f"Grid cells' {key}, targets concatenated (CellCounts), each row by "
+                           "row (index = iv*nu + iu)", None, HIDDEN)
+    return props
+
+
+#: Properties derived from ResultsJson: recomputed, never saved.
+DERIVED = _derived()
+
+
+class Results(BaseProxy):
+    """The results of one analysis run (see the module docstring)."""
+
+    TYPE = TYPE
+    PROPERTIES = {
+        "ResultsJson": Prop("App::PropertyString", "Results",
+                            "The results document (lightsolver.results/1 JSON)", "", HIDDEN),
+        "SceneFile": Prop("App::PropertyString", "Results", "Scene file that was solved", "",
+                          _RO),
+        "ResultsFile": Prop("App::PropertyString", "Results", "Results file written by the run",
+                            "", _RO),
+        **DERIVED,
+    }
+
+    @classmethod
+    def ensure_properties(cls, obj: Any, set_defaults: bool = False) -> None:
+        """The table's properties; the derived ones transient (content not saved)."""
+        super().ensure_properties(obj, set_defaults)
+        for name in DERIVED:
+            status = obj.getPropertyStatus(name) if hasattr(obj, "getPropertyStatus") else []
+            if "Transient" not in status and hasattr(obj, "setPropertyStatus"):
+                obj.setPropertyStatus(name, "Transient")
+
+    def onChanged(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
+        if prop == "ResultsJson" and "TargetNames" in obj.PropertiesList:
+            if not getattr(obj.Document, "Restoring", False):  # restored: onDocumentRestored
+                derive(obj)
+
+    def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        super().onDocumentRestored(obj)
+        derive(obj)
+
+
+def data(obj: Any) -> Optional[Dict[str, Any]]:
+    """The results document of a results object, or None when empty or unreadable."""
+    if obj is None or not obj.ResultsJson:
+        return None
+    try:
+        parsed = json.loads(obj.ResultsJson)
+    except ValueError:
+        return None
+    return parsed if isinstance(parsed, dict) else None
+
+
+def _set(obj: Any, name: str, value: Any) -> None:
+    if getattr(obj, name) != value:
+        setattr(obj, name, value)
+
+
+def _num(value: Any) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return 0.0
+
+
+def derive(obj: Any) -> None:
+    """Set the derived properties from ResultsJson (all empty when there is none)."""
+    doc = data(obj) or {}
+    entries = [e for e in doc.get("targets", []) if isinstance(e, dict)]
+    _set(obj, "TargetNames", [str(e.get("name", "")) for e in entries])
+    for name, key in PER_TARGET.items():
+        _set(obj, name, [_num(e.get(key)) for e in entries])
+    cells: List[List[Dict[str, Any]]] = [list(e.get("cells") or []) for e in entries]
+    _set(obj, "CellCounts", [len(c) for c in cells])
+    for name, key in CELL_VALUES.items():
+        _set(obj, name, [_num(c.get(key)) for group in cells for c in group])
+    _set(obj, "Photons", _num(doc.get("photons")))
+    _set(obj, "Seconds", _num(doc.get("seconds")))
+    _set(obj, "Partial", bool(doc.get("partial", False)))
+    _set(obj, "Backend", str(doc.get("backend", "")))
+    _set(obj, "Warnings", [str(w) for w in doc.get("warnings", [])])
+
+
+def index_of(obj: Any, target_name: str) -> Optional[int]:
+    """Position of a target in the results' lists, or None when it has no results."""
+    names = list(obj.TargetNames)
+    return names.index(target_name) if target_name in names else None
+
+
+def mean_lux(obj: Any, target_name: str) -> Optional[float]:
+    """Em of a target, or None when it has no results here."""
+    i = index_of(obj, target_name)
+    return None if i is None else float(obj.MeanLux[i])
+
+
+def cells_lux(obj: Any, target_name: str) -> List[float]:
+    """Grid cell illuminances of a target (row by row), [] for face targets or none."""
+    i = index_of(obj, target_name)
+    if i is None:
+        return []
+    counts = list(obj.CellCounts)
+    start = sum(counts[:i])
+    return list(obj.CellsLux[start:start + counts[i]])
+
+
+def of_analysis(analysis: Any) -> Optional[Any]:
+    """The results object in an analysis' group, or None."""
+    for member in getattr(analysis, "Group", []):
+        if proxy_type(member) == TYPE:
+            return member
+    return None
+
+
+def analysis_of(obj: Any) -> Optional[Any]:
+    """The analysis whose group holds a results object, or None."""
+    for parent in obj.InList:
+        if proxy_type(parent) == "Lighting::Analysis":
+            return parent
+    return None
