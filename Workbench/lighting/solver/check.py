@@ -11,6 +11,7 @@ Errors block the run; warnings do not."""
 from __future__ import annotations
 
 import json
+import os
 import re
 from typing import Any, Dict, List, Optional
 
@@ -143,6 +144,10 @@ def _field_objects(export: Any) -> Dict[str, str]:
             out[f"{key}[{i}]"] = entry["name"]  # exported under the object's Name
     for i, mesh in enumerate(scene.get("meshes", [])):
         out[f"meshes[{i}]"] = owners.get(mesh["name"], mesh["name"].split(".")[0])
+    # A problem inside a photometric file names the file (and line), not a field.
+    for entry in scene.get("luminaires", []):
+        if entry.get("file"):
+            out.setdefault(os.path.realpath(entry["file"]), entry["name"])
     return out
 
 
@@ -176,6 +181,8 @@ def _check_scene_natively(report: Report, analysis: Any) -> None:
             field = str(issue["field"])
             head = re.match(r"[a-z_]+(\[\d+\])?", field)
             owner = owners.get(head.group(0)) if head else None
+            if owner is None and issue["file"]:
+                owner = owners.get(os.path.realpath(str(issue["file"])))
             if owner is None and field.startswith("settings"):
                 owner = settings_owner
             if level == "error" and owner is not None and owner in flagged:
