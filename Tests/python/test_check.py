@@ -160,3 +160,13 @@ def test_photometry_errors_name_the_file_and_line(tmp_path: Path):
     assert len(check["errors"]) == 1
     error = check["errors"][0]
     assert error["file"].endswith("broken.ies") and error["line"] > 0 and error["field"] == ""
+
+
+def test_loaded_scene_is_not_warned_twice(room_scene: Path):
+    """A Scene from load_scene was validated once; checking it again repeats no remark."""
+    doc = json.loads(room_scene.read_text())
+    doc["settings"]["confidence"] = 0.3
+    scene = lightsolver.scene_from_json(json.dumps(doc), str(room_scene.parent))
+    check = lightsolver.check_scene(scene)
+    assert check["errors"] == []
+    assert fields(check["warnings"]).count("settings.confidence") == 1

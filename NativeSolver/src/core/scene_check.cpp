@@ -2,6 +2,7 @@
 // about before tracing, each warning located by the scene field it concerns.
 #include "lightsolver/scene_check.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <exception>
 
@@ -34,7 +35,13 @@ void add_run_warnings(const Scene& scene, SceneCheck& out) {
   auto warn = [&](std::string field, std::string message) {
     out.warnings.push_back({scene.source_file, std::move(field), 0, std::move(message)});
   };
-  for (const std::string& w : scene.warnings) warn(leading_path(w), w);
+  // A scene validated before (load_scene's, then check_scene's copy) may repeat a remark.
+  Warnings seen;
+  for (const std::string& w : scene.warnings) {
+    if (std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
+    seen.push_back(w);
+    warn(leading_path(w), w);
+  }
   for (std::size_t i = 0; i < scene.luminaires.size(); ++i) {
     for (const std::string& w : photometric_warnings(scene.luminaires[i])) {
       warn(at("luminaires", i), w);
