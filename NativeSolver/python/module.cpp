@@ -11,6 +11,8 @@
 
 #include "lightsolver/backends.hpp"
 #include "lightsolver/defaults.hpp"
+#include "lightsolver/photometry.hpp"
+#include "lightsolver/scene_check.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_bindings.hpp"
@@ -48,6 +50,50 @@ py::dict material_defaults_dict() {
   d["glossy"] =
       py::dict(py::arg("reflectance") = glossy.reflectance, py::arg("specular") = glossy.specular,
                py::arg("roughness") = glossy.roughness);
+  return d;
+}
+
+// {"errors": [...], "warnings": [...]}, each issue a dict with field, file, line, message.
+py::dict check_dict(const SceneCheck& check) {
+  const auto issues = [](const std::vector<SceneIssue>& list) {
+    py::list out;
+    for (const SceneIssue& i : list) {
+      out.append(py::dict(py::arg("field") = i.field, py::arg("file") = i.file,
+                          py::arg("line") = i.line, py::arg("message") = i.message));
+    }
+    return out;
+  };
+  return py::dict(py::arg("errors") = issues(check.errors),
+                  py::arg("warnings") = issues(check.warnings));
+}
+
+// A photometric file's facts as a dict; NaN angles (never falling that low) become None.
+py::dict photometry_summary_dict(const std::string& path) {
+  const PhotometricData data = load_photometry(path);
+  const PhotometryFacts f = photometry_facts(data);
+  const auto angle = [](double deg) -> py::object {
+    return std::isfinite(deg) ? py::object(py::float_(deg)) : py::object(py::none());
+  };
+  py::dict d;
+  d["file"] = data.source_file;
+  d["format"] = data.format == PhotometricFormat::Ies ? "ies" : "ldt";
+  d["format_version"] = data.format_version;
+  d["type"] = to_string(data.type);
+  d["symmetry"] = to_string(data.symmetry);
+  d["absolute_photometry"] = f.absolute_photometry;
+  // Relative photometry: the lamp lumens flux_lm scales against; absolute: None.
+  d["lamp_lumens_lm"] =
+      f.absolute_photometry ? py::object(py::none()) : py::object(py::float_(f.rated_lumens_lm));
+  d["rated_lumens_lm"] = f.rated_lumens_lm;
+  d["lamp_count"] = f.lamp_count;
+  d["integrated_lumens_lm"] = f.integrated_lumens_lm;
+  d["peak_cd"] = f.peak_cd;
+  d["peak_horizontal_deg"] = f.peak_horizontal_deg;
+  d["peak_vertical_deg"] = f.peak_vertical_deg;
+  d["beam_angle_deg"] = py::make_tuple(angle(f.beam_angle_deg[0]), angle(f.beam_angle_deg[1]));
+  d["field_angle_deg"] = py::make_tuple(angle(f.field_angle_deg[0]), angle(f.field_angle_deg[1]));
+  d["warnings"] = data.warnings;
+  d["text"] = photometry_summary(data);
   return d;
 }
 
@@ -379,5 +425,26 @@ PYBIND11_MODULE(lightsolver, m) {
         "without photons the budget is 1e10 photons within max_seconds (default 300 s). "
         "max_seconds limits the tracing time (default: Scene.max_seconds). The dict's "
         "stop_reason says which limit ended the run: photons, accuracy, time or cancelled.");
+  m.def(
+      "check_scene", [](const Scene& s) { return check_dict(check_scene(s)); }, py::arg("scene"),
+      "Check a Scene as a run would (validate, then the warnings a run gives before tracing) "
+      "without changing it: {\"errors\": [...], \"warnings\": [...]}, each a dict with "
+      "field (JSON path or ''), file, line (0 if none) and message. Errors hold the first error "
+      "only (validation stops there).");
+  m.def(
+      "check_scene_file", [](const std::string& p) { return check_dict(check_scene_file(p)); },
+      py::arg("path"), "check_scene for a scene file (a file that does not parse is one error)");
+  m.def(
+      "check_scene_json",
+      [](const std::string& text, const std::string& base_dir) {
+        return check_dict(check_scene_json(text, "<string>", base_dir));
+      },
+      py::arg("text"), py::arg("base_dir") = ".", "check_scene for scene JSON text");
+  m.def("photometry_summary", &photometry_summary_dict, py::arg("path"),
+        "Facts of an IES or LDT file from the solver's parser: lamp_lumens_lm (None for absolute "
+        "photometry), rated_lumens_lm, integrated_lumens_lm, peak_cd and its angles, "
+        "beam_angle_deg and field_angle_deg (C0 and C90 planes; None where undefined), "
+        "warnings and the text summary. Raises lightsolver.InputError (a ValueError) for a bad "
+        "file.");
   bind_optimizer(m);  // lightsolver.optimize
 }

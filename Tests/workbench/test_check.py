@@ -82,16 +82,47 @@ class BadInput(DocTestCase):
         self.assertTrue(report.ok)  # warnings do not block
 
     def test_absurd_values(self):
-        lighting.make_luminaire(self.doc, (2.0, 2.0, 2.5), flux_lm=-5.0)
+        lighting.make_luminaire(self.doc, (2.0, 2.0, 2.5), maintenance_factor=1.5)
         lighting.make_grid_target(self.doc, self.box, wall_band_m=3.0)  # band eats the room
         self.analysis.Photons = 0
         self.analysis.Confidence = 1.5
         self.doc.recompute()
         report = lighting.check(self.doc, need_solver=False)
         errors = "\n".join(_texts(report, "error"))
-        for fragment in ("flux must be > 0", "wall band", "Photons must be >= 1",
-                         "Confidence must be in (0, 1)"):
+        for fragment in ("maintenance factor must be in (0, 1]", "wall band",
+                         "Photons must be >= 1", "Confidence must be in (0, 1)"):
             self.assertIn(fragment, errors)
+
+    @needs_solver
+    def test_scene_values_come_from_the_solver_check(self):
+        """One validator: a value the scene carries is judged by lightsolver.check_scene_json
+        and reported against its object with the scene field; 0 lm is a switched-off
+        luminaire, and only a scene where every luminaire is off warns."""
+        bad = lighting.make_luminaire(self.doc, (2.0, 2.0, 2.5), kind="Spot", name="Spot")
+        bad.BeamAngle, bad.FieldAngle = 60, 30
+        lighting.make_grid_target(self.doc, self.box)
+        self.doc.recompute()
+        report = lighting.check(self.doc, need_solver=False)
+        errors = [m for m in report.errors]
+        self.assertEqual(len(errors), 1, report.format())
+        self.assertEqual(errors[0].object_name, bad.Name)
+        self.assertIn("luminaires[0].beam_angle_deg", errors[0].text)
+        self.assertIn("'Spot'", errors[0].text)
+        bad.BeamAngle, bad.FieldAngle = 30, 60
+        bad.FluxLumen = -5.0
+        report = lighting.check(self.doc, need_solver=False)
+        self.assertIn("luminaires[0].flux_lm: must be a finite value >= 0",
+                      "\n".join(_texts(report, "error")))
+        bad.FluxLumen = 0.0
+        report = lighting.check(self.doc, need_solver=False)
+        self.assertTrue(report.ok, report.format())
+        self.assertTrue(any("all luminaires have zero flux" in w
+                            for w in _texts(report, "warning")), report.format())
+        lighting.make_luminaire(self.doc, (1.0, 1.0, 2.5), kind="Point", name="On")
+        self.doc.recompute()
+        report = lighting.check(self.doc, need_solver=False)
+        self.assertTrue(report.ok, report.format())
+        self.assertFalse(any("zero flux" in w for w in _texts(report, "warning")))
 
     def test_shape_that_fails_to_tessellate(self):
         lighting.make_luminaire(self.doc, (2.0, 2.0, 2.5), kind="Point")

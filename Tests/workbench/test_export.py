@@ -2,14 +2,15 @@
 import json
 import math
 import os
+from unittest import mock
 
 import FreeCAD
 
 import lighting
 from lighting.export import collect
 from lighting.export.materials import internal_transmittance
-from wbtest import (REPO, DocTestCase, build_office, load_scene, mesh, open_edges, triangle_keys,
-                    triangle_normals, work_dir)
+from wbtest import (REPO, DocTestCase, build_office, load_scene, mesh, needs_solver, open_edges,
+                    triangle_keys, triangle_normals, work_dir)
 
 V = FreeCAD.Vector
 
@@ -297,6 +298,37 @@ class Photometric(DocTestCase):
         self.lum.PhotometricFile = "/nonexistent/lamp.ies"
         report = lighting.check(self.doc, need_solver=False)
         self.assertTrue(any("not found" in m.text for m in report.errors), report.format())
+
+    def test_lamp_lumens_come_from_the_solver(self):
+        """lighting.photometry does not parse files: without the module, a luminaire that needs
+        the file's lamp lumens cannot be exported, and the error says why."""
+        from lighting.messages import SolverUnavailableError
+        from lighting.solver import run
+
+        with mock.patch.object(run, "load_module",
+                               side_effect=SolverUnavailableError("lightsolver missing (test)")):
+            with self.assertRaises(lighting.CheckError) as ctx:
+                lighting.export_scene(self.doc, directory=work_dir("photometric-nosolver"))
+        self.assertIn("lightsolver cannot be imported", str(ctx.exception))
+        self.assertIn("lightsolver missing (test)", str(ctx.exception))
+
+    @needs_solver
+    def test_broken_file_is_named_with_its_line(self):
+        path = os.path.join(work_dir("photometric-broken"), "broken.ies")
+        with open(os.path.join(REPO, "Resources", "luminaires", "downlight.ies"),
+                  encoding="latin-1") as stream:
+            lines = stream.read().splitlines()
+        tilt = next(i for i, line in enumerate(lines) if line.startswith("TILT="))
+        lines[tilt + 1] = "1 one 1 3 1 1 2 0 0 0"  # lumens per lamp is not a number
+        with open(path, "w", encoding="latin-1") as stream:
+            stream.write("\n".join(lines) + "\n")
+        self.lum.PhotometricFile = path
+        self.lum.FluxLumen = 1000.0  # the file is then read by the solver's check only
+        report = lighting.check(self.doc, need_solver=False)
+        errors = [m for m in report.errors]
+        self.assertEqual(len(errors), 1, report.format())
+        self.assertEqual(errors[0].object_name, self.lum.Name)
+        self.assertIn(f"broken.ies, line {tilt + 2}", errors[0].text)
 
 
 class ArchElements(DocTestCase):

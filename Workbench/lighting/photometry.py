@@ -1,58 +1,41 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The few facts the workbench needs from IES LM-63 / EULUMDAT files (the solver reads the
-distribution itself, see docs/photometry.md): the rated lamp lumens, so the maintenance
-factor can be applied to a luminaire that uses the file's own flux."""
+"""Facts of IES LM-63 / EULUMDAT files, read by the solver's own parsers
+(``lightsolver.photometry_summary``, docs/photometry.md): the workbench never parses these
+files itself, so it cannot disagree with the solver about them. Without the native module
+there are no facts, and the callers get a clear error saying why."""
 from __future__ import annotations
 
-import os
-import re
-from typing import List, Optional
+from typing import Any, Dict, Optional
 
+from lighting.messages import SolverUnavailableError
+
+#: Extensions offered in file dialogs (the solver also recognises other names by content).
 EXTENSIONS = (".ies", ".ldt")
 
 
-def _numbers(text: str) -> List[float]:
-    return [float(t) for t in re.split(r"[\s,]+", text.strip()) if t]
+def summary(path: str) -> Dict[str, Any]:
+    """``lightsolver.photometry_summary(path)``: lamp_lumens_lm (None for absolute
+    photometry), integrated_lumens_lm, peak_cd, beam_angle_deg / field_angle_deg (C0 and C90
+    planes), warnings, text, ...
 
+    Raises ValueError for a file the parser rejects (the message names the file and line) or
+    when the solver module cannot be imported (nothing else reads these files)."""
+    from lighting.solver import run
 
-def ies_rated_lumens(path: str) -> Optional[float]:
-    """Lamps x lumens per lamp of an IES file; None for absolute photometry (-1)."""
-    with open(path, encoding="latin-1") as stream:
-        lines = stream.read().splitlines()
-    for index, line in enumerate(lines):
-        if line.strip().upper().startswith("TILT="):
-            rest = " ".join(lines[index + 1:])
-            tokens = _numbers(rest)
-            if line.strip().upper() == "TILT=INCLUDE":
-                count = int(tokens[1])
-                tokens = tokens[2 + 2 * count:]
-            lamps, lumens = tokens[0], tokens[1]
-            return None if lumens < 0 else lamps * lumens
-    raise ValueError(f"{path}: no TILT= line (not an IES LM-63 file?)")
-
-
-def ldt_rated_lumens(path: str) -> Optional[float]:
-    """Total flux of the lamp sets of a EULUMDAT file; None for absolute photometry."""
-    with open(path, encoding="latin-1") as stream:
-        lines = [line.strip() for line in stream.read().splitlines()]
-    sets = int(float(lines[25].replace(",", ".")))
-    counts = [float(lines[26 + i].replace(",", ".")) for i in range(sets)]
-    fluxes = [float(lines[26 + 2 * sets + i].replace(",", ".")) for i in range(sets)]
-    if any(c < 0 for c in counts):
-        return None
-    return sum(fluxes)
+    try:
+        module = run.load_module()
+    except SolverUnavailableError as exc:
+        raise ValueError(f"{path}: photometric files are read by the solver's parser, and "
+                         f"lightsolver cannot be imported ({exc})") from exc
+    reader = getattr(module, "photometry_summary", None)
+    if reader is None:
+        raise ValueError(f"{path}: this lightsolver build predates photometry_summary(); "
+                         "rebuild it to read photometric files")
+    return dict(reader(str(path)))
 
 
 def rated_lumens(path: str) -> Optional[float]:
-    """Rated lamp lumens of an IES or LDT file (None: absolute photometry).
-
-    Raises ValueError (unknown extension, unreadable header) or OSError."""
-    extension = os.path.splitext(path)[1].lower()
-    try:
-        if extension == ".ies":
-            return ies_rated_lumens(path)
-        if extension == ".ldt":
-            return ldt_rated_lumens(path)
-    except (IndexError, ValueError) as exc:
-        raise ValueError(f"{path}: cannot read the lamp lumens ({exc})") from exc
-    raise ValueError(f"{path}: photometric files must be .ies or .ldt")
+    """Rated lamp lumens of an IES or LDT file (None: absolute photometry). Raises ValueError
+    as :func:`summary` does."""
+    lumens = summary(path)["lamp_lumens_lm"]
+    return None if lumens is None else float(lumens)

@@ -193,6 +193,24 @@ inline glm::dvec3 to_world(const glm::dvec3& local, const glm::dvec3& aim, const
   return local.x * c0 + local.y * c90 - local.z * aim;
 }
 
+/// The numbers of a distribution the workbench and reports show (NaN where undefined).
+struct PhotometryFacts {
+  double rated_lumens_lm = 0.0;      ///< as PhotometricData::rated_lumens_lm
+  bool absolute_photometry = false;  ///< the file's candela are absolute (no lamp lumens)
+  int lamp_count = 1;
+  double integrated_lumens_lm = 0.0;  ///< integral of the interpolated candela, I dOmega
+  double peak_cd = 0.0;               ///< largest candela value of the table
+  double peak_horizontal_deg = 0.0;   ///< its C (type C) or H angle
+  double peak_vertical_deg = 0.0;     ///< its gamma (type C) or V angle
+  /// Full angles where the intensity falls to 50 % (beam) and 10 % (field) of the peak, along
+  /// the great circles through the aim and C0 ([0]; types A, B: H = 0) and C90 ([1]; V = 0).
+  double beam_angle_deg[2] = {0.0, 0.0};
+  double field_angle_deg[2] = {0.0, 0.0};
+};
+
+/// Lumens, peak and spreads of a distribution (the numbers photometry_summary() prints).
+PhotometryFacts photometry_facts(const PhotometricData& data);
+
 /// Human-readable summary: format, type, symmetry, lumens from the file and from integration,
 /// peak candela and its direction, beam (50 %) and field (10 %) angles in the two main planes.
 std::string photometry_summary(const PhotometricData& data);

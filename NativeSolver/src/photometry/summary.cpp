@@ -77,7 +77,7 @@ void describe_file(std::ostringstream& out, const PhotometricData& d) {
       << d.vertical_angles_deg.size() << " vertical angles\n";
 }
 
-void describe_lumens(std::ostringstream& out, const PhotometricData& d, double integrated) {
+void describe_lumens(std::ostringstream& out, const PhotometricData& d, const PhotometryFacts& f) {
   if (d.absolute_photometry) {
     out << "Lumens (file): absolute photometry";
     if (d.rated_lumens_lm > 0) out << ", luminaire " << fixed(d.rated_lumens_lm, 1) << " lm";
@@ -86,53 +86,70 @@ void describe_lumens(std::ostringstream& out, const PhotometricData& d, double i
     out << "Lumens (file): " << fixed(d.rated_lumens_lm, 1) << " lm lamp lumens (" << d.lamp_count
         << " lamp" << (d.lamp_count == 1 ? "" : "s") << ")\n";
   }
-  out << "Lumens (integrated): " << fixed(integrated, 1) << " lm";
+  out << "Lumens (integrated): " << fixed(f.integrated_lumens_lm, 1) << " lm";
   if (d.rated_lumens_lm > 0)
-    out << " (" << fixed(100.0 * integrated / d.rated_lumens_lm, 1) << " % of the file's)";
+    out << " (" << fixed(100.0 * f.integrated_lumens_lm / d.rated_lumens_lm, 1)
+        << " % of the file's)";
   out << "\n";
   if (d.light_output_ratio_percent > 0)
     out << "Light output ratio (file): " << fixed(d.light_output_ratio_percent, 1) << " %\n";
 }
 
-void describe_peak(std::ostringstream& out, const PhotometricData& d) {
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < d.candela.size(); ++k)
-    if (d.candela[k] > d.candela[best]) best = k;
+void describe_peak(std::ostringstream& out, const PhotometricData& d, const PhotometryFacts& f) {
   if (d.candela.empty()) return;
-  const std::size_t nv = d.vertical_angles_deg.size();
   const bool c = d.type == PhotometricType::C;
-  out << "Peak: " << fixed(d.candela[best], 1) << " cd at " << (c ? "C " : "H ")
-      << fixed(d.horizontal_angles_deg[best / nv], 1) << ", " << (c ? "gamma " : "V ")
-      << fixed(d.vertical_angles_deg[best % nv], 1) << " deg\n";
+  out << "Peak: " << fixed(f.peak_cd, 1) << " cd at " << (c ? "C " : "H ")
+      << fixed(f.peak_horizontal_deg, 1) << ", " << (c ? "gamma " : "V ")
+      << fixed(f.peak_vertical_deg, 1) << " deg\n";
 }
 
-void describe_spreads(std::ostringstream& out, const PhotometricData& d, const SamplerTables& t) {
+void describe_spreads(std::ostringstream& out, const PhotometricData& d, const PhotometryFacts& f) {
   const bool c = d.type == PhotometricType::C;
   const char* names[2] = {c ? "C0-C180" : "H = 0", c ? "C90-C270" : "V = 0"};
-  const glm::dvec3 sides[2] = {{1, 0, 0}, {0, 1, 0}};
-  for (const auto& [label, fraction] :
-       {std::pair{"Beam angle (50 %)", 0.5}, std::pair{"Field angle (10 %)", 0.1}}) {
-    out << label << ":";
-    for (int k = 0; k < 2; ++k) {
-      std::vector<double> angles;
-      const auto profile = photometry_detail::great_circle_profile(t, sides[k], angles);
-      out << (k ? ", " : " ") << names[k] << " "
-          << fixed(photometry_detail::spread_angle_deg(profile, angles, fraction), 1) << " deg";
-    }
-    out << "\n";
-  }
+  out << "Beam angle (50 %):";
+  for (int k = 0; k < 2; ++k)
+    out << (k ? ", " : " ") << names[k] << " " << fixed(f.beam_angle_deg[k], 1) << " deg";
+  out << "\nField angle (10 %):";
+  for (int k = 0; k < 2; ++k)
+    out << (k ? ", " : " ") << names[k] << " " << fixed(f.field_angle_deg[k], 1) << " deg";
+  out << "\n";
 }
 
 }  // namespace
 
+PhotometryFacts photometry_facts(const PhotometricData& d) {
+  PhotometryFacts f;
+  f.rated_lumens_lm = d.rated_lumens_lm;
+  f.absolute_photometry = d.absolute_photometry;
+  f.lamp_count = d.lamp_count;
+  const SamplerTables t = photometry_detail::make_tables(d);
+  f.integrated_lumens_lm = t.cell_cdf.empty() ? 0.0 : t.cell_cdf.back();
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < d.candela.size(); ++k)
+    if (d.candela[k] > d.candela[best]) best = k;
+  if (!d.candela.empty()) {
+    const std::size_t nv = d.vertical_angles_deg.size();
+    f.peak_cd = d.candela[best];
+    f.peak_horizontal_deg = d.horizontal_angles_deg[best / nv];
+    f.peak_vertical_deg = d.vertical_angles_deg[best % nv];
+  }
+  const glm::dvec3 sides[2] = {{1, 0, 0}, {0, 1, 0}};
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> angles;
+    const auto profile = photometry_detail::great_circle_profile(t, sides[k], angles);
+    f.beam_angle_deg[k] = photometry_detail::spread_angle_deg(profile, angles, 0.5);
+    f.field_angle_deg[k] = photometry_detail::spread_angle_deg(profile, angles, 0.1);
+  }
+  return f;
+}
+
 std::string photometry_summary(const PhotometricData& d) {
   std::ostringstream out;
   describe_file(out, d);
-  const SamplerTables t = photometry_detail::make_tables(d);
-  const double integrated = t.cell_cdf.empty() ? 0.0 : t.cell_cdf.back();
-  describe_lumens(out, d, integrated);
-  describe_peak(out, d);
-  describe_spreads(out, d, t);
+  const PhotometryFacts f = photometry_facts(d);
+  describe_lumens(out, d, f);
+  describe_peak(out, d, f);
+  describe_spreads(out, d, f);
   out << "Opening: " << to_string(d.opening_shape) << " " << fixed(d.opening_length_m, 3) << " x "
       << fixed(d.opening_width_m, 3) << " x " << fixed(d.opening_height_m, 3)
       << " m (length along C0 x width x height)\n";

@@ -33,8 +33,8 @@ class Luminaire(BaseProxy):
                               "Photometric (IES LM-63 / EULUMDAT file)",
                               "Area", items=LUMINAIRE_TYPES),
         "FluxLumen": Prop("App::PropertyFloat", "Luminaire",
-                          "Initial luminous flux of the luminaire in lumens (lm); Photometric: "
-                          "0 = the file's rated lamp lumens", 3000.0),
+                          "Initial luminous flux of the luminaire in lumens (lm); 0 = switched "
+                          "off, except Photometric: 0 = the file's rated lamp lumens", 3000.0),
         "MaintenanceFactor": Prop("App::PropertyFloat", "Luminaire",
                                   "Maintenance factor MF = LLMF*LSF*LMF*RSMF (0..1]; the solver "
                                   "gets FluxLumen*MF, so results are maintained values", 0.8),
@@ -115,9 +115,10 @@ def rotation_for_aim(aim: FreeCAD.Vector) -> FreeCAD.Rotation:
 def maintained_flux_lm(obj: Any) -> Optional[float]:
     """Flux handed to the solver: initial flux times the maintenance factor. Photometric
     luminaires with FluxLumen = 0 use the file's rated lumens; None when the file has
-    absolute photometry (the solver then emits the file's own flux)."""
+    absolute photometry (the solver then emits the file's own flux). Other values, 0 (switched
+    off) and invalid ones alike, go to the solver as they are: its check is the one rule."""
     flux = float(obj.FluxLumen)
-    if obj.LuminaireType == "Photometric" and flux <= 0.0:
+    if obj.LuminaireType == "Photometric" and flux == 0.0:
         from lighting.photometry import rated_lumens
 
         rated = rated_lumens(str(obj.PhotometricFile))
@@ -173,28 +174,24 @@ def scene_entry(obj: Any) -> Dict[str, Any]:
 
 
 def check(obj: Any) -> List[tuple]:
-    """Absurd or invalid values: list of (level, text)."""
+    """Checks of what only the document has: list of (level, text). Values the scene file
+    carries (flux, spot angles, the photometric file's content) are checked by the solver's
+    validator in the Check stage (solver/check.py); 0 lm is a switched-off luminaire
+    (docs/scene-format.md)."""
     problems: List[tuple] = []
     name = obj.Label
     flux = float(obj.FluxLumen)
     mf = float(obj.MaintenanceFactor)
-    if obj.LuminaireType == "Photometric" and flux == 0.0:
-        pass  # the file's own flux
-    elif not math.isfinite(flux) or flux <= 0.0:
-        problems.append(("error", f"Luminaire '{name}': flux must be > 0 lm (got {flux:g})"))
-    elif flux > 1.0e6:
+    if math.isfinite(flux) and flux > 1.0e6:
         problems.append(("warning", f"Luminaire '{name}': flux {flux:g} lm is implausibly high "
                                     "for one luminaire (> 1 000 000 lm)"))
+    # The maintenance factor never reaches the scene (it scales the flux): checked here.
     if not (0.0 < mf <= 1.0):
         problems.append(("error", f"Luminaire '{name}': maintenance factor must be in (0, 1] "
                                   f"(got {mf:g})"))
     elif mf < 0.3:
         problems.append(("warning", f"Luminaire '{name}': maintenance factor {mf:g} is unusually low"))
-    if obj.LuminaireType == "Spot":
-        beam, field = float(obj.BeamAngle), float(obj.FieldAngle)
-        if not (0.0 < beam < field <= 360.0):
-            problems.append(("error", f"Luminaire '{name}': spot angles need 0 < beam < field <= "
-                                      f"360 deg (got beam {beam:g}, field {field:g})"))
+    # Width and Length become edge vectors: a negative one would silently turn the emitter over.
     if obj.LuminaireType == "Area" and (float(obj.Width) <= 0.0 or float(obj.Length) <= 0.0):
         problems.append(("error", f"Luminaire '{name}': area luminaire needs Width and Length > 0"))
     if obj.LuminaireType == "Photometric":
@@ -203,20 +200,20 @@ def check(obj: Any) -> List[tuple]:
 
 
 def _check_photometric(obj: Any) -> List[tuple]:
-    from lighting.photometry import EXTENSIONS, rated_lumens
+    """The file property, and the maintenance factor a file's own absolute flux cannot take;
+    the file's content is the solver's to check (lighting.photometry reads it natively)."""
+    from lighting.photometry import rated_lumens
 
     name, path = obj.Label, str(obj.PhotometricFile)
     if not path or not os.path.isfile(path):
         return [("error", f"Luminaire '{name}': photometric file '{path}' not found")]
-    if os.path.splitext(path)[1].lower() not in EXTENSIONS:
-        return [("error", f"Luminaire '{name}': '{path}' is not an .ies or .ldt file")]
-    if float(obj.FluxLumen) > 0.0:
+    if float(obj.FluxLumen) != 0.0 or float(obj.MaintenanceFactor) == 1.0:
         return []
     try:
         rated = rated_lumens(path)
     except (OSError, ValueError) as exc:
         return [("error", f"Luminaire '{name}': {exc}")]
-    if rated is None and float(obj.MaintenanceFactor) != 1.0:
+    if rated is None:
         return [("warning", f"Luminaire '{name}': the file has absolute photometry and FluxLumen "
                             "is 0, so the maintenance factor is not applied; set FluxLumen")]
     return []

@@ -1,18 +1,26 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Check stage: is the model ready for an analysis?
 
-Errors block the run (no luminaires, no targets, invalid values, luminaires inside solids,
-missing solver); warnings do not (open/leaky geometry, non-solid meshes, absurd values,
-luminaires far outside the model)."""
+Two halves. What the document alone knows is checked here: no luminaires or targets,
+luminaires inside solids or flush with surfaces, open shells and non-solid meshes, the
+objects' own properties (maintenance factor, grid bands, ...). Everything a scene file can
+express is checked by the solver's one validator: the scene is exported in memory as for a
+run and handed to ``lightsolver.check_scene_json``, whose errors and warnings name the scene
+field (``luminaires[0].flux_lm``); they are reported against the object that field came from.
+Errors block the run; warnings do not."""
 from __future__ import annotations
 
-from typing import Any, List, Optional
+import json
+import os
+import re
+from typing import Any, Dict, List, Optional
 
 import FreeCAD
 
 from lighting.export import collect
+from lighting.export import scene as scene_mod
 from lighting.geometry import global_placement, global_shape
-from lighting.messages import Report
+from lighting.messages import LightingError, Report, SolverUnavailableError
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import luminaire as luminaire_mod
 from lighting.objects import placement_domain as domain_mod
@@ -126,6 +134,66 @@ def _check_flush(report: Report, lum: Any, point: FreeCAD.Vector, shapes: List[t
             return
 
 
+def _field_objects(export: Any) -> Dict[str, str]:
+    """Scene path ("luminaires[2]", "meshes[0]", "targets[1]") -> document object name."""
+    owners = {mesh: obj for obj, meshes in export.object_meshes.items() for mesh in meshes}
+    scene = export.scene
+    out: Dict[str, str] = {}
+    for key in ("luminaires", "targets"):
+        for i, entry in enumerate(scene.get(key, [])):
+            out[f"{key}[{i}]"] = entry["name"]  # exported under the object's Name
+    for i, mesh in enumerate(scene.get("meshes", [])):
+        out[f"meshes[{i}]"] = owners.get(mesh["name"], mesh["name"].split(".")[0])
+    # A problem inside a photometric file names the file (and line), not a field.
+    for entry in scene.get("luminaires", []):
+        if entry.get("file"):
+            out.setdefault(os.path.realpath(entry["file"]), entry["name"])
+    return out
+
+
+def _check_scene_natively(report: Report, analysis: Any) -> None:
+    """The solver's validator on the scene a run would export (see the module doc). Skipped
+    without the module (``need_solver`` says so; the solver validates again when it runs) and
+    when the export itself fails (Prepare reports why)."""
+    try:
+        module = run.load_module()
+    except SolverUnavailableError:
+        return
+    check_json = getattr(module, "check_scene_json", None)
+    if check_json is None:
+        report.add("warning", "This lightsolver build has no scene check (check_scene_json); "
+                              "scene values are checked when the solver runs: rebuild it")
+        return
+    try:
+        export = scene_mod.build_scene(analysis)
+    except (LightingError, OSError, ValueError):
+        return
+    if not export.report.ok:
+        return
+    text = json.dumps(export.scene)
+    found = check_json(text, scene_mod.default_output_directory(analysis))
+    owners = _field_objects(export)
+    labels = {o.Name: o.Label for o in analysis.Document.Objects}
+    flagged = {m.object_name for m in report.errors}
+    settings_owner = analysis.Name
+    for level, issues in (("error", found["errors"]), ("warning", found["warnings"])):
+        for issue in issues:
+            field = str(issue["field"])
+            head = re.match(r"[a-z_]+(\[\d+\])?", field)
+            owner = owners.get(head.group(0)) if head else None
+            if owner is None and issue["file"]:
+                owner = owners.get(os.path.realpath(str(issue["file"])))
+            if owner is None and field.startswith("settings"):
+                owner = settings_owner
+            if level == "error" and owner is not None and owner in flagged:
+                continue  # the object's own check already said what is wrong with it
+            where = f"'{labels.get(owner, owner)}' " if owner else ""
+            located = f"{field}: " if field else ""
+            if issue["line"]:
+                located = f"{issue['file']}, line {issue['line']}: "
+            report.add(level, f"{where}{located}{issue['message']}".strip(), owner)
+
+
 def check_analysis(analysis: Any, need_solver: bool = True,
                    exported: Optional[List[Any]] = None) -> Report:
     """All checks of an analysis; ``need_solver`` adds an error when ``lightsolver`` is
@@ -152,6 +220,8 @@ def check_analysis(analysis: Any, need_solver: bool = True,
         report.add("warning", "No visible geometry: luminaires light the targets in free space")
     shapes = _check_geometry(report, exported)
     _check_luminaire_positions(report, lums, shapes)
+    if lums and tgts:
+        _check_scene_natively(report, analysis)
     if need_solver:
         ok, reason = run.solver_available()
         if not ok:
