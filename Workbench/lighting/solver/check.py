@@ -13,7 +13,7 @@ from __future__ import annotations
 import json
 import os
 import re
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import FreeCAD
 
@@ -151,25 +151,26 @@ def _field_objects(export: Any) -> Dict[str, str]:
     return out
 
 
-def _check_scene_natively(report: Report, analysis: Any) -> None:
-    """The solver's validator on the scene a run would export (see the module doc). Skipped
-    without the module (``need_solver`` says so; the solver validates again when it runs) and
-    when the export itself fails (Prepare reports why)."""
+def _check_scene_natively(report: Report, analysis: Any) -> Optional[Any]:
+    """The solver's validator on the scene a run would export (see the module doc); returns
+    that export, so a run's Prepare stage need not tessellate the model again. Skipped without
+    the module (``need_solver`` says so; the solver validates again when it runs) and when the
+    export itself fails (Prepare reports why)."""
     try:
         module = run.load_module()
     except SolverUnavailableError:
-        return
+        return None
     check_json = getattr(module, "check_scene_json", None)
     if check_json is None:
         report.add("warning", "This lightsolver build has no scene check (check_scene_json); "
                               "scene values are checked when the solver runs: rebuild it")
-        return
+        return None
     try:
         export = scene_mod.build_scene(analysis)
     except (LightingError, OSError, ValueError):
-        return
+        return None
     if not export.report.ok:
-        return
+        return None
     text = json.dumps(export.scene)
     found = check_json(text, scene_mod.default_output_directory(analysis))
     owners = _field_objects(export)
@@ -192,12 +193,20 @@ def _check_scene_natively(report: Report, analysis: Any) -> None:
             if issue["line"]:
                 located = f"{issue['file']}, line {issue['line']}: "
             report.add(level, f"{where}{located}{issue['message']}".strip(), owner)
+    return export
 
 
 def check_analysis(analysis: Any, need_solver: bool = True,
                    exported: Optional[List[Any]] = None) -> Report:
     """All checks of an analysis; ``need_solver`` adds an error when ``lightsolver`` is
     missing."""
+    return check_and_export(analysis, need_solver, exported)[0]
+
+
+def check_and_export(analysis: Any, need_solver: bool = True,
+                     exported: Optional[List[Any]] = None) -> Tuple[Report, Optional[Any]]:
+    """check_analysis, and the scene export its native check made (None when it made none):
+    the run's Prepare stage writes that one instead of exporting the model a second time."""
     report = Report()
     report.extend(analysis_mod.check(analysis), analysis.Name)
     lums = analysis_mod.luminaires(analysis)
@@ -220,10 +229,9 @@ def check_analysis(analysis: Any, need_solver: bool = True,
         report.add("warning", "No visible geometry: luminaires light the targets in free space")
     shapes = _check_geometry(report, exported)
     _check_luminaire_positions(report, lums, shapes)
-    if lums and tgts:
-        _check_scene_natively(report, analysis)
+    export = _check_scene_natively(report, analysis) if lums and tgts else None
     if need_solver:
         ok, reason = run.solver_available()
         if not ok:
             report.add("error", reason)
-    return report
+    return report, export

@@ -39,6 +39,7 @@ class AnalysisRun:
         self.stage = "idle"
         self.report = Report()
         self.export: Optional[scene_mod.ExportResult] = None
+        self._checked_export: Optional[scene_mod.ExportResult] = None
         self.scene_file = ""
         self.results_file = ""
         self.data: Optional[Dict[str, Any]] = None
@@ -64,7 +65,8 @@ class AnalysisRun:
         """Check stage; raises CheckError when there are errors."""
         self.stage = "check"
         store.set_status(self.analysis, "checking")
-        self.report = check_mod.check_analysis(self.analysis, need_solver=need_solver)
+        self.report, self._checked_export = check_mod.check_and_export(self.analysis,
+                                                                        need_solver=need_solver)
         for message in self.report.messages:
             self.log(message.level, message.text)
         if not self.report.ok:
@@ -77,7 +79,10 @@ class AnalysisRun:
         """Prepare stage: export the scene file; returns its path."""
         self.stage = "prepare"
         store.set_status(self.analysis, "exporting")
-        self.export = scene_mod.build_scene(self.analysis, progress)
+        # The Check stage's native check exported this very scene a moment ago: write that one
+        # rather than tessellating the model again (Check always runs first in a run).
+        self.export = self._checked_export or scene_mod.build_scene(self.analysis, progress)
+        self._checked_export = None
         for message in self.export.report.messages:
             self.log(message.level, message.text)
         self.report.merge(self.export.report)
