@@ -101,17 +101,23 @@ def test_cost_shows_accuracy_against_time(cli, room_scene):
     assert goals["0.5"] / goals["1.0"] == pytest.approx(4.0, rel=1e-2)
 
 
-def test_cost_rows_are_checkpoints_of_one_run(cli, room_scene, tmp_path):
+#: Every backend of this build that can start here (Vulkan on lavapipe in CI).
+TRACING_BACKENDS = [b["name"] for b in lightsolver.backends()
+                    if b["name"] != "auto" and b["available"]]
+
+
+@pytest.mark.parametrize("backend", TRACING_BACKENDS)
+def test_cost_rows_are_checkpoints_of_one_run(cli, room_scene, tmp_path, backend):
     """The table's photons are the first photons of one run, none traced twice: the run ends at
     the last row with exactly the numbers of a plain run of that many photons and seed."""
     cost_out, run_out = tmp_path / "cost.json", tmp_path / "run.json"
     c = run(cli, "cost", str(room_scene), "--max-photons", "200000", "--seed", "11",
-            "--out", str(cost_out))
+            "--backend", backend, "--out", str(cost_out))
     assert c.returncode == 0, c.stderr
     rows = cost_rows(c.stdout)
     assert [int(row[0]) for row in rows] == [10_000, 40_000, 160_000]
     r = run(cli, "run", str(room_scene), "--photons", "160000", "--seed", "11",
-            "--out", str(run_out), "--quiet")
+            "--backend", backend, "--out", str(run_out), "--quiet")
     assert r.returncode == 0, r.stderr
     a, b = json.loads(cost_out.read_text()), json.loads(run_out.read_text())
     assert a["photons"] == a["photons_requested"] == 160_000  # traced once, to the last row
@@ -121,7 +127,7 @@ def test_cost_rows_are_checkpoints_of_one_run(cli, room_scene, tmp_path):
     # Every row's width is the worst target (whole grids) of a plain run of its photons.
     for row in rows:
         r = run(cli, "run", str(room_scene), "--photons", row[0], "--seed", "11",
-                "--out", str(run_out), "--quiet")
+                "--backend", backend, "--out", str(run_out), "--quiet")
         worst = worst_relative_half_width(json.loads(run_out.read_text()))
         assert float(row[2]) == pytest.approx(100 * worst, abs=5e-4)  # printed to 0.001 %
 
