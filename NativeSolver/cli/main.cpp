@@ -17,6 +17,7 @@
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_command.hpp"
 
@@ -150,40 +151,63 @@ int run(const RunArgs& a) {
   return results.partial ? 130 : 0;  // 128 + SIGINT, as shells report an interrupted command
 }
 
-// Worst relative half-width over all targets (targets without light excluded).
-double worst_relative_half_width(const lightsolver::Results& r) {
-  double worst = 0.0;
-  for (const auto& t : r.targets) {
-    const auto& e = t.estimate;
-    if (e.mean > 0) worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
+// The footer of `cost`: photons and time per accuracy goal, from the last row.
+void print_goals(const lightsolver::Checkpoint& last, const lightsolver::Results& results,
+                 double prepare_s) {
+  std::printf(
+      "\none run of %s (rows: its first photons; seconds: tracing only, the scene was "
+      "prepared once in %.3g s)\n",
+      results.backend.c_str(), prepare_s);
+  if (!std::isfinite(last.worst_relative_half_width)) {
+    std::printf(
+        "a target has no hit yet: no accuracy goal can be estimated (or reached) before "
+        "light reaches every target\n");
+    return;
   }
-  return worst;
+  std::printf("at %.0f%% confidence, from the last row (interval width ~ 1/sqrt(photons)):\n",
+              100.0 * results.confidence);
+  for (const double goal : lightsolver::kCostGoals) {
+    const lightsolver::AccuracyCost need = lightsolver::accuracy_cost(last, goal);
+    std::printf("  ±%4.1f%%: %12.3g photons, %10.3g s\n", 100.0 * goal, need.photons, need.seconds);
+  }
 }
 
-// What accuracy costs in time: the same scene at 4x more photons per row (each row halves
-// the interval), then the photons and time each accuracy goal would need at that rate.
+// What accuracy costs in time: one run with checkpoints at 4x photon steps (each halves the
+// interval), so a row's photons are the first photons of the next row and nothing is traced
+// twice; then the photons and time each accuracy goal needs, extrapolated from the last row by
+// the rule the solver's own forecast uses (accuracy_cost).
 int cost(const RunArgs& a, std::uint64_t max_photons) {
+  if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");
   const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
   lightsolver::SolveOptions opt = options_from(a);
+  opt.checkpoints = lightsolver::cost_checkpoints(max_photons);
+  if (opt.checkpoints.empty())
+    throw lightsolver::InputError("", "--max-photons", "must be >= 10000");
+  opt.photons = opt.checkpoints.back();
+  std::optional<lightsolver::Checkpoint> last;
+  opt.checkpoint = [&](const lightsolver::Checkpoint& c) {
+    std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(c.photons),
+                c.seconds, 100.0 * c.worst_relative_half_width,
+                double(c.photons) / std::max(c.seconds, 1e-9));
+    std::fflush(stdout);
+    last = c;
+  };
   std::signal(SIGINT, on_sigint);
+  const auto start = std::chrono::steady_clock::now();
+  lightsolver::Simulation simulation(scene, {a.backend, a.threads, {}});
+  const double prepare_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("%14s %10s %16s %14s\n", "photons", "seconds", "worst ±/E [%]", "photons/s");
-  lightsolver::Results last;
-  for (std::uint64_t n = 10'000; n <= max_photons && !g_interrupted; n *= 4) {
-    opt.photons = n;
-    last = lightsolver::solve(scene, opt);
-    if (last.partial) break;
-    std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(n), last.seconds,
-                100.0 * worst_relative_half_width(last), double(n) / std::max(last.seconds, 1e-9));
+  const lightsolver::Results results = simulation.run(opt);
+  std::signal(SIGINT, SIG_DFL);
+  if (!a.out.empty())
+    lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(results));
+  if (!last) {
+    for (const std::string& w : results.warnings) std::cerr << "warning: " << w << "\n";
+    return results.partial ? 130 : 1;
   }
-  if (last.photons == 0) return 130;
-  const double w = worst_relative_half_width(last), rate = double(last.photons) / last.seconds;
-  std::printf("\nat %.0f%% confidence, from the last row (interval width ~ 1/sqrt(photons)):\n",
-              100.0 * last.confidence);
-  for (const double goal : {0.10, 0.05, 0.02, 0.01, 0.005}) {
-    const double need = double(last.photons) * (w / goal) * (w / goal);
-    std::printf("  ±%4.1f%%: %12.3g photons, %10.3g s\n", 100.0 * goal, need, need / rate);
-  }
-  return g_interrupted ? 130 : 0;
+  print_goals(*last, results, prepare_s);
+  return results.partial ? 130 : 0;
 }
 
 // `lightsolver backends`: the registry with what this machine can start (loads GPU drivers).
@@ -245,12 +269,15 @@ int main(int argc, char** argv) {
   CLI::App* cost_cmd =
       app.add_subcommand("cost", "Show what accuracy costs in time for a scene (photons vs CI)");
   cost_cmd->add_option("scene", ca.scene, "Scene file")->required()->check(CLI::ExistingFile);
-  cost_cmd->add_option("--max-photons", max_photons, "Largest run (default 1.6e7)");
+  cost_cmd->add_option("--max-photons", max_photons,
+                       "Photons of the run; rows at 1e4, 4e4, ... up to this (default 1.6e7)");
   cost_cmd->add_option("--seed", ca.seed, "Random seed");
   cost_cmd->add_option("--confidence", ca.confidence, "Confidence level")
       ->check(CLI::Range(0.0, 1.0));
   cost_cmd->add_option("--threads", ca.threads, "Worker threads (0: all cores)");
   lightsolver::cli::add_backend_option(cost_cmd, ca.backend);
+  cost_cmd->add_option("--out", ca.out,
+                       "Write the run's results JSON here (its photons are the last row's)");
 
   std::string photometry_file, plot_file;
   CLI::App* photometry_cmd = app.add_subcommand(

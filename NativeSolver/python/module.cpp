@@ -446,5 +446,55 @@ PYBIND11_MODULE(lightsolver, m) {
         "beam_angle_deg and field_angle_deg (C0 and C90 planes; None where undefined), "
         "warnings and the text summary. Raises lightsolver.InputError (a ValueError) for a bad "
         "file.");
+  m.def(
+      "cost",
+      [](const Scene& scene, std::uint64_t max_photons, std::optional<std::uint64_t> seed,
+         std::optional<double> confidence, int threads, const std::string& backend) {
+        const Scene snapshot = scene;  // copied with the GIL held, as in solve()
+        SolveOptions opt;
+        opt.checkpoints = cost_checkpoints(max_photons);
+        if (opt.checkpoints.empty()) throw InputError("", "max_photons", "must be >= 10000");
+        opt.photons = opt.checkpoints.back();
+        opt.seed = seed;
+        opt.confidence = confidence;
+        opt.threads = threads;
+        opt.backend = backend;
+        std::vector<Checkpoint> rows;
+        opt.checkpoint = [&rows](const Checkpoint& c) { rows.push_back(c); };  // no Python
+        Results r;
+        {
+          py::gil_scoped_release nogil;
+          r = solve(snapshot, opt);
+        }
+        py::list row_list, goal_list;
+        for (const Checkpoint& c : rows) {
+          py::dict d;
+          d["photons"] = c.photons;
+          d["seconds"] = c.seconds;
+          d["worst_relative_half_width"] = c.worst_relative_half_width;
+          row_list.append(d);
+        }
+        for (const double goal : kCostGoals) {
+          if (rows.empty()) break;
+          const AccuracyCost need = accuracy_cost(rows.back(), goal);
+          py::dict d;
+          d["accuracy"] = goal;
+          d["photons"] = need.photons;
+          d["seconds"] = need.seconds;
+          goal_list.append(d);
+        }
+        py::dict out;
+        out["rows"] = row_list;
+        out["goals"] = goal_list;
+        out["results"] = results_dict(r);
+        return out;
+      },
+      py::arg("scene"), py::arg("max_photons") = 16'000'000, py::arg("seed") = py::none(),
+      py::arg("confidence") = py::none(), py::arg("threads") = 0, py::arg("backend") = kAutoBackend,
+      "What accuracy costs in time (`lightsolver cost`): ONE run of the largest checkpoint (1e4 "
+      "photons, then 4x each, up to max_photons); rows: photons, tracing seconds and worst "
+      "relative CI half-width at each checkpoint (infinity while a target has no hit); goals: "
+      "photons and seconds per accuracy goal from the last row (width ~ 1/sqrt(N)); results: "
+      "the run's results dict (the same as solve() with the last row's photons)");
   bind_optimizer(m);  // lightsolver.optimize
 }

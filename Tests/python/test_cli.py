@@ -7,6 +7,7 @@ import subprocess
 import time
 
 import lightsolver
+import pytest
 
 
 def run(cli, *args, **kw):
@@ -77,15 +78,101 @@ def test_ctrl_c_stops_cleanly_with_partial_results(cli, room_scene, tmp_path):
     assert res["targets"][0]["mean_lux"] > 0
 
 
+def cost_rows(stdout):
+    return [line.split() for line in stdout.splitlines() if line.strip()[:1].isdigit()]
+
+
 def test_cost_shows_accuracy_against_time(cli, room_scene):
     r = run(cli, "cost", str(room_scene), "--max-photons", "160000")
     assert r.returncode == 0, r.stderr
-    rows = [line.split() for line in r.stdout.splitlines() if line.strip()[:1].isdigit()]
+    rows = cost_rows(r.stdout)
     assert [int(row[0]) for row in rows] == [10_000, 40_000, 160_000]
     widths = [float(row[2]) for row in rows]
     # 4x the photons halves the interval (within Monte Carlo noise).
     assert 1.6 < widths[0] / widths[1] < 2.5 and 1.6 < widths[1] / widths[2] < 2.5
-    assert "±" in r.stdout and "photons" in r.stdout
+    # One run: a row's tracing time includes the rows before it.
+    seconds = [float(row[1]) for row in rows]
+    assert seconds == sorted(seconds) and "one run of embree" in r.stdout
+    # Each goal's photons come from the last row by width ~ 1/sqrt(N).
+    goals = {line.split("%")[0].strip(" ±"): float(line.split(":")[1].split()[0])
+             for line in r.stdout.splitlines() if line.strip().startswith("±")}
+    assert set(goals) == {"10.0", "5.0", "2.0", "1.0", "0.5"}
+    assert goals["1.0"] == pytest.approx(160_000 * (widths[2] / 1.0) ** 2, rel=0.015)
+    assert goals["0.5"] / goals["1.0"] == pytest.approx(4.0, rel=1e-2)
+
+
+#: Every backend of this build that can start here (Vulkan on lavapipe in CI).
+TRACING_BACKENDS = [b["name"] for b in lightsolver.backends()
+                    if b["name"] != "auto" and b["available"]]
+
+
+@pytest.mark.parametrize("backend", TRACING_BACKENDS)
+def test_cost_rows_are_checkpoints_of_one_run(cli, room_scene, tmp_path, backend):
+    """The table's photons are the first photons of one run, none traced twice: the run ends at
+    the last row with exactly the numbers of a plain run of that many photons and seed."""
+    cost_out, run_out = tmp_path / "cost.json", tmp_path / "run.json"
+    c = run(cli, "cost", str(room_scene), "--max-photons", "200000", "--seed", "11",
+            "--backend", backend, "--out", str(cost_out))
+    assert c.returncode == 0, c.stderr
+    rows = cost_rows(c.stdout)
+    assert [int(row[0]) for row in rows] == [10_000, 40_000, 160_000]
+    r = run(cli, "run", str(room_scene), "--photons", "160000", "--seed", "11",
+            "--backend", backend, "--out", str(run_out), "--quiet")
+    assert r.returncode == 0, r.stderr
+    a, b = json.loads(cost_out.read_text()), json.loads(run_out.read_text())
+    assert a["photons"] == a["photons_requested"] == 160_000  # traced once, to the last row
+    for doc in (a, b):
+        doc.pop("seconds")
+    assert a == b  # bit for bit: every estimate, cell, tally count and warning
+    # Every row's width is the worst target (whole grids) of a plain run of its photons.
+    for row in rows:
+        r = run(cli, "run", str(room_scene), "--photons", row[0], "--seed", "11",
+                "--backend", backend, "--out", str(run_out), "--quiet")
+        worst = worst_relative_half_width(json.loads(run_out.read_text()))
+        assert float(row[2]) == pytest.approx(100 * worst, abs=5e-4)  # printed to 0.001 %
+
+
+def worst_relative_half_width(results):
+    return max((t["ci_high_lux"] - t["ci_low_lux"]) / 2 / t["mean_lux"]
+               for t in results["targets"])
+
+
+def layout_only(results):
+    """The JSON layout of a results dict: no timing, no numpy arrays beside it."""
+    results = dict(results, targets=[{k: v for k, v in t.items() if not k.startswith("cells_")}
+                                     for t in results["targets"]])
+    results.pop("seconds")
+    return results
+
+
+def test_python_cost_is_one_run_whose_checkpoints_are_its_first_photons(room_scene):
+    scene = lightsolver.load_scene(str(room_scene))
+    c = lightsolver.cost(scene, max_photons=160_000, seed=7)
+    rows = c["rows"]
+    assert [row["photons"] for row in rows] == [10_000, 40_000, 160_000]
+    assert c["results"]["photons"] == c["results"]["photons_requested"] == 160_000
+    assert [row["seconds"] for row in rows] == sorted(row["seconds"] for row in rows)
+    # Each row is what a plain run of its photon count gives (photon i is photon i) ...
+    for row in rows:
+        plain = lightsolver.solve(scene, photons=row["photons"], seed=7)
+        assert row["worst_relative_half_width"] == pytest.approx(
+            worst_relative_half_width(plain), rel=1e-12)
+    # ... and the run ends with exactly the last one's results.
+    assert layout_only(c["results"]) == layout_only(plain)
+    # The goals come from the last row by the solver's one rule (accuracy_cost).
+    last = rows[-1]
+    assert [g["accuracy"] for g in c["goals"]] == [0.10, 0.05, 0.02, 0.01, 0.005]
+    for g in c["goals"]:
+        need = last["photons"] * (last["worst_relative_half_width"] / g["accuracy"]) ** 2
+        assert g["photons"] == pytest.approx(need, rel=1e-12)
+        assert g["seconds"] == pytest.approx(need * last["seconds"] / last["photons"], rel=1e-12)
+    with pytest.raises(lightsolver.InputError, match="max_photons"):
+        lightsolver.cost(scene, max_photons=9_999)
+
+
+def test_cost_refuses_a_run_without_rows(cli, room_scene):
+    r = run(cli, "cost", str(room_scene), "--max-photons", "5000")
+    assert r.returncode == 1 and "--max-photons" in r.stderr
 
 
 def test_run_to_an_accuracy_goal(cli, room_scene, tmp_path):

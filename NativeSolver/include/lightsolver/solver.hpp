@@ -30,6 +30,33 @@ struct RunForecast {
   bool accuracy_goal = false;         ///< `photons` is an extrapolation to the accuracy goal
 };
 
+/// A point of a run: what the first `photons` photons gave and cost.
+struct Checkpoint {
+  std::uint64_t photons = 0;  ///< photons traced so far
+  double seconds = 0.0;       ///< tracing time so far (s)
+  /// Largest CI half-width / mean over the targets (whole grids, not cells); infinity while a
+  /// target has no hit (no goal can be judged for it yet).
+  double worst_relative_half_width = 0.0;
+};
+
+/// What an accuracy goal costs, extrapolated from a checkpoint.
+struct AccuracyCost {
+  double photons = 0.0;  ///< photons the worst target needs (infinity while it has no hit)
+  double seconds = 0.0;  ///< tracing time for them at the checkpoint's rate
+};
+
+/// The one accuracy/time extrapolation (the forecast of accuracy runs and `lightsolver cost`
+/// use it): interval half-widths shrink as 1/sqrt(photons), so a goal g needs N (w / g)^2
+/// photons where the first N gave worst relative half-width w; time scales with photons.
+/// Throws InputError for a goal <= 0.
+AccuracyCost accuracy_cost(const Checkpoint& at, double goal);
+
+/// The checkpoints `lightsolver cost` (and Python's `lightsolver.cost`) report: 10^4 photons,
+/// then 4x each (each halves the interval), up to `max_photons`; empty below 10^4.
+std::vector<std::uint64_t> cost_checkpoints(std::uint64_t max_photons);
+/// The accuracy goals (relative half-widths) whose cost they extrapolate from the last row.
+inline constexpr double kCostGoals[] = {0.10, 0.05, 0.02, 0.01, 0.005};
+
 /// Overrides of the scene's settings for one run, and how to run it.
 struct SolveOptions {
   std::optional<std::uint64_t> photons;  ///< default: scene.settings.photons
@@ -53,6 +80,12 @@ struct SolveOptions {
   /// Called once, when the first batches give a tracing rate: what the run is expected to
   /// cost (the CLI prints it for runs longer than a minute).
   std::function<void(const RunForecast&)> forecast;
+  /// Photon counts (ascending) at which `checkpoint` is called with what the photons traced so
+  /// far give; counts beyond the run's end are not reached. Batches are split there, which
+  /// changes no result (photon i is photon i): one run measures accuracy against time at many
+  /// photon counts without tracing any photon twice (`lightsolver cost`).
+  std::vector<std::uint64_t> checkpoints;
+  std::function<void(const Checkpoint&)> checkpoint;
 };
 
 /// Called between batches with photons traced so far and the total; return false to cancel.

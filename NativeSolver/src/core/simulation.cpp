@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <limits>
 
 #include "core/backend.hpp"
 
@@ -64,18 +65,26 @@ bool accuracy_reached(const detail::PreparedScene& s, const detail::TallyBlock& 
   return true;
 }
 
-// Photons that would bring the worst target to the accuracy goal (interval width ~ 1/sqrt(N)),
-// from the tallies so far; `budget` while a target has no hit yet.
-std::uint64_t photons_for_goal(const detail::PreparedScene& s, const detail::TallyBlock& t,
-                               std::uint64_t photons, double confidence, double goal,
-                               std::uint64_t budget) {
+// Largest relative half-width over the targets (scale-free, so the per-path tallies' estimates
+// serve); infinity while a target has no hit.
+double worst_relative_half_width(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                                 std::uint64_t photons, double confidence) {
   double worst = 0.0;
   for (const std::uint32_t bin : s.target_bin) {
     const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
-    if (e.hits == 0 || !(e.mean > 0.0)) return budget;
-    worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / (goal * e.mean));
+    if (e.hits == 0 || !(e.mean > 0.0)) return std::numeric_limits<double>::infinity();
+    worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
   }
-  const double need = double(photons) * worst * worst;
+  return worst;
+}
+
+// Photons that would bring the worst target to the accuracy goal, from the tallies so far;
+// `budget` while a target has no hit yet.
+std::uint64_t photons_for_goal(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                               std::uint64_t photons, double confidence, double goal,
+                               std::uint64_t budget) {
+  const Checkpoint at{photons, 0.0, worst_relative_half_width(s, t, photons, confidence)};
+  const double need = accuracy_cost(at, goal).photons;
   return need >= double(budget) ? budget : std::max(photons, static_cast<std::uint64_t>(need));
 }
 
@@ -186,6 +195,38 @@ void add_stop_warnings(Results& r) {
   r.warnings.push_back(w + "; where a time limit stops a run depends on the machine's speed");
 }
 
+// Traces photons [first, first + n) in pieces that end on the requested checkpoints, reporting
+// each one reached. Where a batch is split changes no tally (photon i is photon i).
+class CheckpointTracer {
+ public:
+  CheckpointTracer(const SolveOptions& o, const detail::PreparedScene& s, Clock::time_point start)
+      : o_(o), s_(s), start_(start) {}
+
+  template <class TraceFn>
+  void trace(std::uint64_t first, std::uint64_t n, const Results& r,
+             const detail::TallyBlock& tallies, TraceFn&& trace_range) {
+    std::uint64_t done = first;
+    const std::uint64_t end = first + n;
+    for (; next_ < o_.checkpoints.size() && o_.checkpoints[next_] <= end; ++next_) {
+      const std::uint64_t at = o_.checkpoints[next_];
+      if (at <= done) continue;  // not ascending, or 0: nothing new to report
+      trace_range(done, at - done);
+      done = at;
+      if (o_.checkpoint) {
+        o_.checkpoint(
+            {at, seconds_since(start_), worst_relative_half_width(s_, tallies, at, r.confidence)});
+      }
+    }
+    if (done < end) trace_range(done, end - done);
+  }
+
+ private:
+  const SolveOptions& o_;
+  const detail::PreparedScene& s_;
+  Clock::time_point start_;
+  std::size_t next_ = 0;
+};
+
 // Rigid: the linear part is orthonormal and the last row is (0, 0, 0, 1).
 bool is_rigid(const glm::dmat4& m) {
   const glm::dmat3 r(m);
@@ -199,6 +240,24 @@ bool is_rigid(const glm::dmat4& m) {
 }
 
 }  // namespace
+
+AccuracyCost accuracy_cost(const Checkpoint& at, double goal) {
+  if (!(goal > 0.0)) throw InputError("", "accuracy goal", "must be > 0");
+  const double ratio = at.worst_relative_half_width / goal;
+  AccuracyCost c;
+  c.photons = double(at.photons) * ratio * ratio;
+  c.seconds = at.photons > 0 ? c.photons * at.seconds / double(at.photons) : 0.0;
+  return c;
+}
+
+std::vector<std::uint64_t> cost_checkpoints(std::uint64_t max_photons) {
+  std::vector<std::uint64_t> at;
+  for (std::uint64_t n = 10'000; n <= max_photons; n *= 4) {
+    at.push_back(n);
+    if (n > max_photons / 4) break;  // the next step would pass max_photons (or overflow)
+  }
+  return at;
+}
 
 Simulation::Simulation(Scene scene, Options options)
     : state_(std::make_unique<detail::SimulationState>()) {
@@ -287,6 +346,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
     const bool accuracy_mode = r.target_accuracy.has_value();
     const auto tracing_start = Clock::now();
     bool forecast_due = static_cast<bool>(options.forecast);
+    CheckpointTracer tracer(options, prepared, tracing_start);
     while (r.photons < r.photons_requested) {
       if (options.cancel && options.cancel->load()) {
         r.stop_reason = kStopCancelled;
@@ -300,7 +360,9 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
       }
       std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode, rate);
       if (r.max_seconds) n = fit_time_limit(n, rate, *r.max_seconds - elapsed);
-      arena.execute([&] { state_->backend->trace(r.photons, n, r.seed, tallies); });
+      tracer.trace(r.photons, n, r, tallies, [&](std::uint64_t first, std::uint64_t count) {
+        arena.execute([&] { state_->backend->trace(first, count, r.seed, tallies); });
+      });
       r.photons += n;
       if (accuracy_mode &&
           accuracy_reached(prepared, tallies, r.photons, r.confidence, *r.target_accuracy)) {
