@@ -5,6 +5,8 @@
 #include <glm/trigonometric.hpp>
 #include <limits>
 
+#include "core/luminaire_types.hpp"
+
 namespace lightsolver::detail {
 namespace {
 
@@ -19,9 +21,7 @@ glm::dvec3 scene_centre(const Scene& s) {
   for (const auto& m : s.meshes) {
     for (const auto& v : m.vertices) grow(v);
   }
-  for (const auto& l : s.luminaires)
-    grow(l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional ? l.corner
-                                                                                   : l.position);
+  for (const auto& l : s.luminaires) grow(luminaire_type(l.type).anchor(l));
   for (const auto& t : s.targets) {
     if (t.type == Target::Type::Grid) grow(t.corner);
   }
@@ -84,23 +84,7 @@ PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin
   p.corner = local(l.corner, origin);
   p.edge1 = vec3(l.edge1);
   p.edge2 = vec3(l.edge2);
-  switch (l.type) {
-    case Luminaire::Type::Area:
-      p.axis = vec3(glm::normalize(glm::cross(l.edge1, l.edge2)));
-      break;
-    case Luminaire::Type::Spot:
-      p.half_beam_rad = static_cast<float>(glm::radians(0.5 * l.beam_angle_deg));
-      p.half_field_rad = static_cast<float>(glm::radians(0.5 * l.field_angle_deg));
-      p.cos_half_field = std::cos(p.half_field_rad);
-      p.axis = vec3(l.direction);
-      break;
-    case Luminaire::Type::Photometric:
-      p.axis = vec3(glm::normalize(l.aim));
-      p.c0 = vec3(photometric_c0(l));
-      break;
-    default:
-      p.axis = vec3(l.direction);
-  }
+  luminaire_type(l.type).prepare(l, p);
   return p;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "core/luminaire_types.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/statistics.hpp"
 
@@ -189,94 +190,49 @@ class Validator {
     return area;
   }
 
+  // The shared checks a luminaire type's own check (luminaire_types.cpp) calls, with field
+  // paths under luminaires[i].
+  class LuminaireFields final : public detail::LuminaireChecks {
+   public:
+    LuminaireFields(const Validator& v, std::size_t i) : v_(v), i_(i) {}
+    [[noreturn]] void fail(const char* key, const std::string& what) const override {
+      v_.fail(at("luminaires", i_, key), what);
+    }
+    void coordinates(const char* key, const glm::dvec3& p) const override {
+      v_.coordinates(at("luminaires", i_, key), p);
+    }
+    void direction(const char* key, const glm::dvec3& d) const override {
+      v_.direction(at("luminaires", i_, key), d);
+    }
+    void parallelogram(const Luminaire& l, const char* what) const override {
+      v_.parallelogram("luminaires", i_, l.corner, l.edge1, l.edge2, what);
+    }
+    void flux(const Luminaire& l, const char* note) const override {
+      if (!(l.flux_lm >= 0.0 && std::isfinite(l.flux_lm))) {
+        fail("flux_lm", "must be a finite value >= 0 (got " + show(l.flux_lm) + note + ")");
+      }
+      // The photometric flux is the file's integrated candela times flux_lm / the file's lamp
+      // lumens, times its TILT factor: the product is what is bounded.
+      const double emitted = l.flux_lm * photometric_tilt_factor(l);
+      if (!(emitted <= limits::kMaxFlux_lm)) {
+        fail("flux_lm", "emits " + show(emitted) +
+                            " lm, more than 10^12 lm: beyond any physical light source");
+      }
+    }
+
+   private:
+    const Validator& v_;
+    std::size_t i_;
+  };
+
   void luminaire(std::size_t i) {
     Luminaire& l = s_.luminaires[i];
-    using T = Luminaire::Type;
-    if (l.type == T::Point || l.type == T::Spot || l.type == T::Photometric) {
-      coordinates(at("luminaires", i, "position"), l.position);
-    }
-    if (l.type == T::Spot || l.type == T::Directional) {
-      direction(at("luminaires", i, "direction"), l.direction);
-      l.direction = glm::normalize(l.direction);
-    }
-    if (l.type == T::Spot) spot_angles(i, l);
-    if (l.type == T::Photometric) {
-      direction(at("luminaires", i, "aim"), l.aim);
-      l.aim = glm::normalize(l.aim);
-      if (!l.sampler) fail(at("luminaires", i, "file"), "no photometric data loaded");
-      if (!std::isfinite(l.rotation_deg)) fail(at("luminaires", i, "rotation_deg"), "not finite");
-    }
-    if (l.type == T::Area || l.type == T::Directional) {
-      parallelogram("luminaires", i, l.corner, l.edge1, l.edge2, "the area is zero");
-    }
-    if (l.type == T::Directional) {
-      directional(i, l);
-    } else {
-      flux(i, l);
-    }
-    if (l.type == T::Photometric) peak_intensity(i, l);
-  }
-
-  void flux(std::size_t i, const Luminaire& l) {
-    const std::string where = at("luminaires", i, "flux_lm");
-    if (!(l.flux_lm >= 0.0 && std::isfinite(l.flux_lm))) {
-      const char* from = l.type == Luminaire::Type::Photometric ? " (emitted, from the file)" : "";
-      fail(where, "must be a finite value >= 0 (got " + show(l.flux_lm) + from + ")");
-    }
-    // The photometric flux is the file's integrated candela times flux_lm / the file's lamp
-    // lumens, times its TILT factor: the product is what is bounded.
-    const double emitted = l.flux_lm * photometric_tilt_factor(l);
-    if (!(emitted <= limits::kMaxFlux_lm)) {
-      fail(where,
-           "emits " + show(emitted) + " lm, more than 10^12 lm: beyond any physical light source");
-    }
-  }
-
-  void directional(std::size_t i, Luminaire& l) {
-    const std::string where = at("luminaires", i, "illuminance_lx");
-    if (!(l.illuminance_lx >= 0.0 && std::isfinite(l.illuminance_lx))) {
-      fail(where, "must be a finite value >= 0 (got " + show(l.illuminance_lx) + ")");
-    }
-    if (l.illuminance_lx > limits::kMaxIlluminance_lx) {
-      fail(where, "more than 10^7 lx (got " + show(l.illuminance_lx) +
-                      "; direct sunlight is about 10^5 lx)");
-    }
-    if (std::abs(glm::dot(glm::normalize(glm::cross(l.edge1, l.edge2)), l.direction)) < 1e-9) {
-      fail(at("luminaires", i, "direction"), "the beam runs parallel to its parallelogram");
-    }
-    l.flux_lm = directional_flux_lm(l);
-    if (!(l.flux_lm <= limits::kMaxFlux_lm)) {
-      fail(where, "the beam carries " + show(l.flux_lm) +
-                      " lm (illuminance_lx x the opening's area across the beam), more than "
-                      "10^12 lm: beyond any physical light source");
-    }
-  }
-
-  // The scaled table's peak: the file's candela times emitted flux / the file's integrated flux.
-  void peak_intensity(std::size_t i, const Luminaire& l) {
-    if (!l.photometry || l.photometry->candela.empty()) return;
-    const double peak_cd =
-        *std::max_element(l.photometry->candela.begin(), l.photometry->candela.end()) *
-        (l.flux_lm / l.sampler->integrated_flux_lm());
-    if (!(peak_cd <= limits::kMaxIntensity_cd)) {
-      fail(at("luminaires", i, "file"), "peak intensity " + show(peak_cd) +
-                                            " cd (as scaled) is more than 10^15 cd: beyond any "
-                                            "physical light source");
-    }
-  }
-
-  void spot_angles(std::size_t i, const Luminaire& l) {
-    if (!(l.beam_angle_deg > 0.0 && l.beam_angle_deg < l.field_angle_deg)) {
-      fail(at("luminaires", i, "beam_angle_deg"), "need 0 < beam_angle_deg < field_angle_deg");
-    }
-    if (!(l.field_angle_deg <= 360.0)) {
-      fail(at("luminaires", i, "field_angle_deg"), "must be <= 360");
-    }
+    detail::luminaire_type(l.type).check(LuminaireFields(*this, i), l);
   }
 
   // corner + s*edge1 + t*edge2 with a non-zero area (area luminaires, sun openings, grids).
   void parallelogram(const char* list, std::size_t i, const glm::dvec3& corner,
-                     const glm::dvec3& e1, const glm::dvec3& e2, const char* what) {
+                     const glm::dvec3& e1, const glm::dvec3& e2, const char* what) const {
     coordinates(at(list, i, "corner"), corner);
     coordinates(at(list, i, "edge1"), e1);
     coordinates(at(list, i, "edge2"), e2);

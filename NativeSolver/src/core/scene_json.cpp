@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/json_reader.hpp"
+#include "core/luminaire_types.hpp"
 #include "core/scene_document.hpp"
 #include "lightsolver/scene_io.hpp"
 
@@ -127,52 +128,13 @@ Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
   Luminaire l;
   l.name = n.at("name").string();
   const std::string type = n.at("type").string();
-  if (type == "point") {
-    n.require_object({"name", "type", "flux_lm", "position"});
-    l.type = Luminaire::Type::Point;
-    l.position = n.at("position").vec3();
-  } else if (type == "spot") {
-    n.require_object(
-        {"name", "type", "flux_lm", "position", "direction", "beam_angle_deg", "field_angle_deg"});
-    l.type = Luminaire::Type::Spot;
-    l.position = n.at("position").vec3();
-    l.direction = n.at("direction").vec3();
-    l.beam_angle_deg = n.at("beam_angle_deg").number();
-    l.field_angle_deg = n.at("field_angle_deg").number();
-  } else if (type == "area") {
-    n.require_object({"name", "type", "flux_lm", "corner", "edge1", "edge2"});
-    l.type = Luminaire::Type::Area;
-  } else if (type == "directional") {
-    n.require_object({"name", "type", "illuminance_lx", "direction", "corner", "edge1", "edge2"});
-    l.type = Luminaire::Type::Directional;
-    l.direction = n.at("direction").vec3();
-    l.illuminance_lx = n.at("illuminance_lx").number();
-  } else if (type == "photometric") {
-    n.require_object({"name", "type", "file", "position", "aim", "rotation_deg", "flux_lm"});
-    l.type = Luminaire::Type::Photometric;
-    l.position = n.at("position").vec3();
-    if (n.has("aim")) l.aim = n.at("aim").vec3();
-    l.rotation_deg = n.number_or("rotation_deg", 0.0);
-    std::optional<double> flux;
-    if (n.has("flux_lm")) {
-      flux = n.at("flux_lm").number();
-      // Checked here so the message names the scene file (load_photometric knows only the field).
-      if (!(*flux >= 0.0)) n.at("flux_lm").fail("must be a finite value >= 0");
-    }
-    l.file = n.at("file").string();
-    load_photometric(l, (fs::path(base_dir) / l.file).lexically_normal().string(), flux,
-                     n.path() + ".flux_lm");
-    return l;
-  } else {
-    n.at("type").fail("unknown luminaire type \"" + type +
-                      "\" (expected point, spot, area, directional or photometric)");
+  const detail::LuminaireType* row = detail::find_luminaire_type(type);
+  if (!row) {
+    n.at("type").fail("unknown luminaire type \"" + type + "\" (expected " +
+                      detail::luminaire_type_names() + ")");
   }
-  if (l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional) {
-    l.corner = n.at("corner").vec3();
-    l.edge1 = n.at("edge1").vec3();
-    l.edge2 = n.at("edge2").vec3();
-  }
-  if (l.type != Luminaire::Type::Directional) l.flux_lm = n.at("flux_lm").number();
+  l.type = row->type;
+  row->read(n, l, base_dir);
   return l;
 }
 

@@ -1,0 +1,218 @@
+// The luminaire types, one section each: scene-file keys, value checks, emission parameters.
+// Numbers and messages are those the reader, validator and prepare() had before the table.
+#include "core/luminaire_types.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/json_reader.hpp"
+#include "core/prepared_scene.hpp"
+#include "lightsolver/photometry.hpp"
+
+namespace lightsolver::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Numbers in messages: 6 significant digits, as the validator prints them.
+std::string show(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+void read_parallelogram(const JsonNode& n, Luminaire& l) {
+  l.corner = n.at("corner").vec3();
+  l.edge1 = n.at("edge1").vec3();
+  l.edge2 = n.at("edge2").vec3();
+}
+
+glm::dvec3 at_position(const Luminaire& l) { return l.position; }
+glm::dvec3 at_corner(const Luminaire& l) { return l.corner; }
+
+// Checks `key` as a direction and makes it unit length.
+void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
+  c.direction(key, v);
+  v = glm::normalize(v);
+}
+
+// --- point: isotropic ---------------------------------------------------------------------
+
+void read_point(const JsonNode& n, Luminaire& l, const std::string&) {
+  n.require_object({"name", "type", "flux_lm", "position"});
+  l.position = n.at("position").vec3();
+  l.flux_lm = n.at("flux_lm").number();
+}
+
+void check_point(const LuminaireChecks& c, Luminaire& l) {
+  c.coordinates("position", l.position);
+  c.flux(l, "");
+}
+
+void prepare_point(const Luminaire& l, PreparedLuminaire& p) { p.axis = vec3(l.direction); }
+
+// --- spot: smooth beam/field profile about an axis ------------------------------------------
+
+void read_spot(const JsonNode& n, Luminaire& l, const std::string&) {
+  n.require_object(
+      {"name", "type", "flux_lm", "position", "direction", "beam_angle_deg", "field_angle_deg"});
+  l.position = n.at("position").vec3();
+  l.direction = n.at("direction").vec3();
+  l.beam_angle_deg = n.at("beam_angle_deg").number();
+  l.field_angle_deg = n.at("field_angle_deg").number();
+  l.flux_lm = n.at("flux_lm").number();
+}
+
+void check_spot(const LuminaireChecks& c, Luminaire& l) {
+  c.coordinates("position", l.position);
+  unit_direction(c, "direction", l.direction);
+  if (!(l.beam_angle_deg > 0.0 && l.beam_angle_deg < l.field_angle_deg)) {
+    c.fail("beam_angle_deg", "need 0 < beam_angle_deg < field_angle_deg");
+  }
+  if (!(l.field_angle_deg <= 360.0)) c.fail("field_angle_deg", "must be <= 360");
+  c.flux(l, "");
+}
+
+void prepare_spot(const Luminaire& l, PreparedLuminaire& p) {
+  p.half_beam_rad = static_cast<float>(glm::radians(0.5 * l.beam_angle_deg));
+  p.half_field_rad = static_cast<float>(glm::radians(0.5 * l.field_angle_deg));
+  p.cos_half_field = std::cos(p.half_field_rad);  // in float, as the GPU computes it
+  p.axis = vec3(l.direction);
+}
+
+// --- area: Lambertian parallelogram, emitting along edge1 x edge2 ---------------------------
+
+void read_area(const JsonNode& n, Luminaire& l, const std::string&) {
+  n.require_object({"name", "type", "flux_lm", "corner", "edge1", "edge2"});
+  read_parallelogram(n, l);
+  l.flux_lm = n.at("flux_lm").number();
+}
+
+void check_area(const LuminaireChecks& c, Luminaire& l) {
+  c.parallelogram(l, "the area is zero");
+  c.flux(l, "");
+}
+
+void prepare_area(const Luminaire& l, PreparedLuminaire& p) {
+  p.axis = vec3(glm::normalize(glm::cross(l.edge1, l.edge2)));
+}
+
+// --- directional: a parallel beam (sunlight) through a parallelogram opening ----------------
+
+void read_directional(const JsonNode& n, Luminaire& l, const std::string&) {
+  n.require_object({"name", "type", "illuminance_lx", "direction", "corner", "edge1", "edge2"});
+  l.direction = n.at("direction").vec3();
+  l.illuminance_lx = n.at("illuminance_lx").number();
+  read_parallelogram(n, l);
+}
+
+// Its flux follows from the illuminance and the opening: derived here, then bounded.
+void check_directional(const LuminaireChecks& c, Luminaire& l) {
+  unit_direction(c, "direction", l.direction);
+  c.parallelogram(l, "the area is zero");
+  if (!(l.illuminance_lx >= 0.0 && std::isfinite(l.illuminance_lx))) {
+    c.fail("illuminance_lx", "must be a finite value >= 0 (got " + show(l.illuminance_lx) + ")");
+  }
+  if (l.illuminance_lx > limits::kMaxIlluminance_lx) {
+    c.fail("illuminance_lx", "more than 10^7 lx (got " + show(l.illuminance_lx) +
+                                 "; direct sunlight is about 10^5 lx)");
+  }
+  if (std::abs(glm::dot(glm::normalize(glm::cross(l.edge1, l.edge2)), l.direction)) < 1e-9) {
+    c.fail("direction", "the beam runs parallel to its parallelogram");
+  }
+  l.flux_lm = directional_flux_lm(l);
+  if (!(l.flux_lm <= limits::kMaxFlux_lm)) {
+    c.fail("illuminance_lx", "the beam carries " + show(l.flux_lm) +
+                                 " lm (illuminance_lx x the opening's area across the beam), "
+                                 "more than 10^12 lm: beyond any physical light source");
+  }
+}
+
+void prepare_directional(const Luminaire& l, PreparedLuminaire& p) { p.axis = vec3(l.direction); }
+
+// --- photometric: an IES / EULUMDAT distribution in an aimed, rotated frame -----------------
+
+void read_photometric(const JsonNode& n, Luminaire& l, const std::string& base_dir) {
+  n.require_object({"name", "type", "file", "position", "aim", "rotation_deg", "flux_lm"});
+  l.position = n.at("position").vec3();
+  if (n.has("aim")) l.aim = n.at("aim").vec3();
+  l.rotation_deg = n.number_or("rotation_deg", 0.0);
+  std::optional<double> flux;
+  if (n.has("flux_lm")) {
+    flux = n.at("flux_lm").number();
+    // Checked here so the message names the scene file (load_photometric knows only the field).
+    if (!(*flux >= 0.0)) n.at("flux_lm").fail("must be a finite value >= 0");
+  }
+  l.file = n.at("file").string();
+  load_photometric(l, (fs::path(base_dir) / l.file).lexically_normal().string(), flux,
+                   n.path() + ".flux_lm");
+}
+
+void check_photometric(const LuminaireChecks& c, Luminaire& l) {
+  c.coordinates("position", l.position);
+  unit_direction(c, "aim", l.aim);
+  if (!l.sampler) c.fail("file", "no photometric data loaded");
+  if (!std::isfinite(l.rotation_deg)) c.fail("rotation_deg", "not finite");
+  c.flux(l, " (emitted, from the file)");
+  // The scaled table's peak: the file's candela times emitted flux / the file's integrated flux.
+  if (!l.photometry || l.photometry->candela.empty()) return;
+  const double peak_cd =
+      *std::max_element(l.photometry->candela.begin(), l.photometry->candela.end()) *
+      (l.flux_lm / l.sampler->integrated_flux_lm());
+  if (!(peak_cd <= limits::kMaxIntensity_cd)) {
+    c.fail("file", "peak intensity " + show(peak_cd) +
+                       " cd (as scaled) is more than 10^15 cd: beyond any physical light source");
+  }
+}
+
+void prepare_photometric(const Luminaire& l, PreparedLuminaire& p) {
+  p.axis = vec3(glm::normalize(l.aim));
+  p.c0 = vec3(photometric_c0(l));
+}
+
+using T = Luminaire::Type;
+const std::array<LuminaireType, 5> kTypes = {{
+    {T::Point, "point", read_point, check_point, prepare_point, at_position},
+    {T::Spot, "spot", read_spot, check_spot, prepare_spot, at_position},
+    {T::Area, "area", read_area, check_area, prepare_area, at_corner},
+    {T::Directional, "directional", read_directional, check_directional, prepare_directional,
+     at_corner},
+    {T::Photometric, "photometric", read_photometric, check_photometric, prepare_photometric,
+     at_position},
+}};
+
+}  // namespace
+
+std::span<const LuminaireType> luminaire_types() { return kTypes; }
+
+const LuminaireType& luminaire_type(Luminaire::Type type) {
+  for (const auto& row : kTypes) {
+    if (row.type == type) return row;
+  }
+  throw std::logic_error("luminaire type without a row in luminaire_types.cpp");
+}
+
+const LuminaireType* find_luminaire_type(std::string_view name) {
+  for (const auto& row : kTypes) {
+    if (name == row.name) return &row;
+  }
+  return nullptr;
+}
+
+std::string luminaire_type_names() {
+  std::string s;
+  for (std::size_t i = 0; i < kTypes.size(); ++i) {
+    if (i > 0) s += i + 1 == kTypes.size() ? " or " : ", ";
+    s += kTypes[i].name;
+  }
+  return s;
+}
+
+}  // namespace lightsolver::detail

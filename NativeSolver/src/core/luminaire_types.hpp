@@ -1,0 +1,60 @@
+#pragma once
+// One row per luminaire type: how the scene file spells it, how it is read, checked and
+// prepared for emission. The reader (scene_json.cpp), the validator (scene.cpp) and prepare()
+// (prepared_scene.cpp) look the type up here instead of switching over Luminaire::Type.
+// Emission (emitters.cpp), the GPU packing (vulkan/gpu_scene.cpp) and the shader (emit.glsl)
+// still switch on the type: docs/solver.md, "Adding a luminaire type".
+#include <glm/vec3.hpp>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "lightsolver/scene.hpp"
+
+namespace lightsolver::detail {
+
+class JsonNode;
+struct PreparedLuminaire;
+
+/// What a type's check may ask of the scene validator. `key` names a field of the luminaire
+/// being checked (the validator turns it into "luminaires[i].key"); failures throw InputError.
+class LuminaireChecks {
+ public:
+  virtual ~LuminaireChecks() = default;
+  [[noreturn]] virtual void fail(const char* key, const std::string& what) const = 0;
+  /// Finite and within 10^9 m of the origin.
+  virtual void coordinates(const char* key, const glm::dvec3& v) const = 0;
+  /// Finite, non-zero and normalisable (the caller normalises).
+  virtual void direction(const char* key, const glm::dvec3& v) const = 0;
+  /// corner, edge1, edge2: finite, non-zero, not parallel (`what` ends the parallel message).
+  virtual void parallelogram(const Luminaire& l, const char* what) const = 0;
+  /// flux_lm finite, >= 0 and, with the TILT factor, at most 10^12 lm. `note` follows the
+  /// value in the message (e.g. where the number came from).
+  virtual void flux(const Luminaire& l, const char* note) const = 0;
+};
+
+/// One luminaire type. Every hook is required.
+struct LuminaireType {
+  Luminaire::Type type;
+  const char* name;  ///< "type" in the scene file
+  /// Reads the type's keys (rejecting unknown ones); "name" and "type" are already read.
+  /// `base_dir`: the scene file's folder, for files the luminaire refers to.
+  void (*read)(const JsonNode& n, Luminaire& l, const std::string& base_dir);
+  /// Checks value ranges and normalises directions, in the order the messages should come.
+  void (*check)(const LuminaireChecks& c, Luminaire& l);
+  /// Fills the type's part of `p` (position, corner and edges are already set).
+  void (*prepare)(const Luminaire& l, PreparedLuminaire& p);
+  /// A point of the luminaire in world coordinates, for the scene's centre.
+  glm::dvec3 (*anchor)(const Luminaire& l);
+};
+
+/// All types, one row each.
+std::span<const LuminaireType> luminaire_types();
+/// The row of `type`.
+const LuminaireType& luminaire_type(Luminaire::Type type);
+/// The row whose scene-file name is `name`, or nullptr.
+const LuminaireType* find_luminaire_type(std::string_view name);
+/// "point, spot, area, directional or photometric", for messages.
+std::string luminaire_type_names();
+
+}  // namespace lightsolver::detail
