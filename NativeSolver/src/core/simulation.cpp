@@ -54,19 +54,9 @@ std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_
   return std::min(size, total - done);
 }
 
-// True when every target's interval is narrow enough relative to its mean. A target with no
-// hit yet cannot be judged: keep tracing.
-bool accuracy_reached(const detail::PreparedScene& s, const detail::TallyBlock& t,
-                      std::uint64_t photons, double confidence, double goal) {
-  for (const std::uint32_t bin : s.target_bin) {
-    const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
-    if (e.hits == 0 || 0.5 * (e.ci_high - e.ci_low) > goal * e.mean) return false;
-  }
-  return true;
-}
-
 // Largest relative half-width over the targets (scale-free, so the per-path tallies' estimates
-// serve); infinity while a target has no hit.
+// serve); infinity while a target has no hit. The one measure of a run's accuracy: the stopping
+// rule, the forecast and the cost checkpoints all read it.
 double worst_relative_half_width(const detail::PreparedScene& s, const detail::TallyBlock& t,
                                  std::uint64_t photons, double confidence) {
   double worst = 0.0;
@@ -76,6 +66,13 @@ double worst_relative_half_width(const detail::PreparedScene& s, const detail::T
     worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
   }
   return worst;
+}
+
+// True when every target's interval is narrow enough relative to its mean. A target with no
+// hit yet cannot be judged (infinitely wide): keep tracing.
+bool accuracy_reached(const detail::PreparedScene& s, const detail::TallyBlock& t,
+                      std::uint64_t photons, double confidence, double goal) {
+  return worst_relative_half_width(s, t, photons, confidence) <= goal;
 }
 
 // Photons that would bring the worst target to the accuracy goal, from the tallies so far;
