@@ -1,0 +1,132 @@
+"""Shared helpers of the GUI scenarios (macros that ``run_scenario.py`` starts in a real
+FreeCAD under Xvfb; do not run them alone).
+
+A scenario is a user's session: FreeCAD starts with a fresh user folder (so the default
+window size and the Start page), the scenario drives it through commands, task panels and
+macros as a user would, records what it saw in ``STATUS`` and adds every failed expectation
+to ``STATUS["errors"]``. ``finish()`` writes ``status.json`` and ends the process: FreeCAD's
+GUI cannot report a failure through its exit status."""
+import json
+import os
+import threading
+import time
+import traceback
+from typing import Any, Callable, Dict, Optional
+
+OUT = os.environ.get("LIGHTING_GUI_OUT", os.getcwd())
+STATUS: Dict[str, Any] = {"errors": [], "log": [], "images": {}, "docs_images": {}}
+
+
+def log(text: str) -> None:
+    """A line of the scenario's log (kept in status.json)."""
+    STATUS["log"].append(f"{time.monotonic():.2f} {text}")
+
+
+def expect(ok: bool, problem: str) -> bool:
+    """Record ``problem`` as a failure unless ``ok``."""
+    if not ok:
+        STATUS["errors"].append(problem)
+    return ok
+
+
+def finish(code: int = 0) -> None:
+    """Write status.json and end FreeCAD at once (no save dialogs)."""
+    STATUS["passed"] = code == 0 and not STATUS["errors"]
+    with open(os.path.join(OUT, "status.json"), "w", encoding="utf-8") as stream:
+        json.dump(STATUS, stream, indent=1, default=str)
+    os._exit(code)
+
+
+def start_watchdog(seconds: Optional[float] = None) -> None:
+    """End the scenario as failed when it hangs (a modal dialog nobody closes, a lost loop)."""
+    limit = float(seconds or os.environ.get("LIGHTING_GUI_TIMEOUT", "300"))
+    timer = threading.Timer(limit, lambda: (expect(False, f"watchdog: timed out after {limit} s"),
+                                            finish(3)))
+    timer.daemon = True
+    timer.start()
+
+
+def pump(seconds: float = 0.3) -> None:
+    """Let the event loop run (repaints, queued signals, timers)."""
+    from PySide import QtGui
+
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+
+
+def wait_until(condition: Callable[[], bool], timeout_s: float, step_s: float = 0.05) -> bool:
+    """Pump events until ``condition()`` is true; False after ``timeout_s``."""
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        if condition():
+            return True
+        pump(step_s)
+    return bool(condition())
+
+
+def main_window():
+    import FreeCADGui
+
+    return FreeCADGui.getMainWindow()
+
+
+def grab_window(name: str, docs_name: Optional[str] = None) -> str:
+    """Screenshot of the whole main window as the user sees it (panels, tree, 3D view)."""
+    pump(0.3)
+    path = os.path.join(OUT, f"{name}.png")
+    main_window().grab().save(path)
+    STATUS["images"][name] = path
+    if docs_name:
+        STATUS["docs_images"][name] = docs_name
+    log(f"screenshot {path}")
+    return path
+
+
+def visible_in_window(widget) -> bool:
+    """True when ``widget`` is shown and its whole rectangle lies inside every scroll viewport
+    and parent that contains it, and inside the main window: a user can see and click it."""
+    from PySide import QtCore
+
+    if widget is None or not widget.isVisible() or widget.width() <= 0:
+        return False
+    window = main_window()
+    top_left = widget.mapTo(window, QtCore.QPoint(0, 0))
+    rect = QtCore.QRect(top_left, widget.size())
+    parent = widget.parentWidget()
+    while parent is not None and parent is not window:
+        origin = parent.mapTo(window, QtCore.QPoint(0, 0))
+        if not QtCore.QRect(origin, parent.size()).contains(rect):
+            return False
+        parent = parent.parentWidget()
+    return window.rect().contains(rect)
+
+
+def run_macro_file(path: str, globals_: Optional[dict] = None) -> None:
+    """Execute a macro file the way FreeCAD's Macro dialog does (in the GUI's interpreter, with
+    ``__name__ == '__main__'``)."""
+    with open(path, encoding="utf-8") as stream:
+        code = compile(stream.read(), path, "exec")
+    exec(code, dict(globals_ or {}, __name__="__main__", __file__=path))
+
+
+def scenario(body: Callable[[], None], delay_ms: int = 1500) -> None:
+    """Run ``body`` once FreeCAD's event loop is up (the Start page shown), then finish.
+    Exceptions become failures with their traceback."""
+    from PySide import QtCore
+
+    start_watchdog()
+
+    def run() -> None:
+        try:
+            import FreeCADGui
+
+            STATUS["start_workbench"] = FreeCADGui.activeWorkbench().name()
+            STATUS["window_size"] = [main_window().width(), main_window().height()]
+            body()
+        except Exception:  # noqa: BLE001 - every failure must reach status.json
+            expect(False, traceback.format_exc())
+        finish(0)
+
+    QtCore.QTimer.singleShot(delay_ms, run)
