@@ -1,18 +1,15 @@
 #pragma once
-// Photon emission: where a photon starts and where it goes, for each luminaire type. Every
-// photon carries the same power, so directions are drawn exactly from each intensity profile.
+// Photon emission: which luminaire a photon leaves and, through that luminaire's type row
+// (luminaire_types.cpp), where it starts and where it goes. Every photon carries the same
+// power, so directions are drawn exactly from each intensity profile.
 #include "core/prepared_scene.hpp"
 #include "lightsolver/rng.hpp"
 
 namespace lightsolver::detail {
 
-struct EmittedRay {
-  vec3 origin, direction;
-};
-
 // Picks a luminaire with probability proportional to its flux.
 std::size_t pick_luminaire(const PreparedScene& s, PathRng& rng);
 
-EmittedRay emit(const PreparedLuminaire& l, PathRng& rng);
+inline EmittedRay emit(const PreparedLuminaire& l, PathRng& rng) { return l.emit(l, rng); }
 
 }  // namespace lightsolver::detail

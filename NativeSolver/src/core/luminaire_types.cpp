@@ -1,5 +1,6 @@
-// The luminaire types, one section each: scene-file keys, value checks, emission parameters.
-// Numbers and messages are those the reader, validator and prepare() had before the table.
+// The luminaire types, one section each: scene-file keys, value checks, emission parameters and
+// the CPU emission itself. Numbers and messages are those the reader, validator, prepare() and
+// emitter had before the table; the golden results (Tests/golden) pin that nothing moved.
 #include "core/luminaire_types.hpp"
 
 #include <algorithm>
@@ -8,12 +9,14 @@
 #include <filesystem>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
 #include "core/prepared_scene.hpp"
+#include "core/sampling.hpp"
 #include "lightsolver/photometry.hpp"
 
 namespace lightsolver::detail {
@@ -37,6 +40,11 @@ void read_parallelogram(const JsonNode& n, Luminaire& l) {
 glm::dvec3 at_position(const Luminaire& l) { return l.position; }
 glm::dvec3 at_corner(const Luminaire& l) { return l.corner; }
 
+vec3 point_on_parallelogram(const PreparedLuminaire& l, PathRng& rng) {
+  const float s = rng.uniform(), t = rng.uniform();
+  return l.corner + s * l.edge1 + t * l.edge2;
+}
+
 // Checks `key` as a direction and makes it unit length.
 void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
   c.direction(key, v);
@@ -57,6 +65,10 @@ void check_point(const LuminaireChecks& c, Luminaire& l) {
 }
 
 void prepare_point(const Luminaire& l, PreparedLuminaire& p) { p.axis = vec3(l.direction); }
+
+EmittedRay emit_point(const PreparedLuminaire& l, PathRng& rng) {
+  return {l.position, sample_sphere(rng)};
+}
 
 // --- spot: smooth beam/field profile about an axis ------------------------------------------
 
@@ -87,6 +99,35 @@ void prepare_spot(const Luminaire& l, PreparedLuminaire& p) {
   p.axis = vec3(l.direction);
 }
 
+}  // namespace
+
+// Relative spot intensity: piecewise linear in angle through (0, 1), (beam/2, 0.5),
+// (field/2, 0.1), and 0 beyond field/2.
+double spot_profile(double theta, double half_beam, double half_field) {
+  if (theta <= half_beam) return 1.0 - 0.5 * theta / half_beam;
+  if (theta <= half_field) return 0.5 - 0.4 * (theta - half_beam) / (half_field - half_beam);
+  return 0.0;
+}
+
+namespace {
+
+// Rejection sampling of the spot profile inside the field cone: uniform in solid angle over
+// the cone, accepted with probability equal to the relative intensity. Exact, and the
+// acceptance rate stays above 0.2 for any valid beam/field pair.
+EmittedRay emit_spot(const PreparedLuminaire& l, PathRng& rng) {
+  for (;;) {
+    const float cos_t = 1.0f - rng.uniform() * (1.0f - l.cos_half_field);
+    const float phi = 2.0f * std::numbers::pi_v<float> * rng.uniform();
+    const float theta = std::acos(std::clamp(cos_t, -1.0f, 1.0f));
+    const double f = spot_profile(theta, l.half_beam_rad, l.half_field_rad);
+    if (rng.uniform() < f) {
+      const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
+      return {l.position,
+              to_world(vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t), l.axis)};
+    }
+  }
+}
+
 // --- area: Lambertian parallelogram, emitting along edge1 x edge2 ---------------------------
 
 void read_area(const JsonNode& n, Luminaire& l, const std::string&) {
@@ -102,6 +143,12 @@ void check_area(const LuminaireChecks& c, Luminaire& l) {
 
 void prepare_area(const Luminaire& l, PreparedLuminaire& p) {
   p.axis = vec3(glm::normalize(glm::cross(l.edge1, l.edge2)));
+}
+
+// Offset so an emitter flush with a ceiling is not blocked by the ceiling itself.
+EmittedRay emit_area(const PreparedLuminaire& l, PathRng& rng) {
+  const vec3 p = offset_ray_origin(point_on_parallelogram(l, rng), l.axis);
+  return {p, sample_cosine(l.axis, rng)};
 }
 
 // --- directional: a parallel beam (sunlight) through a parallelogram opening ----------------
@@ -136,6 +183,10 @@ void check_directional(const LuminaireChecks& c, Luminaire& l) {
 }
 
 void prepare_directional(const Luminaire& l, PreparedLuminaire& p) { p.axis = vec3(l.direction); }
+
+EmittedRay emit_directional(const PreparedLuminaire& l, PathRng& rng) {
+  return {offset_ray_origin(point_on_parallelogram(l, rng), l.axis), l.axis};
+}
 
 // --- photometric: an IES / EULUMDAT distribution in an aimed, rotated frame -----------------
 
@@ -177,15 +228,27 @@ void prepare_photometric(const Luminaire& l, PreparedLuminaire& p) {
   p.c0 = vec3(photometric_c0(l));
 }
 
+// Direction and opening point drawn exactly from the file's distribution (equal power per
+// photon), mapped from the luminaire frame (gamma = 0 along -z, C0 along +x) to the world.
+// The origin is pushed off the opening's plane so a recessed or flush luminaire is not
+// blocked by the ceiling it sits in.
+EmittedRay emit_photometric(const PreparedLuminaire& l, PathRng& rng) {
+  const PhotometricSampler& sampler = *l.source->sampler;
+  const glm::dvec3 aim(l.axis), c0(l.c0);
+  const glm::dvec3 o = lightsolver::to_world(sampler.sample_origin(rng), aim, c0);
+  const glm::dvec3 d = lightsolver::to_world(sampler.sample_direction(rng), aim, c0);
+  return {offset_ray_origin(l.position + vec3(o), l.axis), glm::normalize(vec3(d))};
+}
+
 using T = Luminaire::Type;
 const std::array<LuminaireType, 5> kTypes = {{
-    {T::Point, "point", read_point, check_point, prepare_point, at_position},
-    {T::Spot, "spot", read_spot, check_spot, prepare_spot, at_position},
-    {T::Area, "area", read_area, check_area, prepare_area, at_corner},
+    {T::Point, "point", read_point, check_point, prepare_point, emit_point, at_position},
+    {T::Spot, "spot", read_spot, check_spot, prepare_spot, emit_spot, at_position},
+    {T::Area, "area", read_area, check_area, prepare_area, emit_area, at_corner},
     {T::Directional, "directional", read_directional, check_directional, prepare_directional,
-     at_corner},
+     emit_directional, at_corner},
     {T::Photometric, "photometric", read_photometric, check_photometric, prepare_photometric,
-     at_position},
+     emit_photometric, at_position},
 }};
 
 }  // namespace
@@ -216,3 +279,31 @@ std::string luminaire_type_names() {
 }
 
 }  // namespace lightsolver::detail
+
+namespace lightsolver {
+namespace {
+
+// Exact integral of (a + b*theta) sin(theta) over [t0, t1].
+double linear_times_sin(double a, double b, double t0, double t1) {
+  auto F = [&](double t) { return -a * std::cos(t) + b * (std::sin(t) - t * std::cos(t)); };
+  return F(t1) - F(t0);
+}
+
+}  // namespace
+
+double spot_relative_intensity(const Luminaire& l, double angle_rad) {
+  return detail::spot_profile(angle_rad, glm::radians(0.5 * l.beam_angle_deg),
+                              glm::radians(0.5 * l.field_angle_deg));
+}
+
+double spot_peak_intensity_cd(const Luminaire& l) {
+  const double hb = glm::radians(0.5 * l.beam_angle_deg);
+  const double hf = glm::radians(0.5 * l.field_angle_deg);
+  // Solid-angle integral of the profile: 2*pi * sum over both linear pieces.
+  const double inner = linear_times_sin(1.0, -0.5 / hb, 0.0, hb);
+  const double slope = -0.4 / (hf - hb);
+  const double outer = linear_times_sin(0.5 - slope * hb, slope, hb, hf);
+  return l.flux_lm / (2.0 * std::numbers::pi * (inner + outer));
+}
+
+}  // namespace lightsolver

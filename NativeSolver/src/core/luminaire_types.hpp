@@ -1,20 +1,20 @@
 #pragma once
-// One row per luminaire type: how the scene file spells it, how it is read, checked and
-// prepared for emission. The reader (scene_json.cpp), the validator (scene.cpp) and prepare()
-// (prepared_scene.cpp) look the type up here instead of switching over Luminaire::Type.
-// Emission (emitters.cpp), the GPU packing (vulkan/gpu_scene.cpp) and the shader (emit.glsl)
-// still switch on the type: docs/solver.md, "Adding a luminaire type".
+// One row per luminaire type: how the scene file spells it, how it is read, checked, prepared
+// and emitted on the CPU. The reader (scene_json.cpp), the validator (scene.cpp), prepare()
+// (prepared_scene.cpp) and the CPU emitter (emitters.hpp) look the type up here instead of
+// switching over Luminaire::Type. The GPU has its own row per type (vulkan/gpu_scene.cpp,
+// Shaders/emit.glsl): docs/solver.md, "Adding a luminaire type".
 #include <glm/vec3.hpp>
 #include <span>
 #include <string>
 #include <string_view>
 
+#include "core/prepared_scene.hpp"
 #include "lightsolver/scene.hpp"
 
 namespace lightsolver::detail {
 
 class JsonNode;
-struct PreparedLuminaire;
 
 /// What a type's check may ask of the scene validator. `key` names a field of the luminaire
 /// being checked (the validator turns it into "luminaires[i].key"); failures throw InputError.
@@ -44,9 +44,15 @@ struct LuminaireType {
   void (*check)(const LuminaireChecks& c, Luminaire& l);
   /// Fills the type's part of `p` (position, corner and edges are already set).
   void (*prepare)(const Luminaire& l, PreparedLuminaire& p);
+  /// Draws one photon's start and direction (local coordinates) from the prepared luminaire;
+  /// prepare() stores it in PreparedLuminaire::emit.
+  EmittedRay (*emit)(const PreparedLuminaire& l, PathRng& rng);
   /// A point of the luminaire in world coordinates, for the scene's centre.
   glm::dvec3 (*anchor)(const Luminaire& l);
 };
+
+/// The spot profile (relative intensity at `theta` from the axis; half angles in radians).
+double spot_profile(double theta, double half_beam, double half_field);
 
 /// All types, one row each.
 std::span<const LuminaireType> luminaire_types();

@@ -84,7 +84,9 @@ PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin
   p.corner = local(l.corner, origin);
   p.edge1 = vec3(l.edge1);
   p.edge2 = vec3(l.edge2);
-  luminaire_type(l.type).prepare(l, p);
+  const LuminaireType& row = luminaire_type(l.type);
+  row.prepare(l, p);
+  p.emit = row.emit;
   return p;
 }
 

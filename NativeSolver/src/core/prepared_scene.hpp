@@ -1,46 +1,53 @@
 #pragma once
 // The scene as the tracers consume it: re-centred (in double, then float), tallies laid out as
 // bins, luminaires reduced to what emission needs. Shared by every backend (Embree, Vulkan).
+#include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
-
-#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/coincident.hpp"
+#include "lightsolver/rng.hpp"
 #include "lightsolver/scene.hpp"
 
 namespace lightsolver::detail {
 
 using glm::vec3;
 
+struct EmittedRay {
+  vec3 origin, direction;
+};
+
 struct PreparedMesh {
-  std::vector<float> vertices;           // x,y,z per vertex, plus one float of padding for Embree
-  std::vector<std::uint32_t> indices;    // 3 per triangle
-  std::vector<vec3> normals;             // unit front (counter-clockwise) normal per triangle
+  std::vector<float> vertices;         // x,y,z per vertex, plus one float of padding for Embree
+  std::vector<std::uint32_t> indices;  // 3 per triangle
+  std::vector<vec3> normals;           // unit front (counter-clockwise) normal per triangle
   int material = 0;
-  std::int32_t bin = -1;                 // surface-target bin, or -1
-  bool movable = false;                  // instanced so its transform can change cheaply
-  glm::mat4 transform{1.0f};             // movable: prepared (local) coordinates -> local world
+  std::int32_t bin = -1;      // surface-target bin, or -1
+  bool movable = false;       // instanced so its transform can change cheaply
+  glm::mat4 transform{1.0f};  // movable: prepared (local) coordinates -> local world
 };
 
 struct PreparedGrid {
-  vec3 corner, normal;   // normal = unit(edge1 x edge2): photons crossing against it count
-  vec3 du, dv;           // dual vectors: local (a, b) = (dot(p - corner, du), dot(p - corner, dv))
+  vec3 corner, normal;  // normal = unit(edge1 x edge2): photons crossing against it count
+  vec3 du, dv;          // dual vectors: local (a, b) = (dot(p - corner, du), dot(p - corner, dv))
   std::uint32_t nu = 1, nv = 1;
   std::uint32_t bin = 0;  // whole-grid bin; cell (iu, iv) is bin + 1 + iv * nu + iu
 };
 
 struct PreparedLuminaire {
   Luminaire::Type type = Luminaire::Type::Point;
-  vec3 position{0.0f}, axis{0, 0, -1};   // axis: spot axis, beam or area normal
+  // The type's emission (its row in luminaire_types.cpp), set by prepare(): one indirect call
+  // per photon instead of a switch over the type.
+  EmittedRay (*emit)(const PreparedLuminaire& l, PathRng& rng) = nullptr;
+  vec3 position{0.0f}, axis{0, 0, -1};  // axis: spot axis, beam or area normal
   vec3 corner{0.0f}, edge1{0.0f}, edge2{0.0f};
   // Spot profile: relative intensity through (0,1), (beam/2, 0.5), (field/2, 0.1), 0 beyond.
   float half_beam_rad = 0, half_field_rad = 0, cos_half_field = 1;
-  const Luminaire* source = nullptr;     // for photometric data and names
-  vec3 c0{1, 0, 0};                      // photometric frame: gamma=0 along axis, C0 along c0
+  const Luminaire* source = nullptr;  // for photometric data and names
+  vec3 c0{1, 0, 0};                   // photometric frame: gamma=0 along axis, C0 along c0
 };
 
 struct BinInfo {
@@ -48,19 +55,19 @@ struct BinInfo {
 };
 
 struct PreparedScene {
-  glm::dvec3 origin{0.0};                // world = local + origin
+  glm::dvec3 origin{0.0};  // world = local + origin
   std::vector<Material> materials;
   std::vector<PreparedMesh> meshes;
   std::vector<PreparedGrid> grids;
   std::vector<PreparedLuminaire> luminaires;
-  std::vector<double> luminaire_cdf;     // cumulative flux fractions, last = 1
+  std::vector<double> luminaire_cdf;  // cumulative flux fractions, last = 1
   std::vector<BinInfo> bins;
-  std::vector<std::uint32_t> target_bin; // first bin of each Scene target
+  std::vector<std::uint32_t> target_bin;  // first bin of each Scene target
   double total_flux_lm = 0.0;
   std::uint32_t max_bounces = 1000;
   std::size_t triangle_count = 0;
-  std::vector<Coincidence> coincidences; // coplanar overlapping meshes (coincident.hpp)
-  Warnings warnings;                     // for Results::warnings: the coincidences, in words
+  std::vector<Coincidence> coincidences;  // coplanar overlapping meshes (coincident.hpp)
+  Warnings warnings;                      // for Results::warnings: the coincidences, in words
 };
 
 // Builds the tracer-side scene. The Scene must have passed validate(). Meshes whose indices

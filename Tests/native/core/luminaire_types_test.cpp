@@ -26,7 +26,7 @@ TEST(LuminaireTypes, OneCompleteRowPerType) {
   for (Luminaire::Type type : kAll) {
     const detail::LuminaireType& row = luminaire_type(type);
     EXPECT_EQ(row.type, type);
-    EXPECT_TRUE(row.read && row.check && row.prepare && row.anchor) << row.name;
+    EXPECT_TRUE(row.read && row.check && row.prepare && row.emit && row.anchor) << row.name;
     EXPECT_TRUE(names.insert(row.name).second) << "duplicate name " << row.name;
     EXPECT_EQ(find_luminaire_type(row.name), &row);
   }
