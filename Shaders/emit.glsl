@@ -52,8 +52,13 @@ vec3 point_on_parallelogram(LuminaireGpu l) {
   return l.corner + s * l.edge1 + t * l.edge2;
 }
 
+// One branch per luminaire type, each behind its HAS_* switch (vulkan/gpu_scene.cpp's row of
+// the type sets it), so a scene's pipeline keeps only the emitters it uses.
 void emit(LuminaireGpu l, out vec3 origin, out vec3 dir) {
-  if (HAS_SPOT && l.type == kSpot) {
+  if (HAS_POINT && l.type == kPoint) {
+    origin = l.position;
+    dir = sample_sphere();
+  } else if (HAS_SPOT && l.type == kSpot) {
     origin = l.position;
     dir = sample_spot(l);
   } else if (HAS_AREA && l.type == kArea) {
@@ -64,9 +69,9 @@ void emit(LuminaireGpu l, out vec3 origin, out vec3 dir) {
   } else if (HAS_DIRECTIONAL && l.type == kDirectional) {
     origin = offset_ray_origin(point_on_parallelogram(l), l.axis);
     dir = l.axis;
-  } else {
+  } else {  // no such type: packing rejects it (gpu_luminaire_type)
     origin = l.position;
-    dir = sample_sphere();
+    dir = l.axis;
   }
 }
 

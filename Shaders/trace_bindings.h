@@ -31,7 +31,7 @@
 #define LS_SPEC_HAS_MIRROR 2        // HAS_MIRROR
 #define LS_SPEC_HAS_GLASS 3         // HAS_GLASS
 #define LS_SPEC_HAS_GLOSSY 4        // HAS_GLOSSY
-#define LS_SPEC_HAS_POINT 5         // HAS_POINT: read nowhere (emit()'s fallback branch)
+#define LS_SPEC_HAS_POINT 5         // HAS_POINT
 #define LS_SPEC_HAS_SPOT 6          // HAS_SPOT
 #define LS_SPEC_HAS_AREA 7          // HAS_AREA
 #define LS_SPEC_HAS_DIRECTIONAL 8   // HAS_DIRECTIONAL
@@ -41,5 +41,17 @@
 #define LS_SPEC_HAS_PHOTOMETRIC 12  // HAS_PHOTOMETRIC
 #define LS_SPEC_HAS_INSTANCES 13    // HAS_INSTANCES: movable meshes
 #define LS_SPEC_COUNT 14
+
+// Type codes in the packed structs (Luminaire::Type and Material::Type values; the C++ side
+// asserts they agree, vulkan/gpu_scene.cpp).
+#define LS_LUMINAIRE_POINT 0
+#define LS_LUMINAIRE_SPOT 1
+#define LS_LUMINAIRE_AREA 2
+#define LS_LUMINAIRE_DIRECTIONAL 3
+#define LS_LUMINAIRE_PHOTOMETRIC 4
+#define LS_MATERIAL_DIFFUSE 0
+#define LS_MATERIAL_MIRROR 1
+#define LS_MATERIAL_GLASS 2
+#define LS_MATERIAL_GLOSSY 3
 
 #endif

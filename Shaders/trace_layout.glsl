@@ -23,8 +23,10 @@ layout(constant_id = LS_SPEC_MANY_LUMINAIRES) const bool MANY_LUMINAIRES = true;
 layout(constant_id = LS_SPEC_HAS_PHOTOMETRIC) const bool HAS_PHOTOMETRIC = true;
 layout(constant_id = LS_SPEC_HAS_INSTANCES) const bool HAS_INSTANCES = true;  // movable meshes
 
-const uint kDiffuse = 0u, kMirror = 1u, kGlass = 2u, kGlossy = 3u;          // Material::Type
-const uint kPoint = 0u, kSpot = 1u, kArea = 2u, kDirectional = 3u, kPhotometric = 4u;  // Luminaire
+const uint kDiffuse = LS_MATERIAL_DIFFUSE, kMirror = LS_MATERIAL_MIRROR;
+const uint kGlass = LS_MATERIAL_GLASS, kGlossy = LS_MATERIAL_GLOSSY;
+const uint kPoint = LS_LUMINAIRE_POINT, kSpot = LS_LUMINAIRE_SPOT, kArea = LS_LUMINAIRE_AREA;
+const uint kDirectional = LS_LUMINAIRE_DIRECTIONAL, kPhotometric = LS_LUMINAIRE_PHOTOMETRIC;
 
 struct MeshInfo {
   uint material;

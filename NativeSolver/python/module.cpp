@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "lightsolver/backends.hpp"
 #include "lightsolver/defaults.hpp"
@@ -97,9 +98,43 @@ py::dict photometry_summary_dict(const std::string& path) {
   return d;
 }
 
-glm::dvec3 vec3_arg(const std::vector<double>& v, const char* name) {
-  if (v.size() != 3) throw py::value_error(std::string(name) + ": expected 3 numbers");
-  return {v[0], v[1], v[2]};
+// A Python value as JSON, without going through text: NaN stays NaN, so the scene reader's
+// own checks name the field ("expected a finite number") as they do for scene files.
+nlohmann::json to_json(const py::handle& o, const std::string& where) {
+  if (o.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(o)) return o.cast<bool>();
+  if (py::isinstance<py::int_>(o)) {
+    // As the JSON parser stores them: non-negative integers unsigned (cells, photons).
+    if (o.cast<py::int_>() >= py::int_(0)) return o.cast<std::uint64_t>();
+    return o.cast<std::int64_t>();
+  }
+  if (py::isinstance<py::float_>(o)) return o.cast<double>();
+  if (py::isinstance<py::str>(o)) return o.cast<std::string>();
+  if (py::hasattr(o, "tolist")) return to_json(o.attr("tolist")(), where);  // numpy
+  if (py::isinstance<py::dict>(o)) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, value] : o.cast<py::dict>()) {
+      out[py::str(key).cast<std::string>()] = to_json(value, where);
+    }
+    return out;
+  }
+  if (py::isinstance<py::sequence>(o)) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& item : o.cast<py::sequence>()) out.push_back(to_json(item, where));
+    return out;
+  }
+  throw py::type_error(where + ": cannot use a " + std::string(py::str(o.get_type())) +
+                       " as a scene value");
+}
+
+// {"name": name, "type": type, **fields}: one entry of a scene file's list.
+nlohmann::json entry_json(const std::string& name, const std::string& type,
+                          const py::kwargs& fields, const std::string& where) {
+  nlohmann::json entry = {{"name", name}, {"type", type}};
+  for (const auto& [key, value] : fields) {
+    entry[py::str(key).cast<std::string>()] = to_json(value, where);
+  }
+  return entry;
 }
 
 Mesh mesh_from_numpy(const std::string& name, int material,
@@ -158,8 +193,8 @@ py::dict results_dict(const Results& r) {
 }
 
 py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
-                  std::optional<std::uint64_t> seed, std::optional<double> confidence,
-                  int threads, const std::string& backend, py::object progress,
+                  std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
+                  const std::string& backend, py::object progress,
                   std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
                   std::optional<double> max_seconds) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
@@ -224,137 +259,63 @@ PYBIND11_MODULE(lightsolver, m) {
 
   py::class_<Scene>(m, "Scene", "A scene in memory (see docs/scene-format.md)")
       .def(py::init<>())
-      .def("add_material",
-           [](Scene& s, const std::string& name, const std::string& type,
-              std::optional<double> reflectance, double ior, double transmittance, bool thin,
-              double specular, double roughness) {
-             Material mat = default_material(name, material_type(type));
-             mat.reflectance = reflectance.value_or(mat.reflectance);
-             mat.ior = ior;
-             mat.transmittance = transmittance;
-             mat.thin = thin;
-             mat.specular = specular;
-             mat.roughness = roughness;
-             if (s.find_material(name) >= 0) throw py::value_error("duplicate material " + name);
-             s.materials.push_back(mat);
-           },
-           py::arg("name"), py::arg("type") = "diffuse", py::arg("reflectance") = py::none(),
-           py::arg("ior") = material_defaults::kGlassIor,
-           py::arg("transmittance") = material_defaults::kGlassTransmittance,
-           py::arg("thin") = material_defaults::kGlassThin,
-           py::arg("specular") = material_defaults::kGlossySpecular,
-           py::arg("roughness") = material_defaults::kGlossyRoughness)
-      .def("add_mesh",
-           [](Scene& s, const std::string& name, py::array vertices, py::array triangles,
-              const std::string& material) {
-             const int mat = s.find_material(material);
-             if (mat < 0) throw py::value_error("unknown material \"" + material + "\"");
-             if (s.find_mesh(name) >= 0) throw py::value_error("duplicate mesh " + name);
-             s.meshes.push_back(mesh_from_numpy(name, mat, vertices, triangles));
-           },
-           py::arg("name"), py::arg("vertices"), py::arg("triangles"), py::arg("material"))
-      .def("add_point_light",
-           [](Scene& s, const std::string& name, std::vector<double> position, double flux_lm) {
-             Luminaire l;
-             l.name = name;
-             l.type = Luminaire::Type::Point;
-             l.position = vec3_arg(position, "position");
-             l.flux_lm = flux_lm;
-             s.luminaires.push_back(l);
-           },
-           py::arg("name"), py::arg("position"), py::arg("flux_lm"))
-      .def("add_spot_light",
-           [](Scene& s, const std::string& name, std::vector<double> position,
-              std::vector<double> direction, double beam_angle_deg, double field_angle_deg,
-              double flux_lm) {
-             Luminaire l;
-             l.name = name;
-             l.type = Luminaire::Type::Spot;
-             l.position = vec3_arg(position, "position");
-             l.direction = vec3_arg(direction, "direction");
-             l.beam_angle_deg = beam_angle_deg;
-             l.field_angle_deg = field_angle_deg;
-             l.flux_lm = flux_lm;
-             s.luminaires.push_back(l);
-           },
-           py::arg("name"), py::arg("position"), py::arg("direction"), py::arg("beam_angle_deg"),
-           py::arg("field_angle_deg"), py::arg("flux_lm"))
-      .def("add_area_light",
-           [](Scene& s, const std::string& name, std::vector<double> corner,
-              std::vector<double> edge1, std::vector<double> edge2, double flux_lm) {
-             Luminaire l;
-             l.name = name;
-             l.type = Luminaire::Type::Area;
-             l.corner = vec3_arg(corner, "corner");
-             l.edge1 = vec3_arg(edge1, "edge1");
-             l.edge2 = vec3_arg(edge2, "edge2");
-             l.flux_lm = flux_lm;
-             s.luminaires.push_back(l);
-           },
-           py::arg("name"), py::arg("corner"), py::arg("edge1"), py::arg("edge2"),
-           py::arg("flux_lm"))
-      .def("add_directional_light",
-           [](Scene& s, const std::string& name, std::vector<double> direction,
-              std::vector<double> corner, std::vector<double> edge1, std::vector<double> edge2,
-              double illuminance_lx) {
-             Luminaire l;
-             l.name = name;
-             l.type = Luminaire::Type::Directional;
-             l.direction = vec3_arg(direction, "direction");
-             l.corner = vec3_arg(corner, "corner");
-             l.edge1 = vec3_arg(edge1, "edge1");
-             l.edge2 = vec3_arg(edge2, "edge2");
-             l.illuminance_lx = illuminance_lx;
-             s.luminaires.push_back(l);
-           },
-           py::arg("name"), py::arg("direction"), py::arg("corner"), py::arg("edge1"),
-           py::arg("edge2"), py::arg("illuminance_lx"))
-      .def("add_photometric_light",
-           [](Scene& s, const std::string& name, const std::string& file,
-              std::vector<double> position, std::vector<double> aim, double rotation_deg,
-              std::optional<double> flux_lm) {
-             Luminaire l;
-             l.name = name;
-             l.type = Luminaire::Type::Photometric;
-             l.file = file;
-             l.position = vec3_arg(position, "position");
-             l.aim = vec3_arg(aim, "aim");
-             l.rotation_deg = rotation_deg;
-             load_photometric(l, file, flux_lm, "flux_lm");
-             s.luminaires.push_back(l);
-           },
-           py::arg("name"), py::arg("file"), py::arg("position"),
-           py::arg("aim") = std::vector<double>{0, 0, -1}, py::arg("rotation_deg") = 0.0,
-           py::arg("flux_lm") = py::none(),
-           "IES or EULUMDAT luminaire; gamma = 0 along `aim`, C0 toward +x turned "
-           "counter-clockwise about -aim by rotation_deg; flux_lm scales the file's intensities")
-      .def("add_surface_target",
-           [](Scene& s, const std::string& name, const std::string& mesh) {
-             Target t;
-             t.name = name;
-             t.type = Target::Type::Surface;
-             t.mesh = s.find_mesh(mesh);
-             if (t.mesh < 0) throw py::value_error("unknown mesh \"" + mesh + "\"");
-             s.targets.push_back(t);
-           },
-           py::arg("name"), py::arg("mesh"))
-      .def("add_grid_target",
-           [](Scene& s, const std::string& name, std::vector<double> corner,
-              std::vector<double> edge1, std::vector<double> edge2,
-              std::pair<std::uint32_t, std::uint32_t> cells) {
-             Target t;
-             t.name = name;
-             t.type = Target::Type::Grid;
-             t.corner = vec3_arg(corner, "corner");
-             t.edge1 = vec3_arg(edge1, "edge1");
-             t.edge2 = vec3_arg(edge2, "edge2");
-             t.nu = cells.first;
-             t.nv = cells.second;
-             s.targets.push_back(t);
-           },
-           py::arg("name"), py::arg("corner"), py::arg("edge1"), py::arg("edge2"),
-           py::arg("cells"))
-      .def("validate", [](Scene& s) { validate(s); }, "Check values; drop degenerate triangles")
+      .def(
+          "add_material",
+          [](Scene& s, const std::string& name, const std::string& type,
+             std::optional<double> reflectance, double ior, double transmittance, bool thin,
+             double specular, double roughness) {
+            Material mat = default_material(name, material_type(type));
+            mat.reflectance = reflectance.value_or(mat.reflectance);
+            mat.ior = ior;
+            mat.transmittance = transmittance;
+            mat.thin = thin;
+            mat.specular = specular;
+            mat.roughness = roughness;
+            if (s.find_material(name) >= 0) throw py::value_error("duplicate material " + name);
+            s.materials.push_back(mat);
+          },
+          py::arg("name"), py::arg("type") = "diffuse", py::arg("reflectance") = py::none(),
+          py::arg("ior") = material_defaults::kGlassIor,
+          py::arg("transmittance") = material_defaults::kGlassTransmittance,
+          py::arg("thin") = material_defaults::kGlassThin,
+          py::arg("specular") = material_defaults::kGlossySpecular,
+          py::arg("roughness") = material_defaults::kGlossyRoughness)
+      .def(
+          "add_mesh",
+          [](Scene& s, const std::string& name, py::array vertices, py::array triangles,
+             const std::string& material) {
+            const int mat = s.find_material(material);
+            if (mat < 0) throw py::value_error("unknown material \"" + material + "\"");
+            if (s.find_mesh(name) >= 0) throw py::value_error("duplicate mesh " + name);
+            s.meshes.push_back(mesh_from_numpy(name, mat, vertices, triangles));
+          },
+          py::arg("name"), py::arg("vertices"), py::arg("triangles"), py::arg("material"))
+      .def(
+          "add_light",
+          [](Scene& s, const std::string& name, const std::string& type, py::kwargs fields) {
+            const std::string where = "add_light(\"" + name + "\")";
+            s.luminaires.push_back(
+                luminaire_from_json(entry_json(name, type, fields, where), where, ""));
+          },
+          py::arg("name"), py::arg("type"),
+          "A luminaire of any type: the keyword arguments are the type's keys of a scene file's "
+          "luminaire entry (docs/scene-format.md), e.g. add_light('lamp', 'point', "
+          "position=[0, 0, 3], flux_lm=1000); read by the same code as scene files, so a "
+          "missing or unknown key is an InputError naming it. A photometric file is relative "
+          "to the working folder.")
+      .def(
+          "add_target",
+          [](Scene& s, const std::string& name, const std::string& type, py::kwargs fields) {
+            const std::string where = "add_target(\"" + name + "\")";
+            s.targets.push_back(target_from_json(entry_json(name, type, fields, where), where, s));
+          },
+          py::arg("name"), py::arg("type"),
+          "A target of any type: the keyword arguments are the type's keys of a scene file's "
+          "target entry, e.g. add_target('walls', 'surface', mesh='walls') or "
+          "add_target('floor', 'grid', corner=[0, 0, 0], edge1=[4, 0, 0], edge2=[0, 3, 0], "
+          "cells=[8, 6])")
+      .def(
+          "validate", [](Scene& s) { validate(s); }, "Check values; drop degenerate triangles")
       .def_property(
           "photons", [](const Scene& s) { return s.settings.photons; },
           [](Scene& s, std::uint64_t v) { s.settings.photons = v; })

@@ -16,8 +16,8 @@ def floor_scene(flux_lm: float = 1000.0) -> "lightsolver.Scene":
     s.add_material("grey", reflectance=0.5)
     v = np.array([[0, 0, 0], [2, 0, 0], [2, 2, 0], [0, 2, 0]], dtype=float)
     s.add_mesh("floor", v, np.array([[0, 1, 2], [0, 2, 3]]), "grey")
-    s.add_point_light("lamp", [1, 1, 1], flux_lm)
-    s.add_surface_target("floor", "floor")
+    s.add_light("lamp", "point", position=[1, 1, 1], flux_lm=flux_lm)
+    s.add_target("floor", "surface", mesh="floor")
     return s
 
 
@@ -35,11 +35,40 @@ def test_error_names_field_and_file(room_scene: Path):
     doc = json.loads(room_scene.read_text())
     doc["luminaires"][1]["flux_lm"] = -5.0
     check = lightsolver.check_scene_json(json.dumps(doc), str(room_scene.parent))
-    assert len(check["errors"]) == 1  # validation stops at its first error
+    assert len(check["errors"]) == 1  # one bad value, one error
     error = check["errors"][0]
     assert error["field"] == "luminaires[1].flux_lm"
     assert error["file"] == "<string>" and error["line"] == 0
     assert "-5" in error["message"] and "luminaires[1]" not in error["message"]
+
+
+def test_every_bad_entry_is_listed_in_file_order(room_scene: Path):
+    """The check goes on after an error: each bad entry's first error, in file order, so a
+    user fixes them all in one round instead of one per Check."""
+    doc = json.loads(room_scene.read_text())
+    doc["luminaires"][1]["flux_lm"] = -5.0
+    doc["luminaires"][0]["flux_lm"] = 2e13
+    doc["settings"]["confidence"] = 1.5
+    doc["targets"].append({"name": "tiny", "type": "grid", "corner": [0, 0, 0],
+                           "edge1": [1e-9, 0, 0], "edge2": [0, 1, 0], "cells": [1, 1]})
+    check = lightsolver.check_scene_json(json.dumps(doc), str(room_scene.parent))
+    last = len(doc["targets"]) - 1
+    assert fields(check["errors"]) == ["luminaires[0].flux_lm", "luminaires[1].flux_lm",
+                                       f"targets[{last}].edge1", "settings.confidence"]
+    assert check["warnings"] == []  # warnings need a valid scene
+    # The same scene through validate() (a run) still stops at the first of them.
+    with pytest.raises(lightsolver.InputError, match=r"luminaires\[0\]\.flux_lm"):
+        lightsolver.scene_from_json(json.dumps(doc), str(room_scene.parent))
+
+
+def test_a_target_on_a_bad_mesh_is_not_reported_twice():
+    s = floor_scene()
+    s.add_mesh("broken", np.array([[0, 0, 1], [1, np.nan, 1], [0, 1, 1]]),
+               np.array([[0, 1, 2]]), "grey")
+    s.add_target("on broken", "surface", mesh="broken")
+    s.add_light("bad", "point", position=[1, 1, 1], flux_lm=-1.0)
+    check = lightsolver.check_scene(s)
+    assert fields(check["errors"]) == ["meshes[1].vertices[1]", "luminaires[1].flux_lm"]
 
 
 def test_unreadable_file_is_one_error(tmp_path: Path):
@@ -53,7 +82,7 @@ def test_unreadable_file_is_one_error(tmp_path: Path):
 def test_flux_zero_is_a_switched_off_luminaire():
     """One rule (docs/scene-format.md): 0 lm is accepted; only a scene emitting nothing warns."""
     s = floor_scene()
-    s.add_point_light("off", [0.5, 0.5, 1], 0.0)
+    s.add_light("off", "point", position=[0.5, 0.5, 1], flux_lm=0.0)
     check = lightsolver.check_scene(s)
     assert check["errors"] == [] and check["warnings"] == []
     check = lightsolver.check_scene(floor_scene(0.0))
@@ -77,7 +106,7 @@ def test_check_scene_leaves_the_scene_unchanged():
 def test_missing_target_is_an_error():
     s = lightsolver.Scene()
     s.add_material("grey", reflectance=0.5)
-    s.add_point_light("lamp", [1, 1, 1], 100.0)
+    s.add_light("lamp", "point", position=[1, 1, 1], flux_lm=100.0)
     check = lightsolver.check_scene(s)
     assert fields(check["errors"]) == ["targets"]
 
@@ -88,7 +117,7 @@ def test_coincident_targets_are_warned_with_their_mesh():
     s = floor_scene()
     v = np.array([[0.5, 0.5, 0], [1.5, 0.5, 0], [1.5, 1.5, 0], [0.5, 1.5, 0]], dtype=float)
     s.add_mesh("rug", v, np.array([[0, 1, 2], [0, 2, 3]]), "grey")
-    s.add_surface_target("rug", "rug")
+    s.add_target("rug", "surface", mesh="rug")
     check = lightsolver.check_scene(s)
     assert check["errors"] == []
     assert fields(check["warnings"]) == ["meshes[0]"]

@@ -52,8 +52,8 @@ def built_scene(kind):
     s.add_material("mat", kind)
     s.add_mesh("floor", np.array(QUAD, float), np.array(TRIS), "mat")
     s.add_mesh("ceiling", np.array(CEILING, float), np.array(TRIS), "mat")
-    s.add_point_light("lamp", [0.5, 0.5, 0.5], 1000.0)
-    s.add_surface_target("floor", "floor")
+    s.add_light("lamp", "point", position=[0.5, 0.5, 0.5], flux_lm=1000.0)
+    s.add_target("floor", "surface", mesh="floor")
     return s
 
 

@@ -21,9 +21,10 @@ def unit_room(reflectance: float = 0.0) -> "lightsolver.Scene":
     t = np.array([[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6], [0, 4, 5], [0, 5, 1],
                   [3, 2, 6], [3, 6, 7], [0, 3, 7], [0, 7, 4], [1, 5, 6], [1, 6, 2]])
     s.add_mesh("cube", v, t, "grey")
-    s.add_point_light("lamp", [1, 1, 1], 1000.0)
-    s.add_surface_target("walls", "cube")
-    s.add_grid_target("floor grid", [0, 0, 0], [2, 0, 0], [0, 2, 0], (4, 3))
+    s.add_light("lamp", "point", position=[1, 1, 1], flux_lm=1000.0)
+    s.add_target("walls", "surface", mesh="cube")
+    s.add_target("floor grid", "grid", corner=[0, 0, 0], edge1=[2, 0, 0], edge2=[0, 2, 0],
+                 cells=[4, 3])
     return s
 
 
@@ -61,8 +62,8 @@ def test_json_and_numpy_scenes_give_identical_numbers(tmp_path):
     s.add_material("grey", reflectance=0.6)
     s.add_mesh("floor", np.array(scene["meshes"][0]["vertices"], float),
                np.array(scene["meshes"][0]["triangles"]), "grey")
-    s.add_point_light("lamp", [1, 1, 2], 500)
-    s.add_surface_target("floor", "floor")
+    s.add_light("lamp", "point", position=[1, 1, 2], flux_lm=500)
+    s.add_target("floor", "surface", mesh="floor")
     from_numpy = lightsolver.solve(s, photons=50_000, seed=9)
     assert from_file["targets"] == from_numpy["targets"]
 
@@ -108,14 +109,14 @@ def test_callback_exception_propagates():
 
 def test_bad_input_raises_input_error_naming_the_field(tmp_path):
     s = unit_room()
-    s.add_point_light("bad", [0, 0, 1], -5.0)
+    s.add_light("bad", "point", position=[0, 0, 1], flux_lm=-5.0)
     with pytest.raises(lightsolver.InputError, match=r"luminaires\[1\]\.flux_lm"):
         lightsolver.solve(s)
     nan = lightsolver.Scene()
     nan.add_material("m")
     nan.add_mesh("tri", np.array([[0, 0, 0], [1, np.nan, 0], [0, 1, 0]]), np.array([[0, 1, 2]]), "m")
-    nan.add_point_light("p", [0, 0, 1], 1.0)
-    nan.add_surface_target("t", "tri")
+    nan.add_light("p", "point", position=[0, 0, 1], flux_lm=1.0)
+    nan.add_target("t", "surface", mesh="tri")
     with pytest.raises(lightsolver.InputError, match=r"meshes\[0\]\.vertices\[1\]"):
         nan.validate()
     with pytest.raises(ValueError, match="out of range"):
@@ -165,14 +166,15 @@ def test_stop_reason_and_time_limit():
 def test_photometric_light_from_python():
     from conftest import SOURCE_DIR
     s = lightsolver.Scene()
-    s.add_photometric_light("dl", str(SOURCE_DIR / "Resources/luminaires/downlight.ies"),
-                            [0, 0, 3], flux_lm=1500.0)
-    s.add_grid_target("floor", [-2, -2, 0], [4, 0, 0], [0, 4, 0], (4, 4))
+    s.add_light("dl", "photometric", file=str(SOURCE_DIR / "Resources/luminaires/downlight.ies"),
+                position=[0, 0, 3], flux_lm=1500.0)
+    s.add_target("floor", "grid", corner=[-2, -2, 0], edge1=[4, 0, 0], edge2=[0, 4, 0],
+                 cells=[4, 4])
     r = lightsolver.solve(s, photons=400_000)
     cells = r["targets"][0]["cells_lux"]
     assert cells[1:3, 1:3].min() > 2 * cells[0, 0]  # a downlight: bright under, dim in corners
     with pytest.raises(lightsolver.InputError, match="missing.ies"):
-        s.add_photometric_light("x", "/nowhere/missing.ies", [0, 0, 3])
+        s.add_light("x", "photometric", file="/nowhere/missing.ies", position=[0, 0, 3])
 
 
 def test_backends_are_the_registry_and_each_traces_on_its_own_name():

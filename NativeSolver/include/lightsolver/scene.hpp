@@ -146,6 +146,11 @@ void validate(Scene& scene);
 /// Checks (and normalises directions of) the luminaires only: for scenes changed in place.
 void validate_luminaires(Scene& scene);
 
+/// validate() that goes on after an error: every material, mesh, luminaire, target and the
+/// settings are checked, and each one's first error is returned, in file order (empty: the
+/// scene is valid). A surface target on a mesh with an error is not checked again.
+std::vector<InputError> validation_errors(Scene& scene);
+
 }  // namespace lightsolver
 
 namespace lightsolver {

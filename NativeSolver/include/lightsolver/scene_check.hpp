@@ -20,9 +20,11 @@ struct SceneIssue {
   std::string message;
 };
 
-/// Errors stop a run; warnings do not. validate() stops at its first error, so `errors` holds
-/// at most one entry (the first one a run would meet); warnings are complete when there is no
-/// error (they need a valid scene).
+/// Errors stop a run; warnings do not. A file that cannot be read or parsed, or an entry that
+/// cannot be read (a missing key, a wrong JSON type, an unreadable mesh or photometric file),
+/// is one error; otherwise every entry's values are checked and each entry's first error is
+/// listed (validation_errors). Warnings are complete when there is no error (they need a valid
+/// scene).
 struct SceneCheck {
   std::vector<SceneIssue> errors;
   std::vector<SceneIssue> warnings;

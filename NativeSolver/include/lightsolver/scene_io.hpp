@@ -2,6 +2,7 @@
 /// \file scene_io.hpp
 /// Reading scene files (docs/scene-format.md) and mesh files (PLY, OBJ).
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,17 @@ Scene load_scene(const std::string& path);
 /// Parses a scene from JSON text. `file` is used in messages, `base_dir` resolves relative paths.
 Scene scene_from_json(const std::string& text, const std::string& file,
                       const std::string& base_dir);
+
+/// Reads one luminaire entry of a scene file's "luminaires" list (name, type and the type's
+/// keys, as docs/scene-format.md lists them) through the luminaire-type table, so callers need
+/// no code per type. Values are range-checked later, by validate(). `where` names the entry
+/// in messages; `base_dir` resolves a photometric file.
+Luminaire luminaire_from_json(const nlohmann::json& entry, const std::string& where,
+                              const std::string& base_dir);
+
+/// Reads one target entry of a scene file's "targets" list; a surface target's mesh is looked
+/// up in `scene`.
+Target target_from_json(const nlohmann::json& entry, const std::string& where, const Scene& scene);
 
 /// Reads all triangles of a PLY or OBJ file (every mesh in it, concatenated). Throws InputError
 /// naming the file when it is missing, unreadable or has no triangles.

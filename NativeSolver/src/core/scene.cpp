@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -67,33 +68,37 @@ namespace {
 
 class Validator {
  public:
-  explicit Validator(Scene& s) : s_(s) {}
+  // With `errors`, every entry is checked and each one's first error collected; without, the
+  // first error is thrown (the order of the checks is the order of the messages).
+  explicit Validator(Scene& s, std::vector<InputError>* errors = nullptr)
+      : s_(s), errors_(errors) {}
 
   void luminaires() {
     for (std::size_t i = 0; i < s_.luminaires.size(); ++i) luminaire(i);
   }
 
   void run() {
-    for (std::size_t i = 0; i < s_.materials.size(); ++i) material(i);
+    for (std::size_t i = 0; i < s_.materials.size(); ++i) entry([&] { material(i); });
     std::unordered_map<std::string, std::size_t> mesh_names;
     for (std::size_t i = 0; i < s_.meshes.size(); ++i) {
-      const auto [first, inserted] = mesh_names.emplace(s_.meshes[i].name, i);
-      if (!inserted) {
-        fail(at("meshes", i, "name"), "duplicate mesh name \"" + s_.meshes[i].name +
-                                          "\" (also meshes[" + std::to_string(first->second) +
-                                          "]): mesh names must be unique");
+      // A target on a mesh with an error would only repeat it: it is skipped.
+      if (!entry([&] { named_mesh(i, mesh_names); })) bad_meshes_.insert(static_cast<int>(i));
+    }
+    entry([&] {
+      if (s_.luminaires.empty()) fail("luminaires", "the scene has no luminaire");
+    });
+    for (std::size_t i = 0; i < s_.luminaires.size(); ++i) entry([&] { luminaire(i); });
+    entry([&] {
+      if (s_.targets.empty()) fail("targets", "the scene has no target to report");
+    });
+    for (std::size_t i = 0; i < s_.targets.size(); ++i) entry([&] { target(i); });
+    entry([&] {
+      if (grid_cells_ > limits::kMaxGridCells) {
+        fail("targets",
+             "the grids have " + std::to_string(grid_cells_) + " cells together, more than 10^7");
       }
-      mesh(i);
-    }
-    if (s_.luminaires.empty()) fail("luminaires", "the scene has no luminaire");
-    for (std::size_t i = 0; i < s_.luminaires.size(); ++i) luminaire(i);
-    if (s_.targets.empty()) fail("targets", "the scene has no target to report");
-    for (std::size_t i = 0; i < s_.targets.size(); ++i) target(i);
-    if (grid_cells_ > limits::kMaxGridCells) {
-      fail("targets",
-           "the grids have " + std::to_string(grid_cells_) + " cells together, more than 10^7");
-    }
-    settings();
+    });
+    entry([&] { settings(); });
   }
 
  private:
@@ -243,9 +248,36 @@ class Validator {
     }
   }
 
+  // Runs one entry's checks; false when it failed (only when collecting, else it throws).
+  template <class Check>
+  bool entry(Check&& check) {
+    if (!errors_) {
+      check();
+      return true;
+    }
+    try {
+      check();
+      return true;
+    } catch (const InputError& e) {
+      errors_->push_back(e);
+      return false;
+    }
+  }
+
+  void named_mesh(std::size_t i, std::unordered_map<std::string, std::size_t>& names) {
+    const auto [first, inserted] = names.emplace(s_.meshes[i].name, i);
+    if (!inserted) {
+      fail(at("meshes", i, "name"), "duplicate mesh name \"" + s_.meshes[i].name +
+                                        "\" (also meshes[" + std::to_string(first->second) +
+                                        "]): mesh names must be unique");
+    }
+    mesh(i);
+  }
+
   void target(std::size_t i) {
     const Target& t = s_.targets[i];
     if (t.type == Target::Type::Grid) return grid(i, t);
+    if (bad_meshes_.count(t.mesh)) return;
     if (t.mesh < 0 || t.mesh >= static_cast<int>(s_.meshes.size())) {
       fail(at("targets", i, "mesh"), "unknown mesh");
     }
@@ -304,6 +336,8 @@ class Validator {
   }
 
   Scene& s_;
+  std::vector<InputError>* errors_;
+  std::set<int> bad_meshes_;
   std::uint64_t grid_cells_ = 0;
 };
 
@@ -312,5 +346,11 @@ class Validator {
 void validate(Scene& scene) { Validator(scene).run(); }
 
 void validate_luminaires(Scene& scene) { Validator(scene).luminaires(); }
+
+std::vector<InputError> validation_errors(Scene& scene) {
+  std::vector<InputError> errors;
+  Validator(scene, &errors).run();
+  return errors;
+}
 
 }  // namespace lightsolver

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cctype>
 #include <exception>
+#include <filesystem>
 
 #include "core/coincident.hpp"
 #include "core/prepared_scene.hpp"
+#include "core/scene_document.hpp"
 #include "lightsolver/scene_io.hpp"
 
 namespace lightsolver {
@@ -61,12 +63,15 @@ void add_run_warnings(const Scene& scene, SceneCheck& out) {
   }
 }
 
+// Reads the scene (a reading error is the one error), then collects every validation error;
+// a valid scene gets the run's warnings.
 template <class Load>
 SceneCheck check_loaded(Load load) {
   SceneCheck out;
   try {
-    const Scene scene = load();
-    add_run_warnings(scene, out);
+    Scene scene = load();
+    for (const InputError& e : validation_errors(scene)) out.errors.push_back(issue_from_error(e));
+    if (out.errors.empty()) add_run_warnings(scene, out);
   } catch (const InputError& e) {
     out.errors.push_back(issue_from_error(e));
   } catch (const std::exception& e) {  // unreadable file, out of memory: still one error
@@ -96,20 +101,19 @@ SceneIssue issue_from_error(const InputError& error) {
 }
 
 SceneCheck check_scene(const Scene& scene) {
-  return check_loaded([&] {
-    Scene copy = scene;
-    validate(copy);
-    return copy;
-  });
+  return check_loaded([&] { return scene; });
 }
 
 SceneCheck check_scene_file(const std::string& path) {
-  return check_loaded([&] { return load_scene(path); });
+  return check_loaded([&] {
+    return detail::read_unvalidated_scene(detail::read_scene_text(path), path,
+                                          std::filesystem::path(path).parent_path().string());
+  });
 }
 
 SceneCheck check_scene_json(const std::string& text, const std::string& file,
                             const std::string& base_dir) {
-  return check_loaded([&] { return scene_from_json(text, file, base_dir); });
+  return check_loaded([&] { return detail::read_unvalidated_scene(text, file, base_dir); });
 }
 
 }  // namespace lightsolver

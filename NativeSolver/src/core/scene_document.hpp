@@ -22,4 +22,12 @@ SceneDocument read_scene_document(const std::string& text, const std::string& fi
 // The same from a file; relative paths are resolved from its folder.
 SceneDocument load_scene_document(const std::string& path);
 
+// A scene file's text (InputError when it cannot be opened or read).
+std::string read_scene_text(const std::string& path);
+
+// Reads the scene without validate(), for the scene check, which collects every validation
+// error (validation_errors) instead of stopping at the first. Reading errors still throw.
+Scene read_unvalidated_scene(const std::string& text, const std::string& file,
+                             const std::string& base_dir);
+
 }  // namespace lightsolver::detail

@@ -189,8 +189,9 @@ Settings read_settings(const JsonNode& n) {
   return s;
 }
 
-// The scene of a parsed scene file.
-Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::string& base_dir) {
+// The scene of a parsed scene file, validated unless the caller collects validation errors.
+Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::string& base_dir,
+                 bool validated = true) {
   const JsonNode root(doc, "", file);
   root.require_object({"format", "materials", "meshes", "luminaires", "targets", "settings",
                        "optimization", "metadata"});
@@ -219,7 +220,7 @@ Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::
   }
   if (root.has("settings")) scene.settings = read_settings(root.at("settings"));
   if (root.has("optimization")) root.at("optimization").object();  // read by the optimizer
-  validate(scene);
+  if (validated) validate(scene);
   return scene;
 }
 
@@ -235,13 +236,22 @@ SceneDocument read_scene_document(const std::string& text, const std::string& fi
   return d;
 }
 
-SceneDocument load_scene_document(const std::string& path) {
+std::string read_scene_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the scene file");
   std::stringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(path, "", "cannot read the scene file");
-  return read_scene_document(text.str(), path, fs::path(path).parent_path().string());
+  return text.str();
+}
+
+SceneDocument load_scene_document(const std::string& path) {
+  return read_scene_document(read_scene_text(path), path, fs::path(path).parent_path().string());
+}
+
+Scene read_unvalidated_scene(const std::string& text, const std::string& file,
+                             const std::string& base_dir) {
+  return read_scene(parse_json_text(text, file), file, base_dir, false);
 }
 
 }  // namespace detail
@@ -252,5 +262,14 @@ Scene scene_from_json(const std::string& text, const std::string& file,
 }
 
 Scene load_scene(const std::string& path) { return detail::load_scene_document(path).scene; }
+
+Luminaire luminaire_from_json(const nlohmann::json& entry, const std::string& where,
+                              const std::string& base_dir) {
+  return read_luminaire(JsonNode(entry, "", where), base_dir);
+}
+
+Target target_from_json(const nlohmann::json& entry, const std::string& where, const Scene& scene) {
+  return read_target(JsonNode(entry, "", where), scene);
+}
 
 }  // namespace lightsolver

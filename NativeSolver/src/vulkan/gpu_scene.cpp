@@ -33,10 +33,30 @@ gpu::Material pack_material(const Material& m) {
   return g;
 }
 
+using L = Luminaire::Type;
+using M = Material::Type;
+
+// The GPU's row of each luminaire type: its code in the packed struct and the switch that keeps
+// its branch of emit.glsl. One row per type of core's table (luminaire_types.cpp), checked by
+// gpu_luminaire_type() and vulkan_tests' GpuLuminaireTypes.
+const GpuLuminaireType kGpuLuminaireTypes[] = {
+    {L::Point, LS_LUMINAIRE_POINT, gpu::kHasPoint},
+    {L::Spot, LS_LUMINAIRE_SPOT, gpu::kHasSpot},
+    {L::Area, LS_LUMINAIRE_AREA, gpu::kHasArea},
+    {L::Directional, LS_LUMINAIRE_DIRECTIONAL, gpu::kHasDirectional},
+    {L::Photometric, LS_LUMINAIRE_PHOTOMETRIC, gpu::kHasPhotometric},
+};
+
+// Materials are packed by their enum value; the shader's codes come from trace_bindings.h.
+static_assert(static_cast<int>(M::Diffuse) == LS_MATERIAL_DIFFUSE &&
+              static_cast<int>(M::Mirror) == LS_MATERIAL_MIRROR &&
+              static_cast<int>(M::Glass) == LS_MATERIAL_GLASS &&
+              static_cast<int>(M::Glossy) == LS_MATERIAL_GLOSSY);
+
 gpu::Luminaire pack_luminaire(const PreparedLuminaire& l) {
   gpu::Luminaire g{};
   put(g.position, l.position);
-  g.type = static_cast<std::uint32_t>(l.type);
+  g.type = gpu_luminaire_type(l.type).code;
   put(g.axis, l.axis);
   g.half_beam = l.half_beam_rad;
   put(g.corner, l.corner);
@@ -71,8 +91,6 @@ std::vector<vkw::SpecConstant> features(const PreparedScene& s) {
   };
   const bool surface_bins = std::any_of(s.meshes.begin(), s.meshes.end(),
                                         [](const PreparedMesh& m) { return m.bin >= 0; });
-  using M = Material::Type;
-  using L = Luminaire::Type;
   const bool movable = std::any_of(s.meshes.begin(), s.meshes.end(),
                                    [](const PreparedMesh& m) { return m.movable; });
   // By id, not by position: the ids come from Shaders/trace_bindings.h.
@@ -80,17 +98,15 @@ std::vector<vkw::SpecConstant> features(const PreparedScene& s) {
                                              {gpu::kHasMirror, uses_material(M::Mirror)},
                                              {gpu::kHasGlass, uses_material(M::Glass)},
                                              {gpu::kHasGlossy, uses_material(M::Glossy)},
-                                             {gpu::kHasPoint, uses_luminaire(L::Point)},
-                                             {gpu::kHasSpot, uses_luminaire(L::Spot)},
-                                             {gpu::kHasArea, uses_luminaire(L::Area)},
-                                             {gpu::kHasDirectional, uses_luminaire(L::Directional)},
                                              {gpu::kHasGrids, !s.grids.empty()},
                                              {gpu::kHasSurfaceBins, surface_bins},
                                              {gpu::kManyLuminaires, s.luminaires.size() > 1},
-                                             {gpu::kHasPhotometric, uses_luminaire(L::Photometric)},
                                              {gpu::kHasInstances, movable}};
   std::vector<vkw::SpecConstant> out;
   for (const auto& [id, value] : on) out.push_back({id, value ? 1u : 0u});
+  for (const auto& row : kGpuLuminaireTypes) {
+    out.push_back({row.feature, uses_luminaire(row.type) ? 1u : 0u});
+  }
   return out;
 }
 
@@ -155,6 +171,13 @@ class PhotometricPacker {
 };
 
 }  // namespace
+
+const GpuLuminaireType& gpu_luminaire_type(Luminaire::Type type) {
+  for (const auto& row : kGpuLuminaireTypes) {
+    if (row.type == type) return row;
+  }
+  throw std::logic_error("luminaire type without a GPU row in vulkan/gpu_scene.cpp");
+}
 
 std::uint64_t scaled_cdf_threshold(double c, double total) {
   // The CPU picks the first cell with c > uniform_double() * total, where uniform_double() =

@@ -27,6 +27,17 @@ struct GpuSceneData {
   std::vector<vkw::SpecConstant> features;      // ids kHasDiffuse .. kHasInstances
 };
 
+/// The GPU side of a luminaire type: its code in gpu::Luminaire::type (LS_LUMINAIRE_* of
+/// Shaders/trace_bindings.h) and the specialisation constant that keeps its emit.glsl branch.
+struct GpuLuminaireType {
+  Luminaire::Type type;
+  std::uint32_t code;
+  gpu::SpecId feature;
+};
+
+/// The row of `type`; throws std::logic_error when the type has none.
+const GpuLuminaireType& gpu_luminaire_type(Luminaire::Type type);
+
 /// `uniform() < p` for the CPU's double p equals `rng_u24() < probability_threshold(p)`.
 std::uint32_t probability_threshold(double p);
 

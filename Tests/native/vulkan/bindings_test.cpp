@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/luminaire_types.hpp"
 #include "core/prepared_scene.hpp"
 #include "native/core/scene_builders.hpp"
 #include "vulkan/gpu_layout.hpp"
@@ -195,8 +196,8 @@ TEST(Bindings, SpecConstantsMatchTheHostTable) {
 
 // The SPIR-V the backend loads (optimised, without names): the optimiser kept every binding, so
 // every buffer the backend creates is one the shader reads at that binding. Constants that the
-// optimised code never reads are dropped, which is harmless (HAS_POINT: the point branch is
-// emit()'s fallback), so there only the shader's constants must be in the host table.
+// optimised code never reads would be dropped; every luminaire type's switch must be read (its
+// emit.glsl branch sits behind it), so a type whose branch is missing fails here.
 TEST(Bindings, EmbeddedShaderHasEveryBinding) {
   const Interface shader = reflect(detail::shaders::trace());
   EXPECT_TRUE(shader.errors.empty()) << ::testing::PrintToString(shader.errors);
@@ -204,6 +205,23 @@ TEST(Bindings, EmbeddedShaderHasEveryBinding) {
   expect_known(shader.buffers, host_buffers(), "binding");
   expect_known(shader.specs, host_specs(), "constant_id");
   EXPECT_TRUE(shader.specs.count(detail::gpu::kWorkgroupSize));
+  for (const auto& type : detail::luminaire_types()) {
+    EXPECT_TRUE(shader.specs.count(detail::gpu_luminaire_type(type.type).feature)) << type.name;
+  }
+}
+
+// Every luminaire type of core's table has a GPU row, with its own code and its own switch, and
+// the code is the enum value the CPU side uses (the shader's LS_LUMINAIRE_* constants).
+TEST(GpuLuminaireTypes, OneRowPerCoreType) {
+  std::set<std::uint32_t> codes, features;
+  for (const auto& type : detail::luminaire_types()) {
+    const auto& row = detail::gpu_luminaire_type(type.type);
+    EXPECT_EQ(row.type, type.type) << type.name;
+    EXPECT_EQ(row.code, static_cast<std::uint32_t>(type.type)) << type.name;
+    EXPECT_TRUE(codes.insert(row.code).second) << type.name;
+    EXPECT_TRUE(features.insert(row.feature).second) << type.name;
+    EXPECT_TRUE(host_specs().count(row.feature)) << type.name;
+  }
 }
 
 // pack_scene sets every feature switch once (the backend adds the workgroup size).
