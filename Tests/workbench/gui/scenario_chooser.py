@@ -178,6 +178,37 @@ def body() -> None:
     grab_with_3d("chooser_malformed")
     panel.set_folder("")
 
+    # A ceiling face selected, no luminaire: Assign makes a new one 5 cm under the face's
+    # centre, aimed down, with the file's lumens, in one undo step; it is then selected.
+    import office_model
+
+    ceiling = doc.getObjectsByLabel("Ceiling")[0]
+    face = office_model.find_face(ceiling.Shape, FreeCAD.Vector(0, 0, -1),
+                                  FreeCAD.Vector(0, 0, office_model.ROOM_Z_MM))
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(ceiling, face)
+    pump(0.3)
+    expect("creates a new one at the selected face" in panel.targets.text(),
+           f"targets: {panel.targets.text()!r}")
+    panel.select("downlight.ies")
+    before, steps = len(doc.Objects), len(doc.UndoNames)
+    panel.button_box.button(panel.button_box.Apply).click()
+    pump(0.5)
+    made = [o for o in FreeCADGui.Selection.getSelection()]
+    expect(len(doc.Objects) == before + 1 and len(made) == 1, "no new luminaire selected")
+    if made:
+        new = made[0]
+        base = new.Placement.Base
+        STATUS["created"] = [new.Label, new.LuminaireType, new.FluxLumen, list(base)]
+        expect(new.LuminaireType == "Photometric" and new.FluxLumen == 1500.0,
+               f"new luminaire {new.LuminaireType} {new.FluxLumen}")
+        expect(abs(base.x - 2500) < 1 and abs(base.y - 2000) < 1 and abs(base.z - 2950) < 1,
+               f"new luminaire at {base}")
+        expect(abs(new.AimDirection.z + 1.0) < 1e-9, f"aim {new.AimDirection}")
+        expect(new in doc.getObject("LightingAnalysis").Group, "new luminaire not in the analysis")
+        expect(len(doc.UndoNames) == steps + 1, f"undo {doc.UndoNames[:3]}")
+        expect(f"Assign to: {new.Label}" in panel.targets.text(), panel.targets.text())
+
     # Double-click (edit) of a luminaire opens the chooser for it.
     panel.reject()
     pump(0.3)

@@ -289,10 +289,13 @@ class LuminaireChooserPanel:
             self.polar.show_png(library.polar_diagram_png(entry.path))
         except (ValueError, OSError) as exc:
             self.polar.show_png(None, str(exc))
+        # The native diagram is scaled to its own maximum (printed in it, in cd; rings at
+        # 25 % steps); the peak per 1000 lm is the figure to compare files by.
         per_klm = entry.peak_cd_per_klm
-        scale = f"; max {per_klm:.0f} cd/klm" if per_klm is not None else ""
+        scale = f"; peak {per_klm:.0f} cd/klm" if per_klm is not None else ""
         self.caption.setText("<span style='color:#c81e1e'>C0-C180</span>, "
-                             f"<span style='color:#1e46c8'>C90-C270</span>{scale}")
+                             f"<span style='color:#1e46c8'>C90-C270</span>{scale}; "
+                             "rings: 25 % steps of the maximum")
 
     def _update_targets(self) -> None:
         lums = selected_luminaires()
