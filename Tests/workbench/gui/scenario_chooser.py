@@ -219,8 +219,21 @@ def body() -> None:
     expect(again is not panel and FreeCADGui.Control.activeDialog(),
            "editing a luminaire did not open the chooser")
     expect("Luminaire03" in again.targets.text(), f"targets: {again.targets.text()!r}")
+    again.select("wallwasher.ldt")
+    steps = list(doc.UndoNames)
+    again.button_box.button(again.button_box.Apply).click()
+    pump(0.3)
     again.reject()
     pump(0.3)
+    lum3 = doc.getObject("Luminaire03")
+    STATUS["edit_assign"] = [lum3.LuminaireType, lum3.FluxLumen, list(doc.UndoNames)[:3]]
+    expect(lum3.LuminaireType == "Photometric" and lum3.FluxLumen == 2000.0,
+           f"assign from the edit chooser: {lum3.LuminaireType} {lum3.FluxLumen}")
+    expect(len(doc.UndoNames) == len(steps) + 1, f"undo steps {steps[:3]} -> {doc.UndoNames[:3]}")
+    doc.undo()
+    pump(0.3)
+    expect(lum3.LuminaireType == "Area" and lum3.FluxLumen == 5200.0,
+           f"undo of the edit chooser's assign: {lum3.LuminaireType} {lum3.FluxLumen}")
     log("chooser scenario done")
 
 
