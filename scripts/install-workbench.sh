@@ -72,6 +72,10 @@ for dir in "${mod_dirs[@]}"; do
   rm -rf "$target"
   if [ "$mode" = copy ]; then
     cp -r "$src" "$target"
+    # The shipped photometric files live beside Workbench/ in the source tree; a copy takes
+    # them along (lighting/luminaire_library.py looks in both places).
+    mkdir -p "$target/Resources"
+    cp -r "$repo/Resources/luminaires" "$target/Resources/luminaires"
     find "$target" -name __pycache__ -prune -exec rm -rf {} +
     touch "$target/.installed-by-lighting"
   else

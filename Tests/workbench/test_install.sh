@@ -22,9 +22,13 @@ FreeCAD.closeDocument('T')
 doc = FreeCAD.openDocument('$home/t.FCStd')
 proxy = doc.getObject('Luminaire').Proxy
 print('PROXY', type(proxy).__module__)
-sys.exit(0 if type(proxy).__module__ == 'lighting.objects.luminaire' else 3)
+from lighting import luminaire_library
+shipped = luminaire_library.shipped_folder()
+count = len(luminaire_library.photometric_files(shipped)) if shipped else 0
+print('LUMINAIRES', count, shipped)
+sys.exit(0 if type(proxy).__module__ == 'lighting.objects.luminaire' and count == 8 else 3)
 " 2>&1)" || { echo "$out"; echo "test_install: $mode install: freecadcmd failed"; exit 1; }
-  echo "$out" | grep -E "LIGHTING_AT|PROXY"
+  echo "$out" | grep -E "LIGHTING_AT|PROXY|LUMINAIRES"
   for dir in "$home/.FreeCAD/Mod/Lighting" "$home/.local/share/FreeCAD/Mod/Lighting"; do
     [ -e "$dir/InitGui.py" ] || { echo "test_install: $dir missing"; exit 1; }
   done

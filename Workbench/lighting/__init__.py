@@ -30,6 +30,8 @@ _EXPORTS = {
     "optimize_placement": "lighting.api",
     "results": "lighting.api",
     "solver_available": "lighting.api",
+    "luminaire_library_entries": "lighting.api",
+    "assign_photometry": "lighting.api",
     "AnalysisResult": "lighting.solver.results",
     "TargetResult": "lighting.solver.results",
     "make_analysis": "lighting.objects.factory",

@@ -152,3 +152,21 @@ def solver_available() -> Tuple[bool, str]:
     from lighting.solver.run import solver_available as available
 
     return available()
+
+
+def luminaire_library_entries(folder: Optional[str] = None, shipped: bool = True) -> list:
+    """The luminaire library: the shipped photometric files and the user folder's (``folder``;
+    default: the LuminaireFolder preference), each a
+    :class:`lighting.luminaire_library.LibraryEntry` with the native parser's facts
+    (``.lamp_lumens_lm``, ``.facts()``) or its ``.error`` for a file the parser rejects."""
+    from lighting import luminaire_library
+
+    return luminaire_library.list_entries(folder, shipped)
+
+
+def assign_photometry(doc: Any, luminaires: Any, path: str, keep_flux: bool = False) -> list:
+    """Make ``luminaires`` photometric with the file ``path`` in one undo step (FluxLumen from
+    the file's lamp lumens unless ``keep_flux``); ValueError for a file the parser rejects."""
+    from lighting import luminaire_library
+
+    return luminaire_library.assign(doc, luminaires, path, keep_flux)

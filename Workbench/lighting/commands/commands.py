@@ -272,3 +272,6 @@ def register() -> None:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)
+
+
+from lighting.commands import chooser as _chooser  # noqa: E402,F401 - "Choose luminaire data"
