@@ -3,7 +3,11 @@
 Execute), then as a user types it into the Python console (``exec(open(...).read())``, which
 defines no ``__file__`` of the script). Each run must build, analyse and save the office,
 end on the Lighting workbench with the 3D view fitted and the ceiling shown transparent -
-visible, and in the exported lighting model."""
+visible, and in the exported lighting model. Last, office_model builds into a document
+whose 3D view the user closed (a spreadsheet of it still open): Arch's recompute asks
+Draft for the active 3D view (``get_normal``) and, with none, left the walls without their
+faces ("no face with normal ... through ...") before office_model gave the document an
+active 3D view first."""
 import contextlib
 import io
 import os
@@ -87,6 +91,43 @@ def body() -> None:
     pump(1.0)
     check_finished("console", output, out_console)
     grab_window("example_office_console")
+    FreeCAD.closeDocument(FreeCAD.ActiveDocument.Name)
+    pump(0.3)
+    build_without_view()
+
+
+def build_without_view() -> None:
+    """A document whose 3D view the user closed, a spreadsheet of it still open: the office
+    must still build into it."""
+    import sys
+
+    import FreeCAD
+    import FreeCADGui
+    from PySide import QtGui
+
+    doc = FreeCAD.newDocument("NoView")
+    sheet = doc.addObject("Spreadsheet::Sheet", "Notes")
+    doc.recompute()
+    pump(0.3)
+    mdi = FreeCADGui.getMainWindow().findChild(QtGui.QMdiArea)
+    view_3d = mdi.activeSubWindow()
+    sheet.ViewObject.doubleClicked()  # opens the spreadsheet's own view
+    pump(0.5)
+    view_3d.close()
+    pump(0.5)
+    views = FreeCADGui.getDocument(doc.Name).mdiViewsOfType("Gui::View3DInventor")
+    STATUS["no_view"] = {"views_before": len(views),
+                         "active_gui_document": str(FreeCADGui.ActiveDocument)}
+    expect(not views, "the test document still has a 3D view")
+    sys.path.insert(0, os.path.dirname(EXAMPLE))
+    import office_model
+
+    office_model.build_office(doc)
+    ceiling = doc.getObject(office_model.OBJECTS["ceiling"])
+    STATUS["no_view"]["ceiling_bounds_z"] = [ceiling.Shape.BoundBox.ZMin,
+                                             ceiling.Shape.BoundBox.ZMax]
+    expect(abs(ceiling.Shape.BoundBox.ZMin - office_model.ROOM_Z_MM) < 1e-6,
+           f"the ceiling slab is misplaced: {STATUS['no_view']}")
 
 
 scenario(body)
