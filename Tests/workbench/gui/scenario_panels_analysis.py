@@ -105,6 +105,10 @@ def body() -> None:
            f"the panel is wider than the combo view: {geometry}")
     grab_window("panel_opened")
 
+    panel.buttons["check"].click()
+    pump(0.3)
+    STATUS["check_status"] = panel.status.text()
+    expect("check passed" in panel.status.text(), f"Check: {panel.status.text()}")
     panel.photons.setValue(100000)
     panel.buttons["run"].click()
     # Run returns once the solver thread is started; the panel's timer (not run yet: no

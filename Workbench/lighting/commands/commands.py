@@ -223,7 +223,7 @@ class CommandCheck(BaseCommand):
     def Activated(self) -> None:  # noqa: N802
         """Opens the analysis panel and checks there (report view + the panel's log)."""
         panel = _show_analysis_panel(active_analysis(create=True))
-        if panel is not None:
+        if panel is not None and not panel.is_busy():  # not while its run is solving
             panel.check()
 
 
@@ -234,7 +234,7 @@ class CommandExport(BaseCommand):
 
     def Activated(self) -> None:  # noqa: N802
         panel = _show_analysis_panel(active_analysis(create=True))
-        if panel is not None:
+        if panel is not None and not panel.is_busy():  # not while its run is solving
             panel.export()
 
 
