@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Task panel of an analysis: Check / Export / Run / Cancel with a progress bar, the colour
-scale, the results table (Em, Emin, Emax, U0 with CIs) and a log.
+scale, the results table (Em, Emin, Emax, U0 with CIs) and a log. It fits FreeCAD's default
+combo view (about 264 px): a fixed header with the buttons, sections that scroll below it
+(``add_section``); it is modeless, so the toolbars stay usable while it is open.
 
 Check and the scene export run on the GUI thread (the export keeps the event loop turning);
 the solver runs on a worker thread that a QTimer polls, so the GUI stays responsive and
