@@ -2,10 +2,15 @@
 """Example: build a small office (Arch walls, window, desk, ceiling luminaires), analyse it,
 print the results table and save the .FCStd.
 
-Run headless (after scripts/install-workbench.sh, or from the source tree):
+Run it headless (after scripts/install-workbench.sh, or from the source tree):
 
     freecadcmd Examples/office.py
     LIGHTING_OUT=/tmp/office.FCStd LIGHTING_PHOTONS=500000 freecadcmd Examples/office.py
+
+or in the GUI, also right after FreeCAD starts on its Start page: ``freecad
+Examples/office.py``, Macro > Macros... > Execute, or in the Python console
+``exec(open("/path/to/Examples/office.py").read())``. In the GUI it ends on the Lighting
+workbench with the 3D view fitted and the ceiling shown transparent.
 
 Environment: LIGHTING_OUT (the .FCStd to write; default <tmp>/lighting-example/office.FCStd),
 LIGHTING_PHOTONS (default 200000), LIGHTING_SEED (default 1), LIGHTING_BUILD_ONLY=1 (build
@@ -19,9 +24,31 @@ import tempfile
 import traceback
 
 
+def _examples_dir() -> str:
+    """This file's folder. ``exec(open(...).read())`` in the Python console has no
+    ``__file__`` of its own (or another macro's): then the checkout of the installed
+    workbench (a symlink to its Workbench/ folder), then ./Examples."""
+    candidates = []
+    if globals().get("__file__"):
+        candidates.append(os.path.dirname(os.path.abspath(globals()["__file__"])))
+    try:
+        import lighting
+
+        checkout = os.path.dirname(os.path.dirname(os.path.dirname(
+            os.path.realpath(lighting.__file__))))
+        candidates.append(os.path.join(checkout, "Examples"))
+    except ImportError:  # not installed: only the source checkout can provide it
+        pass
+    candidates.append(os.path.abspath("Examples"))
+    for folder in candidates:
+        if os.path.exists(os.path.join(folder, "office_model.py")):
+            return folder
+    return candidates[0]
+
+
 def _setup_paths() -> None:
     """Make ``lighting`` and ``office_model`` importable from a source checkout too."""
-    here = os.path.dirname(os.path.abspath(globals().get("__file__", "Examples/office.py")))
+    here = _examples_dir()
     for path in (here, os.path.join(os.path.dirname(here), "Workbench")):
         if os.path.isdir(path) and path not in sys.path:
             sys.path.insert(0, path)
@@ -39,6 +66,7 @@ def main() -> int:
     photons = int(os.environ.get("LIGHTING_PHOTONS", "200000"))
     seed = int(os.environ.get("LIGHTING_SEED", "1"))
     doc = office_model.build_office(photons=photons, seed=seed)
+    office_model.show_in_gui(doc)  # GUI only: workbench, fitted view, transparent ceiling
     # Save first, so the scene lands next to the file ('office_lighting/').
     doc.saveAs(out)
     if os.environ.get("LIGHTING_BUILD_ONLY") == "1":
@@ -55,6 +83,7 @@ def main() -> int:
     print(f"office: results {result.results_file}")
     doc.save()
     print(f"office: saved {out}")
+    office_model.show_in_gui(doc)  # again: the results' colours are painted now
     return 0
 
 

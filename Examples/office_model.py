@@ -55,6 +55,30 @@ def find_face(shape: Any, normal: FreeCAD.Vector, point: FreeCAD.Vector,
     return best
 
 
+def prepare_gui_view(doc: Any) -> None:
+    """Give ``doc`` an active 3D view when the GUI is up, before any Arch object recomputes.
+
+    With the GUI up, Arch's profile-based objects (structures, walls) ask Draft's
+    ``get_normal`` for the active 3D view to orient their profile (it flips a normal that
+    points away from the viewer) and fail with "'NoneType' object has no attribute
+    'getViewDirection'" when the GUI has no active document with a 3D view, as right after
+    FreeCAD starts on its Start page. An isometric view never looks along a slab's normal,
+    so the profiles keep the orientation they have headless. Headless this does nothing."""
+    if not FreeCAD.GuiUp:
+        return
+    import FreeCADGui
+
+    gui_doc = FreeCADGui.getDocument(doc.Name)
+    FreeCADGui.setActiveDocument(doc.Name)
+    if not gui_doc.mdiViewsOfType("Gui::View3DInventor"):
+        FreeCADGui.activateView("Gui::View3DInventor", True)
+    views = gui_doc.mdiViewsOfType("Gui::View3DInventor")
+    if FreeCADGui.ActiveDocument is None or not views:
+        raise RuntimeError(f"office_model: document {doc.Name!r} has no 3D view (a hidden "
+                           "document?); Arch objects cannot be built in it while the GUI is up")
+    views[0].viewIsometric()
+
+
 def _slab(arch: Any, doc: Any, name: str, z_mm: float) -> Any:
     slab = arch.makeStructure(None, length=ROOM_X_MM + 2 * WALL_MM,
                               width=ROOM_Y_MM + 2 * WALL_MM, height=SLAB_MM)
@@ -71,6 +95,7 @@ def build_office(doc: Optional[Any] = None, photons: int = 200000, seed: int = 1
 
     arch = import_arch()
     doc = doc or FreeCAD.newDocument("Office")
+    prepare_gui_view(doc)
     # Walls around the room: a closed outline without a face (else Arch fills it), the
     # walls on its outer side ("Left" for this counter-clockwise outline), so the room keeps
     # its inner size.
@@ -149,3 +174,26 @@ def build_office(doc: Optional[Any] = None, photons: int = 200000, seed: int = 1
                     "desk_target": desk_target.Name, "wall_target": wall_target.Name,
                     "desk_face": desk_face, "wall_face": wall_face})
     return doc
+
+
+def show_in_gui(doc: Any, ceiling_transparency: int = 80) -> None:
+    """Present the office in the GUI (nothing headless): the Lighting workbench active, the
+    ceiling transparent so the false colours below it show (it stays visible and in the
+    lighting model: hiding is a viewing choice, transparency keeps it on screen), the
+    document's 3D view active, isometric and fitted."""
+    if not FreeCAD.GuiUp:
+        return
+    import FreeCADGui
+
+    FreeCADGui.activateWorkbench("LightingWorkbench")
+    FreeCADGui.Selection.clearSelection()  # Arch leaves the wall outline selected
+    ceiling = doc.getObject(OBJECTS.get("ceiling", "")) if OBJECTS.get("ceiling") else None
+    if ceiling is not None:
+        ceiling.ViewObject.Visibility = True
+        ceiling.ViewObject.Transparency = ceiling_transparency
+    FreeCADGui.setActiveDocument(doc.Name)
+    views = FreeCADGui.getDocument(doc.Name).mdiViewsOfType("Gui::View3DInventor")
+    if views:
+        FreeCADGui.activateView("Gui::View3DInventor", False)
+        views[0].viewIsometric()
+        views[0].fitAll()

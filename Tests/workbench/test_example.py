@@ -1,4 +1,7 @@
-"""Examples/office.py run the way a user runs it: ``freecadcmd Examples/office.py``."""
+"""Examples/office.py run the way a user runs it: ``freecadcmd Examples/office.py``, and pasted
+into a Python console (``exec(open(...).read())``: no ``__file__``, another current folder).
+The GUI ways (Macro dialog, Python console right after start) are the GUI scenario
+``example_macro``."""
 import os
 import subprocess
 
@@ -17,6 +20,17 @@ def run_example(out: str, **env_extra: str) -> subprocess.CompletedProcess:
 
 
 class Example(DocTestCase):
+    def test_exec_without_file(self):
+        """As typed into a console: the script finds office_model without ``__file__``."""
+        folder = work_dir("example-exec")
+        out = os.path.join(folder, "office.FCStd")
+        env = dict(os.environ, LIGHTING_OUT=out, LIGHTING_BUILD_ONLY="1")
+        proc = subprocess.run(["freecadcmd", "-c", f"exec(open({SCRIPT!r}).read())"], env=env,
+                              capture_output=True, text=True, timeout=300, cwd=folder)
+        self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+        self.assertIn(f"office: model saved to {out}", proc.stdout)
+        self.assertTrue(os.path.exists(out))
+
     def test_build_only(self):
         out = os.path.join(work_dir("example-build"), "office.FCStd")
         proc = run_example(out, LIGHTING_BUILD_ONLY="1")

@@ -76,12 +76,38 @@ def grab_window(name: str, docs_name: Optional[str] = None) -> str:
     """Screenshot of the whole main window as the user sees it (panels, tree, 3D view)."""
     pump(0.3)
     path = os.path.join(OUT, f"{name}.png")
-    main_window().grab().save(path)
+    picture = main_window().grab()
+    _paint_3d_views(picture)
+    picture.save(path)
     STATUS["images"][name] = path
     if docs_name:
         STATUS["docs_images"][name] = docs_name
     log(f"screenshot {path}")
     return path
+
+
+def _paint_3d_views(picture) -> None:
+    """Paint the shown 3D view into ``picture`` (a grab of the main window): a widget grab
+    leaves FreeCAD 0.20's OpenGL view blank, so it is rendered offscreen (saveImage) at its
+    size and drawn where it is on screen."""
+    import tempfile
+
+    import FreeCADGui
+    from PySide import QtCore, QtGui
+
+    window = main_window()
+    shown = [w for w in window.findChildren(QtGui.QWidget)
+             if w.metaObject().className() == "Gui::View3DInventor" and w.isVisible()]
+    view = FreeCADGui.activeView() if FreeCADGui.ActiveDocument is not None else None
+    if len(shown) != 1 or view is None or "View3DInventor" not in str(type(view)):
+        return  # MDI tabs show one view at a time; none shown: nothing to paint
+    widget = shown[0]
+    with tempfile.TemporaryDirectory() as folder:
+        image = os.path.join(folder, "view.png")
+        view.saveImage(image, widget.width(), widget.height(), "Current")
+        painter = QtGui.QPainter(picture)
+        painter.drawImage(widget.mapTo(window, QtCore.QPoint(0, 0)), QtGui.QImage(image))
+        painter.end()
 
 
 def visible_in_window(widget) -> bool:

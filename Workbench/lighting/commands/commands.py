@@ -170,18 +170,48 @@ class CommandPlacementDomain(BaseCommand):
             f"analysis={_analysis_arg()})"])
 
 
-def _show_panel(make_panel: Any, analysis: Any, **options: Any) -> Any:
-    """Closes any open task dialog and opens ``make_panel(analysis, **options)``; returns it."""
+def _open_analysis_panel() -> Optional[Any]:
+    """The analysis panel shown in the task view now, else None."""
+    from lighting.taskpanels import analysis_panel
+
+    panel = analysis_panel.last_panel()
+    if panel is None or not FreeCADGui.Control.activeDialog():
+        return None
+    try:  # shown in the task view, maybe behind the Model tab
+        return panel if panel.form.parentWidget() is not None else None
+    except RuntimeError:  # its widgets were deleted with its dialog
+        return None
+
+
+def _show_panel(make_panel: Any, analysis: Any, **options: Any) -> Optional[Any]:
+    """Closes the open task dialog and opens ``make_panel(analysis, **options)``; returns it.
+    An analysis panel that is still solving is kept (None returned): closing it would
+    cancel the run the user is waiting for."""
+    current = _open_analysis_panel()
+    if current is not None and current.is_busy():
+        text = "an analysis is running: wait for it or press Cancel in its panel first"
+        FreeCAD.Console.PrintWarning(f"Lighting: {text}\n")
+        FreeCADGui.getMainWindow().statusBar().showMessage(f"Lighting: {text}", 8000)
+        return None
+    if current is not None:
+        current.reject()  # stops its timer and closes the dialog
     FreeCADGui.Control.closeDialog()
     panel = make_panel(analysis, **options)
     FreeCADGui.Control.showDialog(panel)
     return panel
 
 
-def _show_analysis_panel(analysis: Any, **options: Any) -> Any:
-    """The analysis panel (Check, Export, Run, Results)."""
+def _show_analysis_panel(analysis: Any, **options: Any) -> Optional[Any]:
+    """The analysis panel (Check, Export, Run, Results): the open one when it shows
+    ``analysis`` (Run starts there unless it is already solving), else a new one."""
     from lighting.taskpanels.analysis_panel import AnalysisTaskPanel
 
+    current = _open_analysis_panel()
+    if current is not None and current.analysis == analysis:
+        FreeCADGui.Control.showTaskView()  # the user may be in the Model tab
+        if options.get("autostart"):
+            current.run()  # returns at once while a run is in progress
+        return current
     return _show_panel(AnalysisTaskPanel, analysis, **options)
 
 
@@ -192,7 +222,9 @@ class CommandCheck(BaseCommand):
 
     def Activated(self) -> None:  # noqa: N802
         """Opens the analysis panel and checks there (report view + the panel's log)."""
-        _show_analysis_panel(active_analysis(create=True)).check()
+        panel = _show_analysis_panel(active_analysis(create=True))
+        if panel is not None and not panel.is_busy():  # not while its run is solving
+            panel.check()
 
 
 class CommandExport(BaseCommand):
@@ -201,7 +233,9 @@ class CommandExport(BaseCommand):
     TIP = "Write the analysis' scene file (scene.json) for the lightsolver CLI"
 
     def Activated(self) -> None:  # noqa: N802
-        _show_analysis_panel(active_analysis(create=True)).export()
+        panel = _show_analysis_panel(active_analysis(create=True))
+        if panel is not None and not panel.is_busy():  # not while its run is solving
+            panel.export()
 
 
 class CommandRun(BaseCommand):

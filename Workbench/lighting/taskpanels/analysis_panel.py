@@ -1,13 +1,15 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Task panel of an analysis: Check / Export / Run / Cancel with a progress bar, the colour
-scale, the results table (Em, Emin, Emax, U0 with CIs) and a log.
+scale, the results table (Em, Emin, Emax, U0 with CIs) and a log. It fits FreeCAD's default
+combo view (about 264 px): a fixed header with the buttons, sections that scroll below it
+(``add_section``); it is modeless, so the toolbars stay usable while it is open.
 
 Check and the scene export run on the GUI thread (the export keeps the event loop turning);
 the solver runs on a worker thread that a QTimer polls, so the GUI stays responsive and
 Cancel works. Results are applied on the GUI thread in one undo step."""
 from __future__ import annotations
 
-from typing import Any, List, Optional
+from typing import Any, Dict, List, Optional
 
 import FreeCAD
 import FreeCADGui
@@ -23,6 +25,8 @@ from lighting.viewproviders.base import icon_path
 POLL_MS = 100
 COLUMNS = ("Target", "Type", "Em lx", "Em CI", "Emin lx", "Emin CI", "Emax lx", "Emax CI",
            "U0", "U0 CI", "Check")
+#: The columns shown in the narrow default panel (the others: "All columns", tooltips).
+ESSENTIAL_COLUMNS = ("Target", "Em lx", "U0", "Check")
 
 _last_run: Optional[machine.AnalysisRun] = None
 _last_panel: Optional["AnalysisTaskPanel"] = None
@@ -53,6 +57,14 @@ def _rows(result: results_mod.AnalysisResult) -> List[List[str]]:
         else:
             rows.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci] + ["-"] * 6 + [verdict])
     return rows
+
+
+def _stacked_form() -> QtGui.QFormLayout:
+    """A form whose rows put the label above the field when the panel is narrow."""
+    form = QtGui.QFormLayout()
+    form.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)
+    form.setFieldGrowthPolicy(QtGui.QFormLayout.AllNonFixedFieldsGrow)
+    return form
 
 
 class LegendWidget(QtGui.QWidget):
@@ -95,7 +107,10 @@ class AnalysisTaskPanel:
         self.analysis = analysis
         self.job: Optional[machine.AnalysisRun] = None
         self.form = QtGui.QWidget()
-        self.form.setWindowTitle(f"Lighting analysis: {analysis.Label}")
+        # The task box does not elide its title, and the title's width is the panel's least
+        # width: the analysis' label only, cut short.
+        label = analysis.Label if len(analysis.Label) <= 24 else analysis.Label[:23] + "\u2026"
+        self.form.setWindowTitle(label)
         self.form.setWindowIcon(QtGui.QIcon(icon_path("Lighting_Analysis")))
         self._build()
         self.timer = QtCore.QTimer()
@@ -106,28 +121,61 @@ class AnalysisTaskPanel:
             QtCore.QTimer.singleShot(0, self.run)
 
     # -- layout --------------------------------------------------------------------------
+    # The combo view is about 264 px wide at FreeCAD's default window size: every section
+    # stacks its rows vertically (labels above their fields where needed), the action
+    # buttons sit in a header that never scrolls, and the sections below scroll vertically.
     def _build(self) -> None:
-        layout = QtGui.QVBoxLayout(self.form)
-        run_box = QtGui.QGroupBox("Run")
-        grid = QtGui.QGridLayout(run_box)
-        self.photons = QtGui.QSpinBox()
-        self.photons.setRange(1, 2_000_000_000)
-        self.photons.setSingleStep(100000)
-        self.photons.setValue(int(self.analysis.Photons))
-        self.accuracy = QtGui.QDoubleSpinBox()
-        self.accuracy.setRange(0.0, 50.0)
-        self.accuracy.setSuffix(" %")
-        self.accuracy.setSpecialValueText("off (fixed photons)")
-        self.accuracy.setValue(float(self.analysis.TargetAccuracy) * 100.0)
-        grid.addWidget(QtGui.QLabel("Photons"), 0, 0)
-        grid.addWidget(self.photons, 0, 1, 1, 3)
-        grid.addWidget(QtGui.QLabel("Target accuracy"), 1, 0)
-        grid.addWidget(self.accuracy, 1, 1, 1, 3)
-        self.buttons = {}
-        for column, (name, text) in enumerate((("check", "Check"), ("export", "Export scene"),
-                                               ("run", "Run"), ("cancel", "Cancel"))):
+        #: Sections of the scrolling body by name, in order (add_section adds more).
+        self.sections: Dict[str, QtGui.QGroupBox] = {}
+        outer = QtGui.QVBoxLayout(self.form)
+        outer.setContentsMargins(0, 0, 0, 0)
+        self.header = self._build_header()
+        outer.addWidget(self.header)
+        self.scroll = QtGui.QScrollArea()
+        self.scroll.setWidgetResizable(True)
+        self.scroll.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        self.scroll.setFrameShape(QtGui.QFrame.NoFrame)
+        body = QtGui.QWidget()
+        self.body_layout = QtGui.QVBoxLayout(body)
+        self.body_layout.setContentsMargins(0, 0, 0, 0)
+        self.body_layout.addStretch(1)
+        self.scroll.setWidget(body)
+        outer.addWidget(self.scroll, 1)
+        self.add_section("settings", "Run settings", self._build_settings())
+        self.add_section("results", "Results (maintained illuminance)", self._build_results())
+        self.add_section("display", "False colours", self._build_display())
+        self.add_section("log", "Log", self._build_log())
+
+    def add_section(self, name: str, title: str, content: QtGui.QLayout,
+                    before: Optional[str] = None) -> QtGui.QGroupBox:
+        """Add a titled section to the scrolling body (at the end, or before section
+        ``before``); returns its group box. Other panels' parts plug in here."""
+        box = QtGui.QGroupBox(title)
+        content.setContentsMargins(4, 4, 4, 4)  # every pixel of width counts here
+        box.setLayout(content)
+        names = list(self.sections)
+        index = names.index(before) if before in self.sections else len(names)
+        self.body_layout.insertWidget(index, box)  # the body's stretch stays last
+        items = list(self.sections.items())
+        items.insert(index, (name, box))
+        self.sections = dict(items)
+        return box
+
+    def _build_header(self) -> QtGui.QWidget:
+        """Action buttons (two per row), progress bar and status: always in view."""
+        header = QtGui.QWidget()
+        grid = QtGui.QGridLayout(header)
+        grid.setContentsMargins(0, 0, 0, 0)
+        self.buttons: Dict[str, QtGui.QPushButton] = {}
+        for index, (name, text, tip) in enumerate((
+                ("check", "Check", "Check the model: luminaires, targets, geometry"),
+                ("run", "Run", "Check, export and solve (in the background)"),
+                ("export", "Export", "Write the scene file for the lightsolver CLI"),
+                ("cancel", "Cancel", "Stop the solver; partial results are kept"))):
             button = QtGui.QPushButton(text)
-            grid.addWidget(button, 2, column)
+            button.setToolTip(tip)
+            button.setMinimumWidth(60)
+            grid.addWidget(button, index // 2, index % 2)
             self.buttons[name] = button
         self.buttons["check"].clicked.connect(self.check)
         self.buttons["export"].clicked.connect(self.export)
@@ -137,14 +185,54 @@ class AnalysisTaskPanel:
         self.progress = QtGui.QProgressBar()
         self.progress.setRange(0, 1000)
         self.progress.setValue(0)
-        grid.addWidget(self.progress, 3, 0, 1, 4)
+        grid.addWidget(self.progress, 2, 0, 1, 2)
         self.status = QtGui.QLabel(f"Status: {self.analysis.Status}")
         self.status.setWordWrap(True)
-        grid.addWidget(self.status, 4, 0, 1, 4)
-        layout.addWidget(run_box)
+        grid.addWidget(self.status, 3, 0, 1, 2)
+        return header
 
-        display = QtGui.QGroupBox("False colours")
-        form = QtGui.QGridLayout(display)
+    def _build_settings(self) -> QtGui.QLayout:
+        form = _stacked_form()
+        self.photons = QtGui.QSpinBox()
+        self.photons.setRange(1, 2_000_000_000)
+        self.photons.setSingleStep(100000)
+        self.photons.setGroupSeparatorShown(True)
+        self.photons.setValue(int(self.analysis.Photons))
+        self.accuracy = QtGui.QDoubleSpinBox()
+        self.accuracy.setRange(0.0, 50.0)
+        self.accuracy.setSuffix(" %")
+        self.accuracy.setSpecialValueText("off (fixed photons)")
+        self.accuracy.setValue(float(self.analysis.TargetAccuracy) * 100.0)
+        self.accuracy.setToolTip("Stop when every target's confidence interval is this "
+                                 "narrow (relative half width); off: trace all photons")
+        form.addRow("Photons", self.photons)
+        form.addRow("Target accuracy", self.accuracy)
+        return form
+
+    def _build_results(self) -> QtGui.QLayout:
+        """The essentials (target, Em, U0, verdict) fit the narrow panel; the confidence
+        intervals, Emin and Emax are in each row's tooltip and behind "All columns"."""
+        layout = QtGui.QVBoxLayout()
+        self.table = QtGui.QTableWidget(0, len(COLUMNS))
+        self.table.setHorizontalHeaderLabels(list(COLUMNS))
+        self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
+        self.table.verticalHeader().setVisible(False)
+        self.table.setTextElideMode(QtCore.Qt.ElideRight)
+        self.table.setWordWrap(False)
+        self.table.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        layout.addWidget(self.table)
+        self.all_columns = QtGui.QCheckBox("All columns")
+        self.all_columns.setToolTip("Show the confidence intervals, Emin and Emax too")
+        self.all_columns.toggled.connect(self._layout_table)
+        layout.addWidget(self.all_columns)
+        self.facts = QtGui.QLabel("")
+        self.facts.setWordWrap(True)
+        layout.addWidget(self.facts)
+        self._layout_table()
+        return layout
+
+    def _build_display(self) -> QtGui.QLayout:
+        form = _stacked_form()
         self.colour_map = QtGui.QComboBox()
         self.colour_map.addItems(list(COLOR_MAPS))
         self.colour_map.setCurrentText(self.analysis.ColorMap)
@@ -159,37 +247,47 @@ class AnalysisTaskPanel:
             box.setDecimals(0)
             box.setSuffix(" lx")
             box.setValue(float(value))
-        form.addWidget(QtGui.QLabel("Map"), 0, 0)
-        form.addWidget(self.colour_map, 0, 1)
-        form.addWidget(QtGui.QLabel("Scale"), 0, 2)
-        form.addWidget(self.scale_mode, 0, 3)
-        form.addWidget(QtGui.QLabel("Min"), 1, 0)
-        form.addWidget(self.scale_min, 1, 1)
-        form.addWidget(QtGui.QLabel("Max"), 1, 2)
-        form.addWidget(self.scale_max, 1, 3)
+        form.addRow("Map", self.colour_map)
+        form.addRow("Scale", self.scale_mode)
+        form.addRow("Fixed min", self.scale_min)
+        form.addRow("Fixed max", self.scale_max)
         self.legend = LegendWidget()
-        form.addWidget(self.legend, 2, 0, 1, 4)
+        form.addRow(self.legend)
         for widget in (self.colour_map, self.scale_mode):
             widget.currentIndexChanged.connect(self._display_changed)
         for widget in (self.scale_min, self.scale_max):
             widget.valueChanged.connect(self._display_changed)
-        layout.addWidget(display)
+        return form
 
-        results_box = QtGui.QGroupBox("Results (maintained illuminance)")
-        box_layout = QtGui.QVBoxLayout(results_box)
-        self.table = QtGui.QTableWidget(0, len(COLUMNS))
-        self.table.setHorizontalHeaderLabels(list(COLUMNS))
-        self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
-        self.table.verticalHeader().setVisible(False)
-        box_layout.addWidget(self.table)
-        self.facts = QtGui.QLabel("")
-        box_layout.addWidget(self.facts)
-        layout.addWidget(results_box)
-
+    def _build_log(self) -> QtGui.QLayout:
+        layout = QtGui.QVBoxLayout()
         self.log_view = QtGui.QPlainTextEdit()
         self.log_view.setReadOnly(True)
         self.log_view.setMaximumHeight(120)
+        # The log holds text tables: unwrapped they stay readable (scrolling sideways).
+        self.log_view.setLineWrapMode(QtGui.QPlainTextEdit.NoWrap)
         layout.addWidget(self.log_view)
+        return layout
+
+    def _layout_table(self, *args: Any) -> None:
+        """Show the essential columns (or all), the target column taking the spare width,
+        and make the table as tall as its rows: the panel scrolls, not the table."""
+        table = self.table
+        every = self.all_columns.isChecked()
+        header = table.horizontalHeader()
+        for column, name in enumerate(COLUMNS):
+            table.setColumnHidden(column, not every and name not in ESSENTIAL_COLUMNS)
+            header.setSectionResizeMode(column, QtGui.QHeaderView.ResizeToContents)
+        if not every:
+            header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
+        table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAsNeeded if every
+                                           else QtCore.Qt.ScrollBarAlwaysOff)
+        table.resizeRowsToContents()
+        height = header.height() + 2 * table.frameWidth()
+        height += sum(table.rowHeight(r) for r in range(table.rowCount()))
+        if every:
+            height += table.horizontalScrollBar().sizeHint().height()
+        table.setFixedHeight(max(height, header.height() + 2 * table.frameWidth() + 4))
 
     # -- helpers -------------------------------------------------------------------------
     def log(self, level: str, text: str) -> None:
@@ -241,16 +339,19 @@ class AnalysisTaskPanel:
         self.legend.set_scale(coloring.scale_for(self.analysis) if result else None)
         self.table.setRowCount(0)
         if result is None:
+            self._layout_table()
             self.facts.setText("No results yet: press Run.")
             return
         for row, values in enumerate(_rows(result)):
             self.table.insertRow(row)
+            tip = "\n".join(f"{name}: {value}" for name, value in zip(COLUMNS, values))
             for column, value in enumerate(values):
                 item = QtGui.QTableWidgetItem(value)
+                item.setToolTip(tip)
                 if value == "FAIL":
                     item.setForeground(QtGui.QBrush(QtGui.QColor(200, 0, 0)))
                 self.table.setItem(row, column, item)
-        self.table.resizeColumnsToContents()
+        self._layout_table()
         facts = (f"{result.photons:.0f} photons, {result.seconds:.2f} s, "
                  f"{result.confidence * 100:g} % confidence intervals")
         if result.partial:
@@ -353,11 +454,32 @@ class AnalysisTaskPanel:
         self._set_status(self.analysis.Status)
         self.log("info", "Results:\n" + result.table())
         self._show_stored_results()
+        self.scroll.ensureWidgetVisible(self.table)
         FreeCADGui.updateGui()
 
     # -- task dialog protocol -------------------------------------------------------------
     def getStandardButtons(self) -> int:  # noqa: N802 (FreeCAD API name)
         return int(QtGui.QDialogButtonBox.Close)
+
+    def needsFullSpace(self) -> bool:  # noqa: N802 (FreeCAD API name)
+        """Take the task view's height: the body scrolls inside it, the header stays."""
+        return True
+
+    # The panel is modeless: the model stays editable while it is open (add a luminaire, a
+    # target, a grid). FreeCAD disables every command that alters the document, the view or
+    # the selection while a task dialog that does not allow it is open.
+    def isAllowedAlterDocument(self) -> bool:  # noqa: N802 (FreeCAD API name)
+        return True
+
+    def isAllowedAlterView(self) -> bool:  # noqa: N802 (FreeCAD API name)
+        return True
+
+    def isAllowedAlterSelection(self) -> bool:  # noqa: N802 (FreeCAD API name)
+        return True
+
+    def is_busy(self) -> bool:
+        """True while a run of this panel is in progress."""
+        return self.job is not None and not self.job.finished
 
     def reject(self) -> bool:
         """Close: cancel a running solve first (waits briefly for the worker)."""
