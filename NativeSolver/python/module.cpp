@@ -401,6 +401,15 @@ PYBIND11_MODULE(lightsolver, m) {
         return check_dict(check_scene_json(text, "<string>", base_dir));
       },
       py::arg("text"), py::arg("base_dir") = ".", "check_scene for scene JSON text");
+  m.def(
+      "write_polar_plot",
+      [](const std::string& path, const std::string& png_path) {
+        write_polar_plot_png(load_photometry(path), png_path);
+      },
+      py::arg("path"), py::arg("png_path"),
+      "Writes the polar intensity diagram of an IES or LDT file (C0-C180 and C90-C270 planes) "
+      "as a PNG, the same picture as `lightsolver photometry FILE --plot PNG`. Raises "
+      "lightsolver.InputError for a bad file");
   m.def("photometry_summary", &photometry_summary_dict, py::arg("path"),
         "Facts of an IES or LDT file from the solver's parser: lamp_lumens_lm (None for absolute "
         "photometry), rated_lumens_lm, integrated_lumens_lm, peak_cd and its angles, "

@@ -236,14 +236,11 @@ def list_entries(folder: Optional[str] = None, shipped: bool = True) -> List[Lib
 # -- polar diagram -----------------------------------------------------------------------------
 def polar_diagram_png(path: str, out_dir: Optional[str] = None) -> str:
     """A PNG of the file's polar diagram (C0-C180 red, C90-C270 blue), drawn by the native
-    solver's own plotter (``lightsolver photometry FILE --plot PNG``). Cached by path and
-    modification time. Raises ValueError when the CLI is missing or rejects the file."""
+    solver's own plotter: the module's ``write_polar_plot``, or where only the program is
+    found, ``lightsolver photometry FILE --plot PNG``. Cached by path and modification time.
+    Raises ValueError when neither is found or the file is rejected."""
     from lighting.solver import run
 
-    cli = run.cli_executable()
-    if cli is None:
-        raise ValueError(f"{path}: no polar diagram - the lightsolver program was not found "
-                         f"(build it, or set {run.ENV_CLI})")
     stat = os.stat(path)
     key = hashlib.sha1(f"{os.path.abspath(path)}|{stat.st_mtime_ns}|{stat.st_size}"
                        .encode()).hexdigest()[:16]
@@ -252,6 +249,17 @@ def polar_diagram_png(path: str, out_dir: Optional[str] = None) -> str:
     png = os.path.join(folder, f"{key}.png")
     if os.path.isfile(png):
         return png
+    module = run.load_module() if run.solver_available()[0] else None
+    if module is not None and hasattr(module, "write_polar_plot"):
+        try:
+            module.write_polar_plot(os.path.abspath(path), png)
+        except ValueError as error:  # lightsolver.InputError names the file and line
+            raise ValueError(str(error)) from error
+        return png
+    cli = run.cli_executable()
+    if cli is None:
+        raise ValueError(f"{path}: no polar diagram - neither the lightsolver module nor the "
+                         f"program was found (build it, or set {run.ENV_CLI})")
     proc = subprocess.run([cli, "photometry", os.path.abspath(path), "--plot", png],
                           capture_output=True, text=True, timeout=60, check=False)
     if proc.returncode != 0 or not os.path.isfile(png):
