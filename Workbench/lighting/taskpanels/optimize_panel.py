@@ -74,10 +74,18 @@ class SearchJob:
 
 def _field(layout: QtGui.QVBoxLayout, label: str, widget: QtGui.QWidget) -> QtGui.QWidget:
     """A label above its field: the combo view is too narrow for side-by-side rows."""
-    layout.addWidget(QtGui.QLabel(label))
+    layout.addWidget(_label(label))
     widget.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Fixed)
     layout.addWidget(widget)
     return widget
+
+
+def _label(text: str) -> QtGui.QLabel:
+    """A label that wraps instead of widening the panel."""
+    label = QtGui.QLabel(text)
+    label.setWordWrap(True)
+    label.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Preferred)
+    return label
 
 
 def _spin(low: int, high: int, value: int, special: str = "") -> QtGui.QSpinBox:
@@ -101,7 +109,9 @@ class OptimizeTaskPanel:
         self.targets = analysis_mod.targets(analysis)
         self._console_at = 0.0
         self.form = QtGui.QWidget()
-        self.form.setWindowTitle(f"Optimize placement: {analysis.Label}")
+        # Short: the task box's title bar does not wrap and would widen the panel.
+        self.form.setWindowTitle("Optimize placement")
+        self.form.setToolTip(f"Placement domains of {analysis.Label}")
         self.form.setWindowIcon(QtGui.QIcon(icon_path("Lighting_Optimize")))
         self._build()
         self.timer = QtCore.QTimer()
@@ -142,7 +152,7 @@ class OptimizeTaskPanel:
         self.status.setWordWrap(True)
         self.status.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Preferred)
         layout.addWidget(self.status)
-        layout.addWidget(QtGui.QLabel("Optima, best first (details: tooltip)"))
+        layout.addWidget(_label("Optima, best first (details: tooltip)"))
         self.table = QtGui.QTableWidget(0, 2)
         self.table.setHorizontalHeaderLabels(["Layout", "Em / U0"])
         self.table.setSelectionBehavior(QtGui.QAbstractItemView.SelectRows)
@@ -176,7 +186,7 @@ class OptimizeTaskPanel:
     def _budget_box(self) -> QtGui.QGroupBox:
         box = QtGui.QGroupBox("Search budget")
         col = QtGui.QVBoxLayout(box)
-        self.evaluations = _field(col, "Evaluations (traces; sets the time)",
+        self.evaluations = _field(col, "Evaluations (traces: the time)",
                                   _spin(0, 10_000_000, DEFAULT_EVALUATIONS, "no limit"))
         self.iterations = _field(col, "Iterations", _spin(1, 1_000_000, 200))
         # The adaptive photon counts (paper Sec. IV-A): n screens every candidate, N confirms
