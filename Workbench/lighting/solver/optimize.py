@@ -1,13 +1,14 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Inverse design from the document: where should the luminaires of the placement domains go?
 
-Each placement domain with a ``Template`` luminaire places ``MaxLuminaires`` luminaires: the
-template itself and copies of it, each a ``position`` variable (docs/optimization.md §10) on
-the domain's candidate lattice (``placement_domain.optimization_rectangle``). The exported
-scene gets the copies, the ``optimization`` block is built from the intention given here, and
+Each placement domain with a ``Template`` luminaire places up to ``MaxLuminaires`` luminaires:
+the template itself and copies of it, each a ``position`` variable (docs/optimization.md §10)
+on the domain's candidate lattice (``placement_domain.optimization_rectangle``), never two in
+one place. The exported scene gets the copies, the ``optimization`` block is built from the
+intention (by default what the target requires: docs/optimization.md §12), and
 ``lightsolver.optimize`` returns the set of statistically indistinguishable optimal
-configurations (ISOC). :meth:`PlacementResult.apply` moves the template and creates or moves
-its copies in the document."""
+configurations (ISOC). :meth:`PlacementResult.apply` leaves exactly the chosen layout's
+luminaires for the domains, in one undo step."""
 from __future__ import annotations
 
 import copy
