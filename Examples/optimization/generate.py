@@ -6,7 +6,8 @@
               irradiance: the optimum is under the lens centre (0.65, 0.45).
 * conference/ a meeting room (table, chairs, podium: tens of thousands of triangles) with two
               square ceiling lights moved in x, y to maximise the irradiance of the podium's desk: the
-              optimum has both lights above the podium (2.0, 6.0).
+              optimum has one light above the podium (2.0, 6.0) and the other next to it (two
+              lights never share a cell; the paper's search put both in one).
 * hangar/     a hangar, mirror-symmetric about x = 20, with two tube lights (x = 9.5 and 30.5) and
               a glass box moved on the floor: two optima, one under each light.
 * small_room/ a 4 x 4 m room, two ceiling points and their common flux: minimise installed

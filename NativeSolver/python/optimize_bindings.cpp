@@ -19,9 +19,12 @@ namespace opt = lightsolver::optimizer;
 
 namespace {
 
-py::dict stats_dict(const opt::IterationStats& s) {
+py::dict stats_dict(const opt::IterationStats& s, const char* event) {
   py::dict d;
+  d["event"] = event;
   d["iteration"] = s.iteration;
+  d["evaluations"] = s.total_evaluations;
+  d["elapsed_seconds"] = s.elapsed_seconds;
   d["k"] = s.k;
   d["isoc_size"] = s.isoc_size;
   d["total_photons"] = s.total_photons;
@@ -98,15 +101,24 @@ py::dict optimize_py(py::object scene, py::object optimization,
   control.cancel = &stop;
   std::optional<py::error_already_set> failure;
   if (!progress.is_none()) {
-    control.progress = [&](const opt::IterationStats& s) {
+    auto call = [&](const opt::IterationStats& s, const char* event) {
       py::gil_scoped_acquire gil;
       try {
-        py::object r = progress(stats_dict(s));
+        py::object r = progress(stats_dict(s, event));
         return r.is_none() || r.cast<bool>();
       } catch (py::error_already_set& e) {
         failure = std::move(e);  // re-raised once the search has stopped
         return false;
       }
+    };
+    control.progress = [call](const opt::IterationStats& s) { return call(s, "iteration"); };
+    // Every trace, at most 4 times a second (synthetic or tiny scenes trace in microseconds):
+    // an iteration's descent may take minutes, and the caller wants progress within seconds.
+    auto last = std::make_shared<double>(-1.0);
+    control.on_evaluation = [call, last](const opt::IterationStats& s) {
+      if (*last >= 0.0 && s.elapsed_seconds - *last < 0.25) return true;
+      *last = s.elapsed_seconds;
+      return call(s, "evaluation");
     };
   }
   std::string json;
@@ -133,8 +145,10 @@ void bind_optimizer(py::module_& m) {
 scene: a scene file path (its "optimization" block is used unless `optimization` is given) or a
     Scene (then `optimization` is required: the block as a dict, docs/optimization.md).
 iterations, seed, screening_photons (n), confirmation_photons (N): override the block's search.
-progress: called after every iteration with a dict (iteration, k, best=(mean, lo, hi) or None,
-    isoc_size, total_photons, update_seconds, trace_seconds, other_seconds); return False to stop.
+progress: called with a dict after every iteration (event="iteration") and after traces
+    (event="evaluation", at most 4 times a second): iteration (completed), evaluations (so
+    far), elapsed_seconds, k, best=(mean, lo, hi) or None, isoc_size, total_photons,
+    update_seconds, trace_seconds, other_seconds; return False to stop.
 cancel: a CancelToken; cancel() from another thread stops the search within one trace.
 backend: a name from backends() ("auto": a real GPU when one is usable, else Embree).
 Returns the result as a dict (format lightsolver.optimization/1): isoc members with cells,

@@ -41,12 +41,16 @@ def test_progress_reports_every_iteration_and_can_stop() -> None:
 
     def progress(s: dict) -> bool:
         seen.append(s)
-        return s["iteration"] < 2
+        return s["event"] != "iteration" or s["iteration"] < 2
 
     r = lightsolver.optimize(SMALL_ROOM, iterations=10, progress=progress, threads=2)
-    assert [s["iteration"] for s in seen] == [1, 2]
+    assert [s["iteration"] for s in seen if s["event"] == "iteration"] == [1, 2]
     assert r["stop"] == "cancelled"
-    assert seen[-1]["trace_seconds"] > 0 and seen[-1]["total_photons"] > 0
+    iterations = [s for s in seen if s["event"] == "iteration"]
+    assert sum(s["trace_seconds"] for s in iterations) > 0 and iterations[-1]["total_photons"] > 0
+    # The first report comes after the first trace, before any iteration has ended.
+    assert seen[0]["event"] == "evaluation" and seen[0]["iteration"] == 0
+    assert seen[0]["evaluations"] >= 1 and seen[0]["elapsed_seconds"] > 0
 
 
 def test_cancel_token_stops_a_long_run_and_the_gil_is_released() -> None:

@@ -352,6 +352,7 @@ def optimize_in_gui(doc):
     panel.iterations.setValue(8)
     panel.screening.setValue(20000)
     panel.confirmation.setValue(100000)
+    panel.ask_replace_others = lambda others: False  # keep the other panels (no dialog here)
     panel.buttons["run"].click()
     start = time.monotonic()
     while panel.job is not None and not (panel.job.finished and not panel.timer.isActive()):

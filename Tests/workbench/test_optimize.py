@@ -5,7 +5,8 @@ import FreeCAD
 
 import lighting
 from lighting.objects import placement_domain as domain_mod
-from wbtest import DocTestCase, needs_solver, work_dir
+from lighting.solver import optimize
+from wbtest import DocTestCase, load_scene, needs_solver, work_dir
 
 V = FreeCAD.Vector
 
@@ -97,13 +98,39 @@ class Optimize(DocTestCase):
         self.assertEqual(copy.Label, f"{lum.Label}_copy1")
         self.assertIn(copy, analysis.Group)
         self.assertEqual(copy.LuminaireType, "Point")
-        for obj in placed:  # both over the desk, where the target wants them
-            self.assertTrue(near(obj.Placement.Base, (3000.0, 3000.0, 2950.0), 1e-6))
+        # Both want the cell over the desk, but never share one: one takes it, the other the
+        # nearest free candidate (1 m away).
+        a, b = (o.Placement.Base for o in placed)
+        self.assertAlmostEqual((a - b).Length, 1000.0, 6)
+        self.assertTrue(any(near(p, (3000.0, 3000.0, 2950.0), 1e-6) for p in (a, b)))
         # The copy is now a luminaire of the analysis: the next run moves it, adds none.
         second = lighting.optimize_placement(doc, target, output_dir=work_dir("opt3"), **kwargs)
         self.assertEqual([p.obj for p in second.placements], [lum, copy])
         second.apply()
         self.assertEqual(len(doc.Objects), before + 1)
+
+    def test_eta_is_measured_time_per_trace_times_traces_left(self):
+        stats = {"evaluations": 10, "elapsed_seconds": 5.0, "iteration": 0}
+        self.assertAlmostEqual(optimize.eta_seconds(stats, 200, 40), 15.0)  # 30 traces x 0.5 s
+        self.assertIsNone(optimize.eta_seconds(stats, 200, 0))  # no iteration done: unknown
+        stats["iteration"] = 2  # 5 traces per iteration: the iteration budget ends later
+        self.assertAlmostEqual(optimize.eta_seconds(stats, 200, 40), 15.0)
+        self.assertAlmostEqual(optimize.eta_seconds(stats, 4, 0), 5.0)  # 2 x 5 x 0.5 s
+        self.assertIsNone(optimize.eta_seconds({"evaluations": 1, "elapsed_seconds": 0.2}, 9))
+        text = optimize.format_progress(dict(stats, best=(600.0, 550.0, 650.0), isoc_size=3),
+                                        200, 40)
+        self.assertIn("10 of 40 evaluations", text)
+        self.assertIn("about 15 s left", text)
+
+    def test_default_intention_follows_the_target_requirements(self):
+        doc, *_ = build_room()
+        grid = lighting.make_grid_target(doc, doc.getObject("Floor"), "Face6", required_lux=500.0,
+                                         required_uniformity=0.6)
+        self.assertEqual(optimize.default_intention(grid),
+                         ("minimize_installed_flux", 500.0, 0.6))
+        grid.RequiredLux = 0.0
+        self.assertEqual(optimize.default_intention(grid)[0], "maximize_mean_illuminance")
+
 
     def test_bad_requests_name_the_problem(self):
         doc, analysis, lum, target, domain = build_room()
@@ -132,3 +159,100 @@ class Optimize(DocTestCase):
             lighting.optimize_placement(doc, target, goal="maximize_mean_illuminance",
                                         output_dir=work_dir("bad"))
         self.assertIn("no Template", str(ctx.exception.report.format()))
+
+
+def luminaire_positions(analysis):
+    """{label: global position (mm)} of the analysis' luminaires."""
+    from lighting.objects import analysis as analysis_mod
+
+    return {o.Label: o.getGlobalPlacement().Base for o in analysis_mod.luminaires(analysis)}
+
+
+def smallest_gap_mm(points):
+    pts = list(points)
+    return min(((a - b).Length for i, a in enumerate(pts) for b in pts[i + 1:]),
+               default=float("inf"))
+
+
+class OfficeOptimize(DocTestCase):
+    """The office example as a designer meets it: four hand-placed panels, a workplane that
+    requires Em 500 lx and U0 0.6, a ceiling domain for up to six panels."""
+
+    KW = dict(iterations=200, evaluations=30, seed=1, screening_photons=20000,
+              confirmation_photons=200000)
+
+    def setUp(self):
+        from wbtest import build_office
+        import office_model
+
+        self.doc = build_office(photons=20000)
+        self.doc.UndoMode = 1
+        names = office_model.OBJECTS
+        self.analysis = self.doc.getObject(names["analysis"])
+        self.workplane = self.doc.getObject(names["workplane"])
+        self.before = luminaire_positions(self.analysis)
+
+    @needs_solver
+    def test_replacing_leaves_exactly_the_optimum_and_undo_restores(self):
+        others = optimize.others_on_domains(self.analysis)
+        self.assertEqual(sorted(o.Label for o in others),
+                         ["Luminaire02", "Luminaire03", "Luminaire04"])
+        progress = []
+        result = lighting.optimize_placement(
+            self.doc, self.workplane, output_dir=work_dir("office-replace"),
+            replace_others=True, progress=progress.append, **self.KW)
+        # The default intention for a target with requirements: least flux meeting them.
+        scene = load_scene(result.scene_file)
+        self.assertEqual(scene["optimization"]["intention"],
+                         {"type": "minimize_installed_flux", "target": self.workplane.Name,
+                          "min_mean_lux": 500.0, "min_uniformity": 0.6})
+        names = {lum["name"] for lum in scene["luminaires"]}
+        self.assertFalse(names & {o.Name for o in others})  # left out of the search
+        # Progress came per trace, long before the first iteration ended, with a time estimate.
+        first = progress[0]
+        self.assertEqual(first["event"], "evaluation")
+        self.assertEqual(first["iteration"], 0)
+        self.assertTrue(any(p["eta_s"] is not None and p["iteration"] == 0 for p in progress))
+        members = result.members
+        self.assertGreater(len(members), 0, result.raw["counters"])
+        best = members[0]
+        em, u0 = best["constraints"]
+        self.assertGreaterEqual(em, 500.0)
+        self.assertGreaterEqual(u0, 0.6)
+        self.assertEqual(best["mean"], best["count"] * 5200.0 * 0.8)  # maintained flux
+        for m in members:
+            self.assertGreaterEqual(smallest_gap_mm(
+                FreeCAD.Vector(*p) * 1000.0 for p in m["positions_m"].values()), 599.0)
+        undo_steps = self.doc.UndoCount
+        placed = result.apply()
+        self.assertEqual(self.doc.UndoCount, undo_steps + 1)  # one undo step
+        after = luminaire_positions(self.analysis)
+        self.assertEqual(len(after), best["count"])
+        self.assertEqual(len(placed), best["count"])
+        self.assertEqual(sorted(after), sorted(o.Label for o in placed))
+        self.assertGreaterEqual(smallest_gap_mm(after.values()), 599.0)
+        for label in ("Luminaire02", "Luminaire03", "Luminaire04"):
+            self.assertIsNone(self.doc.getObjectsByLabel(label) or None)
+        self.doc.undo()
+        self.doc.recompute()
+        restored = luminaire_positions(self.analysis)
+        self.assertEqual(sorted(restored), sorted(self.before))
+        for label, p in self.before.items():
+            self.assertLess((restored[label] - p).Length, 1e-6, label)
+
+    @needs_solver
+    def test_keeping_others_touches_none_of_them(self):
+        result = lighting.optimize_placement(
+            self.doc, self.workplane, output_dir=work_dir("office-keep"), **self.KW)
+        self.assertEqual(result.removed, [])
+        members = result.members
+        self.assertGreater(len(members), 0, result.raw["counters"])
+        placed = result.apply()
+        after = luminaire_positions(self.analysis)
+        for label in ("Luminaire02", "Luminaire03", "Luminaire04"):
+            self.assertLess((after[label] - self.before[label]).Length, 1e-9, label)
+        own = [label for label in after if label not in ("Luminaire02", "Luminaire03",
+                                                         "Luminaire04")]
+        self.assertEqual(sorted(own), sorted(o.Label for o in placed))
+        self.assertEqual(len(own), members[0]["count"])
+        self.assertGreaterEqual(smallest_gap_mm(after.values()), 599.0)  # none on the others

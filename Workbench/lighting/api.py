@@ -80,32 +80,45 @@ def analyze(doc: Any, analysis: Any = None, photons: Optional[int] = None,
     return result
 
 
-def optimize_placement(doc: Any, target: Any, goal: str = "maximize_uniformity",
+def optimize_placement(doc: Any, target: Any, goal: Optional[str] = None,
                        min_mean_lux: Optional[float] = None,
                        min_uniformity: Optional[float] = None, iterations: int = 200,
                        seed: int = 1, analysis: Any = None, output_dir: Optional[str] = None,
                        screening_photons: Optional[int] = None,
                        confirmation_photons: Optional[int] = None,
-                       progress: Optional[Callable[[dict], Any]] = None) -> Any:
-    """Find where the placement domains' luminaires should go (docs/workbench.md).
+                       progress: Optional[Callable[[dict], Any]] = None,
+                       evaluations: Optional[int] = None,
+                       replace_others: bool = False) -> Any:
+    """Find where the placement domains' luminaires should go (docs/optimization.md §12).
 
-    Each placement domain with a Template places MaxLuminaires luminaires on its candidate
-    lattice: the template and copies of it. The search (docs/optimization.md) returns every
-    configuration statistically indistinguishable from the best.
+    Each placement domain with a Template places up to MaxLuminaires luminaires on its
+    candidate lattice: the template and copies of it, never two in one place (nor closer than
+    the domain's MinSpacing). The search returns every configuration statistically
+    indistinguishable from the best.
 
     Args:
         target: the target object the intention is about.
-        goal: "maximize_uniformity" (needs min_mean_lux), "minimize_installed_flux" (needs
-            min_mean_lux and min_uniformity), "maximize_mean_illuminance" or
-            "minimize_mean_illuminance".
-        iterations, seed: of the search; screening_photons (n), confirmation_photons (N):
-            the adaptive photon counts (default: the optimizer's).
-        progress: called after every iteration with a dict; return False to stop.
+        goal: None (default): what the target asks for - with a required Em on a grid,
+            "minimize_installed_flux" ("meet Em and U0 with the least installed flux": the
+            search also chooses how many luminaires, between MinLuminaires and MaxLuminaires),
+            else "maximize_mean_illuminance". Or one of "minimize_installed_flux" (needs
+            min_mean_lux and min_uniformity), "maximize_uniformity" (needs min_mean_lux),
+            "maximize_mean_illuminance", "minimize_mean_illuminance". Required levels left
+            None come from the target's RequiredLux / RequiredUniformity with goal None.
+        iterations, evaluations, seed: the search's budgets (evaluations = traces; None: no
+            limit) and seed; screening_photons (n), confirmation_photons (N): the adaptive
+            photon counts (default: the optimizer's).
+        progress: called within seconds of the start and then at most 4 times a second with a
+            dict (evaluations, iteration, elapsed_seconds, best, isoc_size, eta_s = estimated
+            seconds left or None); return False to stop.
+        replace_others: the luminaires on a domain's face that no domain places (e.g. a
+            layout drawn by hand) are left out of the search and deleted by apply(). False
+            (default): they are kept, untouched, and their light counts.
 
     Returns:
-        :class:`lighting.solver.optimize.PlacementResult`: ``.members`` (best first, with
-        ``positions_m`` per luminaire) and ``.apply(member=0)``, which moves the template and
-        creates or moves its copies in the document.
+        :class:`lighting.solver.optimize.PlacementResult`: ``.members`` (distinct layouts,
+        best first, with ``positions_m`` per installed luminaire) and ``.apply(member=0)``,
+        which leaves exactly that layout's luminaires for the domains (one undo step).
     """
     from lighting.export.scene import default_output_directory
     from lighting.solver.optimize import run_optimization
@@ -113,7 +126,8 @@ def optimize_placement(doc: Any, target: Any, goal: str = "maximize_uniformity",
     obj = _analysis(doc, analysis)
     return run_optimization(obj, target, goal, min_mean_lux, min_uniformity, iterations, seed,
                             output_dir or default_output_directory(obj), progress,
-                            screening_photons, confirmation_photons)
+                            screening_photons, confirmation_photons, evaluations,
+                            replace_others)
 
 
 def check(doc: Any, analysis: Any = None, need_solver: bool = True) -> Report:

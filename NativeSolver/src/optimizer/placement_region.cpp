@@ -1,5 +1,7 @@
 #include "optimizer/placement_region.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <glm/geometric.hpp>
 
 namespace lightsolver::optimizer::regions {
@@ -85,6 +87,68 @@ std::function<bool(const Configuration&)> admissible_filter(const SceneProblem& 
     }
     return true;
   };
+}
+
+namespace {
+
+// Where a luminaire "is" for placement: its position, or the centre of its parallelogram (as
+// the scene evaluator's anchor).
+glm::dvec3 anchor(const Luminaire& l) {
+  const bool sheet = l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional;
+  return sheet ? l.corner + 0.5 * (l.edge1 + l.edge2) : l.position;
+}
+
+struct Mover {
+  std::size_t first;          // the variable's u; v is first + 1
+  glm::dvec3 corner, e1, e2;  // its rectangle
+  std::vector<glm::dvec3> offsets;
+};
+
+}  // namespace
+
+std::function<bool(const Configuration&)> spacing_filter(const SceneProblem& p) {
+  std::vector<Mover> movers;
+  std::vector<bool> moved(p.scene.luminaires.size(), false);
+  for (const SceneVariable& v : p.variables) {
+    if (v.type != SceneVariable::Type::kPosition) continue;
+    movers.push_back({v.first, v.corner, v.edge1, v.edge2, v.offsets});
+    for (std::size_t i : v.luminaires) moved[i] = true;
+  }
+  std::vector<glm::dvec3> fixed;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    const Luminaire& l = p.scene.luminaires[i];
+    if (!moved[i] && l.type != Luminaire::Type::Directional) fixed.push_back(anchor(l));
+  }
+  if (movers.empty() || (movers.size() == 1 && fixed.empty())) return {};
+  const double min2 = std::pow(std::max(p.min_spacing_m, 1e-6), 2);
+  return [movers, fixed, min2, domain = p.domain](const Configuration& c) {
+    std::vector<std::pair<std::size_t, glm::dvec3>> placed;  // (mover, anchor)
+    for (std::size_t k = 0; k < movers.size(); ++k) {
+      const Mover& m = movers[k];
+      const glm::dvec3 at = m.corner + domain.variables()[m.first].value(c[m.first]) * m.e1 +
+                            domain.variables()[m.first + 1].value(c[m.first + 1]) * m.e2;
+      for (const glm::dvec3& o : m.offsets) {
+        const glm::dvec3 q = at + o;
+        for (const glm::dvec3& f : fixed) {
+          const glm::dvec3 d = q - f;
+          if (glm::dot(d, d) < min2) return false;
+        }
+        for (const auto& [other, r] : placed) {
+          const glm::dvec3 d = q - r;
+          if (other != k && glm::dot(d, d) < min2) return false;
+        }
+        placed.emplace_back(k, q);
+      }
+    }
+    return true;
+  };
+}
+
+std::function<bool(const Configuration&)> both(std::function<bool(const Configuration&)> a,
+                                               std::function<bool(const Configuration&)> b) {
+  if (!a) return b;
+  if (!b) return a;
+  return [a = std::move(a), b = std::move(b)](const Configuration& c) { return a(c) && b(c); };
 }
 
 }  // namespace lightsolver::optimizer::regions

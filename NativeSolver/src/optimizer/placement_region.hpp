@@ -26,4 +26,14 @@ bool inside(const PlacementRegion& region, glm::dvec2 q);
 /// Empty when no variable has one.
 std::function<bool(const Configuration&)> admissible_filter(const SceneProblem& p);
 
+/// Luminaires never share a place: every luminaire moved by a position variable keeps its
+/// anchor at least max(p.min_spacing_m, 1 µm) from the anchors of the luminaires of the other
+/// position variables and of the luminaires no variable moves. (Luminaires moved together by
+/// one variable keep their own offsets.) Empty when no position variable could collide.
+std::function<bool(const Configuration&)> spacing_filter(const SceneProblem& p);
+
+/// Both filters (either may be empty; empty when both are).
+std::function<bool(const Configuration&)> both(std::function<bool(const Configuration&)> a,
+                                               std::function<bool(const Configuration&)> b);
+
 }  // namespace lightsolver::optimizer::regions

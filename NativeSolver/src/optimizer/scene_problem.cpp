@@ -348,7 +348,7 @@ std::vector<Configuration> read_initial(const JsonNode& n, const Domain& d) {
 VnsOptions read_search(const JsonNode& n, const SceneProblem& p) {
   n.require_object({"seed", "confidence", "screening_photons", "confirmation_photons", "strategy",
                     "uncertain", "max_iterations", "max_evaluations", "starts", "kmax",
-                    "local_search", "neighbourhood", "initial"});
+                    "local_search", "neighbourhood", "initial", "min_spacing_m"});
   VnsOptions o;
   o.confidence = p.scene.settings.confidence;
   if (n.has("seed")) o.seed = n.at("seed").unsigned_integer();
@@ -410,10 +410,20 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
   } else {
     p.search.confidence = p.scene.settings.confidence;
   }
-  p.search.admissible = regions::admissible_filter(p);
+  if (root.has("search") && root.at("search").has("min_spacing_m")) {
+    const JsonNode spacing = root.at("search").at("min_spacing_m");
+    p.min_spacing_m = spacing.number();
+    if (!(p.min_spacing_m >= 0.0)) spacing.fail("must be >= 0");
+  }
+  // Cells off a `within` region and cells with two luminaires in one place (or closer than
+  // min_spacing_m) are never traced, so no optimum can hold them.
+  p.search.admissible =
+      regions::both(regions::admissible_filter(p), regions::spacing_filter(p));
   for (std::size_t i = 0; i < p.search.initial.size(); ++i) {
     if (p.search.admissible && !p.search.admissible(p.search.initial[i])) {
-      root.at("search").at("initial")[i].fail("a cell centre lies outside its variable's `within`");
+      root.at("search").at("initial")[i].fail(
+          "not admissible: a cell centre lies outside its variable's `within`, or two "
+          "luminaires are closer than min_spacing_m (or in one place)");
     }
   }
   return p;

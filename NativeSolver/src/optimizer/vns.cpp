@@ -74,6 +74,8 @@ class Search {
   Configuration descend(Configuration x);
   void begin_iteration() { it_ = {}; }
   void end_iteration(std::uint32_t start, std::uint32_t k);
+  IterationStats snapshot() const;
+  void report_evaluation();
   void refine();
   OptimizationResult build_result(Clock::time_point t0);
 
@@ -94,6 +96,7 @@ class Search {
   IterationAccumulator it_;
   std::vector<IterationStats> history_;
   std::optional<StopReason> stop_;
+  Clock::time_point t0_ = Clock::now();
 };
 
 bool Search::check_stop(bool ignore_limit) {
@@ -128,7 +131,37 @@ const Evaluation* Search::evaluate(std::uint64_t cell, const Configuration& c,
   it_.photons += photons;
   it_.update += e.update_seconds;
   it_.trace += e.trace_seconds;
-  return &cache_.insert(cell, photons, std::move(e));
+  const Evaluation* stored = &cache_.insert(cell, photons, std::move(e));
+  report_evaluation();
+  return stored;
+}
+
+// The run so far, for the per-evaluation callback: an iteration's descent may trace dozens of
+// cells (2 per variable and step), so per-iteration progress alone can stay silent for minutes.
+void Search::report_evaluation() {
+  if (!ctl_.on_evaluation) return;
+  IterationStats st = snapshot();
+  st.iteration = counters_.iterations;
+  if (!ctl_.on_evaluation(st)) stop_ = StopReason::kCancelled;
+}
+
+IterationStats Search::snapshot() const {
+  IterationStats st;
+  st.update_seconds = it_.update;
+  st.trace_seconds = it_.trace;
+  st.other_seconds = std::max(0.0, seconds_since(it_.t0) - it_.update - it_.trace);
+  st.evaluations = it_.evaluations;
+  st.photons = it_.photons;
+  st.total_photons = counters_.photons;
+  st.total_evaluations = counters_.evaluations;
+  st.elapsed_seconds = seconds_since(t0_);
+  st.isoc_size = isoc_.size();
+  st.siisoc = isoc_.siisoc();
+  if (const IsocMember* b = isoc_.best()) {
+    st.has_best = true;
+    st.best = b->estimate;
+  }
+  return st;
 }
 
 // Traces a cell (cache first) and, the first time, offers it to the ISOC. False when the run
@@ -244,38 +277,33 @@ void Search::run_start(std::uint32_t s, std::uint64_t budget) {
 }
 
 // A random admissible cell: uniform by rejection while that succeeds quickly, then (for sparse
-// filters) the first admissible cell after a random one, so the draw always terminates.
+// filters) the first admissible cell after a random one. The scan is bounded: with several
+// luminaires the grid has far too many cells to walk (6 luminaires on 48 places: 1.2e10), and a
+// filter that admits nothing there (luminaires that cannot keep their spacing) must fail, not
+// hang.
 Configuration Search::random_start() {
-  for (int tries = 0; tries < 64; ++tries) {
+  for (int tries = 0; tries < 4096; ++tries) {
     Configuration c = d_.random(rng_);
     if (admissible(c)) return c;
   }
-  const std::uint64_t first = uniform_below(rng_, d_.cell_count());
-  for (std::uint64_t i = 0; i < d_.cell_count(); ++i) {
-    Configuration c = d_.configuration((first + i) % d_.cell_count());
+  constexpr std::uint64_t kScanLimit = std::uint64_t{1} << 24;
+  const std::uint64_t cells = d_.cell_count();
+  const std::uint64_t first = uniform_below(rng_, cells);
+  for (std::uint64_t i = 0; i < std::min(cells, kScanLimit); ++i) {
+    Configuration c = d_.configuration((first + i) % cells);
     if (admissible(c)) return c;
   }
-  throw std::invalid_argument("optimize: no admissible configuration");
+  throw std::invalid_argument(
+      "optimize: no admissible configuration found (placement regions too small for the "
+      "luminaires, or their minimum spacing too large?)");
 }
 
 void Search::end_iteration(std::uint32_t start, std::uint32_t k) {
   ++counters_.iterations;
-  IterationStats st;
+  IterationStats st = snapshot();
   st.iteration = counters_.iterations;
   st.start = start;
   st.k = k;
-  st.update_seconds = it_.update;
-  st.trace_seconds = it_.trace;
-  st.other_seconds = std::max(0.0, seconds_since(it_.t0) - it_.update - it_.trace);
-  st.evaluations = it_.evaluations;
-  st.photons = it_.photons;
-  st.total_photons = counters_.photons;
-  st.isoc_size = isoc_.size();
-  st.siisoc = isoc_.siisoc();
-  if (const IsocMember* b = isoc_.best()) {
-    st.has_best = true;
-    st.best = b->estimate;
-  }
   if (opt_.keep_history) history_.push_back(st);
   if (ctl_.progress && !ctl_.progress(st)) stop_ = StopReason::kCancelled;
   if (!stop_ && judged_.size() >= d_.cell_count()) stop_ = StopReason::kExhausted;
@@ -342,7 +370,7 @@ OptimizationResult Search::build_result(Clock::time_point t0) {
 }
 
 OptimizationResult Search::run() {
-  const Clock::time_point t0 = Clock::now();
+  const Clock::time_point t0 = t0_;
   const std::uint64_t per_start = opt_.max_iterations / opt_.starts;
   const std::uint64_t extra = opt_.max_iterations % opt_.starts;
   for (std::uint32_t s = 0; s < opt_.starts && !stop_; ++s) {

@@ -7,6 +7,8 @@
 // the physical margin that separates it from the cells the assertions exclude.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -65,9 +67,11 @@ TEST(SceneExamples, CornellConeEndsUnderTheLens) {
 }
 
 // Two 0.4 m panels on the ceiling (11 x 7 cells of 1 m each, a 4-D grid), the desk of the
-// podium at (2, 6) = cell (1, 5) as the target, 1.88 m below the panels. Moving one panel by
-// one cell lowers its direct contribution by 1 - (h^2 / (h^2 + 1))^2 = 39 %, about 12 sigma
-// at N, so only both panels above the desk belong to the ISOC. Strategy A from the far corner.
+// podium at (2, 6) = cell (1, 5) as the target, 1.88 m below the panels. Both panels in the
+// desk's cell would be the brightest, but two luminaires never share a cell (the paper's
+// search allowed it): the optimum is one panel above the desk and the other in a cell next to
+// it, along an axis (1 + 0.61 of one panel's direct light; a diagonal neighbour gives 1 + 0.41,
+// about 12 % less, far outside the CIs). Strategy A from the far corner.
 TEST(SceneExamples, ConferenceLightsEndAboveThePodium) {
   const SceneProblem p = example("conference", [](json& o) {
     for (int i : {0, 1}) o["variables"][i]["cells"] = {11, 7};
@@ -77,7 +81,13 @@ TEST(SceneExamples, ConferenceLightsEndAboveThePodium) {
   });
   const OptimizationResult r = run(p);
   ASSERT_FALSE(r.isoc.empty());
-  for (const auto& m : r.isoc) EXPECT_EQ(m.cells, (Configuration{1, 5, 1, 5})) << cells_of(r);
+  EXPECT_GT(r.counters.inadmissible, 0u);  // stacked panels were met and refused
+  for (const auto& m : r.isoc) {
+    const bool first = m.cells[0] == 1 && m.cells[1] == 5, second = m.cells[2] == 1 && m.cells[3] == 5;
+    EXPECT_NE(first, second) << "exactly one panel above the desk: " << cells_of(r);
+    const int dx = int(m.cells[0]) - int(m.cells[2]), dy = int(m.cells[1]) - int(m.cells[3]);
+    EXPECT_EQ(std::abs(dx) + std::abs(dy), 1) << "the other one cell away: " << cells_of(r);
+  }
   EXPECT_GT(r.counters.screened_out, 0u);  // strategy A saved N-photon traces
 }
 

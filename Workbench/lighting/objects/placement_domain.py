@@ -9,7 +9,7 @@ variable (``lighting.optimize_placement``)."""
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Sequence
 
 import FreeCAD
 
@@ -36,6 +36,9 @@ class PlacementDomain(BaseProxy):
                               "How many luminaires may be placed on this face", 4),
         "MinLuminaires": Prop("App::PropertyInteger", "Domain",
                               "How many luminaires must at least be placed", 1),
+        "MinSpacing": Prop("App::PropertyLength", "Domain",
+                           "Smallest distance between two placed luminaires (0: any two "
+                           "distinct candidates; luminaires never share one)", 0.0),
         "Template": Prop("App::PropertyLink", "Domain",
                          "Luminaire whose type, flux and size placed luminaires copy"),
         "CandidateCount": Prop("App::PropertyInteger", "Domain",
@@ -121,13 +124,14 @@ def optimization_rectangle(obj: Any) -> Dict[str, Any]:
             "cells": [nu, nv], "within": {"outer": ring(region.OuterWire), "holes": holes}}
 
 
-def candidates(obj: Any) -> tuple:
-    """(list of candidate points in mm, outward unit normal of the face)."""
+def candidate_cells(obj: Any) -> tuple:
+    """(list of (i, j, point in mm): the candidates with their cell of the optimization
+    rectangle, outward unit normal of the face)."""
     import Part
 
     face, normal, offset, su, sv, nu, nv, step = _lattice(obj)
     margin = float(obj.EdgeMargin)
-    points: List[FreeCAD.Vector] = []
+    cells: List[tuple] = []
     boundary = Part.Compound(face.Wires)
     for i in range(nu):
         for j in range(nv):
@@ -136,10 +140,55 @@ def candidates(obj: Any) -> tuple:
                 continue
             if margin > 0.0 and Part.Vertex(p).distToShape(boundary)[0] < margin:
                 continue
-            points.append(p + offset)
-            if len(points) >= MAX_CANDIDATES:
-                return points, normal
-    return points, normal
+            cells.append((i, j, p + offset))
+            if len(cells) >= MAX_CANDIDATES:
+                return cells, normal
+    return cells, normal
+
+
+def candidates(obj: Any) -> tuple:
+    """(list of candidate points in mm, outward unit normal of the face)."""
+    cells, normal = candidate_cells(obj)
+    return [p for _, _, p in cells], normal
+
+
+def spread_cells(obj: Any, count: int, spacing_mm: float = 0.0,
+                 avoid_mm: Sequence[Sequence[float]] = ()) -> List[tuple]:
+    """``count`` distinct candidate cells (i, j) spread evenly over the domain, at least
+    ``spacing_mm`` apart and from the points ``avoid_mm`` (luminaires that stay; ValueError if
+    the greedy choice cannot keep that): the centres of a k-means partition of the
+    candidates (deterministic), each snapped to the nearest free candidate. The optimizer's
+    starting layout - the regular array a designer would draw first."""
+    import numpy as np
+
+    cells, _ = candidate_cells(obj)
+    gap = max(float(spacing_mm), 1e-3)
+    if len(avoid_mm):
+        fixed = np.asarray(avoid_mm, dtype=float).reshape(-1, 3)
+        cells = [c for c in cells
+                 if np.min(np.linalg.norm(fixed - [c[2].x, c[2].y, c[2].z], axis=1)) >= gap]
+    if len(cells) < count:
+        raise ValueError(f"Placement domain '{obj.Label}' has {len(cells)} candidate positions "
+                         f"for {count} luminaires: lower MaxLuminaires or Resolution")
+    points = np.array([[p.x, p.y, p.z] for _, _, p in cells])
+    centres = points[np.linspace(0, len(points) - 1, count).round().astype(int)]
+    for _ in range(50):  # Lloyd's iterations
+        nearest = np.argmin(((points[:, None, :] - centres[None]) ** 2).sum(-1), axis=1)
+        for k in range(count):
+            if np.any(nearest == k):
+                centres[k] = points[nearest == k].mean(axis=0)
+    spacing, chosen = float(spacing_mm), []
+    for centre in centres:
+        order = np.argsort(((points - centre) ** 2).sum(-1))
+        free = [n for n in order if n not in chosen]
+        spaced = [n for n in free
+                  if all(np.linalg.norm(points[n] - points[c]) >= spacing for c in chosen)]
+        if not spaced:
+            raise ValueError(f"Placement domain '{obj.Label}': {count} luminaires do not fit "
+                             f"{spacing:g} mm apart (MinSpacing, or the luminaire's size); "
+                             "lower MaxLuminaires or MinSpacing")
+        chosen.append(spaced[0])
+    return [(cells[n][0], cells[n][1]) for n in chosen]
 
 
 def metadata_entry(obj: Any) -> Dict[str, Any]:
@@ -166,6 +215,8 @@ def check(obj: Any) -> List[tuple]:
     if obj.MaxLuminaires < max(obj.MinLuminaires, 1):
         problems.append(("error", f"Placement domain '{obj.Label}': MaxLuminaires must be >= "
                                   "MinLuminaires and >= 1"))
+    elif float(obj.MinSpacing) < 0.0:
+        problems.append(("error", f"Placement domain '{obj.Label}': MinSpacing must be >= 0"))
     elif points and obj.MaxLuminaires > len(points):
         problems.append(("warning", f"Placement domain '{obj.Label}': MaxLuminaires "
                                     f"({obj.MaxLuminaires}) exceeds its {len(points)} candidates"))

@@ -58,6 +58,8 @@ struct IterationStats {
   std::uint64_t evaluations = 0;    ///< evaluator calls this iteration
   std::uint64_t photons = 0;        ///< photons traced this iteration
   std::uint64_t total_photons = 0;  ///< photons traced so far
+  std::uint64_t total_evaluations = 0;  ///< evaluator calls so far
+  double elapsed_seconds = 0.0;         ///< wall time since the run began
   std::size_t isoc_size = 0;        ///< after the iteration
   Interval siisoc{};                ///< after the iteration (meaningless when isoc_size = 0)
   bool has_best = false;            ///< false while the ISOC is empty

@@ -69,6 +69,9 @@ struct SceneProblem {
   Domain domain;
   std::vector<SceneVariable> variables;
   VnsOptions search;
+  /// `search.min_spacing_m`: no two luminaires closer than this (anchor to anchor) in any
+  /// configuration searched; positions are always distinct (docs/optimization.md §10).
+  double min_spacing_m = 0.0;
   std::string file;  ///< for messages
 
   /// Meshes that translation or rotation variables move (Simulation::Options::movable_meshes).

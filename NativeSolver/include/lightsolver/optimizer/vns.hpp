@@ -76,6 +76,12 @@ struct Control {
   /// Called after every ISOC update (refinement included) with the candidate's cells, the
   /// photon count of the estimate offered and what the update did: for logs and debugging.
   std::function<void(const Configuration&, std::uint64_t, const IsocUpdate&)> on_update;
+  /// Called after every evaluator call (one trace) with the run so far: `iteration` is the
+  /// number of iterations completed, `evaluations`/`photons` those of the iteration under way,
+  /// `total_evaluations`, `total_photons`, `elapsed_seconds`, the ISOC's size and best. An
+  /// iteration's local search may trace many cells, so this is what lets a caller show
+  /// progress (and a time estimate) within one trace of the start. False stops the run.
+  std::function<bool(const IterationStats&)> on_evaluation;
 };
 
 /// Runs the search. Throws std::invalid_argument on bad options (confidence outside (0, 1),

@@ -1,0 +1,184 @@
+"""GUI scenario: a designer optimizes the office's luminaire layout. From the Start page: the
+Lighting workbench, a new document with the office example (four hand-placed ceiling panels,
+a workplane that requires Em 500 lx and U0 0.6, a ceiling placement domain), Optimize
+placement with small budgets. The panel must propose "meet Em and U0 with the least flux",
+show progress with an estimated time left within seconds, ask before replacing the hand-placed
+panels, list the optima, and Apply must leave exactly the chosen layout's luminaires - none
+coincident - in one undo step."""
+import os
+import sys
+import time
+
+from guilib import (OUT, STATUS, expect, grab_window, log, main_window, pump, scenario,
+                    visible_in_window, wait_until)
+
+REPO = os.environ.get("LIGHTING_SOURCE_DIR", "")
+
+
+def build_office():
+    """The office example in a new document, shown fitted (a user's first steps)."""
+    import FreeCAD
+    import FreeCADGui
+
+    FreeCADGui.activateWorkbench("LightingWorkbench")
+    doc = FreeCAD.newDocument("Office")
+    pump(0.5)
+    sys.path.insert(0, os.path.join(REPO, "Examples"))
+    import office_model
+
+    office_model.build_office(doc, photons=20000)
+    FreeCADGui.SendMsgToActiveView("ViewFit")
+    FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
+    pump(0.5)
+    return doc, office_model.OBJECTS
+
+
+def answer_replace_question(answer: str = "yes"):
+    """Click the panel's question about the hand-placed luminaires when it appears (a modal
+    dialog: only a timer gets to run while it is up)."""
+    from PySide import QtCore, QtGui
+
+    timer = QtCore.QTimer()
+    timer.setInterval(100)
+
+    def look() -> None:
+        box = QtGui.QApplication.activeModalWidget()
+        if box is not None and box.objectName() == "LightingOptimizeReplaceOthers":
+            STATUS["question"] = box.text()
+            path = os.path.join(OUT, "optimize_question.png")
+            box.grab().save(path)
+            STATUS["images"]["optimize_question"] = path
+            button = QtGui.QMessageBox.Yes if answer == "yes" else QtGui.QMessageBox.No
+            box.button(button).click()
+            timer.stop()
+
+    timer.timeout.connect(look)
+    timer.start()
+    return timer
+
+
+def grab_with_view(name: str, docs_name: str) -> str:
+    """The window grab with the 3D view painted in: under Xvfb a widget grab leaves the
+    OpenGL view blank, while the view's own saveImage renders it."""
+    import FreeCADGui
+    from PySide import QtCore, QtGui
+
+    path = grab_window(name, docs_name)
+    area = main_window().findChild(QtGui.QMdiArea)
+    subs = [w for w in (area.subWindowList() if area is not None else [])
+            if w.widget() is not None and not w.windowTitle().startswith("Start")]
+    log(f"3D view windows: {[w.windowTitle() for w in subs]}")
+    if not subs:
+        return path
+    widget = subs[0]  # maximised: the subwindow is the view's whole area
+    origin = widget.mapTo(main_window(), QtCore.QPoint(0, 0))
+    view_png = os.path.join(OUT, f"{name}_view.png")
+    FreeCADGui.ActiveDocument.ActiveView.saveImage(view_png, widget.width(), widget.height(),
+                                                    "Current")
+    picture, view = QtGui.QImage(path), QtGui.QImage(view_png)
+    scale = picture.width() / max(1, main_window().width())  # the grab's pixel ratio
+    target = QtCore.QRect(int(origin.x() * scale), int(origin.y() * scale),
+                          int(widget.width() * scale), int(widget.height() * scale))
+    painter = QtGui.QPainter(picture)
+    painter.drawImage(target, view)
+    painter.end()
+    picture.save(path)
+    return path
+
+
+def luminaire_layout(analysis):
+    from lighting.objects import analysis as analysis_mod
+
+    return {o.Label: o.getGlobalPlacement().Base for o in analysis_mod.luminaires(analysis)}
+
+
+def body() -> None:
+    import FreeCADGui
+
+    from lighting.taskpanels import optimize_panel
+
+    doc, names = build_office()
+    analysis = doc.getObject(names["analysis"])
+    before = luminaire_layout(analysis)
+    log(f"luminaires before: {sorted(before)}")
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(analysis)
+    FreeCADGui.runCommand("Lighting_Optimize")
+    pump(0.5)
+    panel = optimize_panel.last_panel()
+    expect(panel is not None, "Lighting_Optimize opened no panel")
+    panel.target.setCurrentText(doc.getObject(names["workplane"]).Label)
+    pump(0.2)
+    goal = panel.goal.currentData()
+    STATUS["default_goal"] = goal
+    expect(goal == "minimize_installed_flux",
+           f"the default intention for a target with requirements is {goal}")
+    expect(abs(panel.min_lux.value() - 500.0) < 1e-9 and abs(panel.min_u0.value() - 0.6) < 1e-9,
+           f"required levels not taken from the target: {panel.min_lux.value()}, "
+           f"{panel.min_u0.value()}")
+    # Small budgets, set in the panel's fields as a user would.
+    panel.evaluations.setValue(40)
+    panel.screening.setValue(20000)
+    panel.confirmation.setValue(200000)
+    for name, button in panel.buttons.items():
+        expect(visible_in_window(button), f"the {name} button is not fully visible")
+    STATUS["panel_width"] = panel.form.width()
+    watcher = answer_replace_question("yes")
+    start = time.monotonic()
+    panel.buttons["run"].click()
+    watcher.stop()
+    expect("question" in STATUS, "no question before replacing the hand-placed luminaires")
+    got_eta = wait_until(lambda: " left" in panel.status.text(), 10.0)
+    STATUS["first_progress_s"] = round(time.monotonic() - start, 2)
+    STATUS["progress_line"] = panel.status.text()
+    log(f"progress after {STATUS['first_progress_s']} s: {panel.status.text()}")
+    expect(got_eta, f"no progress line with a time estimate within 10 s: {panel.status.text()!r}")
+    expect(visible_in_window(panel.buttons["cancel"]) and panel.buttons["cancel"].isEnabled(),
+           "Cancel is not visible and enabled while searching")
+    grab_window("optimize_running")
+    finished = wait_until(lambda: panel.job is not None and panel.job.finished
+                          and not panel.timer.isActive(), 400.0, 0.1)
+    expect(finished, "the search did not finish")
+    rows = panel.table.rowCount()
+    STATUS["rows"] = rows
+    STATUS["status"] = panel.status.text()
+    log(f"{rows} optima: {panel.status.text()}")
+    expect(rows > 0, f"no optimum listed: {panel.status.text()}")
+    if not rows:
+        return
+    best = panel.result.members[0]
+    STATUS["best"] = {"count": best["count"], "flux_lm": best["mean"],
+                      "em_u0": best["constraints"]}
+    undo_before = doc.UndoCount
+    panel.buttons["apply"].click()
+    pump(0.5)
+    after = luminaire_layout(analysis)
+    STATUS["luminaires_after"] = sorted(after)
+    expect(doc.UndoCount == undo_before + 1, "Apply is not one undo step")
+    expect(len(after) == best["count"],
+           f"{len(after)} luminaires after Apply, the optimum has {best['count']}")
+    template = doc.getObject("CeilingDomain").Template
+    own = [label for label in after if label == template.Label
+           or label.startswith(f"{template.Label}_copy")]
+    expect(len(own) == len(after), f"luminaires not of the domain left: {sorted(after)}")
+    points = list(after.values())
+    gaps = [(a - b).Length for i, a in enumerate(points) for b in points[i + 1:]]
+    STATUS["smallest_gap_mm"] = round(min(gaps), 1) if gaps else None
+    expect(not gaps or min(gaps) >= 599.0, f"coincident or overlapping luminaires: {min(gaps)}")
+    FreeCADGui.Selection.clearSelection()
+    panel.table.selectRow(0)
+    # For the picture only (the search is over): look down through the ceiling at the layout.
+    doc.getObject(names["ceiling"]).ViewObject.Visibility = False
+    FreeCADGui.ActiveDocument.ActiveView.viewTop()
+    FreeCADGui.SendMsgToActiveView("ViewFit")
+    grab_with_view("optimize", docs_name="optimize.png")
+    doc.undo()
+    pump(0.3)
+    restored = luminaire_layout(analysis)
+    expect(sorted(restored) == sorted(before)
+           and all((restored[k] - before[k]).Length < 1e-6 for k in before),
+           f"undo did not restore the hand-placed layout: {sorted(restored)}")
+    FreeCADGui.Control.closeDialog()
+
+
+scenario(body)
