@@ -25,7 +25,7 @@ from lighting.objects.base import objects_of_type
 
 #: Cell text height in points; values are written when a cell is at least this wide (px).
 VALUE_FONT_PT = 6.5
-_MIN_CELL_PX = (30.0, 13.0)
+_MIN_CELL_PX = (36.0, 14.0)
 
 
 @dataclass

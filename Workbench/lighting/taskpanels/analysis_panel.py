@@ -17,6 +17,7 @@ from lighting.colormap import Scale
 from lighting.messages import CheckError, LightingError
 from lighting.objects.analysis import COLOR_MAPS, SCALE_MODES
 from lighting.solver import machine, results as results_mod, store
+from lighting.taskpanels import plan_view
 from lighting.viewproviders import coloring
 from lighting.viewproviders.base import icon_path
 
@@ -185,6 +186,8 @@ class AnalysisTaskPanel:
         self.facts = QtGui.QLabel("")
         box_layout.addWidget(self.facts)
         layout.addWidget(results_box)
+        self.plan_view = plan_view.section(self)  # grid plan view (taskpanels/plan_view.py)
+        layout.addWidget(self.plan_view)
 
         self.log_view = QtGui.QPlainTextEdit()
         self.log_view.setReadOnly(True)
@@ -232,9 +235,11 @@ class AnalysisTaskPanel:
         self.scale_max.setEnabled(fixed)
         self.legend.set_scale(coloring.scale_for(a))
         coloring.refresh(a)
+        self.plan_view.render()
 
     def _show_stored_results(self) -> None:
         result = store.load_from_document(self.analysis)
+        self.plan_view.refresh()
         fixed = self.analysis.ScaleMode == "Fixed"
         self.scale_min.setEnabled(fixed)
         self.scale_max.setEnabled(fixed)
