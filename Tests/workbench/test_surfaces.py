@@ -57,6 +57,16 @@ class SurfaceRules(unittest.TestCase):
         self.assertEqual(standards.surface_kind(0.0), "Wall")
         self.assertEqual(standards.surface_kind(0.5), "Wall")  # a steep roof light's reveal
 
+    def test_caption_verdicts(self):
+        import numpy as np
+
+        data = plots.GridPlot("W", "Wall", (5.0, 3.0), np.full((2, 2), 100.0), mean_lux=100.0,
+                              min_lux=5.0, max_lux=200.0, uniformity=0.05, required_lux=75.0,
+                              required_uniformity=0.1)
+        self.assertIn("Em 100 lx", data.caption())
+        self.assertIn("Em \u2265 75 lx (met)", data.caption())
+        self.assertIn("U0 \u2265 0.1 (NOT met)", data.caption())
+
     def test_nice_levels(self):
         self.assertEqual(isolux.nice_levels(80.0, 260.0), [100.0, 150.0, 200.0, 250.0])
         self.assertEqual(isolux.nice_levels(5.0, 5.0), [])

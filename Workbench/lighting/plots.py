@@ -51,9 +51,11 @@ class GridPlot:
                 f"Emax {self.max_lux:.0f} lx   U0 {self.uniformity:.2f}")
         needs = []
         if self.required_lux > 0:
-            needs.append(f"Em \u2265 {self.required_lux:g} lx")
+            met = "met" if self.mean_lux >= self.required_lux else "NOT met"
+            needs.append(f"Em \u2265 {self.required_lux:g} lx ({met})")
         if self.required_uniformity > 0:
-            needs.append(f"U0 \u2265 {self.required_uniformity:g}")
+            met = "met" if self.uniformity >= self.required_uniformity else "NOT met"
+            needs.append(f"U0 \u2265 {self.required_uniformity:g} ({met})")
         return text + (f"\nrequired: {', '.join(needs)}" if needs else "")
 
 

@@ -245,9 +245,10 @@ def _cells(obj: Any, length_u_mm: float, length_v_mm: float) -> Tuple[int, int, 
     return nu, nv, p_m * M_TO_MM
 
 
-def _no_area(obj: Any, base: Any, length_u_mm: float, length_v_mm: float) -> ValueError:
+def _no_area(obj: Any, base: Any, length_u_mm: float, length_v_mm: float,
+             band_name: str = "wall band") -> ValueError:
     band = float(obj.WallBand)
-    return ValueError(f"Grid target '{obj.Label}': the border band of {band / 1000:g} m leaves "
+    return ValueError(f"Grid target '{obj.Label}': the {band_name} of {band / 1000:g} m leaves "
                       f"no area on '{base.Label}' ({length_u_mm / 1000:g} x "
                       f"{length_v_mm / 1000:g} m)")
 
@@ -317,7 +318,7 @@ def _surface_grid(obj: Any, base: Any, subs: Tuple[str, ...]) -> GridRect:
     band = float(obj.WallBand)
     u0, u1, v0, v1 = min(us) + band, max(us) - band, min(vs) + band, max(vs) - band
     if u1 - u0 <= 1.0 or v1 - v0 <= 1.0:
-        raise _no_area(obj, base, max(us) - min(us), max(vs) - min(vs))
+        raise _no_area(obj, base, max(us) - min(us), max(vs) - min(vs), "border band")
     nu, nv, p_mm = _cells(obj, u1 - u0, v1 - v0)
     corner = origin + u * u0 + v * v0 + normal * float(obj.Offset)
     return GridRect(corner, u * (u1 - u0), v * (v1 - v0), nu, nv, p_mm)
