@@ -17,7 +17,7 @@ from lighting.objects import analysis as analysis_mod
 
 #: Narrowest image rendered (px); narrower panels scroll.
 MIN_WIDTH_PX = 240
-#: Delay before re-rendering after a resize (ms): one render per drag.
+#: Delay before re-rendering after a resize or new results (ms): one render per drag.
 RESIZE_DELAY_MS = 200
 
 
@@ -80,7 +80,8 @@ class PlanView(QtGui.QGroupBox):
         return self.analysis.Document.getObject(name) if name else None
 
     def refresh(self) -> None:
-        """List the analysis' grids again (keeping the choice) and re-render."""
+        """List the analysis' grids again (keeping the choice) and re-render soon: drawing
+        takes a few hundred ms, which must not hold up the panel's opening or a run's start."""
         current = self.choice.currentData()
         self.choice.blockSignals(True)
         self.choice.clear()
@@ -89,7 +90,7 @@ class PlanView(QtGui.QGroupBox):
         index = self.choice.findData(current) if current else -1
         self.choice.setCurrentIndex(max(index, 0) if self.choice.count() else -1)
         self.choice.blockSignals(False)
-        self.render()
+        self._timer.start()
 
     def render(self) -> None:
         """Draw the chosen grid's plan view at the section's width (a note without results)."""
