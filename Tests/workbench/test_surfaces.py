@@ -131,6 +131,30 @@ class SurfaceGrids(DocTestCase):
         self.assertTrue(_close(rect.normal, (-1, 0, 0)))
         self.assertAlmostEqual(rect.corner.x, 5000.0, 6)
 
+    def test_floor_grids(self):
+        import office_model
+
+        doc = build_office()
+        space = doc.getObject(office_model.OBJECTS["space"])
+        floor = doc.getObject(office_model.OBJECTS["floor"])
+        # Without a face: horizontal, Offset above the floor level, the 0.5 m wall band.
+        plain = lighting.make_grid_target(doc, space, surface="Floor", name="FloorGrid",
+                                          activity="Corridors and circulation areas")
+        top = office_model.find_face(floor.Shape, V(0, 0, 1), V(0, 0, 0))
+        on_face = lighting.make_grid_target(doc, floor, face=top, surface="Floor",
+                                            wall_band_m=0.7, name="FloorFaceGrid")
+        doc.recompute()
+        rect = target_mod.grid_rectangle(plain)
+        self.assertTrue(_close(rect.normal, (0, 0, 1)))
+        self.assertTrue(_close(rect.corner, (500, 500, 10)))
+        self.assertTrue(_close(rect.edge1 + rect.edge2, (4000, 3000, 0)))
+        self.assertEqual((plain.RequiredLux, plain.RequiredUniformity), (100.0, 0.40))
+        # On the slab's top face (5.4 x 4.4 m, under the walls too) less a 0.7 m band.
+        rect = target_mod.grid_rectangle(on_face)
+        self.assertTrue(_close(rect.normal, (0, 0, 1)))
+        self.assertTrue(_close(rect.corner, (500, 500, 10)))
+        self.assertTrue(_close(rect.edge1 + rect.edge2, (4000, 3000, 0)))
+
     def test_presets_follow_kind_and_typing_makes_custom(self):
         doc, wall, _ = office_with_surface_grids()
         wall.Surface = "Ceiling"
