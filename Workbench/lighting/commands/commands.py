@@ -138,19 +138,45 @@ class CommandTarget(BaseCommand):
 class CommandGrid(BaseCommand):
     NAME, ICON = "Lighting_Grid", "Lighting_Grid"
     MENU = "Calculation grid"
-    TIP = ("Calculation grid over the selected floor, slab, Arch space or floor face at "
-           "work-plane height (0.80 m, 0.5 m wall band, EN 12464-1 spacing)")
+    TIP = ("Calculation grid. Floor, slab, Arch space or floor face: the work plane (0.80 m, "
+           "0.5 m wall band, EN 12464-1 spacing). A wall's inner face or a ceiling's underside "
+           "(any planar face): a wall or ceiling grid on it, facing the room, with the "
+           "EN 12464-1 wall/ceiling requirement")
+    #: Object name and Activity preset of a new grid by its Surface kind.
+    KINDS = {"Work plane": ("Workplane", None), "Wall": ("WallGrid", "General"),
+             "Ceiling": ("CeilingGrid", "General"), "Floor": ("FloorGrid", None)}
 
     def IsActive(self) -> bool:  # noqa: N802
         return _doc() is not None and bool(FreeCADGui.Selection.getSelection())
 
+    @staticmethod
+    def surface_of(obj: Any, face: Optional[str]) -> str:
+        """The grid kind for a selection: from the selected face's room-side normal (faces
+        looking up carry a work plane), the work plane when no face is selected."""
+        from lighting import standards
+        from lighting.geometry import face_index, global_shape, is_planar
+        from lighting.objects.target import room_side_normal
+
+        index = face_index(face) if face else None
+        if index is None:
+            return "Work plane"
+        shape_face = global_shape(obj).Faces[index]
+        if not is_planar(shape_face):
+            return "Work plane"  # a curved face: the grid's Check explains what to select
+        return standards.surface_kind(room_side_normal(obj, shape_face).z)
+
     def Activated(self) -> None:  # noqa: N802
         sel = FreeCADGui.Selection.getSelectionEx()[0]
         faces = [n for n in sel.SubElementNames if n.startswith("Face")]
+        surface = self.surface_of(sel.Object, faces[0] if faces else None)
+        name, activity = self.KINDS[surface]
+        extra = "" if surface == "Work plane" else (f", surface={surface!r}, name={name!r}"
+                                                    f", activity={activity!r}")
         face = repr(faces[0]) if faces else "None"
-        _run_transaction("Create calculation grid", [
+        title = "calculation" if surface == "Work plane" else surface.lower()
+        _run_transaction(f"Create {title} grid", [
             f"lighting.make_grid_target(FreeCAD.ActiveDocument, "
-            f"FreeCAD.ActiveDocument.getObject('{sel.Object.Name}'), face={face}, "
+            f"FreeCAD.ActiveDocument.getObject('{sel.Object.Name}'), face={face}{extra}, "
             f"analysis={_analysis_arg()})"])
 
 

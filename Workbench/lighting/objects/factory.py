@@ -90,22 +90,39 @@ def make_face_target(doc: Any, faces: Iterable[Tuple[Any, Union[str, Sequence[st
 
 
 def make_grid_target(doc: Any, base: Any, face: Optional[str] = None, height_m: float = 0.80,
-                     wall_band_m: float = 0.50, spacing_m: float = 0.0,
+                     wall_band_m: Optional[float] = None, spacing_m: float = 0.0,
                      required_lux: float = 0.0, required_uniformity: float = 0.0,
-                     name: str = "Workplane", analysis: Optional[Any] = None) -> Any:
-    """Create a calculation grid over a floor/slab/space ``base`` (or one of its faces) at
-    ``height_m``, leaving out ``wall_band_m``; ``spacing_m`` 0 = EN 12464-1 rule."""
+                     name: str = "Workplane", analysis: Optional[Any] = None,
+                     surface: str = "Work plane", offset_m: Optional[float] = None,
+                     activity: Optional[str] = None) -> Any:
+    """Create a calculation grid. ``surface`` "Work plane" (default): over a floor/slab/space
+    ``base`` (or one of its faces) at ``height_m``; "Wall", "Ceiling", "Floor": on the planar
+    ``face`` of ``base``, ``offset_m`` in front of it (default 0.01 m), facing the room.
+    ``wall_band_m`` is the border band left out (default: 0.5 m for work planes and floors, 0
+    for walls and ceilings); ``spacing_m`` 0 = EN 12464-1 rule; ``activity`` (one of
+    ``lighting.standards.ACTIVITIES``) presets the requirements and overrides ``required_*``."""
+    from lighting import standards
     from lighting.objects.target import Target
 
+    if surface not in standards.SURFACE_KINDS:
+        raise ValueError(f"surface must be one of {standards.SURFACE_KINDS} (got {surface!r})")
+    if activity is not None and activity not in standards.ACTIVITIES:
+        raise ValueError(f"activity must be one of {standards.ACTIVITIES} (got {activity!r})")
+    band = standards.BORDER_BAND_M[surface] if wall_band_m is None else wall_band_m
     obj = doc.addObject("Part::FeaturePython", name)
     Target(obj)
     obj.TargetType = "Grid"
     obj.Base = (base, [face] if face else [])
     obj.WorkplaneHeight = height_m * M_TO_MM
-    obj.WallBand = wall_band_m * M_TO_MM
+    obj.WallBand = band * M_TO_MM
     obj.Spacing = spacing_m * M_TO_MM
     obj.RequiredLux = float(required_lux)
     obj.RequiredUniformity = float(required_uniformity)
+    obj.Surface = surface
+    if offset_m is not None:
+        obj.Offset = offset_m * M_TO_MM
+    if activity is not None:
+        obj.Activity = activity
     _add_to_analysis(obj, analysis)
     return obj
 

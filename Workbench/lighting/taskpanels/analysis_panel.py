@@ -19,6 +19,7 @@ from lighting.colormap import Scale
 from lighting.messages import CheckError, LightingError
 from lighting.objects.analysis import COLOR_MAPS, SCALE_MODES
 from lighting.solver import machine, results as results_mod, store
+from lighting.taskpanels import plan_view
 from lighting.viewproviders import coloring
 from lighting.viewproviders.base import icon_path
 
@@ -143,6 +144,10 @@ class AnalysisTaskPanel:
         outer.addWidget(self.scroll, 1)
         self.add_section("settings", "Run settings", self._build_settings())
         self.add_section("results", "Results (maintained illuminance)", self._build_results())
+        self.plan_view = plan_view.section(self)  # grid plan view (taskpanels/plan_view.py)
+        plan = QtGui.QVBoxLayout()
+        plan.addWidget(self.plan_view)
+        self.add_section("plan", "Plan view", plan)
         self.add_section("display", "False colours", self._build_display())
         self.add_section("log", "Log", self._build_log())
 
@@ -330,9 +335,11 @@ class AnalysisTaskPanel:
         self.scale_max.setEnabled(fixed)
         self.legend.set_scale(coloring.scale_for(a))
         coloring.refresh(a)
+        self.plan_view.render()
 
     def _show_stored_results(self) -> None:
         result = store.load_from_document(self.analysis)
+        self.plan_view.refresh()
         fixed = self.analysis.ScaleMode == "Fixed"
         self.scale_min.setEnabled(fixed)
         self.scale_max.setEnabled(fixed)

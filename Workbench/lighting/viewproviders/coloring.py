@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Paint targets by illuminance (GUI only): grids cell by cell, face targets by their mean.
+"""Paint targets by illuminance (GUI only): grids cell by cell (work planes, walls, ceilings,
+floors alike) with their iso-lux lines, face targets by their mean.
 
 Colours come from the analysis' ColorMap and scale (Auto: 0 to a round maximum over its
 targets; Fixed: ScaleMinLux..ScaleMaxLux); the values from the analysis' results object
@@ -8,11 +9,13 @@ is triggered from the GUI only: the view providers' ``updateData`` calls :func:`
 when a result or display property changes (App code never calls in here)."""
 from __future__ import annotations
 
-from typing import Any, List, Optional
+from typing import Any, List, Optional, Tuple
 
 import FreeCAD
+import numpy as np
 
-from lighting.colormap import Scale, auto_scale
+from lighting import isolux, plots
+from lighting.colormap import Scale
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import results as results_mod
 from lighting.objects.base import objects_of_type, proxy_type
@@ -35,41 +38,57 @@ def analysis_of(target: Any) -> Optional[Any]:
 
 
 def scale_for(analysis: Any) -> Scale:
-    """The colour scale of an analysis."""
-    if analysis.ScaleMode == "Fixed":
-        return Scale(float(analysis.ScaleMinLux), float(analysis.ScaleMaxLux), analysis.ColorMap)
-    values: List[float] = []
-    found = results_mod.of_analysis(analysis)
-    if found is not None:
-        for tgt in analysis_mod.targets(analysis):
-            mean = results_mod.mean_lux(found, tgt.Name)
-            if mean is not None:
-                values.append(mean)
-                values.extend(results_mod.cells_lux(found, tgt.Name))
-    low, high = auto_scale(values)
-    return Scale(low, high, analysis.ColorMap)
+    """The colour scale of an analysis (the plan view's too: lighting.plots)."""
+    return plots.analysis_scale(analysis)
+
+
+def isolux_polylines(target: Any, scale: Scale, cells: List[float]) -> Tuple[list, tuple]:
+    """Iso-lux lines of a grid's cells as (level, points in mm), a little in front of the
+    cells so they are drawn over them, and the offset of their labels (3 % of the grid's
+    size toward the front); no lines when the cells do not match the grid."""
+    from lighting.objects import target as target_mod
+
+    try:
+        rect = target_mod.grid_rectangle(target)
+    except ValueError:
+        return [], (0.0, 0.0, 0.0)
+    if len(cells) != rect.nu * rect.nv or rect.nu * rect.nv > 40000:
+        return [], (0.0, 0.0, 0.0)
+    values = np.asarray(cells, float).reshape(rect.nv, rect.nu)
+    # Lift: enough for the depth buffer at the grid's size, small beside it.
+    size_mm = (rect.edge1 + rect.edge2).Length
+    lift_mm = max(5.0, 0.002 * size_mm)
+    lines = isolux.lines(values, rect.size_m, isolux.levels(scale, cells))
+    polylines = [(level, [tuple(rect.point(u, v, lift_mm)) for u, v in points])
+                 for level, points in lines]
+    return polylines, tuple(rect.normal * (0.03 * size_mm))
 
 
 def paint_target(target: Any, scale: Optional[Scale], results: Optional[Any] = None) -> None:
     """Colour one target's faces from a results object (plain when it has no results there)."""
     vobj = getattr(target, "ViewObject", None)
-    if vobj is None or target.Shape.isNull():
-        return
-    faces = len(target.Shape.Faces)
-    if not faces:
+    if vobj is None:
         return
     proxy = getattr(vobj, "Proxy", None)
+    faces = 0 if target.Shape.isNull() else len(target.Shape.Faces)
+    if not faces:
+        if hasattr(proxy, "set_isolux"):
+            proxy.set_isolux([])
+        return
     mean = results_mod.mean_lux(results, target.Name) if results is not None else None
     unlit = scale is not None and mean is not None
     if hasattr(proxy, "set_unlit"):
         proxy.set_unlit(unlit)
+    cells = results_mod.cells_lux(results, target.Name) if unlit else []
+    if hasattr(proxy, "set_isolux"):
+        grid = target.TargetType == "Grid" and unlit
+        proxy.set_isolux(*(isolux_polylines(target, scale, cells) if grid else ([],)))
     if not unlit:
         colour, transparency = NO_RESULT_GRID if target.TargetType == "Grid" else NO_RESULT_FACES
         vobj.ShapeColor = colour
         vobj.DiffuseColor = [colour] * faces
         vobj.Transparency = transparency
         return
-    cells = results_mod.cells_lux(results, target.Name)
     if target.TargetType == "Grid" and len(cells) == faces:
         colours = scale.colours(cells)
     else:
