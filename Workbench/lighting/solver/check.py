@@ -225,8 +225,11 @@ def check_and_export(analysis: Any, need_solver: bool = True,
         report.extend(domain_mod.check(domain), domain.Name)
     if exported is None:
         exported = collect.exported_objects(analysis.Document)
+    # What the model leaves out and why (hidden objects stay in: visibility is a view choice).
+    for obj, level, reason in collect.left_out(analysis.Document):
+        report.add(level, f"'{obj.Label}' is left out of the lighting model: {reason}", obj.Name)
     if not exported:
-        report.add("warning", "No visible geometry: luminaires light the targets in free space")
+        report.add("warning", "No geometry: luminaires light the targets in free space")
     shapes = _check_geometry(report, exported)
     _check_luminaire_positions(report, lums, shapes)
     export = _check_scene_natively(report, analysis) if lums and tgts else None
