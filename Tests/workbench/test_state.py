@@ -117,6 +117,19 @@ class Exclusion(DocTestCase):
         self.assertTrue(report.ok)
 
 
+class Naming(DocTestCase):
+    def test_face_target_is_named_after_its_faces(self):
+        doc = build_office(photons=PHOTONS)
+        walls = doc.getObjectsByLabel("Walls")[0]
+        desk = doc.getObject("Desk")
+        one = lighting.make_face_target(doc, [(walls, "Face3")])
+        self.assertEqual(one.Label, f"Target {walls.Label} Face3")
+        many = lighting.make_face_target(doc, [(desk, ["Face1", "Face2"]), (walls, "Face4")])
+        self.assertEqual(many.Label, f"Target {desk.Label} Face1, Face2 +1 face")
+        self.assertEqual(lighting.make_face_target(doc, [(desk, "Face5")], name="Mine").Label,
+                         "Mine")
+
+
 class SolvedState(DocTestCase):
     """Needs the solver: same seed and photons give bit-identical results."""
 
