@@ -100,7 +100,10 @@ class Exclusion(DocTestCase):
         ceil.Visibility = False
         report = lighting.check(self.doc, need_solver=False)
         texts = [m.text for m in report.messages]
-        self.assertFalse(any("Ceiling" in t for t in texts), texts)  # hidden: still in
+        # Hidden: still in, and Check says so (nothing about it being left out).
+        self.assertFalse(any("'Ceiling' is left out" in t for t in texts), texts)
+        self.assertTrue(any(t.startswith("Hidden but in the lighting model: 'Ceiling'")
+                            for t in texts), texts)
         lighting.exclude(ceil)
         wire = self.doc.addObject("Part::Feature", "Outline")
         import Part
@@ -115,6 +118,24 @@ class Exclusion(DocTestCase):
         self.assertIn("has no faces", found["Outline"][1])
         self.assertIn("is an Arch space", found[self.doc.getObjectsByLabel("Office")[0].Name][1])
         self.assertTrue(report.ok)
+
+    def test_check_says_hidden_objects_stay_in(self):
+        desk = self.doc.getObject("Desk")
+        desk.Visibility = False
+        texts = [m.text for m in lighting.check(self.doc, need_solver=False).messages]
+        self.assertIn("Hidden but in the lighting model: 'Desk' (hiding is only a view; use "
+                      "Exclude from lighting to leave an object out)", texts)
+
+    def test_thickness_consumes_its_base(self):
+        box = self.doc.addObject("Part::Box", "Shell")
+        self.doc.recompute()
+        thick = self.doc.addObject("Part::Thickness", "Hollow")
+        thick.Faces = (box, ["Face6"])
+        thick.Value = 10.0
+        self.doc.recompute()
+        names = {o.Name for o in collect.exported_objects(self.doc)}
+        self.assertIn("Hollow", names)
+        self.assertNotIn("Shell", names)
 
 
 class Naming(DocTestCase):
@@ -259,6 +280,22 @@ class SolvedState(DocTestCase):
         doc.recompute()
         self.assertNotEqual(fingerprint.of_analysis(analysis)[f"object:{ceiling(doc).Name}"],
                             before[f"object:{ceiling(doc).Name}"])
+
+    def test_arch_material_edit_makes_results_stale(self):
+        from lighting.compat import import_arch
+        from test_persistence import fake_results
+
+        doc = build_office(photons=PHOTONS)
+        analysis = doc.getObject("LightingAnalysis")
+        walls = doc.getObjectsByLabel("Walls")[0]
+        material = import_arch().makeMaterial("Plaster")
+        material.Material = dict(material.Material, Reflectance="80 %")
+        walls.Material = material
+        doc.recompute()
+        store.apply_to_document(analysis, fake_results(doc))
+        self.assertEqual(lighting.results_state(doc).state, "current")
+        material.Material = dict(material.Material, Reflectance="60 %")
+        self.assertEqual(lighting.results_state(doc).changes, ["'Walls' changed"])
 
     def test_results_of_older_versions_are_unknown(self):
         doc = build_office(photons=PHOTONS)

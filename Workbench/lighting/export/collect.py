@@ -28,6 +28,10 @@ _PROP_OUTPUT = 8
 #: Link properties whose targets are geometry inputs of the object holding them.
 CONSUMING_PROPERTIES = ("Base", "Tool", "Shapes", "Additions", "Subtractions", "Links",
                         "Source", "Profile", "Sections", "Spine", "BaseFeature")
+#: Link properties that consume their targets only for some object types (a Draft
+#: Facebinder's ``Faces`` copies faces and leaves the original in place; Part Thickness
+#: hollows its base out).
+CONSUMING_BY_TYPE = {"Part::Thickness": ("Faces",)}
 #: IFC types that are not physical surfaces.
 NON_PHYSICAL_TYPES = {"space", "annotation", "grid", "openingelement", "virtualelement",
                       "spatialzone", "site", "building", "buildingstorey", "project"}
@@ -59,7 +63,7 @@ def consumed_names(doc: Any) -> Set[str]:
         if is_lighting_object(obj):  # a grid's Base floor is still geometry
             continue
         props = set(obj.PropertiesList)
-        for prop in CONSUMING_PROPERTIES:
+        for prop in CONSUMING_PROPERTIES + CONSUMING_BY_TYPE.get(obj.TypeId, ()):
             if prop in props:
                 try:
                     value = getattr(obj, prop)
@@ -167,6 +171,15 @@ def exported_objects(doc: Any) -> List[Any]:
     consumed = consumed_names(doc)
     return [o for o in doc.Objects
             if o.Name not in consumed and is_physical(o) and excluded_by(o) is None]
+
+
+def is_hidden(obj: Any) -> bool:
+    """Hidden in the GUI (or by the App ``Visibility`` headless). Only for telling the user:
+    hidden objects are exported like any other."""
+    vobj = getattr(obj, "ViewObject", None)
+    if vobj is not None:
+        return not bool(vobj.Visibility)
+    return not bool(getattr(obj, "Visibility", True))
 
 
 def _why_not_physical(obj: Any) -> Optional[Tuple[str, str]]:
