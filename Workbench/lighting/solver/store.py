@@ -28,9 +28,6 @@ LEGACY_TARGET = ("MeanLux", "CiLowLux", "CiHighLux", "SigmaLux", "MinLux", "MaxL
                  "HasResults", "ResultAnalysis")
 
 
-#: Statuses of the analysis that describe its results (the outcome of the last action);
-#: stages in progress (checking, exporting, solving) are never written to the document.
-SETTLED = ("not run", "done", "partial results (cancelled)")
 #: Results fields that differ between two runs of the same scene and seed.
 RUN_FACTS = ("seconds",)
 
