@@ -3,9 +3,9 @@
 From the Start page the user opens the example office (built by Examples/office.py without
 solving), picks the Lighting workbench and runs the analysis; hides the ceiling to look into
 the room and runs again: Em is bit-identical (hidden is not excluded) and the second run adds
-no undo step; the status bar shows one short line. Then the user doubles a luminaire's flux:
-the panel and the legend say the results are out of date (screenshot for the docs); Undo
-makes them current again. Finally "Exclude from lighting" on the ceiling: Check lists it as
+no undo step; the status bar shows one short line. Then the user doubles a luminaire's flux
+in the property editor: the panel and the legend say the results are out of date
+(screenshot for the docs); Undo makes them current again. Finally "Exclude from lighting" on the ceiling: Check lists it as
 left out, and the results are stale."""
 import os
 import subprocess
@@ -97,6 +97,61 @@ def last_report_line() -> str:
     return ""
 
 
+def combo_tab(title: str) -> None:
+    """Show the Combo View's tab ``title`` ("Model" or "Tasks"), as a click on it does."""
+    from PySide import QtGui
+
+    for dock in main_window().findChildren(QtGui.QDockWidget):
+        if dock.objectName() == "Combo View":
+            for tabs in dock.findChildren(QtGui.QTabWidget):
+                for i in range(tabs.count()):
+                    if tabs.tabText(i) == title:
+                        tabs.setCurrentIndex(i)
+    pump(0.2)
+
+
+def edit_in_property_editor(obj, shown_name: str, value: float) -> bool:
+    """Select ``obj``, click the value cell of the property ``shown_name`` in the property
+    editor (Model tab, Data), type ``value`` and press Return: what a user does, with the
+    property editor's own undo step."""
+    import FreeCADGui
+    from PySide import QtCore, QtGui
+
+    combo_tab("Model")
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(obj)
+    pump(0.4)
+    cell = None
+    for editor in main_window().findChildren(QtGui.QTreeView):
+        if "PropertyEditor" not in editor.metaObject().className() or not editor.isVisible():
+            continue
+        model = editor.model()
+        for row in range(model.rowCount()):
+            group = model.index(row, 0)
+            for child in range(model.rowCount(group)):
+                if model.data(model.index(child, 0, group)) == shown_name:
+                    cell = (editor, model.index(child, 1, group))
+    if not expect(cell is not None, f"property '{shown_name}' not in the property editor"):
+        return False
+    editor, index = cell
+    editor.scrollTo(index)
+    pump(0.1)
+    centre = QtCore.QPointF(editor.visualRect(index).center())
+    for kind in (QtCore.QEvent.MouseButtonPress, QtCore.QEvent.MouseButtonRelease):
+        QtGui.QApplication.sendEvent(editor.viewport(), QtGui.QMouseEvent(
+            kind, centre, QtCore.Qt.LeftButton, QtCore.Qt.LeftButton, QtCore.Qt.NoModifier))
+    pump(0.3)
+    field = QtGui.QApplication.focusWidget()
+    if not expect(hasattr(field, "setValue"), f"no value editor opened: {field}"):
+        return False
+    field.setValue(value)
+    QtGui.QApplication.sendEvent(field, QtGui.QKeyEvent(QtCore.QEvent.KeyPress,
+                                                        QtCore.Qt.Key_Return,
+                                                        QtCore.Qt.NoModifier))
+    pump(0.3)
+    return True
+
+
 def legend_stale(doc) -> bool:
     proxy = doc.getObject("LightingAnalysis").ViewObject.Proxy
     return bool(proxy.legend_holder.getNumChildren()) and proxy.results_stale()
@@ -148,12 +203,14 @@ def body() -> None:
     expect("up to date" in panel.state_label.text(),
            f"panel state after the run: {panel.state_label.text()!r}")
 
-    # 2. Double a flux as in the property editor (one transaction): stale everywhere.
+    # 2. Double a flux in the property editor: stale everywhere.
     lum = doc.getObject("Luminaire01")
-    doc.openTransaction("Edit FluxLumen")
-    lum.FluxLumen = 2 * lum.FluxLumen
-    doc.commitTransaction()
-    doc.recompute()
+    flux = lum.FluxLumen
+    undo_before = doc.UndoCount
+    edit_in_property_editor(lum, "Flux Lumen", 2 * flux)
+    expect(lum.FluxLumen == 2 * flux, f"the property editor did not set the flux: {lum.FluxLumen}")
+    expect(doc.UndoCount == undo_before + 1, f"flux edit undo steps: {doc.UndoNames[:3]}")
+    combo_tab("Tasks")
     ok = wait_until(lambda: "out of date" in panel.state_label.text(), 5)
     STATUS["state_after_flux"] = panel.state_label.text()
     expect(ok and "Luminaire01" in panel.state_label.text(),
@@ -162,6 +219,7 @@ def body() -> None:
     expect(analysis.Status == "done", f"Status changed by an edit: {analysis.Status}")
     grab_with_view("state_stale", docs_name="state-stale.png")
     FreeCADGui.runCommand("Std_Undo")
+    expect(lum.FluxLumen == flux, f"Undo did not restore the flux: {lum.FluxLumen}")
     ok = wait_until(lambda: "up to date" in panel.state_label.text(), 5)
     expect(ok, f"after Undo the results are not current again: {panel.state_label.text()!r}")
     expect(wait_until(lambda: not legend_stale(doc), 5), "the legend stays stale after Undo")
