@@ -26,7 +26,8 @@ class LightingWorkbench(Workbench):  # noqa: F821 - FreeCAD provides Workbench h
         commands.register()
         self.appendToolbar("Lighting model", commands.MODEL_COMMANDS)
         self.appendToolbar("Lighting analysis", commands.RUN_COMMANDS)
-        self.appendMenu("Lighting", commands.MODEL_COMMANDS + ["Separator"] + commands.RUN_COMMANDS)
+        self.appendMenu("Lighting", commands.MODEL_COMMANDS + ["Separator"] + commands.RUN_COMMANDS
+                        + ["Separator"] + commands.EXCLUSION_COMMANDS)
 
     def Activated(self):
         pass
@@ -39,6 +40,8 @@ class LightingWorkbench(Workbench):  # noqa: F821 - FreeCAD provides Workbench h
 
         if recipient == "Tree":
             self.appendContextMenu("Lighting", commands.RUN_COMMANDS)
+        # On any selected model object, in the tree or the 3D view.
+        self.appendContextMenu("", commands.EXCLUSION_COMMANDS)
 
     def GetClassName(self):
         return "Gui::PythonWorkbench"

@@ -89,8 +89,9 @@ def screenshot(doc, name):
 
 
 def hide_for_view(doc, hide=True):
-    """Look into the room from above: hide the ceiling and the placement domain's points
-    (only for the pictures: hidden objects are left out of the analysis)."""
+    """Look into the room from above: hide the ceiling and the placement domain's points.
+    Hidden objects stay in the analysis (only LightingExclude leaves them out), so the
+    numbers do not depend on it."""
     for label in ("Ceiling", "CeilingDomain"):
         for obj in doc.getObjectsByLabel(label):
             obj.ViewObject.Visibility = not hide

@@ -212,17 +212,20 @@ class ShapesAndDeflection(DocTestCase):
         self.assertEqual(result.scene["materials"][entry["material"]],
                          {"type": "diffuse", "reflectance": 0.8})
 
-    def test_hidden_objects_not_exported(self):
+    def test_hidden_objects_exported_excluded_not(self):
         box = self.doc.addObject("Part::Box", "Hidden")
         self.doc.recompute()
         box.Visibility = False
         shown = self.doc.addObject("Part::Box", "Shown")
+        left = self.doc.addObject("Part::Box", "Excluded")
         self.doc.recompute()
+        lighting.exclude(left)
         lighting.make_face_target(self.doc, [(shown, "Face6")])
         self.doc.recompute()
         exported = self._export().object_meshes
-        self.assertNotIn("Hidden", exported)
+        self.assertIn("Hidden", exported)  # visibility is a viewing choice, not physics
         self.assertIn("Shown", exported)
+        self.assertNotIn("Excluded", exported)
 
     def test_global_placement_in_container(self):
         part = self.doc.addObject("App::Part", "Container")

@@ -11,7 +11,8 @@ Works headless (``freecadcmd``) and in the GUI::
 
 Objects: :func:`make_analysis`, :func:`make_luminaire`, :func:`make_face_target`,
 :func:`make_grid_target`, :func:`make_placement_domain`. Stages on their own:
-:func:`check`, :func:`export_scene`, :func:`solver_available`. Errors derive from
+:func:`check`, :func:`export_scene`, :func:`solver_available`. Model state: :func:`exclude`,
+:func:`left_out`, :func:`results_state`. Errors derive from
 :class:`LightingError` and carry a message meant for the user.
 
 Attributes load lazily, so ``import lighting`` is cheap (FreeCAD imports it at start-up).
@@ -26,9 +27,12 @@ __version__ = "0.1.0"
 _EXPORTS = {
     "analyze": "lighting.api",
     "check": "lighting.api",
+    "exclude": "lighting.api",
     "export_scene": "lighting.api",
+    "left_out": "lighting.api",
     "optimize_placement": "lighting.api",
     "results": "lighting.api",
+    "results_state": "lighting.api",
     "solver_available": "lighting.api",
     "luminaire_library_entries": "lighting.api",
     "assign_photometry": "lighting.api",

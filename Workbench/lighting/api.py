@@ -6,7 +6,7 @@ document's first Lighting analysis is used, and :func:`analyze` creates one with
 settings when the document has none."""
 from __future__ import annotations
 
-from typing import Any, Callable, Optional, Tuple
+from typing import Any, Callable, List, Optional, Tuple
 
 from lighting.messages import CheckError, Report
 from lighting.objects import analysis as analysis_mod
@@ -159,6 +159,43 @@ def results(doc: Any, analysis: Any = None) -> Optional[Any]:
     from lighting.solver.store import load_from_document
 
     return load_from_document(_analysis(doc, analysis))
+
+
+def exclude(objects: Any, excluded: bool = True) -> List[Any]:
+    """Leave objects out of the lighting model (``excluded=False``: take them back in), in one
+    undo step; returns the objects whose state changed. Sets each object's ``LightingExclude``
+    property (added when missing); excluding a group, App::Part or building part leaves out
+    everything in it. Hidden objects are *not* left out: only exclusion does that."""
+    from lighting.export.collect import set_excluded
+    from lighting.solver.store import undo_step
+
+    items = list(objects) if isinstance(objects, (list, tuple, set)) else [objects]
+    if not items:
+        return []
+    changed: List[Any] = []
+    title = "Exclude from lighting" if excluded else "Include in lighting"
+    with undo_step(items[0].Document, title):
+        for obj in items:
+            if set_excluded(obj, excluded):
+                changed.append(obj)
+    return changed
+
+
+def left_out(doc: Any) -> List[Tuple[Any, str]]:
+    """(object, reason) for each object that could be geometry but is not exported: excluded
+    (itself or with its container), without faces, an Arch space... (Check lists them)."""
+    from lighting.export.collect import left_out as collect_left_out
+
+    return [(obj, reason) for obj, _, reason in collect_left_out(doc)]
+
+
+def results_state(doc: Any, analysis: Any = None) -> Any:
+    """Whether the stored results still describe the model: a ``ResultsState`` with
+    ``.state`` ("none", "current", "stale", "unknown"), ``.stale``, ``.changes`` (what changed
+    since the run) and ``.text()``. Computed from the model now, without exporting."""
+    from lighting.solver.store import results_state as state_of
+
+    return state_of(_analysis(doc, analysis))
 
 
 def solver_available() -> Tuple[bool, str]:

@@ -326,9 +326,14 @@ RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_O
                 "Lighting_Results", "Lighting_ClearResults"]
 
 
+from lighting.commands import exclusion  # noqa: E402 - "Exclude from lighting" / "Include"
+
+EXCLUSION_COMMANDS = exclusion.NAMES
+
+
 def register() -> None:
     """Add every command to FreeCAD (once)."""
-    for cls in ALL:
+    for cls in ALL + exclusion.ALL:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)

@@ -212,12 +212,12 @@ class SceneBuilder:
                 self.add_mesh_object(obj)
             else:
                 self.add_shape_object(obj)
-        # Faces of targets on objects that are not exported (hidden helpers): the target's
-        # own geometry is still needed.
+        # Faces of targets on objects that are not exported (excluded or consumed): the
+        # target's own geometry is still needed.
         for obj_name in sorted({k[0] for k in self.owner} - exported_names):
             obj = self.doc.getObject(obj_name)
-            self.report.add("warning", f"Targets use faces of '{obj.Label}', which is hidden or "
-                                       "consumed; only those faces are exported", obj_name)
+            self.report.add("warning", f"Targets use faces of '{obj.Label}', which is excluded "
+                                       "or consumed; only those faces are exported", obj_name)
             self.add_shape_object(obj, claimed_only=True)
         meshes: List[Dict[str, Any]] = []
         result = ExportResult(scene={}, report=self.report)

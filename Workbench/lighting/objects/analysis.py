@@ -19,6 +19,11 @@ FALLBACK_BACKENDS = ("auto", "embree", "vulkan")
 COLOR_MAPS = ("Rainbow", "Heat", "Grey")
 SCALE_MODES = ("Auto", "Fixed")
 MESH_STORAGE = ("Auto", "Inline", "PLY")
+#: Bookkeeping properties: NoModify, so writing them neither marks the document modified nor
+#: lands in a pending undo transaction (a Check must not add an undo step).
+BOOKKEEPING = ("Status", "SceneFile")
+#: Stage names older versions wrote into Status (and could save that way).
+TRANSIENT_STATUS = ("checking", "exporting", "exported", "solving")
 _RO = READ_ONLY
 
 
@@ -75,7 +80,10 @@ class Analysis(BaseProxy):
         "ShowLegend": Prop("App::PropertyBool", "Display", "Draw the colour legend in the 3D view",
                            True),
         # Results (read only)
-        "Status": Prop("App::PropertyString", "Results", "State of the last run", "not run", _RO),
+        "Status": Prop("App::PropertyString", "Results",
+                       "Outcome of the last run or check: not run, done, partial results "
+                       "(cancelled), check failed, failed: ...; whether the results are still "
+                       "current: lighting.results_state()", "not run", _RO),
         "SceneFile": Prop("App::PropertyString", "Results", "Last exported scene file", "", _RO),
         # The results themselves live in the results object of the group (objects/results.py).
     }
@@ -87,6 +95,20 @@ class Analysis(BaseProxy):
         super().ensure_properties(obj, set_defaults)
         obj.Backend = backend_choices(current)
         obj.Backend = current or "auto"
+        for name in BOOKKEEPING:
+            if "NoModify" not in obj.getPropertyStatus(name):
+                obj.setPropertyStatus(name, "NoModify")
+
+    def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        """Files of older versions could be saved in the middle of a stage ("checking"):
+        restore the state their results are in."""
+        super().onDocumentRestored(obj)
+        if obj.Status in TRANSIENT_STATUS:
+            from lighting.objects.results import data, of_analysis
+
+            found = data(of_analysis(obj))
+            obj.Status = "not run" if found is None else (
+                "partial results (cancelled)" if found.get("partial") else "done")
 
 
 def backend_choices(current: Optional[str] = None) -> List[str]:

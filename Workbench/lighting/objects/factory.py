@@ -70,17 +70,32 @@ def make_luminaire(doc: Any, position_m: Vec = (0.0, 0.0, 2.5), kind: str = "Are
     return obj
 
 
+def face_target_label(links: Sequence[Tuple[Any, Sequence[str]]]) -> str:
+    """A label that says what a face target covers: "Target Wall001 Face3",
+    "Target Desk Face6, Face7", "Target Wall Face3 +4 faces"."""
+    if not links:
+        return "Target"
+    first, subs = links[0]
+    shown = list(subs[:2])
+    rest = sum(len(s) for _, s in links) - len(shown)
+    text = f"Target {first.Label} {', '.join(shown)}".rstrip()
+    return f"{text} +{rest} face{'s' if rest > 1 else ''}" if rest > 0 else text
+
+
 def make_face_target(doc: Any, faces: Iterable[Tuple[Any, Union[str, Sequence[str]]]],
-                     name: str = "Target", required_lux: float = 0.0,
+                     name: Optional[str] = None, required_lux: float = 0.0,
                      analysis: Optional[Any] = None) -> Any:
     """Create a target over faces: ``faces`` is [(object, "Face3"), (object, ["Face1", ...])].
-    The target reports illuminance on the faces' outward side."""
+    The target reports illuminance on the faces' outward side. Without ``name`` it is called
+    "Target" and labelled after its faces ("Target Wall001 Face3")."""
     from lighting.objects.target import Target
 
     links = []
     for obj, subs in faces:
         links.append((obj, (subs,) if isinstance(subs, str) else tuple(subs)))
-    obj = doc.addObject("Part::FeaturePython", name)
+    obj = doc.addObject("Part::FeaturePython", name or "Target")
+    if name is None:
+        obj.Label = face_target_label(links)
     Target(obj)
     obj.TargetType = "Faces"
     obj.References = links

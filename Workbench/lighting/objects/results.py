@@ -6,7 +6,12 @@ It holds the one copy of the solver's results document (``ResultsJson``, the
 Everything else on it is derived from that JSON when it is set and when the document is
 restored, and is *not* saved (transient): per-target Em and its interval, Emin/Emax/U0, the
 grid cells of every target concatenated, and the run facts. Input objects (targets,
-luminaires, the analysis' settings) never carry results."""
+luminaires, the analysis' settings) never carry results.
+
+``InputsFingerprint`` records what the run exported (export/fingerprint.py), so whether the
+results still describe the model is computed, not remembered: ``solver.store.results_state``
+compares it with the model now (after any edit, undo, save and reopen, in scripts and the
+GUI alike)."""
 from __future__ import annotations
 
 import json
@@ -65,6 +70,10 @@ class Results(BaseProxy):
                           _RO),
         "ResultsFile": Prop("App::PropertyString", "Results", "Results file written by the run",
                             "", _RO),
+        "InputsFingerprint": Prop("App::PropertyString", "Results",
+                                  "Fingerprint of the model the run exported "
+                                  "(export/fingerprint.py): compared with the model's to tell "
+                                  "whether these results are stale", "", HIDDEN),
         **DERIVED,
     }
 

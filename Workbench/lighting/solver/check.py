@@ -225,8 +225,17 @@ def check_and_export(analysis: Any, need_solver: bool = True,
         report.extend(domain_mod.check(domain), domain.Name)
     if exported is None:
         exported = collect.exported_objects(analysis.Document)
+    # What the model leaves out and why (hidden objects stay in: visibility is a view choice).
+    for obj, level, reason in collect.left_out(analysis.Document):
+        report.add(level, f"'{obj.Label}' is left out of the lighting model: {reason}", obj.Name)
+    hidden = [o.Label for o in exported if collect.is_hidden(o)]
+    if hidden:
+        shown = ", ".join(f"'{label}'" for label in hidden[:5])
+        more = f" and {len(hidden) - 5} more" if len(hidden) > 5 else ""
+        report.add("info", f"Hidden but in the lighting model: {shown}{more} (hiding is only a "
+                           "view; use Exclude from lighting to leave an object out)")
     if not exported:
-        report.add("warning", "No visible geometry: luminaires light the targets in free space")
+        report.add("warning", "No geometry: luminaires light the targets in free space")
     shapes = _check_geometry(report, exported)
     _check_luminaire_positions(report, lums, shapes)
     export = _check_scene_natively(report, analysis) if lums and tgts else None

@@ -5,7 +5,13 @@ Check and Prepare read the document (main thread). Solve only touches files and 
 module, so it may run on a worker thread (:meth:`AnalysisRun.start`) while the GUI polls
 ``progress`` and stays responsive; Cancel sets a flag the progress callback returns to the
 solver and cancels its token. Results are applied on the main thread in one undo step, and
-only after the solver succeeded, so a failure never damages the document."""
+only after the solver succeeded, so a failure never damages the document.
+
+The analysis' ``Status`` records outcomes only (done, partial results, check failed,
+failed: ...): the stage in progress is :attr:`AnalysisRun.stage`, never written to the
+document, so a file saved during a run or after a Check never says "checking". The fingerprint
+of the model (export/fingerprint.py) is taken when the scene is exported, so edits made while
+the solver runs leave the stored results marked stale."""
 from __future__ import annotations
 
 import json
@@ -15,6 +21,7 @@ import time
 from typing import Any, Callable, Dict, Optional
 
 from lighting import files
+from lighting.export import fingerprint as fingerprint_mod
 from lighting.export import scene as scene_mod
 from lighting.messages import CancelledError, CheckError, LightingError, Report, SolverError
 from lighting.solver import check as check_mod
@@ -42,6 +49,7 @@ class AnalysisRun:
         self._checked_export: Optional[scene_mod.ExportResult] = None
         self.scene_file = ""
         self.results_file = ""
+        self.fingerprint: Optional[Dict[str, str]] = None
         self.data: Optional[Dict[str, Any]] = None
         self.error: Optional[BaseException] = None
         self.done = 0
@@ -64,7 +72,6 @@ class AnalysisRun:
     def check(self, need_solver: bool = True) -> Report:
         """Check stage; raises CheckError when there are errors."""
         self.stage = "check"
-        store.set_status(self.analysis, "checking")
         self.report, self._checked_export = check_mod.check_and_export(self.analysis,
                                                                         need_solver=need_solver)
         for message in self.report.messages:
@@ -73,16 +80,20 @@ class AnalysisRun:
             self.stage = "failed"
             store.set_status(self.analysis, "check failed")
             raise CheckError(self.report)
+        if self.analysis.Status in ("check failed", "export failed"):
+            # The model was fixed: the status describes the stored results again.
+            store.set_status(self.analysis, store.settled_status(self.analysis))
         return self.report
 
     def prepare(self, progress: Optional[Callable[[str], None]] = None) -> str:
         """Prepare stage: export the scene file; returns its path."""
         self.stage = "prepare"
-        store.set_status(self.analysis, "exporting")
         # The Check stage's native check exported this very scene a moment ago: write that one
         # rather than tessellating the model again (Check always runs first in a run).
         self.export = self._checked_export or scene_mod.build_scene(self.analysis, progress)
         self._checked_export = None
+        # What this scene was made of; nothing can change the model between export and here.
+        self.fingerprint = fingerprint_mod.of_analysis(self.analysis)
         for message in self.export.report.messages:
             self.log(message.level, message.text)
         self.report.merge(self.export.report)
@@ -92,7 +103,6 @@ class AnalysisRun:
             raise CheckError(self.export.report)
         self.scene_file = scene_mod.write_scene(self.export, self.output_dir,
                                                 str(self.analysis.MeshStorage))
-        store.set_status(self.analysis, "exported")
         store.set_scene_file(self.analysis, self.scene_file)
         self.log("info", f"Scene written: {self.scene_file} ({self.export.triangle_count} "
                          f"triangles, {len(self.export.scene['meshes'])} meshes)")
@@ -158,7 +168,7 @@ class AnalysisRun:
             raise LightingError("No results to apply: the solve stage did not finish")
         self.stage = "results"
         result = store.apply_to_document(self.analysis, self.data, self.scene_file,
-                                         self.results_file)
+                                         self.results_file, self.fingerprint)
         for warning in result.warnings:
             self.log("warning", f"Solver: {warning}")
         self.stage = "cancelled" if result.partial else "done"

@@ -8,8 +8,13 @@ object changes (their ``updateData``)."""
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, Optional, Tuple
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import Any, Dict, Iterator, List, Optional, Tuple
 
+import FreeCAD
+
+from lighting.export import fingerprint as fingerprint_mod
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import results as results_obj
 from lighting.solver.results import AnalysisResult
@@ -21,6 +26,126 @@ LEGACY_TARGET = ("MeanLux", "CiLowLux", "CiHighLux", "SigmaLux", "MinLux", "MaxL
                  "Uniformity", "Hits", "AreaM2", "MinCiLowLux", "MinCiHighLux", "MaxCiLowLux",
                  "MaxCiHighLux", "CellsLux", "CellsCiLowLux", "CellsCiHighLux", "CellsHits",
                  "HasResults", "ResultAnalysis")
+
+
+#: Results fields that differ between two runs of the same scene and seed.
+RUN_FACTS = ("seconds",)
+
+
+@contextmanager
+def undo_step(doc: Any, title: str) -> Iterator[None]:
+    """One undo transaction around a user action, or none when nothing changed.
+
+    ``openTransaction`` only books a name: FreeCAD creates the transaction at the first
+    change, and a commit without changes leaves the booking pending, so the next unrelated
+    change (even seconds later) would be recorded under ``title``. Close it here."""
+    doc.openTransaction(title)
+    try:
+        yield
+    except BaseException:
+        doc.abortTransaction()
+        _close_booking(title)
+        raise
+    doc.commitTransaction()
+    _close_booking(title)
+
+
+def _close_booking(title: str) -> None:
+    active = FreeCAD.getActiveTransaction() if hasattr(FreeCAD, "getActiveTransaction") else None
+    if active and active[0] == title:
+        FreeCAD.closeActiveTransaction()
+
+
+def write_settings(analysis: Any, **values: Any) -> bool:
+    """Set analysis properties (Photons=..., TargetAccuracy=...) in one undo step "Lighting
+    settings", only if one of them differs; True when something changed."""
+    changed = {k: v for k, v in values.items() if _differs(getattr(analysis, k), v)}
+    if not changed:
+        return False
+    with undo_step(analysis.Document, "Lighting settings"):
+        for name, value in changed.items():
+            setattr(analysis, name, value)
+    return True
+
+
+def _differs(current: Any, value: Any) -> bool:
+    if isinstance(value, float) or isinstance(current, float):
+        return abs(float(current) - float(value)) > 1e-12
+    return current != value
+
+
+@dataclass
+class ResultsState:
+    """Whether an analysis' stored results describe the model as it is now.
+
+    ``state``: "none" (no results), "current", "stale" (``changes`` says what changed since
+    the run) or "unknown" (results of an older version, without a fingerprint)."""
+
+    state: str
+    changes: List[str] = field(default_factory=list)
+
+    @property
+    def stale(self) -> bool:
+        """True when the model changed since the run."""
+        return self.state == "stale"
+
+    def text(self, limit: int = 3) -> str:
+        """One line for people."""
+        if self.state == "none":
+            return "no results yet"
+        if self.state == "current":
+            return "results up to date"
+        if self.state == "unknown":
+            return "results of an older version: cannot tell whether they are current"
+        shown = ", ".join(self.changes[:limit])
+        more = f" and {len(self.changes) - limit} more" if len(self.changes) > limit else ""
+        return f"results out of date (stale): {shown}{more} since the run"
+
+
+def results_state(analysis: Any) -> ResultsState:
+    """Compare the fingerprint stored by the last run with the model's now (no export)."""
+    obj = results_obj.of_analysis(analysis)
+    if obj is None or not obj.ResultsJson:
+        return ResultsState("none")
+    stored = fingerprint_mod.loads(getattr(obj, "InputsFingerprint", ""))
+    if stored is None:
+        return ResultsState("unknown")
+    changes = fingerprint_mod.differences(stored, fingerprint_mod.of_analysis(analysis),
+                                          analysis.Document)
+    return ResultsState("stale", changes) if changes else ResultsState("current")
+
+
+def settled_status(analysis: Any) -> str:
+    """The Status that describes the analysis' stored results."""
+    data = results_obj.data(results_obj.of_analysis(analysis))
+    if data is None:
+        return "not run"
+    return "partial results (cancelled)" if data.get("partial") else "done"
+
+
+def _same_results(old: Optional[Dict[str, Any]], new: Dict[str, Any]) -> bool:
+    if old is None:
+        return False
+    strip = (lambda d: {k: v for k, v in d.items() if k not in RUN_FACTS})
+    return strip(old) == strip(json.loads(json.dumps(new)))
+
+
+def summary_line(result: AnalysisResult, limit: int = 3) -> str:
+    """One short line for the status bar: "done: Workplane Em 575 lx U0 0.71 (500 lx: pass),
+    Desk top 612 lx; 200000 photons, 1.2 s"."""
+    parts = []
+    for t in result.targets[:limit]:
+        text = f"{t.label} Em {t.mean_lux:.0f} lx"
+        if t.kind == "grid":
+            text += f" U0 {t.uniformity:.2f}"
+        verdict = t.passes()
+        if verdict is not None:
+            text += " pass" if verdict else " FAIL"
+        parts.append(text)
+    if len(result.targets) > limit:
+        parts.append(f"+{len(result.targets) - limit} more")
+    state = "partial results" if result.partial else "done"
+    return f"{state}: {', '.join(parts)}; {result.photons:.0f} photons, {result.seconds:.1f} s"
 
 
 def _required(analysis: Any) -> Dict[str, Tuple[float, float]]:
@@ -54,21 +179,31 @@ def results_object(analysis: Any) -> Optional[Any]:
 
 
 def apply_to_document(analysis: Any, data: Dict[str, Any], scene_file: str = "",
-                      results_file: str = "") -> AnalysisResult:
+                      results_file: str = "",
+                      fingerprint: Optional[Dict[str, str]] = None) -> AnalysisResult:
     """Store results (``lightsolver.results/1`` layout, plain JSON data) in the analysis'
-    results object, created on the first run and updated by the next (one undo step)."""
+    results object, created on the first run and updated by the next (one undo step).
+    ``fingerprint``: of the model the run exported (export/fingerprint.py; default: the
+    model's now). A run that found exactly the stored results for the same model (a second
+    Run without changes) changes nothing and adds no undo step."""
     doc = analysis.Document
     migrate(analysis)
-    doc.openTransaction("Lighting results")
-    try:
-        obj = results_obj.of_analysis(analysis) or _make_results(analysis)
+    prints = fingerprint_mod.dumps(fingerprint if fingerprint is not None
+                                   else fingerprint_mod.of_analysis(analysis))
+    status = "partial results (cancelled)" if data.get("partial") else "done"
+    existing = results_obj.of_analysis(analysis)
+    if existing is not None and existing.InputsFingerprint == prints and \
+            existing.SceneFile == scene_file and _same_results(results_obj.data(existing), data):
+        set_status(analysis, status)
+        return load_from_document(analysis)
+    with undo_step(doc, "Lighting results"):
+        obj = existing or _make_results(analysis)
         _set(obj, "SceneFile", scene_file)
         _set(obj, "ResultsFile", results_file)
+        _set(obj, "InputsFingerprint", prints)
         _set(obj, "ResultsJson", json.dumps(data, separators=(",", ":")))
         _set(analysis, "SceneFile", scene_file)
-        _set(analysis, "Status", "partial results (cancelled)" if data.get("partial") else "done")
-    finally:
-        doc.commitTransaction()
+        _set(analysis, "Status", status)
     return load_from_document(analysis)
 
 
@@ -86,15 +221,12 @@ def clear(analysis: Any) -> None:
     """Remove the analysis' results object (one undo step)."""
     doc = analysis.Document
     migrate(analysis)
-    doc.openTransaction("Clear lighting results")
-    try:
+    with undo_step(doc, "Clear lighting results"):
         obj = results_obj.of_analysis(analysis)
         if obj is not None:
             analysis.removeObject(obj)
             doc.removeObject(obj.Name)
         _set(analysis, "Status", "not run")
-    finally:
-        doc.commitTransaction()
 
 
 def migrate(analysis: Any) -> bool:
@@ -122,7 +254,8 @@ def migrate(analysis: Any) -> bool:
 
 
 def set_status(analysis: Any, text: str) -> None:
-    """Update the analysis' Status without an undo step."""
+    """Update the analysis' Status without an undo step (the property is NoModify, so no
+    pending transaction records it, objects/analysis.py)."""
     _set(analysis, "Status", text)
 
 

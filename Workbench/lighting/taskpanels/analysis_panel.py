@@ -194,6 +194,10 @@ class AnalysisTaskPanel:
         self.status = QtGui.QLabel(f"Status: {self.analysis.Status}")
         self.status.setWordWrap(True)
         grid.addWidget(self.status, 3, 0, 1, 2)
+        # Whether the stored results still describe the model (solver/store.results_state).
+        self.state_label = QtGui.QLabel("")
+        self.state_label.setWordWrap(True)
+        grid.addWidget(self.state_label, 4, 0, 1, 2)
         return header
 
     def _build_settings(self) -> QtGui.QLayout:
@@ -315,14 +319,19 @@ class AnalysisTaskPanel:
         self.buttons["cancel"].setEnabled(running)
 
     def _write_settings(self) -> None:
-        doc = self.analysis.Document
-        doc.openTransaction("Lighting settings")
-        if self.analysis.Photons != self.photons.value():
-            self.analysis.Photons = self.photons.value()
-        accuracy = self.accuracy.value() / 100.0
-        if abs(self.analysis.TargetAccuracy - accuracy) > 1e-12:
-            self.analysis.TargetAccuracy = accuracy
-        doc.commitTransaction()
+        # One "Lighting settings" undo step only when a value really changes.
+        store.write_settings(self.analysis, Photons=self.photons.value(),
+                             TargetAccuracy=self.accuracy.value() / 100.0)
+
+    def show_state(self, state: Optional[Any] = None) -> None:
+        """Show whether the stored results are current or stale (red, with what changed)."""
+        try:
+            state = state or store.results_state(self.analysis)
+            stale = state.state in ("stale", "unknown")
+            self.state_label.setText(state.text())
+            self.state_label.setStyleSheet("color: #c62828; font-weight: bold;" if stale else "")
+        except Exception:  # noqa: BLE001 - the panel was closed or the analysis deleted
+            pass
 
     def _display_changed(self, *args: Any) -> None:
         a = self.analysis
@@ -345,6 +354,7 @@ class AnalysisTaskPanel:
         self.scale_max.setEnabled(fixed)
         self.legend.set_scale(coloring.scale_for(self.analysis) if result else None)
         self.table.setRowCount(0)
+        self.show_state()
         if result is None:
             self._layout_table()
             self.facts.setText("No results yet: press Run.")
@@ -460,6 +470,7 @@ class AnalysisTaskPanel:
         self.progress.setValue(1000)
         self._set_status(self.analysis.Status)
         self.log("info", "Results:\n" + result.table())
+        self.log("info", store.summary_line(result))  # last: the status bar shows this line
         self._show_stored_results()
         self.scroll.ensureWidgetVisible(self.table)
         FreeCADGui.updateGui()

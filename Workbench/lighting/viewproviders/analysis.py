@@ -6,7 +6,7 @@ annotation with its own orthographic camera, inside a group that the view's boun
 ignores (FreeCAD's SoSkipBoundingGroup) so that "fit all" is unaffected."""
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any, Optional, Tuple
 
 import FreeCAD
 
@@ -43,8 +43,19 @@ def _skip_bounding_group() -> Any:
     return coin.SoSeparator()
 
 
-def build_legend(scale: Scale, title: str = "Illuminance [lx]") -> Any:
-    """Coin nodes of a vertical colour bar with tick labels at the left of the view."""
+#: Legend of stale results: colours washed towards this grey, and this title.
+STALE_GREY = (0.72, 0.72, 0.72)
+STALE_WASH = 0.7
+STALE_TITLE = "Illuminance [lx] - OUT OF DATE: the model changed, press Run"
+
+
+def _washed(rgb: Tuple[float, float, float]) -> Tuple[float, float, float]:
+    return tuple(STALE_WASH * g + (1.0 - STALE_WASH) * c for c, g in zip(rgb, STALE_GREY))
+
+
+def build_legend(scale: Scale, title: str = "Illuminance [lx]", stale: bool = False) -> Any:
+    """Coin nodes of a vertical colour bar with tick labels at the left of the view; greyed,
+    with a title that says so, when the results are stale."""
     coin = _coin()
     root = coin.SoAnnotation()
     camera = coin.SoOrthographicCamera()
@@ -66,8 +77,9 @@ def build_legend(scale: Scale, title: str = "Illuminance [lx]") -> Any:
     for i in range(LEGEND_STEPS):
         y = Y0 + i * dy
         points += [(X0, y, 0.0), (X1, y, 0.0), (X1, y + dy, 0.0), (X0, y + dy, 0.0)]
-        colours.append(scale.colour(scale.min_lux + (i + 0.5) / LEGEND_STEPS *
-                                    (scale.max_lux - scale.min_lux)))
+        rgb = scale.colour(scale.min_lux + (i + 0.5) / LEGEND_STEPS *
+                           (scale.max_lux - scale.min_lux))
+        colours.append(_washed(rgb) if stale else rgb)
     material = coin.SoMaterial()
     material.diffuseColor.setValues(0, len(colours), colours)
     root.addChild(material)
@@ -102,8 +114,12 @@ def build_legend(scale: Scale, title: str = "Illuminance [lx]") -> Any:
     move = coin.SoTranslation()
     move.translation = (X0, Y1 + 0.05, 0.0)
     title_sep.addChild(move)
+    if stale:  # bright: readable on FreeCAD's dark-blue to light background
+        warn_colour = coin.SoBaseColor()
+        warn_colour.rgb = (1.0, 0.45, 0.3)
+        title_sep.addChild(warn_colour)
     text = coin.SoText2()
-    text.string = title
+    text.string = STALE_TITLE if stale else title
     title_sep.addChild(text)
     text_sep.addChild(title_sep)
     root.addChild(text_sep)
@@ -164,7 +180,16 @@ class ViewProviderAnalysis(ViewProviderBase):
         holder.removeAllChildren()
         vobj = getattr(self, "ViewObject", None)
         if scale is not None and (vobj is None or vobj.Visibility):
-            holder.addChild(build_legend(scale))
+            holder.addChild(build_legend(scale, stale=self.results_stale()))
+
+    def results_stale(self) -> bool:
+        """True when the stored results no longer describe the model (or cannot tell)."""
+        try:
+            from lighting.viewproviders.results import current_state
+
+            return current_state(self.Object).state in ("stale", "unknown")
+        except Exception:  # noqa: BLE001 - never break the legend
+            return False
 
     def task_panel(self, vobj: Any) -> Optional[Any]:
         from lighting.taskpanels.analysis_panel import AnalysisTaskPanel

@@ -10,7 +10,10 @@ InitGui.py when the GUI starts, does:
   saved by freecadcmd have no GuiDocument.xml) and ``restore.after_restore`` for the Arch
   objects and the visibility such files lose; results that older versions stored on the
   analysis and its targets move into a results object (solver/store.py ``migrate``).
-Results colours come from the view providers' ``updateData`` (see coloring.py)."""
+Results colours come from the view providers' ``updateData`` (see coloring.py). Any change
+of a document with a Lighting analysis (an edit, undo, redo, a deletion) also makes the
+results state be computed again once the changes settle (results.py
+``schedule_state_refresh``): a stale legend and panel follow an edited flux at once."""
 from __future__ import annotations
 
 import importlib
@@ -81,6 +84,8 @@ class LightingObserver:
     """App document observer (FreeCAD.addDocumentObserver) living in the GUI."""
 
     def slotChangedObject(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API)
+        if prop not in STATE_NEUTRAL:
+            _state_may_change(obj)
         if prop != "Proxy" or not proxy_type(obj):
             return
         try:
@@ -98,6 +103,34 @@ class LightingObserver:
                 attach_view_provider(obj)
         except Exception as exc:  # noqa: BLE001 - a view provider must never break the model
             FreeCAD.Console.PrintWarning(f"Lighting: no view provider for {obj.Name}: {exc}\n")
+
+
+    def slotDeletedObject(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        _state_may_change(obj)
+
+    def slotUndoDocument(self, doc: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        _state_may_change(None, doc)
+
+    def slotRedoDocument(self, doc: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        _state_may_change(None, doc)
+
+
+#: Property changes that never change a results state (viewing and naming).
+STATE_NEUTRAL = ("Visibility", "Label", "Label2")
+
+
+def _state_may_change(obj: Any, doc: Any = None) -> None:
+    """Schedule a results-state refresh for the document (debounced; GUI documents with an
+    analysis only)."""
+    try:
+        doc = doc if doc is not None else obj.Document
+        if doc is None or getattr(doc, "Restoring", False) or doc.Name in _restoring:
+            return
+        from lighting.viewproviders.results import schedule_state_refresh
+
+        schedule_state_refresh(doc)
+    except Exception:  # noqa: BLE001 - observers must never break the document
+        pass
 
 
 def install() -> None:

@@ -1,9 +1,12 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Documents saved by freecadcmd (scripts, Examples/office.py) have no GuiDocument.xml.
 FreeCAD 0.20's GUI then opens C++ features (Part::Box, Part::MultiFuse, Mesh::Feature...)
-hidden, although their saved ``Visibility`` is true — so the GUI would export a different
-scene than the headless run. This re-applies the visibility stored in Document.xml, once per
-opened file, for documents that contain a Lighting analysis."""
+hidden, although their saved ``Visibility`` is true, and Arch objects without their Arch view
+providers. Visibility no longer changes the calculation (only ``LightingExclude`` leaves an
+object out, export/collect.py), so this is about what the user sees: the desk and the cabinet
+of the example would be missing from the view while they are lit in the scene. This
+re-applies the visibility stored in Document.xml, once per opened file, and gives Arch objects
+their view providers, for documents that contain a Lighting analysis."""
 from __future__ import annotations
 
 import xml.etree.ElementTree as ElementTree
@@ -81,11 +84,33 @@ def attach_arch_view_providers(doc: Any) -> int:
             module = importlib.import_module(module_name)
             cls = getattr(module, "_ViewProvider" + type(proxy).__name__.lstrip("_"), None)
             if cls is not None:
-                cls(vobj)
+                _attach_late(cls, vobj)
                 attached += 1
         except Exception as exc:  # noqa: BLE001 - cosmetic: keep the plain view provider
             FreeCAD.Console.PrintLog(f"Lighting: no Arch view provider for {obj.Name}: {exc}\n")
     return attached
+
+
+def _attach_late(cls: Any, vobj: Any) -> None:
+    """``cls(vobj)`` on a view object that is already attached: FreeCAD does not call the new
+    proxy's ``attach`` then, and Arch's ``__init__`` sets view properties whose ``onChanged``
+    needs the nodes ``attach`` makes (an ArchSpace printed "'_ViewProviderSpace' object has no
+    attribute 'fmat'" on every colour change). So: construct with onChanged muted, attach,
+    then let the proxy see its colour and transparency."""
+    proxy = cls.__new__(cls)
+    proxy.onChanged = lambda *args: None  # instance attribute: shadows the method meanwhile
+    try:
+        cls.__init__(proxy, vobj)
+    finally:
+        del proxy.onChanged
+    if hasattr(proxy, "attach"):
+        proxy.attach(vobj)
+    for prop in ("ShapeColor", "Transparency", "LineColor", "Visibility"):
+        if prop in vobj.PropertiesList:
+            try:
+                proxy.onChanged(vobj, prop)
+            except Exception:  # noqa: BLE001 - cosmetic
+                pass
 
 
 def after_restore(doc: Any) -> None:
