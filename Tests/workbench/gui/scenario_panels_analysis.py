@@ -16,11 +16,14 @@ sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Exa
 def panel_geometry(panel) -> dict:
     """What the user sees of the panel: widths, and which parts are fully on screen."""
     table = panel.table
-    header = table.horizontalHeader()
+    # Read first: PySide2 5.15 can invalidate a QHeaderView wrapper held across the widget
+    # walks below (the C++ header lives on; a fresh wrapper reads it).
+    columns_px, viewport_px = table.horizontalHeader().length(), table.viewport().width()
     return {"form_width": panel.form.width(), "combo_view_width": _combo_width(),
             "visible": {name: visible_in_window(button) for name, button in panel.buttons.items()},
             "table_visible": visible_in_window(table),
-            "table_columns_px": header.length(), "table_viewport_px": table.viewport().width(),
+            "table_columns_px": columns_px, "table_viewport_px": viewport_px,
+            "header_alive": table.horizontalHeader().length() == columns_px,
             "legend_visible": visible_in_window(panel.legend)}
 
 

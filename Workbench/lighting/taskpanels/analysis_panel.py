@@ -144,11 +144,13 @@ class AnalysisTaskPanel:
         outer.addWidget(self.scroll, 1)
         self.add_section("settings", "Run settings", self._build_settings())
         self.add_section("results", "Results (maintained illuminance)", self._build_results())
+        self.add_section("display", "False colours", self._build_display())
+        # Below the table and the legend: the image grows when it is drawn (after a delay),
+        # which must not push what is above it out of view.
         self.plan_view = plan_view.section(self)  # grid plan view (taskpanels/plan_view.py)
         plan = QtGui.QVBoxLayout()
         plan.addWidget(self.plan_view)
         self.add_section("plan", "Plan view", plan)
-        self.add_section("display", "False colours", self._build_display())
         self.add_section("log", "Log", self._build_log())
 
     def add_section(self, name: str, title: str, content: QtGui.QLayout,

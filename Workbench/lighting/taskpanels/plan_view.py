@@ -15,8 +15,8 @@ from PySide import QtCore, QtGui
 from lighting import plots
 from lighting.objects import analysis as analysis_mod
 
-#: Narrowest image rendered (px); narrower panels scroll.
-MIN_WIDTH_PX = 240
+#: Narrowest image rendered (px): the default combo view leaves about 200 px.
+MIN_WIDTH_PX = 200
 #: Delay before re-rendering after a resize or new results (ms): one render per drag.
 RESIZE_DELAY_MS = 200
 
@@ -45,13 +45,14 @@ class PlanImage(QtGui.QLabel):
             self.resized.emit()
 
 
-class PlanView(QtGui.QGroupBox):
-    """The plan-view section of an analysis panel."""
+class PlanView(QtGui.QWidget):
+    """The plan-view section of an analysis panel (the panel gives it its titled box)."""
 
     def __init__(self, analysis: Any, parent: Optional[QtGui.QWidget] = None) -> None:
-        super().__init__("Plan view", parent)
+        super().__init__(parent)
         self.analysis = analysis
         layout = QtGui.QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
         row = QtGui.QHBoxLayout()
         self.choice = QtGui.QComboBox()
         self.choice.setToolTip("Grid to show")

@@ -53,7 +53,9 @@ class ViewProviderBase:
         return True
 
     def doubleClicked(self, vobj: Any) -> bool:  # noqa: N802
-        if self.task_panel(vobj) is None:
+        # Asks whether the class has a panel without building one: a panel built only to be
+        # dropped would be collected later, at any moment, taking its Qt widgets along.
+        if type(self).task_panel is ViewProviderBase.task_panel:
             return False
         if FreeCADGui.Control.activeDialog():
             FreeCADGui.Control.closeDialog()
