@@ -172,9 +172,10 @@ def add_luminaire_layout(doc: Any, base: Any = None, face: Optional[str] = None,
     Spacing 0 fills the field between the margins; margin 0 is half the spacing (an even
     field); ``offset_m`` is the distance from the face (below a ceiling). The members share
     ``template`` (a luminaire), or a new hidden template made from ``kind``, ``flux_lm``,
-    ``maintenance_factor``, ``width_m`` x ``length_m`` and ``photometric_file``. The layout and
-    a new template go into ``analysis``' group when given (else into no analysis: every
-    analysis uses them). Returns the layout; edit its Rows, Columns, ... later."""
+    ``maintenance_factor``, ``width_m`` x ``length_m`` and ``photometric_file`` (it shows
+    under the layout in the tree). The layout goes into ``analysis``' group when given (else
+    into no analysis: every analysis uses it). Returns the layout; edit its Rows, Columns, ...
+    later (the members follow)."""
     from lighting.objects.factory import make_luminaire
     from lighting.objects.luminaire_layout import make_layout
     from lighting.units import M_TO_MM
@@ -184,7 +185,7 @@ def add_luminaire_layout(doc: Any, base: Any = None, face: Optional[str] = None,
     if template is None:
         template = make_luminaire(doc, (0.0, 0.0, 0.0), kind=kind, flux_lm=flux_lm,
                                   maintenance_factor=maintenance_factor, width_m=width_m,
-                                  length_m=length_m, name=f"{name}Type", analysis=analysis)
+                                  length_m=length_m, name=f"{name}Type")
         if photometric_file:
             template.PhotometricFile = photometric_file
         template.Visibility = False

@@ -216,3 +216,26 @@ def default_spot(doc: Any) -> Tuple[FreeCAD.Vector, FreeCAD.Vector, str]:
         return (V(box.Center.x, box.Center.y, box.ZMax - 500.0), V(0, 0, -1),
                 "over the middle of the model, 0.5 m under its top (no ceiling found)")
     return V(0, 0, 2500.0), V(0, 0, -1), "2.5 m above the origin (the document has no geometry)"
+
+
+def ceiling_link(doc: Any) -> Optional[Tuple[Any, str]]:
+    """(object, "FaceN") of the ceiling over the middle of the model (see
+    :func:`ceiling_over_model`), for a link property; None without one."""
+    from lighting.export import collect
+
+    face = ceiling_over_model(model_solids(doc))
+    if face is None:
+        return None
+    centre = face.CenterOfMass
+    for obj in collect.exported_objects(doc):
+        if collect.is_mesh(obj):
+            continue
+        try:
+            faces = global_shape(obj).Faces
+        except Exception:  # noqa: BLE001
+            continue
+        for index, candidate in enumerate(faces):
+            if (abs(candidate.Area - face.Area) < 1e-6 * max(face.Area, 1.0)
+                    and (candidate.CenterOfMass - centre).Length < 1e-6):
+                return obj, f"Face{index + 1}"
+    return None
