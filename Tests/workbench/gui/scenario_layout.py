@@ -122,7 +122,7 @@ def _layout_from_panel(doc, ceiling, face):
     ok = _ok_button()
     expect(ok is not None and visible_in_window(ok), "the panel's OK button is not visible")
     expect("6 luminaires" in panel.summary.text(), f"summary: {panel.summary.text()!r}")
-    grab_screen("layout_panel")
+    grab_screen("layout_panel", docs_name="layout-panel.png")
     ok.click()
     pump(0.5)
     layouts = objects_of_type(doc, layout_mod.TYPE)
@@ -167,6 +167,55 @@ def _run(doc):
     grab_screen("layout_3x2", docs_name="layout-3x2.png")
     FreeCADGui.Control.closeDialog()
     pump(0.3)
+
+
+def _edit_later(doc, layout):
+    """Double click (setEdit) opens the panel on the layout: Cancel restores it, OK with 3 rows
+    gives 9 luminaires in one undo step, Undo brings back the 3 x 2."""
+    import FreeCADGui
+
+    from lighting.taskpanels import layout_panel
+
+    def edit_rows(rows, button):
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.ActiveDocument.setEdit(layout.Name)
+        pump(0.5)
+        panel = layout_panel.last_panel()
+        expect(panel is not None and panel.layout == layout, "double click opened no layout panel")
+        panel.rows.setValue(rows)
+        pump(0.3)
+        expect(layout.MemberCount == 3 * rows, f"live preview: {layout.MemberCount} members")
+        from PySide import QtGui
+
+        for box in main_window().findChildren(QtGui.QDialogButtonBox):
+            found = box.button(button)
+            if found is not None and found.isVisible():
+                found.click()
+                break
+        pump(0.5)
+
+    undo_before = doc.UndoCount
+    edit_rows(4, _standard_button("Cancel"))
+    expect((layout.Rows, layout.MemberCount) == (2, 6),
+           f"Cancel left {layout.Rows} rows, {layout.MemberCount} members")
+    expect(doc.UndoCount == undo_before, "Cancel left an undo step")
+    edit_rows(3, _standard_button("Ok"))
+    expect((layout.Rows, layout.MemberCount) == (3, 9),
+           f"OK left {layout.Rows} rows, {layout.MemberCount} members")
+    expect(doc.UndoCount == undo_before + 1,
+           f"editing made {doc.UndoCount - undo_before} undo steps, not 1")
+    FreeCADGui.runCommand("Std_Undo")
+    pump(0.5)
+    doc.recompute()
+    expect((layout.Rows, layout.MemberCount) == (2, 6),
+           f"Undo left {layout.Rows} rows, {layout.MemberCount} members")
+
+
+def _standard_button(name):
+    """A QDialogButtonBox standard button by name ("Ok", "Cancel")."""
+    from PySide import QtGui
+
+    return getattr(QtGui.QDialogButtonBox, name)
 
 
 def _double_click_slip(doc, ceiling, face):
@@ -214,8 +263,9 @@ def body() -> None:
     expect(STATUS["start_workbench"] == "StartWorkbench",
            f"FreeCAD did not start on the Start page: {STATUS['start_workbench']}")
     doc, ceiling, face = _office()
-    _layout_from_panel(doc, ceiling, face)
+    layout = _layout_from_panel(doc, ceiling, face)
     _run(doc)
+    _edit_later(doc, layout)
     _double_click_slip(doc, ceiling, face)
     _luminaire_with_nothing_selected(doc)
 
