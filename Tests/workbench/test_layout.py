@@ -141,6 +141,11 @@ class LayoutExport(DocTestCase):
         self.doc.recompute()
         self.assertEqual(sorted(_centres(self.scene()).values()),
                          [(1.5, 1.5, 2.9), (2.5, 1.5, 2.9)])
+        # The markers are where the members are (not moved by the Placement twice).
+        box = layout.Shape.BoundBox
+        self.assertAlmostEqual(box.XMin, 1200.0, places=3)
+        self.assertAlmostEqual(box.XMax, 2800.0, places=3)
+        self.assertAlmostEqual(box.ZMax, 2920.0, places=3)
 
     @needs_solver
     def test_run_matches_separate_luminaires(self):

@@ -81,15 +81,16 @@ class LuminaireLayout(BaseProxy):
             members = []
         if obj.MemberCount != len(members):
             obj.MemberCount = len(members)
-        shapes = [_marker(obj.Template, p) for _, _, p in members]
+        # Over a face the markers are global (Placement stays identity); a rectangle layout
+        # keeps its Placement, so its markers are built relative to it.
+        own = obj.Placement if _base_face_link(obj) is None else FreeCAD.Placement()
+        local = own.inverse()
+        shapes = [_marker(obj.Template, local.multiply(p)) for _, _, p in members]
         shape = Part.makeCompound(shapes) if shapes else Part.Shape()
-        # The markers are built in global coordinates; a rectangle layout keeps its Placement.
-        keep = obj.Placement
+        shape.Placement = own
         obj.Shape = shape
-        if _base_face_link(obj) is None:
-            obj.Placement = keep
-        elif obj.Placement != FreeCAD.Placement():
-            obj.Placement = FreeCAD.Placement()
+        if obj.Placement != own:
+            obj.Placement = own
 
 
 def _marker(template: Any, where: FreeCAD.Placement) -> Any:
@@ -118,7 +119,7 @@ def _base_face_link(obj: Any) -> Optional[Tuple[Any, str]]:
     return link[0], (subs[0] if subs else "")
 
 
-def _field(obj: Any) -> Tuple[placement.Frame, Optional[Any]]:
+def field_frame(obj: Any) -> Tuple[placement.Frame, Optional[Any]]:
     """The field's frame (extent = the room region) and the region face (None: rectangle)."""
     found = _base_face_link(obj)
     if found is None:
@@ -193,7 +194,7 @@ def layout_placements(obj: Any) -> List[Tuple[str, str, FreeCAD.Placement]]:
     if rows * columns > MAX_MEMBERS:
         raise ValueError(f"Luminaire layout '{label}': {rows} x {columns} luminaires is more "
                          f"than {MAX_MEMBERS}")
-    frame, face = _field(obj)
+    frame, face = field_frame(obj)
     us = axis_positions(columns, frame.u0, frame.u1, float(obj.SpacingX), float(obj.MarginX))
     vs = axis_positions(rows, frame.v0, frame.v1, float(obj.SpacingY), float(obj.MarginY))
     aim = placement.aim_for_normal(frame.normal) if face is not None else V(frame.normal)
@@ -288,7 +289,7 @@ def check(obj: Any) -> List[tuple]:
         return [("error", f"Luminaire layout '{label}': Template must be a Lighting luminaire")]
     try:
         placed = layout_placements(obj)
-        frame, _ = _field(obj)
+        frame, _ = field_frame(obj)
     except ValueError as exc:
         return [("error", str(exc))]
     problems: List[tuple] = []

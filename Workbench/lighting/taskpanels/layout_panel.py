@@ -180,9 +180,9 @@ class LayoutTaskPanel:
         obj = self.layout
         link = obj.Base
         try:
-            from lighting.objects.luminaire_layout import _field
+            from lighting.objects.luminaire_layout import field_frame
 
-            frame, _ = _field(obj)
+            frame, _ = field_frame(obj)
             size = f"{(frame.u1 - frame.u0) / 1000.0:.2f} × {(frame.v1 - frame.v0) / 1000.0:.2f} m"
         except ValueError as exc:
             return f"Field: {exc}"
