@@ -9,10 +9,10 @@ from lighting import placement
 from lighting.objects import luminaire_layout as layout_mod
 from lighting.objects.base import proxy_type
 from lighting.solver import check as check_mod
-from wbtest import DocTestCase, build_office, needs_solver, work_dir
+from wbtest import REPO, DocTestCase, build_office, needs_solver, work_dir
 
 V = FreeCAD.Vector
-ROOM_Z_M = 3.0
+PHOTOMETRIC_FILE = "batwing_panel.ldt"
 
 
 def _office_without_luminaires():
@@ -147,6 +147,19 @@ class LayoutExport(DocTestCase):
         self.assertAlmostEqual(box.XMax, 2800.0, places=3)
         self.assertAlmostEqual(box.ZMax, 2920.0, places=3)
 
+    def test_photometric_members_turn_with_rotation(self):
+        """Members of a photometric type share its file; LuminaireRotation turns their C0."""
+        path = os.path.join(REPO, "Resources", "luminaires", PHOTOMETRIC_FILE)
+        layout = _layout(self.doc, self.ceiling, self.face, kind="Photometric",
+                         photometric_file=path, flux_lm=3000.0, rotation_deg=30.0)
+        scene = self.scene()
+        self.assertEqual(len(scene["luminaires"]), 6)
+        for lum in scene["luminaires"]:
+            self.assertEqual(lum["file"], os.path.abspath(path))
+            self.assertAlmostEqual(lum["rotation_deg"], 30.0, places=6)
+            self.assertEqual([round(c, 12) + 0.0 for c in lum["aim"]], [0.0, 0.0, -1.0])
+        self.assertEqual(layout.MemberCount, 6)
+
     @needs_solver
     def test_run_matches_separate_luminaires(self):
         """Em of the layout = Em of six luminaire objects with the same data and positions
@@ -193,6 +206,11 @@ class Placement(DocTestCase):
         position, aim = placement.spot_on_face(floor.Shape.getElement(floor_face), solids)
         self.assertAlmostEqual((position - V(2500, 2000, 2950)).Length, 0.0, places=6)
         self.assertAlmostEqual(aim.z, -1.0)
+
+    def test_ceiling_link_names_the_slab_face(self):
+        """What the layout command uses with nothing selected: the ceiling's underside."""
+        doc, ceiling, face = _office_without_luminaires()
+        self.assertEqual(placement.ceiling_link(doc), (ceiling, face))
 
     def test_empty_document(self):
         doc = FreeCAD.newDocument("Empty")
