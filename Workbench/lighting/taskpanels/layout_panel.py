@@ -91,7 +91,7 @@ class LayoutTaskPanel:
                  obj.getDocumentationOfProperty("MarginX")),
                 ("Margin y to walls (0 = even)", self.margin_y,
                  obj.getDocumentationOfProperty("MarginY")),
-                ("Distance from ceiling", self.offset,
+                (self._offset_text(), self.offset,
                  obj.getDocumentationOfProperty("MountingOffset")),
                 ("Rotation of each", self.rotation,
                  obj.getDocumentationOfProperty("LuminaireRotation"))):
@@ -190,6 +190,17 @@ class LayoutTaskPanel:
             subs = ", ".join(link[1] or [])
             return f"Field: {link[0].Label} {subs} (room {size})"
         return f"Field: rectangle {size} at the layout's placement"
+
+    def _offset_text(self) -> str:
+        """What MountingOffset means for this field: below a ceiling, above a floor."""
+        from lighting.objects.luminaire_layout import field_frame
+
+        try:
+            frame, face = field_frame(self.layout)
+        except ValueError:
+            return "Distance from the face"
+        return "Height above floor" if face is not None and frame.normal.z > 0.5 \
+            else "Distance from ceiling"
 
     def _update_summary(self) -> None:
         from lighting.objects.luminaire_layout import check
