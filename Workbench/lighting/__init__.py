@@ -10,7 +10,8 @@ Works headless (``freecadcmd``) and in the GUI::
     result["Workplane"].mean_lux
 
 Objects: :func:`make_analysis`, :func:`make_luminaire`, :func:`make_face_target`,
-:func:`make_grid_target`, :func:`make_placement_domain`. Stages on their own:
+:func:`make_grid_target`, :func:`make_placement_domain`,
+:func:`add_luminaire_layout`. Stages on their own:
 :func:`check`, :func:`export_scene`, :func:`solver_available`. Model state: :func:`exclude`,
 :func:`left_out`, :func:`results_state`. Errors derive from
 :class:`LightingError` and carry a message meant for the user.
@@ -25,6 +26,7 @@ from typing import Any
 __version__ = "0.1.0"
 
 _EXPORTS = {
+    "add_luminaire_layout": "lighting.api",
     "analyze": "lighting.api",
     "check": "lighting.api",
     "exclude": "lighting.api",

@@ -221,3 +221,52 @@ def assign_photometry(doc: Any, luminaires: Any, path: str, keep_flux: bool = Fa
     from lighting import luminaire_library
 
     return luminaire_library.assign(doc, luminaires, path, keep_flux)
+
+
+def add_luminaire_layout(doc: Any, base: Any = None, face: Optional[str] = None,
+                         rows: int = 2, columns: int = 2, spacing_x_m: float = 0.0,
+                         spacing_y_m: float = 0.0, margin_x_m: float = 0.0,
+                         margin_y_m: float = 0.0, offset_m: float = 0.05,
+                         rotation_deg: float = 0.0, template: Any = None, kind: str = "Area",
+                         flux_lm: float = 3000.0, maintenance_factor: float = 0.8,
+                         width_m: float = 0.6, length_m: float = 0.6,
+                         photometric_file: Optional[str] = None,
+                         area_m: Optional[Tuple[float, float]] = None,
+                         clip_to_walls: bool = True, name: str = "LuminaireLayout",
+                         analysis: Any = None) -> Any:
+    """A luminaire layout (field arrangement): ``rows`` x ``columns`` luminaires over the
+    planar face ``base.face`` (a ceiling's underside) or, without ``base``, over a rectangle
+    ``area_m`` = (length, width) in the layout's Placement plane.
+
+    Spacing 0 fills the field between the margins; margin 0 is half the spacing (an even
+    field); ``offset_m`` is the distance from the face (below a ceiling). The members share
+    ``template`` (a luminaire), or a new hidden template made from ``kind``, ``flux_lm``,
+    ``maintenance_factor``, ``width_m`` x ``length_m`` and ``photometric_file`` (it shows
+    under the layout in the tree). The layout goes into ``analysis``' group when given (else
+    into no analysis: every analysis uses it). Returns the layout; edit its Rows, Columns, ...
+    later (the members follow)."""
+    from lighting.objects.factory import make_luminaire
+    from lighting.objects.luminaire_layout import make_layout
+    from lighting.units import M_TO_MM
+
+    if analysis is not None:
+        analysis = _analysis(doc, analysis)
+    if template is None:
+        template = make_luminaire(doc, (0.0, 0.0, 0.0), kind=kind, flux_lm=flux_lm,
+                                  maintenance_factor=maintenance_factor, width_m=width_m,
+                                  length_m=length_m, name=f"{name}Type")
+        if photometric_file:
+            template.PhotometricFile = photometric_file
+        template.Visibility = False
+    lengths = {"SpacingX": spacing_x_m, "SpacingY": spacing_y_m, "MarginX": margin_x_m,
+               "MarginY": margin_y_m, "MountingOffset": offset_m}
+    lengths = {k: v * M_TO_MM for k, v in lengths.items()}
+    if area_m is not None:
+        lengths["AreaLength"], lengths["AreaWidth"] = (area_m[0] * M_TO_MM, area_m[1] * M_TO_MM)
+    layout = make_layout(doc, template, base, face, rows, columns, name,
+                         LuminaireRotation=rotation_deg, **lengths)
+    layout.ClipToWalls = bool(clip_to_walls)
+    if analysis is not None:
+        analysis.addObject(layout)
+    layout.recompute()
+    return layout

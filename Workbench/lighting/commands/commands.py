@@ -97,26 +97,38 @@ class CommandAnalysis(BaseCommand):
 class CommandLuminaire(BaseCommand):
     NAME, ICON = "Lighting_Luminaire", "Lighting_Luminaire"
     MENU = "Luminaire"
-    TIP = ("Add a luminaire. With a face selected (e.g. the ceiling's underside) it is placed "
-           "5 cm off the face's centre, aimed along the face normal")
+    TIP = ("Add a luminaire. With a face selected it goes to the centre of the face's room "
+           "(walls cut out), 5 cm off it, aimed into the room (a floor face: under the ceiling "
+           "above, aimed down); with a vertex selected, at the vertex aimed down; with nothing "
+           "selected, under the ceiling at the centre of the model's room")
 
     def Activated(self) -> None:  # noqa: N802
-        position, aim = (0.0, 0.0, 2.5), (0.0, 0.0, -1.0)
-        sel = FreeCADGui.Selection.getSelectionEx()
-        if sel and sel[0].SubObjects:
-            sub = sel[0].SubObjects[0]
-            if sub.ShapeType == "Face":
-                u0, u1, v0, v1 = sub.ParameterRange
-                normal = sub.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
-                point = sub.CenterOfMass + normal * 50.0
-                position = (point.x / 1000, point.y / 1000, point.z / 1000)
-                aim = (normal.x, normal.y, normal.z)
-            elif sub.ShapeType == "Vertex":
-                p = sub.Point
-                position = (p.x / 1000, p.y / 1000, p.z / 1000)
+        position, aim, where = _luminaire_spot()
+        to_m = tuple(round(c / 1000.0, 6) for c in (position.x, position.y, position.z))
+        aim_t = tuple(round(c, 12) + 0.0 for c in (aim.x, aim.y, aim.z))
         _run_transaction("Create luminaire", [
-            f"lighting.make_luminaire(FreeCAD.ActiveDocument, position_m={position!r}, "
-            f"aim={aim!r}, analysis={_analysis_arg()})"])
+            f"lighting.make_luminaire(FreeCAD.ActiveDocument, position_m={to_m!r}, "
+            f"aim={aim_t!r}, analysis={_analysis_arg()})"])
+        FreeCAD.Console.PrintMessage(f"Lighting: luminaire placed at ({to_m[0]:.3f}, "
+                                     f"{to_m[1]:.3f}, {to_m[2]:.3f}) m, {where}\n")
+
+
+def _luminaire_spot() -> Tuple[Any, Any, str]:
+    """(position mm, aim, description) for a new luminaire from the selection (a face, a
+    vertex) or, with nothing usable selected, the room under the model's ceiling."""
+    from lighting import placement
+
+    doc = _doc()
+    for sel in FreeCADGui.Selection.getSelectionEx():
+        for name, sub in zip(sel.SubElementNames, sel.SubObjects):
+            if sub.ShapeType == "Face":
+                solids = placement.model_solids(doc, (sel.Object.Name,))
+                position, aim = placement.spot_on_face(sub, solids)
+                return position, aim, f"on {sel.Object.Label} {name} (centre of its room)"
+            if sub.ShapeType == "Vertex":
+                return (FreeCAD.Vector(sub.Point), FreeCAD.Vector(0, 0, -1),
+                        f"at {sel.Object.Label} {name}")
+    return placement.default_spot(doc)
 
 
 class CommandTarget(BaseCommand):
@@ -320,8 +332,8 @@ class CommandClearResults(BaseCommand):
 ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPlacementDomain,
        CommandCheck, CommandExport, CommandRun, CommandOptimize, CommandResults,
        CommandClearResults)
-MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_Target", "Lighting_Grid",
-                  "Lighting_PlacementDomain"]
+MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_LuminaireLayout",
+                  "Lighting_Target", "Lighting_Grid", "Lighting_PlacementDomain"]
 RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Optimize",
                 "Lighting_Results", "Lighting_ClearResults"]
 
@@ -333,7 +345,9 @@ EXCLUSION_COMMANDS = exclusion.NAMES
 
 def register() -> None:
     """Add every command to FreeCAD (once)."""
-    for cls in ALL + exclusion.ALL:
+    from lighting.commands.layout import CommandLuminaireLayout
+
+    for cls in ALL + exclusion.ALL + (CommandLuminaireLayout,):
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)

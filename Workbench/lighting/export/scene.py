@@ -25,6 +25,7 @@ from lighting.geometry import face_normal, global_placement, global_shape, refer
 from lighting.messages import ExportError, Report
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import luminaire as luminaire_mod
+from lighting.objects import luminaire_layout as layout_mod
 from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
 
@@ -196,7 +197,8 @@ class SceneBuilder:
 
     def build(self) -> ExportResult:
         """Build the scene dictionary (meshes inline)."""
-        lums = analysis_mod.luminaires(self.analysis)
+        # Luminaire objects and the members of layouts (a layout's template is not placed).
+        lums = layout_mod.placed_luminaires(self.analysis, self.report)
         tgts = analysis_mod.targets(self.analysis)
         if not lums:
             self.report.add("error", "No luminaires: add at least one with Lighting > Luminaire")
@@ -251,7 +253,8 @@ class SceneBuilder:
             try:
                 luminaires.append(luminaire_mod.scene_entry(lum))
             except (OSError, ValueError) as exc:
-                self.report.add("error", f"Luminaire '{lum.Label}': {exc}", lum.Name)
+                self.report.add("error", f"Luminaire '{lum.Label}': {exc}",
+                                layout_mod.report_name(lum))
         for note in self.resolver.notes:
             self.report.add("warning", note)
         dropped = sum(b.dropped for per in self.object_builders.values() for b in per.values())
@@ -289,6 +292,9 @@ class SceneBuilder:
                                       "maintenance_factor": float(lum.MaintenanceFactor)}
                            for lum in lums},
             "placement_domains": domains,
+            "luminaire_layouts": {layout.Name: [m.Name for m in lums
+                                                if getattr(m, "layout", None) is layout]
+                                  for layout in layout_mod.layouts(self.analysis)},
         }
 
 

@@ -23,12 +23,15 @@ from lighting.geometry import global_placement, global_shape
 from lighting.messages import LightingError, Report, SolverUnavailableError
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import luminaire as luminaire_mod
+from lighting.objects import luminaire_layout as layout_mod
 from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
 from lighting.solver import run
 
 #: Emitters closer than this to a surface are reported as flush with it.
 FLUSH_MM = 0.5
+#: Luminaires closer than this to each other are reported as coincident.
+COINCIDENT_MM = 10.0
 
 
 def _emitter_points(lum: Any) -> List[FreeCAD.Vector]:
@@ -134,6 +137,14 @@ def _check_flush(report: Report, lum: Any, point: FreeCAD.Vector, shapes: List[t
             return
 
 
+def _check_coincident(report: Report, lums: List[Any]) -> None:
+    """Two luminaires in one spot (within COINCIDENT_MM): a double click, not a design."""
+    for first, second, distance in layout_mod.coincident_pairs(lums, COINCIDENT_MM):
+        report.add("warning", f"Luminaires '{first.Label}' and '{second.Label}' are at the same "
+                              f"point ({distance:.1f} mm apart): one of them is probably placed "
+                              "twice; move or delete it", layout_mod.report_name(second))
+
+
 def _field_objects(export: Any) -> Dict[str, str]:
     """Scene path ("luminaires[2]", "meshes[0]", "targets[1]") -> document object name."""
     owners = {mesh: obj for obj, meshes in export.object_meshes.items() for mesh in meshes}
@@ -210,8 +221,9 @@ def check_and_export(analysis: Any, need_solver: bool = True,
     report = Report()
     report.extend(analysis_mod.check(analysis), analysis.Name)
     lums = analysis_mod.luminaires(analysis)
+    placed = layout_mod.placed_luminaires(analysis)  # layout members in, their templates out
     tgts = analysis_mod.targets(analysis)
-    if not lums:
+    if not placed:
         report.add("error", "No luminaires: add at least one (Lighting > Luminaire, or "
                             "lighting.make_luminaire)")
     if not tgts:
@@ -219,6 +231,8 @@ def check_and_export(analysis: Any, need_solver: bool = True,
                             "(Lighting > Target, or lighting.make_face_target / make_grid_target)")
     for lum in lums:
         report.extend(luminaire_mod.check(lum), lum.Name)
+    for layout in layout_mod.layouts(analysis):
+        report.extend(layout_mod.check(layout), layout.Name)
     for tgt in tgts:
         report.extend(target_mod.check(tgt), tgt.Name)
     for domain in analysis_mod.placement_domains(analysis):
@@ -237,8 +251,9 @@ def check_and_export(analysis: Any, need_solver: bool = True,
     if not exported:
         report.add("warning", "No geometry: luminaires light the targets in free space")
     shapes = _check_geometry(report, exported)
-    _check_luminaire_positions(report, lums, shapes)
-    export = _check_scene_natively(report, analysis) if lums and tgts else None
+    _check_luminaire_positions(report, placed, shapes)
+    _check_coincident(report, placed)
+    export = _check_scene_natively(report, analysis) if placed and tgts else None
     if need_solver:
         ok, reason = run.solver_available()
         if not ok:

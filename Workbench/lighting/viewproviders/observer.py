@@ -30,6 +30,7 @@ VIEW_PROVIDERS: Dict[str, Tuple[str, str]] = {
     "Lighting::Target": ("target", "ViewProviderTarget"),
     "Lighting::PlacementDomain": ("placement_domain", "ViewProviderPlacementDomain"),
     "Lighting::Results": ("results", "ViewProviderResults"),
+    "Lighting::LuminaireLayout": ("luminaire_layout", "ViewProviderLuminaireLayout"),
 }
 
 _observer: Optional["LightingObserver"] = None
