@@ -160,6 +160,39 @@ class Objects(DocTestCase):
         self.assertEqual(len(entry["candidates"]), len(points))
 
 
+class LuminaireTypeTable(DocTestCase):
+    """One row per luminaire type (objects/luminaire.py KINDS), and each row's scene entry is
+    exactly what the solver's reader takes for that type (it rejects missing and unknown keys)."""
+
+    def setUp(self):
+        self.doc = FreeCAD.newDocument("Kinds")
+
+    @needs_solver
+    def test_every_row_exports_an_entry_the_solver_reads(self):
+        from lighting.solver import run
+
+        lightsolver = run.load_module()
+        ies = os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", ""), "Resources",
+                           "luminaires", "downlight.ies")
+        self.assertEqual(luminaire_mod.LUMINAIRE_TYPES, tuple(luminaire_mod.KINDS))
+        for kind in luminaire_mod.KINDS:
+            lum = lighting.make_luminaire(self.doc, (1.0, 1.0, 2.5), kind=kind, name=kind)
+            if kind == "Photometric":
+                lum.PhotometricFile = ies
+            self.doc.recompute()
+            entry = luminaire_mod.scene_entry(lum)
+            self.assertEqual(entry["type"], luminaire_mod.KINDS[kind].scene_type)
+            fields = {k: v for k, v in entry.items() if k not in ("name", "type")}
+            scene = lightsolver.Scene()
+            scene.add_light(entry["name"], entry["type"], **fields)  # raises on a bad key
+
+    def test_an_unknown_type_names_the_luminaire(self):
+        # The property is an enumeration, so only an object from elsewhere can carry this.
+        fake = type("Fake", (), {"LuminaireType": "Laser", "Label": "Odd"})()
+        with self.assertRaisesRegex(ValueError, "Odd.*Laser.*Point, Spot, Area, Photometric"):
+            luminaire_mod.kind_of(fake)
+
+
 class BackendProperty(DocTestCase):
     """The analysis' Backend choices are the solver's registry, with a fallback without it."""
 
