@@ -111,6 +111,23 @@ class Persistence(DocTestCase):
         doc.undo()
         self.assertEqual(lighting.results(doc)["Workplane"].mean_lux, 400.0)
 
+    def test_removing_the_analysis_takes_its_results_along(self):
+        """A script's removeObject (not only the GUI's Delete) leaves no orphan results
+        object; one Undo brings both back."""
+        doc = build_office()
+        doc.UndoMode = 1
+        analysis = doc.getObject("LightingAnalysis")
+        store.apply_to_document(analysis, fake_results(doc))
+        self.assertEqual(len(results_objects(doc)), 1)
+        doc.openTransaction("Delete analysis")
+        doc.removeObject("LightingAnalysis")
+        doc.commitTransaction()
+        self.assertEqual(results_objects(doc), [])
+        doc.undo()
+        self.assertIsNotNone(doc.getObject("LightingAnalysis"))
+        self.assertEqual(len(results_objects(doc)), 1)
+        self.assertEqual(lighting.results(doc)["Workplane"].mean_lux, 420.0)
+
     def test_old_document_is_migrated(self):
         """A file of an older version: results on the analysis and its targets."""
         doc = build_office()

@@ -90,7 +90,11 @@ class Analysis(BaseProxy):
 
     @classmethod
     def ensure_properties(cls, obj: Any, set_defaults: bool = False) -> None:
-        """The table's properties, then the Backend choices of this solver build."""
+        """The table's properties, then the Backend choices of this solver build. (Made or
+        restored, an analysis also needs the observer that deletes its results with it.)"""
+        from lighting.objects.results import install_cascade
+
+        install_cascade()
         current = obj.Backend if "Backend" in obj.PropertiesList else None
         super().ensure_properties(obj, set_defaults)
         obj.Backend = backend_choices(current)

@@ -173,3 +173,34 @@ def analysis_of(obj: Any) -> Optional[Any]:
         if proxy_type(parent) == "Lighting::Analysis":
             return parent
     return None
+
+
+class _CascadeObserver:
+    """Removes an analysis' results object with the analysis, however it is deleted (a
+    script's ``removeObject`` included; the GUI's view provider does the same first)."""
+
+    def slotDeletedObject(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        try:
+            if proxy_type(obj) != "Lighting::Analysis":
+                return
+            found = of_analysis(obj)
+            if found is not None and found.Document.getObject(found.Name) is not None:
+                found.Document.removeObject(found.Name)
+        except Exception as exc:  # noqa: BLE001 - an observer must never break a deletion
+            import FreeCAD
+
+            FreeCAD.Console.PrintWarning(f"Lighting: results not removed with the analysis: "
+                                         f"{exc}\n")
+
+
+_cascade: Optional[_CascadeObserver] = None
+
+
+def install_cascade() -> None:
+    """Register the observer once (called when an analysis is made or restored)."""
+    global _cascade
+    if _cascade is None:
+        import FreeCAD
+
+        _cascade = _CascadeObserver()
+        FreeCAD.addDocumentObserver(_cascade)
