@@ -39,6 +39,16 @@ void read_parallelogram(const JsonNode& n, Luminaire& l) {
 
 glm::dvec3 at_position(const Luminaire& l) { return l.position; }
 glm::dvec3 at_corner(const Luminaire& l) { return l.corner; }
+glm::dvec3 centre_of_parallelogram(const Luminaire& l) {
+  return l.corner + 0.5 * (l.edge1 + l.edge2);
+}
+void move_position(Luminaire& l, const glm::dvec3& c) { l.position = c; }
+void move_parallelogram(Luminaire& l, const glm::dvec3& c) {
+  l.corner = c - 0.5 * (l.edge1 + l.edge2);
+}
+glm::dvec3* no_aim(Luminaire&) { return nullptr; }
+glm::dvec3* direction_aim(Luminaire& l) { return &l.direction; }
+glm::dvec3* file_aim(Luminaire& l) { return &l.aim; }
 
 vec3 point_on_parallelogram(const PreparedLuminaire& l, PathRng& rng) {
   const float s = rng.uniform(), t = rng.uniform();
@@ -242,13 +252,17 @@ EmittedRay emit_photometric(const PreparedLuminaire& l, PathRng& rng) {
 
 using T = Luminaire::Type;
 const std::array<LuminaireType, 5> kTypes = {{
-    {T::Point, "point", read_point, check_point, prepare_point, emit_point, at_position},
-    {T::Spot, "spot", read_spot, check_spot, prepare_spot, emit_spot, at_position},
-    {T::Area, "area", read_area, check_area, prepare_area, emit_area, at_corner},
+    {T::Point, "point", read_point, check_point, prepare_point, emit_point, at_position,
+     at_position, move_position, no_aim, true},
+    {T::Spot, "spot", read_spot, check_spot, prepare_spot, emit_spot, at_position, at_position,
+     move_position, direction_aim, true},
+    {T::Area, "area", read_area, check_area, prepare_area, emit_area, at_corner,
+     centre_of_parallelogram, move_parallelogram, no_aim, true},
     {T::Directional, "directional", read_directional, check_directional, prepare_directional,
-     emit_directional, at_corner},
+     emit_directional, at_corner, centre_of_parallelogram, move_parallelogram, direction_aim,
+     false},
     {T::Photometric, "photometric", read_photometric, check_photometric, prepare_photometric,
-     emit_photometric, at_position},
+     emit_photometric, at_position, at_position, move_position, file_aim, true},
 }};
 
 }  // namespace
@@ -269,13 +283,35 @@ const LuminaireType* find_luminaire_type(std::string_view name) {
   return nullptr;
 }
 
-std::string luminaire_type_names() {
+namespace {
+
+// "a, b or c" of the rows `keep` accepts.
+template <class Keep>
+std::string names_of(Keep keep) {
+  std::vector<const char*> names;
+  for (const auto& row : kTypes) {
+    if (keep(row)) names.push_back(row.name);
+  }
   std::string s;
-  for (std::size_t i = 0; i < kTypes.size(); ++i) {
-    if (i > 0) s += i + 1 == kTypes.size() ? " or " : ", ";
-    s += kTypes[i].name;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) s += i + 1 == names.size() ? " or " : ", ";
+    s += names[i];
   }
   return s;
+}
+
+}  // namespace
+
+std::string luminaire_type_names() {
+  return names_of([](const LuminaireType&) { return true; });
+}
+
+std::string aimable_luminaire_type_names() {
+  // Asks the hook with a scratch luminaire: a row aims a field or it does not.
+  return names_of([](const LuminaireType& row) {
+    Luminaire scratch;
+    return row.aim(scratch) != nullptr;
+  });
 }
 
 }  // namespace lightsolver::detail

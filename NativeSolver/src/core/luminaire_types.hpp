@@ -49,6 +49,16 @@ struct LuminaireType {
   EmittedRay (*emit)(const PreparedLuminaire& l, PathRng& rng);
   /// A point of the luminaire in world coordinates, for the scene's centre.
   glm::dvec3 (*anchor)(const Luminaire& l);
+  /// Where the luminaire is for placement (the optimizer, spacing rules): its position, or
+  /// its parallelogram's centre.
+  glm::dvec3 (*centre)(const Luminaire& l);
+  /// Moves the luminaire so that centre() is `c`, keeping its shape and aim.
+  void (*move_to)(Luminaire& l, const glm::dvec3& c);
+  /// The field an aim design variable turns (`direction` or `aim`); nullptr when the type
+  /// cannot be aimed (isotropic, or aimed by its shape).
+  glm::dvec3* (*aim)(Luminaire& l);
+  /// False for a type that is no object in the room (a sun's beam): spacing rules skip it.
+  bool placed;
 };
 
 /// The spot profile (relative intensity at `theta` from the axis; half angles in radians).
@@ -62,5 +72,7 @@ const LuminaireType& luminaire_type(Luminaire::Type type);
 const LuminaireType* find_luminaire_type(std::string_view name);
 /// "point, spot, area, directional or photometric", for messages.
 std::string luminaire_type_names();
+/// The names of the types with an aim hook ("spot, directional or photometric").
+std::string aimable_luminaire_type_names();
 
 }  // namespace lightsolver::detail

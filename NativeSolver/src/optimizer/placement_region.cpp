@@ -4,6 +4,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "core/luminaire_types.hpp"
+
 namespace lightsolver::optimizer::regions {
 namespace {
 
@@ -93,10 +95,7 @@ namespace {
 
 // Where a luminaire "is" for placement: its position, or the centre of its parallelogram (as
 // the scene evaluator's anchor).
-glm::dvec3 anchor(const Luminaire& l) {
-  const bool sheet = l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional;
-  return sheet ? l.corner + 0.5 * (l.edge1 + l.edge2) : l.position;
-}
+glm::dvec3 anchor(const Luminaire& l) { return detail::luminaire_type(l.type).centre(l); }
 
 struct Mover {
   std::size_t first;          // the variable's u; v is first + 1
@@ -117,7 +116,7 @@ std::function<bool(const Configuration&)> spacing_filter(const SceneProblem& p) 
   std::vector<glm::dvec3> fixed;
   for (std::size_t i = 0; i < moved.size(); ++i) {
     const Luminaire& l = p.scene.luminaires[i];
-    if (!moved[i] && l.type != Luminaire::Type::Directional) fixed.push_back(anchor(l));
+    if (!moved[i] && detail::luminaire_type(l.type).placed) fixed.push_back(anchor(l));
   }
   if (movers.empty() || (movers.size() == 1 && fixed.empty())) return {};
   const double min2 = std::pow(std::max(p.min_spacing_m, 1e-6), 2);

@@ -8,6 +8,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "core/luminaire_types.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 
 namespace lightsolver::optimizer {
@@ -21,9 +22,8 @@ double seconds_since(Clock::time_point t) {
 
 constexpr double kDeg = M_PI / 180.0;
 
-glm::dvec3& aim_field(Luminaire& l) {
-  return l.type == Luminaire::Type::Photometric ? l.aim : l.direction;
-}
+// The field an aim variable turns (read_aim admits only types that have one).
+glm::dvec3& aim_field(Luminaire& l) { return *detail::luminaire_type(l.type).aim(l); }
 
 // Tilt from straight down and pan from +x (counter-clockwise seen from above), degrees.
 std::pair<double, double> tilt_pan(const glm::dvec3& d) {
@@ -36,21 +36,11 @@ glm::dvec3 direction_from(double tilt_deg, double pan_deg) {
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), -std::cos(t)};
 }
 
-bool is_sheet(const Luminaire& l) {
-  return l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional;
-}
-
 // Where a luminaire "is": its position, or the centre of its parallelogram.
-glm::dvec3 anchor_of(const Luminaire& l) {
-  return is_sheet(l) ? l.corner + 0.5 * (l.edge1 + l.edge2) : l.position;
-}
+glm::dvec3 anchor_of(const Luminaire& l) { return detail::luminaire_type(l.type).centre(l); }
 
 void place(Luminaire& l, const glm::dvec3& anchor) {
-  if (is_sheet(l)) {
-    l.corner = anchor - 0.5 * (l.edge1 + l.edge2);
-  } else {
-    l.position = anchor;
-  }
+  detail::luminaire_type(l.type).move_to(l, anchor);
 }
 
 glm::dvec3 on_rectangle(const SceneVariable& v, const std::vector<double>& values) {

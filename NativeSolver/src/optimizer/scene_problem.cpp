@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
+#include "core/luminaire_types.hpp"
 #include "core/scene_document.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "optimizer/placement_region.hpp"
@@ -35,10 +36,7 @@ const Target* find_target(const Scene& s, const std::string& name) {
 }
 
 // Where a luminaire "is" for placement: its position, or the centre of its parallelogram.
-glm::dvec3 anchor_of(const Luminaire& l) {
-  const bool sheet = l.type == Luminaire::Type::Area || l.type == Luminaire::Type::Directional;
-  return sheet ? l.corner + 0.5 * (l.edge1 + l.edge2) : l.position;
-}
+glm::dvec3 anchor_of(const Luminaire& l) { return detail::luminaire_type(l.type).centre(l); }
 
 std::uint32_t positive_count(const JsonNode& n) {
   const std::uint64_t c = n.unsigned_integer();
@@ -189,8 +187,10 @@ SceneVariable read_aim(const JsonNode& n, SceneProblem& p, Claims& claims) {
   v.type = SceneVariable::Type::kAim;
   v.luminaires = {luminaire_index(p.scene, n.at("luminaire"))};
   const Luminaire& l = p.scene.luminaires[v.luminaires[0]];
-  if (l.type == Luminaire::Type::Point || l.type == Luminaire::Type::Area) {
-    n.at("luminaire").fail("only spot, directional and photometric luminaires can be aimed");
+  Luminaire scratch = l;
+  if (detail::luminaire_type(l.type).aim(scratch) == nullptr) {
+    n.at("luminaire")
+        .fail("only " + detail::aimable_luminaire_type_names() + " luminaires can be aimed");
   }
   const std::string angle = n.at("angle").string();
   if (angle != "tilt" && angle != "pan") n.at("angle").fail("expected \"tilt\" or \"pan\"");
@@ -417,8 +417,7 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
   }
   // Cells off a `within` region and cells with two luminaires in one place (or closer than
   // min_spacing_m) are never traced, so no optimum can hold them.
-  p.search.admissible =
-      regions::both(regions::admissible_filter(p), regions::spacing_filter(p));
+  p.search.admissible = regions::both(regions::admissible_filter(p), regions::spacing_filter(p));
   for (std::size_t i = 0; i < p.search.initial.size(); ++i) {
     if (p.search.admissible && !p.search.admissible(p.search.initial[i])) {
       root.at("search").at("initial")[i].fail(

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/geometric.hpp>
 #include <set>
 #include <string>
 
@@ -26,12 +27,39 @@ TEST(LuminaireTypes, OneCompleteRowPerType) {
   for (Luminaire::Type type : kAll) {
     const detail::LuminaireType& row = luminaire_type(type);
     EXPECT_EQ(row.type, type);
-    EXPECT_TRUE(row.read && row.check && row.prepare && row.emit && row.anchor) << row.name;
+    EXPECT_TRUE(row.read && row.check && row.prepare && row.emit && row.anchor && row.centre &&
+                row.move_to && row.aim)
+        << row.name;
     EXPECT_TRUE(names.insert(row.name).second) << "duplicate name " << row.name;
     EXPECT_EQ(find_luminaire_type(row.name), &row);
   }
   EXPECT_EQ(find_luminaire_type("laser"), nullptr);
   EXPECT_EQ(find_luminaire_type(""), nullptr);
+}
+
+// The optimizer's hooks: move_to puts centre() where asked without changing the shape; aim
+// hooks hand out a field of the luminaire itself.
+TEST(LuminaireTypes, PlacementHooksAgree) {
+  for (Luminaire::Type type : kAll) {
+    const detail::LuminaireType& row = luminaire_type(type);
+    Luminaire l;
+    l.type = type;
+    l.position = {1, 2, 3};
+    l.corner = {4, 5, 6};
+    l.edge1 = {0.6, 0, 0};
+    l.edge2 = {0, 1.2, 0};
+    const glm::dvec3 target(-2.0, 7.5, 2.8);
+    row.move_to(l, target);
+    const glm::dvec3 c = row.centre(l);
+    EXPECT_NEAR(glm::length(c - target), 0.0, 1e-12) << row.name;
+    EXPECT_EQ(l.edge1, glm::dvec3(0.6, 0, 0)) << row.name;
+    if (glm::dvec3* aim = row.aim(l)) {
+      EXPECT_TRUE(aim == &l.direction || aim == &l.aim) << row.name;
+    }
+  }
+  EXPECT_EQ(detail::aimable_luminaire_type_names(), "spot, directional or photometric");
+  EXPECT_FALSE(luminaire_type(Luminaire::Type::Directional).placed);
+  EXPECT_TRUE(luminaire_type(Luminaire::Type::Area).placed);
 }
 
 TEST(LuminaireTypes, UnknownTypeMessageListsEveryName) {
