@@ -152,8 +152,18 @@ def grid_figure(data: GridPlot, scale: Scale, width_px: int = 800, dpi: int = 10
     bar = fig.colorbar(mesh, ax=ax, shrink=0.9, pad=0.02)
     bar.ax.tick_params(labelsize=7)
     bar.set_label("lx", fontsize=7)
-    fig.supxlabel(data.caption(), fontsize=7.5)
+    fig.supxlabel(_wrapped(data.caption(), width_px), fontsize=7.5)
     return fig
+
+
+def _wrapped(text: str, width_px: int) -> str:
+    """The caption's lines wrapped to the figure's width (about 5.5 px per character at
+    7.5 pt and 100 dpi), so a narrow panel shows all of it."""
+    import textwrap
+
+    chars = max(int(width_px / 5.5), 20)
+    return "\n".join(textwrap.fill(line, chars, break_on_hyphens=False)
+                     for line in text.splitlines())
 
 
 def _cell_values(fig: Any, ax: Any, data: GridPlot, scale: Scale, xs: np.ndarray,
