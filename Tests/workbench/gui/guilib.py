@@ -129,6 +129,18 @@ def visible_in_window(widget) -> bool:
     return window.rect().contains(rect)
 
 
+def toolbar_enabled(command: str) -> bool:
+    """Whether the command's toolbar button is enabled, as the user sees it: FreeCAD updates
+    its actions on a timer from Command::testActive, which also asks the open task dialog
+    (FreeCADGui.isCommandActive asks only the command's IsActive)."""
+    from PySide import QtGui
+
+    pump(1.0)  # the action update timer runs every few hundred ms
+    actions = [a for a in main_window().findChildren(QtGui.QAction) if a.objectName() == command]
+    expect(bool(actions), f"no toolbar action {command}")
+    return bool(actions) and all(a.isEnabled() for a in actions)
+
+
 def run_macro_file(path: str, globals_: Optional[dict] = None) -> None:
     """Execute a macro file the way FreeCAD's Macro dialog does (in the GUI's interpreter, with
     ``__name__ == '__main__'``)."""

@@ -10,7 +10,7 @@ import sys
 import time
 
 from guilib import (OUT, STATUS, expect, grab_window, log, main_window, pump, scenario,
-                    visible_in_window, wait_until)
+                    toolbar_enabled, visible_in_window, wait_until)
 
 REPO = os.environ.get("LIGHTING_SOURCE_DIR", "")
 
@@ -107,6 +107,10 @@ def body() -> None:
     pump(0.5)
     panel = optimize_panel.last_panel()
     expect(panel is not None, "Lighting_Optimize opened no panel")
+    # Modeless: the model toolbar stays usable while the optimizer panel is open.
+    STATUS["luminaire_enabled_with_panel"] = toolbar_enabled("Lighting_Luminaire")
+    expect(STATUS["luminaire_enabled_with_panel"],
+           "Lighting_Luminaire is disabled while the optimizer panel is open")
     panel.target.setCurrentText(doc.getObject(names["workplane"]).Label)
     pump(0.2)
     goal = panel.goal.currentData()

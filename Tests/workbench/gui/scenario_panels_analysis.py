@@ -8,7 +8,7 @@ import os
 import sys
 
 from guilib import (STATUS, expect, grab_window, log, main_window, pump, scenario,
-                    visible_in_window, wait_until)
+                    toolbar_enabled, visible_in_window, wait_until)
 
 sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
 
@@ -41,18 +41,6 @@ def _min_widths(form) -> list:
                       parent.minimumSizeHint().width()))
         parent = parent.parentWidget()
     return sorted(found, reverse=True)[:10] + chain[:8]
-
-
-def toolbar_enabled(command: str) -> bool:
-    """Whether the command's toolbar button is enabled, as the user sees it: FreeCAD updates
-    its actions on a timer from Command::testActive, which also asks the open task dialog
-    (FreeCADGui.isCommandActive asks only the command's IsActive)."""
-    from PySide import QtGui
-
-    pump(1.0)  # the action update timer runs every few hundred ms
-    actions = [a for a in main_window().findChildren(QtGui.QAction) if a.objectName() == command]
-    expect(bool(actions), f"no toolbar action {command}")
-    return bool(actions) and all(a.isEnabled() for a in actions)
 
 
 def combo_tabs():

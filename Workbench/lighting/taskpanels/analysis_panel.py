@@ -20,6 +20,7 @@ from lighting.messages import CheckError, LightingError
 from lighting.objects.analysis import COLOR_MAPS, SCALE_MODES
 from lighting.solver import machine, results as results_mod, store
 from lighting.taskpanels import plan_view
+from lighting.taskpanels.modeless import ModelessPanel
 from lighting.viewproviders import coloring
 from lighting.viewproviders.base import icon_path
 
@@ -99,7 +100,7 @@ class LegendWidget(QtGui.QWidget):
         painter.end()
 
 
-class AnalysisTaskPanel:
+class AnalysisTaskPanel(ModelessPanel):
     """FreeCAD task dialog (``form`` + accept/reject) for one analysis."""
 
     def __init__(self, analysis: Any, autostart: bool = False) -> None:
@@ -483,18 +484,6 @@ class AnalysisTaskPanel:
 
     def needsFullSpace(self) -> bool:  # noqa: N802 (FreeCAD API name)
         """Take the task view's height: the body scrolls inside it, the header stays."""
-        return True
-
-    # The panel is modeless: the model stays editable while it is open (add a luminaire, a
-    # target, a grid). FreeCAD disables every command that alters the document, the view or
-    # the selection while a task dialog that does not allow it is open.
-    def isAllowedAlterDocument(self) -> bool:  # noqa: N802 (FreeCAD API name)
-        return True
-
-    def isAllowedAlterView(self) -> bool:  # noqa: N802 (FreeCAD API name)
-        return True
-
-    def isAllowedAlterSelection(self) -> bool:  # noqa: N802 (FreeCAD API name)
         return True
 
     def is_busy(self) -> bool:

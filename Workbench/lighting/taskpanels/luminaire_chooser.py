@@ -21,6 +21,7 @@ from lighting.objects import analysis as analysis_mod
 from lighting.objects.base import proxy_type
 from lighting.objects.luminaire import TYPE as LUMINAIRE_TYPE
 from lighting.viewproviders.base import icon_path
+from lighting.taskpanels.modeless import ModelessPanel
 
 GROUP_TITLES = {library.SHIPPED: "Shipped samples", library.USER: "User folder"}
 ERROR_COLOUR = QtGui.QColor(190, 30, 30)
@@ -119,7 +120,7 @@ def _selected_face() -> Optional[Tuple[Tuple[float, float, float], Tuple[float, 
     return None
 
 
-class LuminaireChooserPanel:
+class LuminaireChooserPanel(ModelessPanel):
     """FreeCAD task dialog: library list, summary, polar diagram, Assign."""
 
     def __init__(self, luminaire: Any = None) -> None:

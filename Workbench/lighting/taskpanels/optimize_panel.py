@@ -25,6 +25,7 @@ from lighting.messages import LightingError
 from lighting.objects import analysis as analysis_mod
 from lighting.solver import optimize, run
 from lighting.viewproviders.base import icon_path
+from lighting.taskpanels.modeless import ModelessPanel
 
 POLL_MS = 100
 CONSOLE_EVERY_S = 5.0  # progress lines in the report view, not one per trace
@@ -97,7 +98,7 @@ def _spin(low: int, high: int, value: int, special: str = "") -> QtGui.QSpinBox:
     return spin
 
 
-class OptimizeTaskPanel:
+class OptimizeTaskPanel(ModelessPanel):
     """FreeCAD task dialog (``form`` + accept/reject) for one analysis' placement domains."""
 
     def __init__(self, analysis: Any) -> None:
