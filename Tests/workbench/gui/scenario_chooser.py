@@ -38,31 +38,6 @@ def build_office():
     return doc
 
 
-def grab_with_3d(name, docs_name=None):
-    """grab_window, with the 3D view rendered in (a window grab under Xvfb leaves the OpenGL
-    viewport empty, so the view's own offscreen rendering is painted where it sits)."""
-    import FreeCADGui
-    from PySide import QtCore, QtGui
-
-    path = grab_window(name, docs_name)
-    mdi = main_window().findChild(QtGui.QMdiArea)
-    sub = mdi.activeSubWindow() if mdi is not None else None
-    if sub is None:
-        return path
-    widget = sub.widget()
-    corner = widget.mapTo(main_window(), QtCore.QPoint(0, 0))
-    rendered = path[:-4] + "_3d.png"
-    FreeCADGui.ActiveDocument.ActiveView.saveImage(rendered, widget.width(), widget.height(),
-                                                   "Current")
-    image = QtGui.QImage(path)
-    painter = QtGui.QPainter(image)
-    painter.drawImage(corner, QtGui.QImage(rendered))
-    painter.end()
-    image.save(path)
-    os.remove(rendered)
-    return path
-
-
 def toolbar_action(text):
     from PySide import QtGui
 
@@ -148,7 +123,7 @@ def body() -> None:
            f"polar diagram looks blank (non-white, red, blue samples: {pixels})")
     expect("cd/klm" in panel.caption.text(), f"caption {panel.caption.text()!r}")
     check_fits(panel)
-    grab_with_3d("chooser", docs_name="chooser.png")
+    grab_window("chooser", docs_name="chooser.png")
 
     steps = list(FreeCAD.ActiveDocument.UndoNames)
     panel.button_box.button(panel.button_box.Apply).click()
@@ -175,7 +150,7 @@ def body() -> None:
            f"malformed file summary: {panel.summary.text()!r}")
     expect(not panel.button_box.button(panel.button_box.Apply).isEnabled(),
            "Assign enabled for a malformed file")
-    grab_with_3d("chooser_malformed")
+    grab_window("chooser_malformed")
     panel.set_folder("")
 
     # A ceiling face selected, no luminaire: Assign makes a new one 5 cm under the face's

@@ -7,26 +7,11 @@ one point."""
 import os
 import sys
 
-from guilib import STATUS, expect, log, main_window, pump, scenario, \
+from guilib import STATUS, expect, grab_window, log, main_window, pump, scenario, \
     visible_in_window, wait_until
 
 REPO = os.environ.get("LIGHTING_SOURCE_DIR") or os.path.dirname(os.path.dirname(
     os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-
-
-def grab_screen(name, docs_name=None):
-    """Like guilib.grab_window, but from the screen: QWidget.grab() leaves the OpenGL 3D view
-    blank under Xvfb, the screen has what the user sees."""
-    from PySide import QtGui
-
-    pump(0.5)
-    path = os.path.join(os.environ.get("LIGHTING_GUI_OUT", os.getcwd()), f"{name}.png")
-    QtGui.QApplication.primaryScreen().grabWindow(main_window().winId()).save(path)
-    STATUS["images"][name] = path
-    if docs_name:
-        STATUS["docs_images"][name] = docs_name
-    log(f"screenshot {path}")
-    return path
 
 
 def fits_width(widget) -> bool:
@@ -122,7 +107,7 @@ def _layout_from_panel(doc, ceiling, face):
     ok = _ok_button()
     expect(ok is not None and visible_in_window(ok), "the panel's OK button is not visible")
     expect("6 luminaires" in panel.summary.text(), f"summary: {panel.summary.text()!r}")
-    grab_screen("layout_panel", docs_name="layout-panel.png")
+    grab_window("layout_panel", docs_name="layout-panel.png")
     ok.click()
     pump(0.5)
     layouts = objects_of_type(doc, layout_mod.TYPE)
@@ -163,7 +148,7 @@ def _run(doc):
     expect(result is not None and result["Workplane"].mean_lux > 100.0,
            "no workplane illuminance after the run")
     FreeCADGui.ActiveDocument.ActiveView.fitAll()
-    grab_screen("layout_3x2", docs_name="layout-3x2.png")
+    grab_window("layout_3x2", docs_name="layout-3x2.png")
     FreeCADGui.Control.closeDialog()
     pump(0.3)
 
@@ -237,7 +222,7 @@ def _double_click_slip(doc, ceiling, face):
            f"Check did not warn about the coincident luminaires: {text!r}")
     if panel is not None:  # the user scrolls the log up to the first warning
         panel.log_view.verticalScrollBar().setValue(0)
-    grab_screen("layout_coincident_check", docs_name="layout-coincident.png")
+    grab_window("layout_coincident_check", docs_name="layout-coincident.png")
 
 
 def _luminaire_with_nothing_selected(doc):

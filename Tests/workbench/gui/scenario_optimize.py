@@ -57,35 +57,6 @@ def answer_replace_question(answer: str = "yes"):
     return timer
 
 
-def grab_with_view(name: str, docs_name: str) -> str:
-    """The window grab with the 3D view painted in: under Xvfb a widget grab leaves the
-    OpenGL view blank, while the view's own saveImage renders it."""
-    import FreeCADGui
-    from PySide import QtCore, QtGui
-
-    path = grab_window(name, docs_name)
-    area = main_window().findChild(QtGui.QMdiArea)
-    subs = [w for w in (area.subWindowList() if area is not None else [])
-            if w.widget() is not None and not w.windowTitle().startswith("Start")]
-    log(f"3D view windows: {[w.windowTitle() for w in subs]}")
-    if not subs:
-        return path
-    widget = subs[0]  # maximised: the subwindow is the view's whole area
-    origin = widget.mapTo(main_window(), QtCore.QPoint(0, 0))
-    view_png = os.path.join(OUT, f"{name}_view.png")
-    FreeCADGui.ActiveDocument.ActiveView.saveImage(view_png, widget.width(), widget.height(),
-                                                    "Current")
-    picture, view = QtGui.QImage(path), QtGui.QImage(view_png)
-    scale = picture.width() / max(1, main_window().width())  # the grab's pixel ratio
-    target = QtCore.QRect(int(origin.x() * scale), int(origin.y() * scale),
-                          int(widget.width() * scale), int(widget.height() * scale))
-    painter = QtGui.QPainter(picture)
-    painter.drawImage(target, view)
-    painter.end()
-    picture.save(path)
-    return path
-
-
 def luminaire_layout(analysis):
     from lighting.objects import analysis as analysis_mod
 
@@ -175,7 +146,7 @@ def body() -> None:
     doc.getObject(names["ceiling"]).ViewObject.Visibility = False
     FreeCADGui.ActiveDocument.ActiveView.viewTop()
     FreeCADGui.SendMsgToActiveView("ViewFit")
-    grab_with_view("optimize", docs_name="optimize.png")
+    grab_window("optimize", docs_name="optimize.png")
     doc.undo()
     pump(0.3)
     restored = luminaire_layout(analysis)

@@ -54,35 +54,6 @@ def workplane_em(doc):
     return results_obj.mean_lux(found, "Workplane") if found is not None else None
 
 
-def grab_with_view(name: str, docs_name: str = None) -> str:
-    """grab_window, with the 3D view rendered into its place: under Xvfb the window grab
-    leaves the OpenGL view blank."""
-    import FreeCADGui
-    from PySide import QtCore, QtGui
-
-    path = grab_window(name, docs_name)
-    window = main_window()
-    view = FreeCADGui.ActiveDocument.ActiveView
-    mdi = window.findChild(QtGui.QMdiArea)
-    sub = mdi.activeSubWindow() if mdi is not None else None
-    viewer = sub.widget() if sub is not None else None  # the 3D view: only the viewer inside
-    if viewer is None or not viewer.isVisible():
-        log("no 3D view: screenshot without it")
-        return path
-    rendered = os.path.join(os.path.dirname(path), f"{name}_3d.png")
-    image = QtGui.QImage(path)
-    ratio = image.width() / float(window.width())  # the grab is in device pixels
-    view.saveImage(rendered, int(viewer.width() * ratio), int(viewer.height() * ratio),
-                   "Current")
-    corner = viewer.mapTo(window, QtCore.QPoint(0, 0))
-    painter = QtGui.QPainter(image)
-    painter.drawImage(QtCore.QPoint(int(corner.x() * ratio), int(corner.y() * ratio)),
-                      QtGui.QImage(rendered))
-    painter.end()
-    image.save(path)
-    return path
-
-
 def last_report_line() -> str:
     """The last line of FreeCAD's report view (the message the status bar shows)."""
     from PySide import QtGui
@@ -217,7 +188,7 @@ def body() -> None:
            f"the panel does not say the results are stale: {panel.state_label.text()!r}")
     expect(wait_until(lambda: legend_stale(doc), 5), "the legend is not marked stale")
     expect(analysis.Status == "done", f"Status changed by an edit: {analysis.Status}")
-    grab_with_view("state_stale", docs_name="state-stale.png")
+    grab_window("state_stale", docs_name="state-stale.png")
     FreeCADGui.runCommand("Std_Undo")
     expect(lum.FluxLumen == flux, f"Undo did not restore the flux: {lum.FluxLumen}")
     ok = wait_until(lambda: "up to date" in panel.state_label.text(), 5)
@@ -245,7 +216,7 @@ def body() -> None:
     expect(doc.UndoCount == undo_before + 1, f"Check added an undo step: {doc.UndoNames[:3]}")
     expect(wait_until(lambda: "'Ceiling' left out" in panel.state_label.text(), 5),
            f"excluding did not make the results stale: {panel.state_label.text()!r}")
-    grab_with_view("state_excluded")
+    grab_window("state_excluded")
     FreeCADGui.Control.closeDialog()
 
 
