@@ -128,6 +128,9 @@ void draw_plot(const std::string& study_json, const std::string& plot) {
 }
 
 void check_outputs(const StudyArgs& a) {
+  if (study_checkpoints(a.max_photons).empty()) {
+    throw InputError("", "--max-photons", "must be >= 10000");
+  }
   if (!a.plot.empty()) {
     const std::string ext = fs::path(a.plot).extension().string();
     if (ext != ".png" && ext != ".svg") {

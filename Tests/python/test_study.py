@@ -258,6 +258,8 @@ def test_study_against_a_long_run_and_its_bad_references(cli, scene_file, room_s
 
 
 def test_study_checks_its_outputs_before_tracing(cli, scene_file, tmp_path):
+    r = run(cli, "study", str(scene_file), "--max-photons", "9999")
+    assert r.returncode == 1 and "--max-photons: must be >= 10000" in r.stderr
     r = run(cli, "study", str(scene_file), "--plot", str(tmp_path / "plot.pdf"))
     assert r.returncode == 1 and "plot.pdf" in r.stderr and ".png or .svg" in r.stderr
     r = run(cli, "study", str(scene_file), "--csv", str(tmp_path / "no" / "dir" / "s.csv"))
