@@ -134,6 +134,9 @@ std::string forecast_text(const lightsolver::RunForecast& f, std::optional<doubl
 }
 
 int run(const RunArgs& a) {
+  if (a.per_cell && !a.accuracy) {
+    throw lightsolver::InputError("", "--per-cell", "needs --accuracy X (the goal per cell)");
+  }
   if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");  // before any tracing
   const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
   lightsolver::SolveOptions opt = options_from(a);
@@ -254,18 +257,15 @@ int main(int argc, char** argv) {
   lightsolver::cli::add_backend_option(run_cmd, ra.backend);
   run_cmd->add_option("--out", ra.out,
                       "Write results JSON here (checked before tracing, written atomically)");
-  CLI::Option* accuracy_opt =
-      run_cmd
-          ->add_option("--accuracy", ra.accuracy,
-                       "Stop when every target's CI half-width is at most this fraction of its "
-                       "mean (e.g. 0.02); --photons is then the budget, else up to 1e10 photons "
-                       "within --max-seconds")
-          ->check(CLI::Range(1e-6, 0.999));
   run_cmd
-      ->add_flag("--per-cell", ra.per_cell,
-                 "With --accuracy: stop when every grid cell (and surface target) is within it; "
-                 "cells darker than 1% of their grid's mean are judged against that 1%")
-      ->needs(accuracy_opt);
+      ->add_option("--accuracy", ra.accuracy,
+                   "Stop when every target's CI half-width is at most this fraction of its "
+                   "mean (e.g. 0.02); --photons is then the budget, else up to 1e10 photons "
+                   "within --max-seconds")
+      ->check(CLI::Range(1e-6, 0.999));
+  run_cmd->add_flag("--per-cell", ra.per_cell,
+                    "With --accuracy: stop when every grid cell (and surface target) is within "
+                    "it; cells darker than 1% of their grid's mean are judged against that 1%");
   run_cmd
       ->add_option("--max-seconds", ra.max_seconds,
                    "Stop tracing after this many seconds (overrides settings.max_seconds; "
