@@ -20,6 +20,7 @@
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_command.hpp"
+#include "study_command.hpp"
 
 namespace {
 
@@ -75,6 +76,7 @@ struct RunArgs {
   std::optional<double> confidence, accuracy, max_seconds;
   int threads = 0;
   bool quiet = false;
+  bool per_cell = false;  // --accuracy judged per grid cell
 };
 
 lightsolver::SolveOptions options_from(const RunArgs& a) {
@@ -85,6 +87,7 @@ lightsolver::SolveOptions options_from(const RunArgs& a) {
   opt.threads = a.threads;
   opt.backend = a.backend;
   opt.target_accuracy = a.accuracy;
+  if (a.per_cell) opt.accuracy_per_cell = true;  // else the scene's settings.accuracy_per_cell
   opt.max_seconds = a.max_seconds;
   opt.cancel = &g_interrupted;
   return opt;
@@ -131,6 +134,9 @@ std::string forecast_text(const lightsolver::RunForecast& f, std::optional<doubl
 }
 
 int run(const RunArgs& a) {
+  if (a.per_cell && !a.accuracy) {
+    throw lightsolver::InputError("", "--per-cell", "needs --accuracy X (the goal per cell)");
+  }
   if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");  // before any tracing
   const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
   lightsolver::SolveOptions opt = options_from(a);
@@ -257,6 +263,9 @@ int main(int argc, char** argv) {
                    "mean (e.g. 0.02); --photons is then the budget, else up to 1e10 photons "
                    "within --max-seconds")
       ->check(CLI::Range(1e-6, 0.999));
+  run_cmd->add_flag("--per-cell", ra.per_cell,
+                    "With --accuracy: stop when every grid cell (and surface target) is within "
+                    "it; cells darker than 1% of their grid's mean are judged against that 1%");
   run_cmd
       ->add_option("--max-seconds", ra.max_seconds,
                    "Stop tracing after this many seconds (overrides settings.max_seconds; "
@@ -291,6 +300,7 @@ int main(int argc, char** argv) {
       "backends", "List the tracing backends of this build and whether each can start here");
 
   lightsolver::cli::add_optimize_command(app);  // runs from its own callback
+  lightsolver::cli::add_study_command(app);     // runs from its own callback
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);

@@ -16,6 +16,7 @@
 #include "lightsolver/scene_check.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
+#include "lightsolver/study.hpp"
 #include "optimize_bindings.hpp"
 
 namespace py = pybind11;
@@ -196,7 +197,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
                   const std::string& backend, py::object progress,
                   std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
-                  std::optional<double> max_seconds) {
+                  std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
   // solve() validates the copy (and reports dropped triangles among the warnings).
   const Scene snapshot = scene;
@@ -208,6 +209,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   opt.backend = backend;
   opt.target_accuracy = target_accuracy;
   opt.max_seconds = max_seconds;
+  opt.accuracy_per_cell = accuracy_per_cell;
   CancelToken token = cancel.value_or(CancelToken{});
   opt.cancel = token.flag.get();
   std::exception_ptr callback_error;
@@ -379,10 +381,12 @@ PYBIND11_MODULE(lightsolver, m) {
         py::arg("seed") = py::none(), py::arg("confidence") = py::none(), py::arg("threads") = 0,
         py::arg("backend") = kAutoBackend, py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
-        py::arg("max_seconds") = py::none(),
+        py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
         "progress(done, total) may return False to stop; the result is then marked partial. "
-        "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean; "
+        "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean "
+        "(with accuracy_per_cell=True: every grid cell's, cells darker than 1% of their grid's "
+        "mean judged against that 1%; default: the scene's settings.accuracy_per_cell); "
         "without photons the budget is 1e10 photons within max_seconds (default 300 s). "
         "max_seconds limits the tracing time (default: Scene.max_seconds). The dict's "
         "stop_reason says which limit ended the run: photons, accuracy, time or cancelled.");
@@ -430,7 +434,9 @@ PYBIND11_MODULE(lightsolver, m) {
         opt.threads = threads;
         opt.backend = backend;
         std::vector<Checkpoint> rows;
-        opt.checkpoint = [&rows](const Checkpoint& c) { rows.push_back(c); };  // no Python
+        opt.checkpoint = [&rows](const Checkpoint& c) {  // no Python; no cells kept
+          rows.push_back({c.photons, c.seconds, c.worst_relative_half_width, {}});
+        };
         Results r;
         {
           py::gil_scoped_release nogil;
@@ -466,5 +472,38 @@ PYBIND11_MODULE(lightsolver, m) {
       "relative CI half-width at each checkpoint (infinity while a target has no hit); goals: "
       "photons and seconds per accuracy goal from the last row (width ~ 1/sqrt(N)); results: "
       "the run's results dict (the same as solve() with the last row's photons)");
+  m.def(
+      "study",
+      [](const Scene& scene, std::uint64_t max_photons, std::optional<std::string> reference,
+         std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
+         const std::string& backend) {
+        const Scene snapshot = scene;  // copied with the GIL held, as in solve()
+        StudyOptions o;
+        o.max_photons = max_photons;
+        o.reference_file = reference.value_or("");
+        o.solve.seed = seed;
+        o.solve.confidence = confidence;
+        o.solve.threads = threads;
+        o.solve.backend = backend;
+        Study st;
+        {
+          py::gil_scoped_release nogil;
+          st = run_study(snapshot, o);
+        }
+        py::dict out = py::module_::import("json").attr("loads")(study_to_json(st));
+        out["csv"] = study_to_csv(st);
+        out["results"] = results_dict(st.results);
+        return out;
+      },
+      py::arg("scene"), py::arg("max_photons") = 10'240'000, py::arg("reference") = py::none(),
+      py::arg("seed") = py::none(), py::arg("confidence") = py::none(), py::arg("threads") = 0,
+      py::arg("backend") = kAutoBackend,
+      "What accuracy costs, shown (`lightsolver study`): ONE run with checkpoints at 1e4 photons, "
+      "then 2x each, up to max_photons. Returns the study dict (lightsolver.study/1, "
+      "docs/accuracy.md): rows (photons, seconds, 'all' and per-target Em, Emin, U0, per-cell "
+      "mean and worst relative half-width and, with reference=RESULTS.json, mean and max "
+      "relative error), fit, goals (photons and seconds per per-cell accuracy, 'extrapolated' "
+      "beyond the last row), warnings; plus 'csv' (the CSV text) and 'results' (the run's). "
+      "NativeSolver/python/tools/plot_study.py draws it.");
   bind_optimizer(m);  // lightsolver.optimize
 }

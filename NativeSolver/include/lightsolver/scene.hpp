@@ -100,6 +100,9 @@ struct Settings {
   /// Time limit of the tracing (s, finite, > 0) of runs without an explicit photon count;
   /// unset: none, except accuracy runs (SolveOptions::max_seconds).
   std::optional<double> max_seconds;
+  /// Accuracy goals of runs on this scene judge every grid cell, not only target means
+  /// (SolveOptions::accuracy_per_cell).
+  bool accuracy_per_cell = false;
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

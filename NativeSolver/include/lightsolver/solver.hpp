@@ -30,6 +30,8 @@ struct RunForecast {
   bool accuracy_goal = false;         ///< `photons` is an extrapolation to the accuracy goal
 };
 
+struct TargetResult;
+
 /// A point of a run: what the first `photons` photons gave and cost.
 struct Checkpoint {
   std::uint64_t photons = 0;  ///< photons traced so far
@@ -37,6 +39,9 @@ struct Checkpoint {
   /// Largest CI half-width / mean over the targets (whole grids, not cells); infinity while a
   /// target has no hit (no goal can be judged for it yet).
   double worst_relative_half_width = 0.0;
+  /// Every target's results at this point, as a run of `photons` photons would report them
+  /// (`lightsolver study` reads cells, Em, Emin and U0 from them).
+  std::vector<TargetResult> targets;
 };
 
 /// What an accuracy goal costs, extrapolated from a checkpoint.
@@ -70,6 +75,10 @@ struct SolveOptions {
   /// count: it is the default of runs without a goal). Batches double from 2^14 photons, so
   /// the stopping point is deterministic for a seed unless the time limit ends the run.
   std::optional<double> target_accuracy;
+  /// Judge `target_accuracy` per cell: every grid cell's and every surface target's half-width
+  /// relative to its own mean (cells darker than 1 % of their grid's mean against that 1 %;
+  /// lightsolver/accuracy.hpp). Default: scene.settings.accuracy_per_cell.
+  std::optional<bool> accuracy_per_cell;
   /// Time limit of the tracing in seconds, checked between batches (finite, > 0). Default:
   /// scene.settings.max_seconds when `photons` is not given (an explicit count is traced to
   /// the end unless this is set); when neither is set, runs have no time limit except accuracy
@@ -117,6 +126,7 @@ struct Results {
   bool partial = false;                 ///< stopped early by cancel or progress callback
   std::optional<double> target_accuracy;  ///< the goal, when one was set
   bool accuracy_met = false;            ///< every target reached target_accuracy
+  bool accuracy_per_cell = false;       ///< the goal was judged per cell (with target_accuracy)
   std::string stop_reason = kStopPhotons;  ///< which limit ended the run (kStop*)
   std::optional<double> max_seconds;       ///< the time limit that applied, if any
   double seconds = 0.0;

@@ -43,7 +43,7 @@ std::string fmt(const char* format, double v) {
 std::string stop_text(const Results& r) {
   if (r.stop_reason == kStopAccuracy) {
     return "stopped: accuracy goal " + fmt("±%g %%", 100.0 * r.target_accuracy.value_or(0.0)) +
-           " met";
+           (r.accuracy_per_cell ? " per cell" : "") + " met";
   }
   if (r.stop_reason == kStopTime) {
     return "stopped: time limit " + fmt("%g s", r.max_seconds.value_or(0.0));
@@ -73,6 +73,7 @@ std::string results_to_json(const Results& r) {
   if (r.target_accuracy) {
     j["target_accuracy"] = *r.target_accuracy;
     j["accuracy_met"] = r.accuracy_met;
+    j["accuracy_per_cell"] = r.accuracy_per_cell;
   }
   nlohmann::json targets = nlohmann::json::array();
   for (const auto& t : r.targets) targets.push_back(target_json(t));

@@ -172,7 +172,8 @@ Target read_target(const JsonNode& n, const Scene& scene) {
 }
 
 Settings read_settings(const JsonNode& n) {
-  n.require_object({"photons", "max_bounces", "seed", "confidence", "max_seconds"});
+  n.require_object(
+      {"photons", "max_bounces", "seed", "confidence", "max_seconds", "accuracy_per_cell"});
   Settings s;
   if (n.has("photons")) s.photons = n.at("photons").unsigned_integer();
   if (n.has("max_bounces")) {
@@ -186,6 +187,7 @@ Settings read_settings(const JsonNode& n) {
     s.max_seconds = n.at("max_seconds").number();  // finite
     if (!(*s.max_seconds > 0.0)) n.at("max_seconds").fail("must be > 0 (seconds)");
   }
+  s.accuracy_per_cell = n.boolean_or("accuracy_per_cell", s.accuracy_per_cell);
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "core/backend.hpp"
+#include "core/cell_accuracy.hpp"
 
 namespace lightsolver {
 namespace detail {
@@ -68,32 +69,39 @@ double worst_relative_half_width(const detail::PreparedScene& s, const detail::T
   return worst;
 }
 
-// True when every target's interval is narrow enough relative to its mean. A target with no
-// hit yet cannot be judged (infinitely wide): keep tracing.
-bool accuracy_reached(const detail::PreparedScene& s, const detail::TallyBlock& t,
-                      std::uint64_t photons, double confidence, double goal) {
-  return worst_relative_half_width(s, t, photons, confidence) <= goal;
+// The measure an accuracy goal is judged by: target means, or every cell (per-cell mode).
+double goal_width(const Scene& scene, const detail::PreparedScene& s, const detail::TallyBlock& t,
+                  const Results& r) {
+  return r.accuracy_per_cell
+             ? detail::worst_cell_relative_half_width(scene, s, t, r.photons, r.confidence)
+             : worst_relative_half_width(s, t, r.photons, r.confidence);
 }
 
-// Photons that would bring the worst target to the accuracy goal, from the tallies so far;
-// `budget` while a target has no hit yet.
-std::uint64_t photons_for_goal(const detail::PreparedScene& s, const detail::TallyBlock& t,
-                               std::uint64_t photons, double confidence, double goal,
-                               std::uint64_t budget) {
-  const Checkpoint at{photons, 0.0, worst_relative_half_width(s, t, photons, confidence)};
+// True when every target's (or cell's) interval is narrow enough relative to its mean. A
+// target with no hit yet cannot be judged (infinitely wide): keep tracing.
+bool accuracy_reached(const Scene& scene, const detail::PreparedScene& s,
+                      const detail::TallyBlock& t, const Results& r) {
+  return goal_width(scene, s, t, r) <= *r.target_accuracy;
+}
+
+// Photons that would bring the worst target (or cell) to the accuracy goal, from the tallies so
+// far; the budget while a target has no hit yet.
+std::uint64_t photons_for_goal(const Scene& scene, const detail::PreparedScene& s,
+                               const detail::TallyBlock& t, const Results& r) {
+  const std::uint64_t photons = r.photons, budget = r.photons_requested;
+  const double goal = *r.target_accuracy;
+  const Checkpoint at{photons, 0.0, goal_width(scene, s, t, r), {}};
   const double need = accuracy_cost(at, goal).photons;
   return need >= double(budget) ? budget : std::max(photons, static_cast<std::uint64_t>(need));
 }
 
 // What the rest of the run will cost at the rate of its first `traced_s` seconds.
-RunForecast make_forecast(const detail::PreparedScene& s, const detail::TallyBlock& t,
-                          const Results& r, double traced_s) {
+RunForecast make_forecast(const Scene& scene, const detail::PreparedScene& s,
+                          const detail::TallyBlock& t, const Results& r, double traced_s) {
   RunForecast f;
   f.photons_per_second = double(r.photons) / traced_s;
   f.accuracy_goal = r.target_accuracy.has_value();
-  f.photons = f.accuracy_goal ? photons_for_goal(s, t, r.photons, r.confidence, *r.target_accuracy,
-                                                 r.photons_requested)
-                              : r.photons_requested;
+  f.photons = f.accuracy_goal ? photons_for_goal(scene, s, t, r) : r.photons_requested;
   f.seconds = double(f.photons) / f.photons_per_second;
   f.max_seconds = r.max_seconds;
   return f;
@@ -171,9 +179,9 @@ void add_warnings(const Scene& scene, Results& r) {
   }
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
   if (r.target_accuracy && !r.accuracy_met && r.stop_reason == kStopPhotons) {
-    r.warnings.push_back(
-        "the photon budget ran out before every target reached the requested "
-        "accuracy");
+    r.warnings.push_back(std::string("the photon budget ran out before every ") +
+                         (r.accuracy_per_cell ? "cell" : "target") +
+                         " reached the requested accuracy");
   }
 }
 
@@ -185,7 +193,8 @@ void add_stop_warnings(Results& r) {
   std::string w = std::string("the time limit (") + limit + " s) ended the run after " +
                   std::to_string(r.photons) + " photons";
   if (r.target_accuracy) {
-    w += ", before every target reached the requested accuracy";
+    w += std::string(", before every ") + (r.accuracy_per_cell ? "cell" : "target") +
+         " reached the requested accuracy";
   } else {
     w += " of the " + std::to_string(r.photons_requested) + " requested";
   }
@@ -196,8 +205,9 @@ void add_stop_warnings(Results& r) {
 // each one reached. Where a batch is split changes no tally (photon i is photon i).
 class CheckpointTracer {
  public:
-  CheckpointTracer(const SolveOptions& o, const detail::PreparedScene& s, Clock::time_point start)
-      : o_(o), s_(s), start_(start) {}
+  CheckpointTracer(const SolveOptions& o, const Scene& scene, const detail::PreparedScene& s,
+                   Clock::time_point start)
+      : o_(o), scene_(scene), s_(s), start_(start) {}
 
   template <class TraceFn>
   void trace(std::uint64_t first, std::uint64_t n, const Results& r,
@@ -210,8 +220,15 @@ class CheckpointTracer {
       trace_range(done, at - done);
       done = at;
       if (o_.checkpoint) {
-        o_.checkpoint(
-            {at, seconds_since(start_), worst_relative_half_width(s_, tallies, at, r.confidence)});
+        Checkpoint c;
+        c.photons = at;
+        c.seconds = seconds_since(start_);
+        c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
+        for (std::size_t i = 0; i < scene_.targets.size(); ++i) {
+          c.targets.push_back(
+              make_target(scene_.targets[i], s_, tallies, s_.target_bin[i], at, r.confidence));
+        }
+        o_.checkpoint(c);
       }
     }
     if (done < end) trace_range(done, end - done);
@@ -219,6 +236,7 @@ class CheckpointTracer {
 
  private:
   const SolveOptions& o_;
+  const Scene& scene_;
   const detail::PreparedScene& s_;
   Clock::time_point start_;
   std::size_t next_ = 0;
@@ -327,6 +345,8 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.seed = options.seed.value_or(scene.settings.seed);
   r.confidence = options.confidence.value_or(scene.settings.confidence);
   r.target_accuracy = options.target_accuracy;
+  r.accuracy_per_cell =
+      r.target_accuracy && options.accuracy_per_cell.value_or(scene.settings.accuracy_per_cell);
   check_photon_count(r.photons_requested, scene.settings.max_bounces, "", "photons");
   if (!(r.confidence > 0.0 && r.confidence < 1.0)) {
     throw InputError("", "confidence", "must lie strictly between 0 and 1");
@@ -343,7 +363,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
     const bool accuracy_mode = r.target_accuracy.has_value();
     const auto tracing_start = Clock::now();
     bool forecast_due = static_cast<bool>(options.forecast);
-    CheckpointTracer tracer(options, prepared, tracing_start);
+    CheckpointTracer tracer(options, scene, prepared, tracing_start);
     while (r.photons < r.photons_requested) {
       if (options.cancel && options.cancel->load()) {
         r.stop_reason = kStopCancelled;
@@ -361,8 +381,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         arena.execute([&] { state_->backend->trace(first, count, r.seed, tallies); });
       });
       r.photons += n;
-      if (accuracy_mode &&
-          accuracy_reached(prepared, tallies, r.photons, r.confidence, *r.target_accuracy)) {
+      if (accuracy_mode && accuracy_reached(scene, prepared, tallies, r)) {
         r.accuracy_met = true;
         r.stop_reason = kStopAccuracy;
         break;
@@ -371,7 +390,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
       const double traced_s = seconds_since(tracing_start);
       if (forecast_due && traced_s >= 0.5 && r.photons < r.photons_requested) {
         forecast_due = false;
-        options.forecast(make_forecast(prepared, tallies, r, traced_s));
+        options.forecast(make_forecast(scene, prepared, tallies, r, traced_s));
       }
       if (progress && !progress(r.photons, r.photons_requested)) {
         if (r.photons < r.photons_requested) r.stop_reason = kStopCancelled;
