@@ -20,6 +20,7 @@
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_command.hpp"
+#include "report_command.hpp"
 
 namespace {
 
@@ -291,6 +292,7 @@ int main(int argc, char** argv) {
       "backends", "List the tracing backends of this build and whether each can start here");
 
   lightsolver::cli::add_optimize_command(app);  // runs from its own callback
+  lightsolver::cli::add_report_command(app);    // execs python3 -m lightsolver_report
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);
