@@ -185,7 +185,8 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
                     "vertices": [[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0]],
                     "triangles": [[0, 1, 2], [0, 2, 3]]}],
         "luminaires": [
-            {"name": f"dl{i}", "type": "photometric", "file": "downlight.ies",
+            {"name": f"dl{i}", "type": "photometric",
+             "file": "copy of downlight.ies" if i == 2 else "downlight.ies",
              "position": [1 + 2 * (i % 2), 1 + 2 * (i // 2), 3], "flux_lm": 1000}
             for i in range(3)] + [
             {"name": "ldt", "type": "photometric", "file": "downlight.ldt",
@@ -195,6 +196,7 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
         "settings": {"photons": 20000, "seed": 3}}
     for f in ("downlight.ies", "downlight.ldt"):
         shutil.copy(lum_dir / f, tmp_path / f)
+    shutil.copy(lum_dir / "downlight.ies", tmp_path / "copy of downlight.ies")  # one type
     path = tmp_path / "downlights.json"
     path.write_text(json.dumps(scene))
     results = lightsolver_report.trace(path)
@@ -202,7 +204,7 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
     ies, ldt = report.luminaires
     summary = lightsolver.photometry_summary(str(lum_dir / "downlight.ies"))
     assert ("LUMCAT", "LS-DL-150") in [tuple(k) for k in summary["keywords"]]
-    assert ies.count == 3 and ies.file == "downlight.ies"
+    assert ies.count == 3 and ies.files == ["downlight.ies", "copy of downlight.ies"]
     assert (ies.maker, ies.catalogue, ies.lamp) == (
         "Lighting project", "LS-DL-150", "LED module 1500 lm")
     assert ies.flux_lm == pytest.approx(summary["integrated_lumens_lm"] * 1000 / 1500)
@@ -213,6 +215,7 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
     assert report.total_flux_lm == pytest.approx(results["total_flux_lm"], rel=1e-9)
     html = render_html(path, results, date=DATE)
     assert "cat. no. LS-DL-150" in html and "Lighting project" in html
+    assert "1 more copy of it" in html
     assert str(tmp_path) not in html
 
 

@@ -4,6 +4,7 @@ and the results (docs/schemas/results.schema.json, with the requirements and ver
 issue 13 when the solver wrote them). Plain data, no HTML: the templates lay it out."""
 from __future__ import annotations
 
+import hashlib
 import math
 import os
 import re
@@ -122,6 +123,7 @@ class LuminaireRow:
     file_lamp_lm: Optional[float] = None
     file_watts: Optional[float] = None
     names: List[str] = field(default_factory=list)
+    files: List[str] = field(default_factory=list)  # identical files (copies) of the row
     flux_lm: float = 0.0
     initial_flux_lm: Optional[float] = None
     maintenance_factor: Optional[float] = None
@@ -406,9 +408,25 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
                               f"{summary.get('format_version', '')}".strip()
             row.file_lamp_lm = _float(summary.get("rated_lumens_lm"))
             row.file_watts = _float(summary.get("input_watts")) or None
-        key = (row.kind, file, row.flux_lm, row.initial_flux_lm, mf, row.power_w)
-        rows.setdefault(key, row).names.append(str(labels.get(name, name)))
+        same_file = _content_key(file, base_dir)
+        key = (row.kind, same_file, row.flux_lm, row.initial_flux_lm, mf, row.power_w)
+        entry = rows.setdefault(key, row)
+        entry.names.append(str(labels.get(name, name)))
+        if file is not None and file not in entry.files:
+            entry.files.append(file)
     return list(rows.values()), warnings
+
+
+def _content_key(file: Optional[str], base_dir: str) -> Optional[str]:
+    """Identical photometric files are one type, whatever they are called (the workbench
+    copies each luminaire's file next to the scene under the luminaire's name)."""
+    if file is None:
+        return None
+    try:
+        with open(file if os.path.isabs(file) else os.path.join(base_dir, file), "rb") as f:
+            return hashlib.sha256(f.read()).hexdigest()
+    except OSError:
+        return file
 
 
 def _summary(file: str, base_dir: str, photometry: Optional[PhotometryFn],
