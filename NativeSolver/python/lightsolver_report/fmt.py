@@ -75,7 +75,11 @@ def count(value: Optional[float]) -> str:
 
 
 def seconds(value: Optional[float]) -> str:
-    """A duration: 0.81 s, 45 s, 4 min 10 s, 3 h 20 min, 2.5 days."""
+    """A duration that does not break across lines: 0.81 s, 45 s, 4 min 10 s, 3 h 20 min."""
+    return _seconds(value).replace(" ", "\u00a0")
+
+
+def _seconds(value: Optional[float]) -> str:
     if value is None or not math.isfinite(value):
         return DASH
     if value < 10:

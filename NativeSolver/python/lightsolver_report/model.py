@@ -108,6 +108,12 @@ class Area:
     def undecided(self) -> List[Verdict]:
         return [v for v in self.verdicts if v.verdict == "undecided"]
 
+    @property
+    def to_decide(self) -> Optional[Verdict]:
+        """The undecided verdict that needs the most photons (with an estimate), or None."""
+        known = [v for v in self.undecided if v.to_decide_photons is not None]
+        return max(known, key=lambda v: v.to_decide_photons) if known else None
+
 
 @dataclass
 class LuminaireRow:
