@@ -3,7 +3,6 @@
 scene file."""
 import os
 
-import FreeCAD
 
 import lighting
 from lighting.messages import CheckError

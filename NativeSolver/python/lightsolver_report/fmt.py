@@ -4,11 +4,19 @@ text, so equal inputs give byte-identical HTML."""
 from __future__ import annotations
 
 import math
-from typing import Optional
+from typing import Any, Optional
 
 #: Unicode superscripts for powers of ten (10⁶).
 _SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
 DASH = "–"
+
+
+def finite(value: Any) -> Optional[float]:
+    """A JSON value as a finite float, or None (missing, not a number, a bool, inf or NaN)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
 
 
 def lux(value: Optional[float]) -> str:

@@ -4,22 +4,19 @@ and the results (docs/schemas/results.schema.json, with the requirements and ver
 issue 13 when the solver wrote them). Plain data, no HTML: the templates lay it out."""
 from __future__ import annotations
 
-import hashlib
-import math
 import os
-import re
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
+
+from lightsolver_report.fmt import finite
+from lightsolver_report.schedule import (LuminaireRow, MaterialRow, PhotometryFn,
+                                         build_luminaires, build_materials)
 
 #: Verdict keys in the order the report lists them, with the requirement key and unit of each.
 QUANTITIES: Tuple[Tuple[str, str, str], ...] = (
     ("em", "em_lux", "lx"), ("emin", "emin_lux", "lx"), ("u0", "u0", ""), ("ud", "ud", ""))
-#: IES keywords / EULUMDAT fields that name the maker, in order of preference.
-MAKER_KEYS = ("MANUFAC", "COMPANY")
-
-PhotometryFn = Callable[[str], Dict[str, Any]]
 
 
 @dataclass
@@ -116,58 +113,6 @@ class Area:
 
 
 @dataclass
-class LuminaireRow:
-    """One line of the luminaire schedule: luminaires alike in type, file, flux and power."""
-
-    kind: str
-    file: Optional[str] = None
-    file_format: Optional[str] = None
-    maker: Optional[str] = None
-    catalogue: Optional[str] = None
-    product: Optional[str] = None
-    lamp: Optional[str] = None
-    file_lamp_lm: Optional[float] = None
-    file_watts: Optional[float] = None
-    names: List[str] = field(default_factory=list)
-    files: List[str] = field(default_factory=list)  # identical files (copies) of the row
-    flux_lm: float = 0.0
-    initial_flux_lm: Optional[float] = None
-    maintenance_factor: Optional[float] = None
-    power_w: Optional[float] = None
-
-    @property
-    def count(self) -> int:
-        return len(self.names)
-
-    @property
-    def total_flux_lm(self) -> float:
-        return self.flux_lm * self.count
-
-    @property
-    def total_power_w(self) -> Optional[float]:
-        return None if self.power_w is None else self.power_w * self.count
-
-    @property
-    def efficacy_lm_w(self) -> Optional[float]:
-        return self.flux_lm / self.power_w if self.power_w else None
-
-
-@dataclass
-class MaterialRow:
-    """A material and the surfaces that use it."""
-
-    name: str
-    type: str
-    reflectance: Optional[float] = None
-    specular: Optional[float] = None
-    roughness: Optional[float] = None
-    transmittance: Optional[float] = None
-    ior: Optional[float] = None
-    thin: Optional[bool] = None
-    used_by: List[str] = field(default_factory=list)
-
-
-@dataclass
 class Report:
     """Everything the report prints."""
 
@@ -214,34 +159,27 @@ class Report:
         return counts
 
 
-def _float(value: Any) -> Optional[float]:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return None
-    value = float(value)
-    return value if math.isfinite(value) else None
-
-
 def _stat(target: Dict[str, Any], value_key: str, low_key: str, high_key: str) -> Stat:
-    return Stat(_float(target.get(value_key)), _float(target.get(low_key)),
-                _float(target.get(high_key)))
+    return Stat(finite(target.get(value_key)), finite(target.get(low_key)),
+                finite(target.get(high_key)))
 
 
 def _ud(target: Dict[str, Any]) -> Stat:
     """Ud = Emin/Emax: the results' own value and interval, else the ratio of the estimates."""
-    value = _float(target.get("ud"))
+    value = finite(target.get("ud"))
     if value is None:
-        low, high = _float(target.get("min_lux")), _float(target.get("max_lux"))
+        low, high = finite(target.get("min_lux")), finite(target.get("max_lux"))
         if low is not None and high:
             value = low / high
-    return Stat(value, _float(target.get("ud_ci_low")), _float(target.get("ud_ci_high")))
+    return Stat(value, finite(target.get("ud_ci_low")), finite(target.get("ud_ci_high")))
 
 
 def _requirements(req: Optional[Dict[str, Any]]) -> List[Requirement]:
     if not isinstance(req, dict):
         return []
     items = [Requirement(key, ">=", float(req[rkey])) for key, rkey, _ in QUANTITIES
-             if _float(req.get(rkey)) is not None]
-    if _float(req.get("ugr_max")) is not None:
+             if finite(req.get(rkey)) is not None]
+    if finite(req.get("ugr_max")) is not None:
         items.append(Requirement("ugr", "<=", float(req["ugr_max"])))
     return items
 
@@ -255,10 +193,10 @@ def _verdicts(raw: Any) -> List[Verdict]:
         if not isinstance(v, dict):
             continue
         decide = v.get("to_decide") if isinstance(v.get("to_decide"), dict) else {}
-        found.append(Verdict(key, str(v.get("verdict", "undecided")), _float(v.get("value")),
-                             _float(v.get("ci_low")), _float(v.get("ci_high")),
-                             _float(v.get("required")), str(v.get("relation", ">=")),
-                             _float(decide.get("photons")), _float(decide.get("seconds"))))
+        found.append(Verdict(key, str(v.get("verdict", "undecided")), finite(v.get("value")),
+                             finite(v.get("ci_low")), finite(v.get("ci_high")),
+                             finite(v.get("required")), str(v.get("relation", ">=")),
+                             finite(decide.get("photons")), finite(decide.get("seconds"))))
     return found
 
 
@@ -301,7 +239,7 @@ def build_area(target: Dict[str, Any], scene_target: Dict[str, Any],
     """One calculation area from its results entry and its scene entry."""
     name = str(target.get("name", ""))
     area = Area(name=name, label=labels.get(name, name), type=str(target.get("type", "")),
-                area_m2=_float(target.get("area_m2")), hits=target.get("hits"),
+                area_m2=finite(target.get("area_m2")), hits=target.get("hits"),
                 em=_stat(target, "mean_lux", "ci_low_lux", "ci_high_lux"))
     if area.type == "grid":
         area.emin = _stat(target, "min_lux", "min_ci_low_lux", "min_ci_high_lux")
@@ -323,162 +261,6 @@ def build_area(target: Dict[str, Any], scene_target: Dict[str, Any],
     verdict = target.get("verdict")
     area.verdict = str(verdict) if isinstance(verdict, str) else None
     return area
-
-
-# --- luminaires -------------------------------------------------------------------------------
-
-def _keywords(summary: Dict[str, Any]) -> Dict[str, str]:
-    """The file's own keywords: the summary's ``keywords`` pairs, else its text's ``[KEY]`` lines
-    (modules built before ``keywords`` was added)."""
-    pairs = summary.get("keywords")
-    if pairs is None:
-        pairs = re.findall(r"^\[(\w+)\] (.*)$", str(summary.get("text", "")), re.MULTILINE)
-    found: Dict[str, str] = {}
-    for key, value in pairs:
-        key = str(key).upper()
-        if key not in found and str(value).strip():
-            found[key] = str(value).strip()
-    return found
-
-
-def _describe(lum: Dict[str, Any]) -> str:
-    kind = lum.get("type", "")
-    if kind == "point":
-        return "Point source, isotropic"
-    if kind == "spot":
-        return (f"Spot, beam {lum.get('beam_angle_deg', 0):g}°, "
-                f"field {lum.get('field_angle_deg', 0):g}°")
-    if kind == "area":
-        a = float(np.linalg.norm(lum.get("edge1", (0, 0, 0))))
-        b = float(np.linalg.norm(lum.get("edge2", (0, 0, 0))))
-        return f"Area source, Lambertian, {a:.2f} × {b:.2f} m"
-    if kind == "directional":
-        return f"Directional beam, {lum.get('illuminance_lx', 0):g} lx"
-    if kind == "photometric":
-        return "Photometric luminaire"
-    return str(kind)
-
-
-def _emitted_flux(lum: Dict[str, Any], summary: Optional[Dict[str, Any]]) -> float:
-    """Flux the luminaire emits (docs/scene-format.md, Ranges), TILT not applied."""
-    kind = lum.get("type")
-    if kind == "directional":
-        e1 = np.asarray(lum.get("edge1", (0, 0, 0)), dtype=float)
-        e2 = np.asarray(lum.get("edge2", (0, 0, 0)), dtype=float)
-        d = np.asarray(lum.get("direction", (0, 0, -1)), dtype=float)
-        normal = np.cross(e1, e2)
-        norm_d = float(np.linalg.norm(d))
-        return float(lum.get("illuminance_lx", 0.0)) * (
-            abs(float(normal @ d)) / norm_d if norm_d else 0.0)
-    flux = _float(lum.get("flux_lm"))
-    if kind == "photometric" and summary is not None:
-        integrated = _float(summary.get("integrated_lumens_lm")) or 0.0
-        lamp = _float(summary.get("lamp_lumens_lm"))
-        if flux is None:
-            return integrated
-        if lamp and not summary.get("absolute_photometry"):
-            return integrated * flux / lamp
-    return flux or 0.0
-
-
-def build_luminaires(scene: Dict[str, Any], base_dir: str,
-                     photometry: Optional[PhotometryFn]) -> Tuple[List[LuminaireRow], List[str]]:
-    """The schedule (alike luminaires on one row, in scene order) and the photometric files'
-    warnings."""
-    meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
-    labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
-    per_lum = meta.get("luminaires") if isinstance(meta.get("luminaires"), dict) else {}
-    rows: Dict[Tuple[Any, ...], LuminaireRow] = {}
-    warnings: List[str] = []
-    summaries: Dict[str, Optional[Dict[str, Any]]] = {}
-    for lum in scene.get("luminaires", []):
-        name = str(lum.get("name", ""))
-        extra = per_lum.get(name) if isinstance(per_lum.get(name), dict) else {}
-        file = lum.get("file") if lum.get("type") == "photometric" else None
-        summary = None
-        if file is not None:
-            if file not in summaries:
-                summaries[file] = _summary(file, base_dir, photometry, warnings)
-            summary = summaries[file]
-        mf = _float(lum.get("maintenance_factor", extra.get("maintenance_factor")))
-        row = LuminaireRow(kind=_describe(lum), file=file,
-                           flux_lm=_emitted_flux(lum, summary),
-                           initial_flux_lm=_float(extra.get("flux_lm_initial")),
-                           maintenance_factor=mf, power_w=_float(lum.get("power_w")))
-        if summary is not None:
-            keys = _keywords(summary)
-            row.maker = next((keys[k] for k in MAKER_KEYS if k in keys), None)
-            row.catalogue, row.product = keys.get("LUMCAT"), keys.get("LUMINAIRE")
-            row.lamp = keys.get("LAMP")
-            row.file_format = f"{str(summary.get('format', '')).upper()} " \
-                              f"{summary.get('format_version', '')}".strip()
-            row.file_lamp_lm = _float(summary.get("rated_lumens_lm"))
-            row.file_watts = _float(summary.get("input_watts")) or None
-        same_file = _content_key(file, base_dir)
-        key = (row.kind, same_file, row.flux_lm, row.initial_flux_lm, mf, row.power_w)
-        entry = rows.setdefault(key, row)
-        entry.names.append(str(labels.get(name, name)))
-        if file is not None and file not in entry.files:
-            entry.files.append(file)
-    return list(rows.values()), warnings
-
-
-def _content_key(file: Optional[str], base_dir: str) -> Optional[str]:
-    """Identical photometric files are one type, whatever they are called (the workbench
-    copies each luminaire's file next to the scene under the luminaire's name)."""
-    if file is None:
-        return None
-    try:
-        with open(file if os.path.isabs(file) else os.path.join(base_dir, file), "rb") as f:
-            return hashlib.sha256(f.read()).hexdigest()
-    except OSError:
-        return file
-
-
-def _summary(file: str, base_dir: str, photometry: Optional[PhotometryFn],
-             warnings: List[str]) -> Optional[Dict[str, Any]]:
-    if photometry is None:
-        warnings.append(f"{file}: not read (the lightsolver module is not available)")
-        return None
-    path = file if os.path.isabs(file) else os.path.join(base_dir, file)
-    try:
-        summary = photometry(path)
-    except Exception as exc:  # noqa: BLE001 - the parser's message, shown in the report
-        warnings.append(str(exc).replace(path, file))
-        return None
-    warnings.extend(f"{file}: {str(w).replace(path, file)}" for w in summary.get("warnings", []))
-    return summary
-
-
-# --- materials --------------------------------------------------------------------------------
-
-def build_materials(scene: Dict[str, Any],
-                    defaults: Optional[Dict[str, Dict[str, Any]]]) -> List[MaterialRow]:
-    """Each material with its factors (the solver's defaults filled in) and the surfaces using
-    it, named by their labels (a mesh ``Object.part`` is named after ``Object``)."""
-    meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
-    labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
-    used: Dict[str, List[str]] = {}
-    for mesh in scene.get("meshes", []):
-        name = str(mesh.get("name", ""))
-        obj = name.split(".", 1)[0]
-        label = str(labels.get(name, labels.get(obj, name)))
-        users = used.setdefault(str(mesh.get("material", "")), [])
-        if label not in users:
-            users.append(label)
-    rows = []
-    for name, mat in scene.get("materials", {}).items():
-        kind = str(mat.get("type", "diffuse"))
-        values = dict((defaults or {}).get(kind, {}))
-        values.update({k: v for k, v in mat.items() if k != "type"})
-        rows.append(MaterialRow(name=name, type=kind, reflectance=_float(values.get("reflectance")),
-                                specular=_float(values.get("specular")),
-                                roughness=_float(values.get("roughness")),
-                                transmittance=_float(values.get("transmittance")),
-                                ior=_float(values.get("ior")),
-                                thin=values.get("thin") if kind == "glass" else None,
-                                used_by=used.get(name, [])))
-    return rows
 
 
 # --- the whole report -------------------------------------------------------------------------
@@ -516,7 +298,7 @@ def build_report(scene: Dict[str, Any], results: Dict[str, Any], *, scene_name: 
         verdict=results.get("verdict") if isinstance(results.get("verdict"), str) else None,
         luminaires=luminaires, materials=build_materials(scene, material_defaults), areas=areas,
         warnings=[str(w) for w in results.get("warnings", [])] + photometry_warnings,
-        solver_total_flux_lm=_float(results.get("total_flux_lm")))
+        solver_total_flux_lm=finite(results.get("total_flux_lm")))
     power = report.total_power_w
     for area in areas:
         if power is not None and area.horizontal and area.area_m2:
