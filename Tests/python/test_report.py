@@ -289,3 +289,38 @@ def test_cli_report_names_what_is_missing(cli, tmp_path):
     r = run_cli(cli, *args[:-1], str(tmp_path / "r.txt"))
     assert r.returncode == 1 and ".html or .pdf" in r.stderr
     assert not (tmp_path / "r.html").exists()
+
+
+@pytest.mark.parametrize("shape", [(1, 5), (4, 1), (1, 1), (100, 120)])
+def test_plans_of_thin_dark_and_large_grids(shape):
+    import numpy as np
+
+    from lightsolver_report.model import GridData
+    from lightsolver_report.plots import chart_svg, colour_range, iso_levels, plan_svg
+
+    nv, nu = shape
+    rng = np.random.default_rng(1)
+    for lux in (np.zeros(shape), 300.0 + 50.0 * rng.random(shape)):
+        grid = GridData(lux, 0.1 * nu, 0.1 * nv)
+        low, high = colour_range(lux)
+        assert low <= lux.min() and high >= lux.max() and high > low
+        assert all(lux.min() < level < lux.max() for level in iso_levels(lux))
+        svg = plan_svg(grid, "p")
+        assert svg.startswith("<svg") and svg == plan_svg(grid, "p")
+        assert chart_svg(grid, "c")[0].startswith("<svg")
+
+
+def test_names_are_escaped(tmp_path):
+    scene, results = fixture("room")
+    scene_dict = json.loads(scene.read_text())
+    scene_dict["metadata"]["labels"] = {"workplane": "<b>work & plane</b>"}
+    html = render_html(scene_dict, results, scene_path=scene, date=DATE)
+    assert "&lt;b&gt;work &amp; plane&lt;/b&gt;" in html and "<b>work" not in html
+
+
+def test_partial_results_are_said_on_the_cover():
+    scene, results = fixture("room")
+    results = dict(results, partial=True, stop_reason="cancelled", photons=1000)
+    html = render_html(scene, results, date=DATE)
+    cover = html[:html.index('<section class="page">')]
+    assert "Partial results" in cover
