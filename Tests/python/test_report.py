@@ -99,7 +99,8 @@ def test_the_office_fixture_shows_maintenance_factor_and_labels():
     scene, results = fixture("office")
     report = build(scene, results, date=DATE)
     (row,) = report.luminaires
-    assert row.count == 4 and row.maintenance_factor == 0.8 and row.initial_flux_lm == 5200
+    assert row.count == 4 and row.maintenance_factor == 0.8
+    assert row.initial_flux_lm == pytest.approx(5200, rel=1e-12)
     assert row.flux_lm == 4160 and report.total_power_w is None
     assert [a.label for a in report.areas] == ["Workplane", "Desk top", "North wall"]
     assert report.title == "Office" and report.verdict == "pass"
@@ -179,7 +180,7 @@ def test_traces_with_the_scenes_settings_when_no_results_are_given(tmp_path, roo
 def test_photometric_luminaires_say_what_their_files_say(tmp_path):
     lum_dir = SOURCE_DIR / "Resources" / "luminaires"
     scene = {
-        "format": "lightsolver.scene/1", "metadata": {"project": "Downlights"},
+        "format": "lightsolver.scene/1",
         "materials": {"floor": {"type": "diffuse", "reflectance": 0.2}},
         "meshes": [{"name": "floor", "material": "floor",
                     "vertices": [[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0]],
@@ -191,6 +192,10 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
             for i in range(3)] + [
             {"name": "ldt", "type": "photometric", "file": "downlight.ldt",
              "position": [3, 3, 3]}],
+        # As the workbench writes them: no maintenance factor reaches a file's own flux.
+        "metadata": {"project": "Downlights",
+                     "luminaires": {n: {"maintenance_factor": 0.8, "flux_lm_initial": 0.0}
+                                    for n in ("dl0", "dl1", "dl2", "ldt")}},
         "targets": [{"name": "floor grid", "type": "grid", "corner": [0, 0, 0],
                      "edge1": [4, 0, 0], "edge2": [0, 4, 0], "cells": [4, 4]}],
         "settings": {"photons": 20000, "seed": 3}}
@@ -208,7 +213,8 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
     assert (ies.maker, ies.catalogue, ies.lamp) == (
         "Lighting project", "LS-DL-150", "LED module 1500 lm")
     assert ies.flux_lm == pytest.approx(summary["integrated_lumens_lm"] * 1000 / 1500)
-    assert ldt.count == 1 and ldt.catalogue == "LS-DL-150"
+    assert ldt.count == 1 and ldt.catalogue == "LS-DL-150" and ldt.maintenance_factor is None
+    assert ies.maintenance_factor == 0.8  # flux_lm given: the workbench applied it
     assert ldt.flux_lm == pytest.approx(
         lightsolver.photometry_summary(str(lum_dir / "downlight.ldt"))["integrated_lumens_lm"])
     # The solver traced what the schedule says is emitted.

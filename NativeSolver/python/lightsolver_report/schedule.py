@@ -34,10 +34,14 @@ class LuminaireRow:
     file_watts: Optional[float] = None
     names: List[str] = field(default_factory=list)
     files: List[str] = field(default_factory=list)  # identical files (copies) of the row
-    flux_lm: float = 0.0
-    initial_flux_lm: Optional[float] = None
+    flux_lm: float = 0.0  # emitted in the calculation (maintained, when a factor applied)
     maintenance_factor: Optional[float] = None
     power_w: Optional[float] = None
+
+    @property
+    def initial_flux_lm(self) -> Optional[float]:
+        """The flux before the maintenance factor (the calculation's flux / MF)."""
+        return self.flux_lm / self.maintenance_factor if self.maintenance_factor else None
 
     @property
     def count(self) -> int:
@@ -145,10 +149,11 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
                 summaries[file] = _summary(file, base_dir, photometry, warnings)
             summary = summaries[file]
         mf = finite(lum.get("maintenance_factor", extra.get("maintenance_factor")))
-        row = LuminaireRow(kind=_describe(lum), file=file,
-                           flux_lm=_emitted_flux(lum, summary),
-                           initial_flux_lm=finite(extra.get("flux_lm_initial")),
-                           maintenance_factor=mf, power_w=finite(lum.get("power_w")))
+        if lum.get("type") == "photometric" and lum.get("flux_lm") is None:
+            mf = None  # the file's own absolute flux: no maintenance factor was applied
+        row = LuminaireRow(kind=_describe(lum), file=file, flux_lm=_emitted_flux(lum, summary),
+                           maintenance_factor=mf if mf else None,
+                           power_w=finite(lum.get("power_w")))
         if summary is not None:
             keys = _keywords(summary)
             row.maker = next((keys[k] for k in MAKER_KEYS if k in keys), None)
@@ -159,7 +164,7 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
             row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
             row.file_watts = finite(summary.get("input_watts")) or None
         same_file = _content_key(file, base_dir)
-        key = (row.kind, same_file, row.flux_lm, row.initial_flux_lm, mf, row.power_w)
+        key = (row.kind, same_file, row.flux_lm, row.maintenance_factor, row.power_w)
         entry = rows.setdefault(key, row)
         entry.names.append(str(labels.get(name, name)))
         if file is not None and file not in entry.files:
