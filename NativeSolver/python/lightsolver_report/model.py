@@ -292,7 +292,7 @@ def build_report(scene: Dict[str, Any], results: Dict[str, Any], *, scene_name: 
                            or os.path.splitext(scene_name)[0]),
         subtitle=str(meta.get("description") or ""),
         date=date, solver_version=solver_version, scene_file=scene_name,
-        document_file=str(meta.get("document_file") or ""),
+        document_file=os.path.basename(str(meta.get("document_file") or "")),
         generator=str(meta.get("generator") or ""),
         run=_run_facts(scene, results),
         verdict=results.get("verdict") if isinstance(results.get("verdict"), str) else None,
