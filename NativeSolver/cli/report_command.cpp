@@ -65,7 +65,7 @@ std::string package_path() {
 }
 
 std::vector<std::string> python_arguments(const std::string& python, const ReportArgs& a) {
-  std::vector<std::string> argv{python, "-m", "lightsolver_report", a.scene, "--out", a.out};
+  std::vector<std::string> argv{python, "-m", "lightsolver_report", "--out", a.out};
   const auto add = [&argv](const char* flag, const std::string& value) {
     if (!value.empty()) argv.insert(argv.end(), {flag, value});
   };
@@ -76,6 +76,7 @@ std::vector<std::string> python_arguments(const std::string& python, const Repor
   add("--backend", a.backend);
   if (a.photons) add("--photons", std::to_string(*a.photons));
   if (a.seed) add("--seed", std::to_string(*a.seed));
+  argv.insert(argv.end(), {"--", a.scene});  // a scene named "-x.json" is still the scene
   return argv;
 }
 

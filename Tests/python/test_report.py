@@ -353,3 +353,14 @@ def test_an_unknown_cost_of_deciding_is_said():
     assert "not estimated" in html and "decided after" not in html
     results["stop_reason"], results["decide"] = "decided", True
     assert "every verdict decided; traced until decided" in render_html(scene, results, date=DATE)
+
+
+def test_tracing_first_leaves_no_numpy_warning(tmp_path, room_scene):
+    # The tracer leaves denormals flushed on the calling thread; numpy then warns at its first
+    # float-limits query unless the report settled them before tracing. A fresh interpreter,
+    # warnings as errors.
+    r = subprocess.run(["/usr/bin/python3", "-W", "error::UserWarning", "-m", "lightsolver_report",
+                        str(room_scene), "--photons", "20000", "--date", DATE, "--out",
+                        str(tmp_path / "r.html")], capture_output=True, text=True, timeout=120,
+                       env={**os.environ, "PYTHONPATH": os.pathsep.join(_pythonpath())})
+    assert r.returncode == 0 and "subnormal" not in r.stderr, r.stderr

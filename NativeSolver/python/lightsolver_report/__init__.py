@@ -86,11 +86,22 @@ def report_date(date: Union[None, str, datetime.date] = None) -> str:
     return datetime.date.today().isoformat()
 
 
+def _settle_numpy_limits() -> None:
+    """Let numpy measure its float limits before tracing: the Embree backend's TBB tasks run on
+    the calling thread too and leave denormals flushed to zero there, after which numpy's first
+    ``finfo`` (matplotlib asks for one) warns that the smallest subnormal is zero."""
+    import numpy
+
+    for kind in (numpy.float64, numpy.float32, numpy.longdouble, numpy.float16):
+        numpy.finfo(kind)
+
+
 def trace(scene_path: PathLike, photons: Optional[int] = None, seed: Optional[int] = None,
           confidence: Optional[float] = None, backend: str = "auto") -> Dict[str, Any]:
     """Trace a scene file through the ``lightsolver`` module with the scene's settings (the
     arguments override them); returns the results document without numpy arrays."""
     solver = _require("lightsolver")
+    _settle_numpy_limits()
     try:
         scene = solver.load_scene(str(scene_path))
         results = solver.solve(scene, photons=photons, seed=seed, confidence=confidence,
