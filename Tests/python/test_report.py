@@ -134,11 +134,12 @@ def test_results_without_the_new_fields_still_render():
     assert "not evaluated by this solver" in html
 
 
-def test_pdf_is_typeset_non_blank_and_holds_verdicts_and_values(tmp_path):
+@pytest.mark.parametrize("name", NAMES)
+def test_pdf_is_typeset_non_blank_and_holds_verdicts_and_values(name, tmp_path):
     if not (shutil.which("pdftoppm") and shutil.which("pdftotext")):
         pytest.skip("poppler-utils (pdftoppm, pdftotext) not installed")
-    scene, results = fixture("room")
-    pdf = render(scene, results, tmp_path / "room.pdf", date=DATE)
+    scene, results = fixture(name)
+    pdf = render(scene, results, tmp_path / f"{name}.pdf", date=DATE)
     assert pdf.read_bytes().startswith(b"%PDF")
     subprocess.run(["pdftoppm", "-r", "40", "-gray", "-f", "1", "-l", "3", str(pdf),
                     str(tmp_path / "page")], check=True)
@@ -149,8 +150,14 @@ def test_pdf_is_typeset_non_blank_and_holds_verdicts_and_values(tmp_path):
         assert 0.01 < ink < 0.6, f"{page.name}: {ink:.3f} of the page inked"
     text = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], check=True,
                           capture_output=True, text=True).stdout
-    for word in ("FAIL", "PASS", "UNDECIDED", "Overall verdict", "Example office"):
-        assert word in text
+    words = {"pass": "PASS", "fail": "FAIL", "undecided": "UNDECIDED"}
+    lines = text.splitlines()
+    # The overall verdict, and each area's verdict on the line of its compliance row.
+    assert any("Overall verdict" in ln and words[results["verdict"]] in ln for ln in lines)
+    report = build(scene, results, date=DATE)
+    for area in report.areas_with_requirements:
+        row = [ln for ln in lines if ln.lstrip().startswith(area.label)]
+        assert row and words[area.verdict] in row[0].split()[-1], (area.label, row[:1])
     for target in results["targets"]:
         assert fmt.lux(target["mean_lux"]) in text
     assert re.search(r"Page 1 of \d", text)
