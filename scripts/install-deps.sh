@@ -14,6 +14,7 @@ PKGS=(
   libvulkan-dev mesa-vulkan-drivers glslc glslang-tools spirv-tools vulkan-tools
   vulkan-validationlayers
   freecad xvfb xauth python3-matplotlib
+  python3-jinja2 weasyprint poppler-utils fonts-dejavu-core
   libstb-dev
 )
 missing=()

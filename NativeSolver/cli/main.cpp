@@ -21,6 +21,7 @@
 #include "lightsolver/solver.hpp"
 #include "optimize_command.hpp"
 #include "study_command.hpp"
+#include "report_command.hpp"
 
 namespace {
 
@@ -301,6 +302,7 @@ int main(int argc, char** argv) {
 
   lightsolver::cli::add_optimize_command(app);  // runs from its own callback
   lightsolver::cli::add_study_command(app);     // runs from its own callback
+  lightsolver::cli::add_report_command(app);    // execs python3 -m lightsolver_report
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);

@@ -95,6 +95,8 @@ py::dict photometry_summary_dict(const std::string& path) {
   d["beam_angle_deg"] = py::make_tuple(angle(f.beam_angle_deg[0]), angle(f.beam_angle_deg[1]));
   d["field_angle_deg"] = py::make_tuple(angle(f.field_angle_deg[0]), angle(f.field_angle_deg[1]));
   d["warnings"] = data.warnings;
+  d["keywords"] = data.keywords;        // what the file says of itself: MANUFAC, LUMCAT, LAMP...
+  d["input_watts"] = data.input_watts;  // IES input watts (0 when the file gives none)
   d["text"] = photometry_summary(data);
   return d;
 }
@@ -418,7 +420,9 @@ PYBIND11_MODULE(lightsolver, m) {
         "Facts of an IES or LDT file from the solver's parser: lamp_lumens_lm (None for absolute "
         "photometry), rated_lumens_lm, integrated_lumens_lm, peak_cd and its angles, "
         "beam_angle_deg and field_angle_deg (C0 and C90 planes; None where undefined), "
-        "warnings and the text summary. Raises lightsolver.InputError (a ValueError) for a bad "
+        "keywords ((key, value) pairs in file order: MANUFAC, LUMCAT, LAMP... or the EULUMDAT "
+        "header fields), input_watts (0 if not given), warnings and the text summary. Raises "
+        "lightsolver.InputError (a ValueError) for a bad "
         "file.");
   m.def(
       "cost",

@@ -33,6 +33,7 @@ _EXPORTS = {
     "export_scene": "lighting.api",
     "left_out": "lighting.api",
     "optimize_placement": "lighting.api",
+    "report": "lighting.api",
     "results": "lighting.api",
     "results_state": "lighting.api",
     "solver_available": "lighting.api",

@@ -161,6 +161,22 @@ def results(doc: Any, analysis: Any = None) -> Optional[Any]:
     return load_from_document(_analysis(doc, analysis))
 
 
+def report(doc: Any, path: str, analysis: Any = None, date: Optional[str] = None,
+           title: Optional[str] = None) -> str:
+    """Write the calculation report of the stored results (docs/report.md) to ``path``:
+    ``.html`` or ``.pdf``. Cover with the verdicts, luminaire schedule, surfaces, per target
+    Em/Emin/Emax/U0/Ud with their intervals, requirements and verdicts, false-colour plans and
+    value charts of the grids, the run's warnings (and whether the results are stale).
+    ``date`` (YYYY-MM-DD, default today) and ``title`` (default: the document's label) are
+    printed on it. Returns the path written.
+
+    Raises CheckError (no results), SolverUnavailableError (no report generator) or
+    LightingError (the report could not be written)."""
+    from lighting.reporting import make_report
+
+    return make_report(_analysis(doc, analysis), path, date=date, title=title)
+
+
 def exclude(objects: Any, excluded: bool = True) -> List[Any]:
     """Leave objects out of the lighting model (``excluded=False``: take them back in), in one
     undo step; returns the objects whose state changed. Sets each object's ``LightingExclude``

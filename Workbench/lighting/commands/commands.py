@@ -354,3 +354,4 @@ def register() -> None:
 
 
 from lighting.commands import chooser as _chooser  # noqa: E402,F401 - "Choose luminaire data"
+from lighting.commands import report as _report  # noqa: E402,F401 - "Report" (PDF/HTML)

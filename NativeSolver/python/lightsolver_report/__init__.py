@@ -1,0 +1,203 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Lighting calculation reports (HTML and PDF) from a scene and its results.
+
+Works from the solver boundary only: the scene JSON (docs/scene-format.md) and the results
+JSON (docs/schemas/results.schema.json, with requirements and verdicts where the solver wrote
+them). The CLI (``lightsolver report``), ``python3 -m lightsolver_report`` and the workbench
+(``lighting.report``) all call :func:`render`. See docs/report.md.
+
+Libraries: Jinja2 (templates in ``templates/``, autoescaped), matplotlib (SVG pictures inside the
+HTML), WeasyPrint (HTML to PDF). Same inputs, same date: byte-identical HTML."""
+from __future__ import annotations
+
+import datetime
+import json
+import os
+from pathlib import Path
+from typing import Any, Dict, Optional, Union
+
+from lightsolver_report import fmt
+from lightsolver_report.model import Report, build_report
+
+__all__ = ["ReportError", "render", "render_html", "build", "trace", "load_json", "report_date"]
+
+PathLike = Union[str, "os.PathLike[str]"]
+TEMPLATES = Path(__file__).resolve().parent / "templates"
+#: Debian packages that provide what the report needs.
+PACKAGES = {"jinja2": "python3-jinja2", "matplotlib": "python3-matplotlib",
+            "weasyprint": "weasyprint", "lightsolver": "the lightsolver module (cmake --build)"}
+
+
+class ReportError(Exception):
+    """The report cannot be made (bad input, a missing library); the message says why."""
+
+
+def _require(name: str) -> Any:
+    """Import a library or raise ReportError naming the Debian package to install."""
+    import importlib
+
+    try:
+        return importlib.import_module(name)
+    except ImportError as exc:
+        raise ReportError(f"the report needs {name} ({exc}); install {PACKAGES[name]} "
+                          f"(scripts/install-deps.sh)") from exc
+
+
+def _solver() -> Optional[Any]:
+    try:
+        import lightsolver
+
+        return lightsolver
+    except ImportError:
+        return None
+
+
+def load_json(path: PathLike, what: str) -> Dict[str, Any]:
+    """A JSON object from a file; ReportError naming the file otherwise."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            data = json.load(handle)
+    except (OSError, ValueError) as exc:
+        raise ReportError(f"{path}: cannot read the {what}: {exc}") from exc
+    if not isinstance(data, dict):
+        raise ReportError(f"{path}: the {what} is not a JSON object")
+    return data
+
+
+def report_date(date: Union[None, str, datetime.date] = None) -> str:
+    """The date printed on the report: ``date`` if given (ISO text or a date), else
+    ``SOURCE_DATE_EPOCH`` (reproducible builds) in UTC, else today."""
+    if isinstance(date, datetime.datetime):
+        return date.date().isoformat()
+    if isinstance(date, datetime.date):
+        return date.isoformat()
+    if date:
+        try:
+            return datetime.date.fromisoformat(str(date)).isoformat()
+        except ValueError as exc:
+            raise ReportError(f"date: expected YYYY-MM-DD (got {date!r})") from exc
+    epoch = os.environ.get("SOURCE_DATE_EPOCH")
+    if epoch:
+        try:
+            stamp = datetime.datetime.fromtimestamp(int(epoch), tz=datetime.timezone.utc)
+        except (ValueError, OverflowError) as exc:
+            raise ReportError(f"SOURCE_DATE_EPOCH: not a time stamp ({epoch!r})") from exc
+        return stamp.date().isoformat()
+    return datetime.date.today().isoformat()
+
+
+def _settle_numpy_limits() -> None:
+    """Let numpy measure its float limits before tracing: the Embree backend's TBB tasks run on
+    the calling thread too and leave denormals flushed to zero there, after which numpy's first
+    ``finfo`` (matplotlib asks for one) warns that the smallest subnormal is zero."""
+    import numpy
+
+    for kind in (numpy.float64, numpy.float32, numpy.longdouble, numpy.float16):
+        numpy.finfo(kind)
+
+
+def trace(scene_path: PathLike, photons: Optional[int] = None, seed: Optional[int] = None,
+          confidence: Optional[float] = None, backend: str = "auto") -> Dict[str, Any]:
+    """Trace a scene file through the ``lightsolver`` module with the scene's settings (the
+    arguments override them); returns the results document without numpy arrays."""
+    solver = _require("lightsolver")
+    _settle_numpy_limits()
+    try:
+        scene = solver.load_scene(str(scene_path))
+        results = solver.solve(scene, photons=photons, seed=seed, confidence=confidence,
+                               backend=backend)
+    except ValueError as exc:  # lightsolver.InputError
+        raise ReportError(str(exc)) from exc
+    for target in results.get("targets", []):
+        for key in [k for k in target if k.startswith("cells_") and k != "cells_uv"]:
+            del target[key]  # the numpy arrays; "cells" holds the same numbers
+    return results
+
+
+def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
+          scene_path: Optional[PathLike] = None, date: Union[None, str, datetime.date] = None,
+          title: Optional[str] = None, solver_version: Optional[str] = None) -> Report:
+    """The report's content (:class:`lightsolver_report.model.Report`) with its pictures."""
+    from lightsolver_report import plots
+
+    if not isinstance(scene, dict):
+        scene_path = scene
+        scene = load_json(scene, "scene")
+    base_dir = os.path.dirname(os.path.abspath(scene_path)) if scene_path else os.getcwd()
+    solver = _solver()
+    if solver_version is None:
+        solver_version = getattr(solver, "__version__", "unknown") if solver else "unknown"
+    report = build_report(
+        scene, results, scene_name=os.path.basename(str(scene_path)) if scene_path else "",
+        base_dir=base_dir, date=report_date(date), solver_version=solver_version, title=title,
+        photometry=solver.photometry_summary if solver else None,
+        material_defaults=solver.material_defaults() if solver else None)
+    for i, area in enumerate(report.areas):
+        if area.grid is not None and area.grid.lux.size:
+            area.plan_svg = plots.plan_svg(area.grid, f"plan{i}")
+            area.chart_svg, area.chart_note = plots.chart_svg(area.grid, f"chart{i}")
+    return report
+
+
+def render_html(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
+                scene_path: Optional[PathLike] = None,
+                date: Union[None, str, datetime.date] = None, title: Optional[str] = None,
+                solver_version: Optional[str] = None) -> str:
+    """The report as one self-contained HTML page (styles and SVG pictures inline)."""
+    jinja2 = _require("jinja2")
+    report = build(scene, results, scene_path=scene_path, date=date, title=title,
+                   solver_version=solver_version)
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), autoescape=True,
+                             undefined=jinja2.StrictUndefined, trim_blocks=True,
+                             lstrip_blocks=True, keep_trailing_newline=True)
+    env.filters.update(fmt.FILTERS)
+    return env.get_template("report.html.j2").render(
+        report=report, css=(TEMPLATES / "report.css").read_text(encoding="utf-8"))
+
+
+def write_pdf(html: str, out_path: PathLike) -> None:
+    """Typeset the HTML page as a PDF (WeasyPrint), A4."""
+    weasyprint = _require("weasyprint")
+    import logging
+
+    logging.getLogger("weasyprint").setLevel(logging.ERROR)  # font-subsetting chatter
+    weasyprint.HTML(string=html, base_url=str(TEMPLATES)).write_pdf(str(out_path))
+
+
+def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike, Dict[str, Any]],
+           out_path: PathLike, *, scene_path: Optional[PathLike] = None,
+           date: Union[None, str, datetime.date] = None, title: Optional[str] = None,
+           solver_version: Optional[str] = None, photons: Optional[int] = None,
+           seed: Optional[int] = None, backend: str = "auto") -> Path:
+    """Write the report of ``scene`` (a path, or a scene dict with ``scene_path`` naming where
+    its relative files lie) to ``out_path``: ``.html``/``.htm`` or ``.pdf``.
+
+    ``results``: a results dict or file; None traces the scene first (its settings; ``photons``,
+    ``seed``, ``backend`` override them). ``date`` (YYYY-MM-DD) makes the output reproducible.
+    Returns the path written. Raises ReportError."""
+    out = Path(out_path)
+    suffix = out.suffix.lower()
+    if suffix not in (".html", ".htm", ".pdf"):
+        raise ReportError(f"{out}: the report is written as .html or .pdf (got '{suffix}')")
+    if not isinstance(scene, dict):
+        scene_path = scene
+    if results is None:
+        if scene_path is None:
+            raise ReportError("no results given and no scene file to trace")
+        results = trace(scene_path, photons=photons, seed=seed, backend=backend)
+    elif not isinstance(results, dict):
+        results = load_json(results, "results")
+    html = render_html(scene, results, scene_path=scene_path, date=date, title=title,
+                       solver_version=solver_version)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    temporary = out.with_name(f".{out.name}.tmp")
+    try:  # written whole, then renamed: an interrupted run leaves the old report
+        if suffix == ".pdf":
+            write_pdf(html, temporary)
+        else:
+            temporary.write_text(html, encoding="utf-8")
+        os.replace(temporary, out)
+    finally:
+        if temporary.exists():
+            temporary.unlink()
+    return out

@@ -1,0 +1,57 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""``python3 -m lightsolver_report SCENE.json [--results R.json] --out report.pdf|.html``
+(also run by ``lightsolver report``). Exit status 0, or 1 with a message on stderr."""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import List, Optional
+
+from lightsolver_report import ReportError, render, trace
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="lightsolver report",
+        description="Write a lighting calculation report (HTML or PDF) of a scene and its "
+                    "results; traces the scene first when no results are given.")
+    p.add_argument("scene", help="scene file (lightsolver.scene/1 JSON)")
+    p.add_argument("--results", help="results file of the scene (lightsolver run --out); "
+                                     "without it the scene is traced with its settings")
+    p.add_argument("--out", required=True, help="report file: .html or .pdf")
+    p.add_argument("--date", help="date printed on the report, YYYY-MM-DD (default: "
+                                  "SOURCE_DATE_EPOCH, else today), for reproducible output")
+    p.add_argument("--title", help="title (default: the scene's metadata, else its file name)")
+    p.add_argument("--photons", type=int, help="photons when tracing (default: the scene's)")
+    p.add_argument("--seed", type=int, help="seed when tracing (default: the scene's)")
+    p.add_argument("--backend", default="auto", help="backend when tracing (default: auto)")
+    p.add_argument("--save-results", metavar="R.json",
+                   help="when tracing, also write the results here")
+    return p
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        results = args.results
+        if results is None:
+            results = trace(args.scene, photons=args.photons, seed=args.seed,
+                            backend=args.backend)
+            if args.save_results:
+                with open(args.save_results, "w", encoding="utf-8") as handle:
+                    json.dump(results, handle, indent=1)
+                    handle.write("\n")
+        out = render(args.scene, results, args.out, date=args.date, title=args.title)
+    except ReportError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 1
+    except OSError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 1
+    print(f"report written to {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,121 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Number formatting for the report (Jinja2 filters): the same value always prints the same
+text, so equal inputs give byte-identical HTML."""
+from __future__ import annotations
+
+import math
+from typing import Any, Optional
+
+#: Unicode superscripts for powers of ten (10⁶).
+_SUPERSCRIPT = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+DASH = "–"
+
+
+def finite(value: Any) -> Optional[float]:
+    """A JSON value as a finite float, or None (missing, not a number, a bool, inf or NaN)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    value = float(value)
+    return value if math.isfinite(value) else None
+
+
+def lux(value: Optional[float]) -> str:
+    """Illuminance with four significant digits and at most two decimals: 404.5, 1234, 8.35."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    magnitude = abs(value)
+    if magnitude >= 1000:
+        return f"{value:.0f}"
+    if magnitude >= 100:
+        return f"{value:.1f}"
+    if magnitude >= 1 or magnitude == 0:
+        return f"{value:.2f}"
+    return f"{value:.3g}"
+
+
+def ratio(value: Optional[float]) -> str:
+    """A ratio such as U0 or a reflectance: three decimals (0.849)."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    return f"{value:.3f}"
+
+
+def ratio2(value: Optional[float]) -> str:
+    """A required ratio or a material factor: two decimals (0.60)."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    return f"{value:.2f}"
+
+
+def number(value: Optional[float], digits: int = 3) -> str:
+    """A general number with ``digits`` significant digits (no exponent below 10⁶)."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    if value != 0 and (abs(value) >= 1e6 or abs(value) < 1e-3):
+        return sci(value, digits)
+    text = f"{value:.{digits}g}"
+    return f"{float(text):.0f}" if "e" in text else text
+
+
+def sci(value: Optional[float], digits: int = 2) -> str:
+    """Scientific notation with a proper power of ten: 2.0·10⁶."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    if value == 0:
+        return "0"
+    exponent = math.floor(math.log10(abs(value)))
+    mantissa = value / 10.0 ** exponent
+    if round(abs(mantissa), digits - 1) >= 10.0:
+        mantissa /= 10.0
+        exponent += 1
+    if exponent == 0:
+        return f"{mantissa:.{digits - 1}f}"
+    return f"{mantissa:.{digits - 1}f}·10{str(exponent).translate(_SUPERSCRIPT)}"
+
+
+def count(value: Optional[float]) -> str:
+    """A count with thin-space thousands separators below 10⁷ (2 000 000), else 1.2·10⁸."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    if abs(value) >= 1e7:
+        return sci(value, 3)
+    return f"{round(value):,}".replace(",", "\u202f")
+
+
+def seconds(value: Optional[float]) -> str:
+    """A duration that does not break across lines: 0.81 s, 45 s, 4 min 10 s, 3 h 20 min."""
+    return _seconds(value).replace(" ", "\u00a0")
+
+
+def _seconds(value: Optional[float]) -> str:
+    if value is None or not math.isfinite(value):
+        return DASH
+    if value < 10:
+        return f"{value:.2g} s"
+    if value < 59.5:
+        return f"{value:.0f} s"
+    if value < 3600:
+        total = round(value)
+        return f"{total // 60} min {total % 60} s"
+    if value < 86400:
+        minutes = round(value / 60)
+        return f"{minutes // 60} h {minutes % 60} min"
+    return f"{value / 86400:.3g} days"
+
+
+def percent(value: Optional[float]) -> str:
+    """A fraction as a percentage without trailing zeros: 0.95 -> 95 %."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    return f"{100.0 * value:.6g}\u202f%"
+
+
+def metres(value: Optional[float]) -> str:
+    """A length in metres with two decimals."""
+    if value is None or not math.isfinite(value):
+        return DASH
+    return f"{value:.2f}"
+
+
+FILTERS = {"lux": lux, "ratio": ratio, "ratio2": ratio2, "number": number, "sci": sci,
+           "count": count, "seconds": seconds, "percent": percent, "metres": metres}

@@ -1,0 +1,230 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The luminaire schedule and the materials table of the report, from the scene (and what the
+photometric files say of themselves, through ``lightsolver.photometry_summary``)."""
+from __future__ import annotations
+
+import hashlib
+import os
+import re
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, List, Optional, Tuple
+
+import numpy as np
+
+from lightsolver_report.fmt import finite
+
+#: IES keywords / EULUMDAT fields that name the maker, in order of preference.
+MAKER_KEYS = ("MANUFAC", "COMPANY")
+
+PhotometryFn = Callable[[str], Dict[str, Any]]
+
+
+@dataclass
+class LuminaireRow:
+    """One line of the luminaire schedule: luminaires alike in type, file, flux and power."""
+
+    kind: str
+    file: Optional[str] = None
+    file_format: Optional[str] = None
+    maker: Optional[str] = None
+    catalogue: Optional[str] = None
+    product: Optional[str] = None
+    lamp: Optional[str] = None
+    file_lamp_lm: Optional[float] = None
+    file_watts: Optional[float] = None
+    names: List[str] = field(default_factory=list)
+    files: List[str] = field(default_factory=list)  # identical files (copies) of the row
+    flux_lm: float = 0.0  # emitted in the calculation (maintained, when a factor applied)
+    maintenance_factor: Optional[float] = None
+    power_w: Optional[float] = None
+
+    @property
+    def initial_flux_lm(self) -> Optional[float]:
+        """The flux before the maintenance factor (the calculation's flux / MF)."""
+        return self.flux_lm / self.maintenance_factor if self.maintenance_factor else None
+
+    @property
+    def count(self) -> int:
+        return len(self.names)
+
+    @property
+    def total_flux_lm(self) -> float:
+        return self.flux_lm * self.count
+
+    @property
+    def total_power_w(self) -> Optional[float]:
+        return None if self.power_w is None else self.power_w * self.count
+
+    @property
+    def efficacy_lm_w(self) -> Optional[float]:
+        return self.flux_lm / self.power_w if self.power_w else None
+
+
+@dataclass
+class MaterialRow:
+    """A material and the surfaces that use it."""
+
+    name: str
+    type: str
+    reflectance: Optional[float] = None
+    specular: Optional[float] = None
+    roughness: Optional[float] = None
+    transmittance: Optional[float] = None
+    ior: Optional[float] = None
+    thin: Optional[bool] = None
+    used_by: List[str] = field(default_factory=list)
+
+
+def _keywords(summary: Dict[str, Any]) -> Dict[str, str]:
+    """The file's own keywords: the summary's ``keywords`` pairs, else its text's ``[KEY]`` lines
+    (modules built before ``keywords`` was added)."""
+    pairs = summary.get("keywords")
+    if pairs is None:
+        pairs = re.findall(r"^\[(\w+)\] (.*)$", str(summary.get("text", "")), re.MULTILINE)
+    found: Dict[str, str] = {}
+    for key, value in pairs:
+        key = str(key).upper()
+        if key not in found and str(value).strip():
+            found[key] = str(value).strip()
+    return found
+
+
+def _describe(lum: Dict[str, Any]) -> str:
+    kind = lum.get("type", "")
+    if kind == "point":
+        return "Point source, isotropic"
+    if kind == "spot":
+        return (f"Spot, beam {lum.get('beam_angle_deg', 0):g}°, "
+                f"field {lum.get('field_angle_deg', 0):g}°")
+    if kind == "area":
+        a = float(np.linalg.norm(lum.get("edge1", (0, 0, 0))))
+        b = float(np.linalg.norm(lum.get("edge2", (0, 0, 0))))
+        return f"Area source, Lambertian, {a:.2f} × {b:.2f} m"
+    if kind == "directional":
+        return f"Directional beam, {lum.get('illuminance_lx', 0):g} lx"
+    if kind == "photometric":
+        return "Photometric luminaire"
+    return str(kind)
+
+
+def _emitted_flux(lum: Dict[str, Any], summary: Optional[Dict[str, Any]]) -> float:
+    """Flux the luminaire emits (docs/scene-format.md, Ranges), TILT not applied."""
+    kind = lum.get("type")
+    if kind == "directional":
+        e1 = np.asarray(lum.get("edge1", (0, 0, 0)), dtype=float)
+        e2 = np.asarray(lum.get("edge2", (0, 0, 0)), dtype=float)
+        d = np.asarray(lum.get("direction", (0, 0, -1)), dtype=float)
+        normal = np.cross(e1, e2)
+        norm_d = float(np.linalg.norm(d))
+        return float(lum.get("illuminance_lx", 0.0)) * (
+            abs(float(normal @ d)) / norm_d if norm_d else 0.0)
+    flux = finite(lum.get("flux_lm"))
+    if kind == "photometric" and summary is not None:
+        integrated = finite(summary.get("integrated_lumens_lm")) or 0.0
+        lamp = finite(summary.get("lamp_lumens_lm"))
+        if flux is None:
+            return integrated
+        if lamp and not summary.get("absolute_photometry"):
+            return integrated * flux / lamp
+    return flux or 0.0
+
+
+def build_luminaires(scene: Dict[str, Any], base_dir: str,
+                     photometry: Optional[PhotometryFn]) -> Tuple[List[LuminaireRow], List[str]]:
+    """The schedule (alike luminaires on one row, in scene order) and the photometric files'
+    warnings."""
+    meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
+    labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
+    per_lum = meta.get("luminaires") if isinstance(meta.get("luminaires"), dict) else {}
+    rows: Dict[Tuple[Any, ...], LuminaireRow] = {}
+    warnings: List[str] = []
+    summaries: Dict[str, Optional[Dict[str, Any]]] = {}
+    for lum in scene.get("luminaires", []):
+        name = str(lum.get("name", ""))
+        extra = per_lum.get(name) if isinstance(per_lum.get(name), dict) else {}
+        file = lum.get("file") if lum.get("type") == "photometric" else None
+        summary = None
+        if file is not None:
+            if file not in summaries:
+                summaries[file] = _summary(file, base_dir, photometry, warnings)
+            summary = summaries[file]
+        mf = finite(lum.get("maintenance_factor", extra.get("maintenance_factor")))
+        if lum.get("type") == "photometric" and lum.get("flux_lm") is None:
+            mf = None  # the file's own absolute flux: no maintenance factor was applied
+        row = LuminaireRow(kind=_describe(lum), file=file, flux_lm=_emitted_flux(lum, summary),
+                           maintenance_factor=mf if mf else None,
+                           power_w=finite(lum.get("power_w")))
+        if summary is not None:
+            keys = _keywords(summary)
+            row.maker = next((keys[k] for k in MAKER_KEYS if k in keys), None)
+            row.catalogue, row.product = keys.get("LUMCAT"), keys.get("LUMINAIRE")
+            row.lamp = keys.get("LAMP")
+            row.file_format = f"{str(summary.get('format', '')).upper()} " \
+                              f"{summary.get('format_version', '')}".strip()
+            row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
+            row.file_watts = finite(summary.get("input_watts")) or None
+        same_file = _content_key(file, base_dir)
+        key = (row.kind, same_file, row.flux_lm, row.maintenance_factor, row.power_w)
+        entry = rows.setdefault(key, row)
+        entry.names.append(str(labels.get(name, name)))
+        if file is not None and file not in entry.files:
+            entry.files.append(file)
+    return list(rows.values()), warnings
+
+
+def _content_key(file: Optional[str], base_dir: str) -> Optional[str]:
+    """Identical photometric files are one type, whatever they are called (the workbench
+    copies each luminaire's file next to the scene under the luminaire's name)."""
+    if file is None:
+        return None
+    try:
+        with open(file if os.path.isabs(file) else os.path.join(base_dir, file), "rb") as f:
+            return hashlib.sha256(f.read()).hexdigest()
+    except OSError:
+        return file
+
+
+def _summary(file: str, base_dir: str, photometry: Optional[PhotometryFn],
+             warnings: List[str]) -> Optional[Dict[str, Any]]:
+    if photometry is None:
+        warnings.append(f"{file}: not read (the lightsolver module is not available)")
+        return None
+    path = file if os.path.isabs(file) else os.path.join(base_dir, file)
+    try:
+        summary = photometry(path)
+    except Exception as exc:  # noqa: BLE001 - the parser's message, shown in the report
+        warnings.append(str(exc).replace(path, file))
+        return None
+    warnings.extend(f"{file}: {str(w).replace(path, file)}" for w in summary.get("warnings", []))
+    return summary
+
+
+# --- materials --------------------------------------------------------------------------------
+
+def build_materials(scene: Dict[str, Any],
+                    defaults: Optional[Dict[str, Dict[str, Any]]]) -> List[MaterialRow]:
+    """Each material with its factors (the solver's defaults filled in) and the surfaces using
+    it, named by their labels (a mesh ``Object.part`` is named after ``Object``)."""
+    meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
+    labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
+    used: Dict[str, List[str]] = {}
+    for mesh in scene.get("meshes", []):
+        name = str(mesh.get("name", ""))
+        obj = name.split(".", 1)[0]
+        label = str(labels.get(name, labels.get(obj, name)))
+        users = used.setdefault(str(mesh.get("material", "")), [])
+        if label not in users:
+            users.append(label)
+    rows = []
+    for name, mat in scene.get("materials", {}).items():
+        kind = str(mat.get("type", "diffuse"))
+        values = dict((defaults or {}).get(kind, {}))
+        values.update({k: v for k, v in mat.items() if k != "type"})
+        rows.append(MaterialRow(name=name, type=kind, reflectance=finite(values.get("reflectance")),
+                                specular=finite(values.get("specular")),
+                                roughness=finite(values.get("roughness")),
+                                transmittance=finite(values.get("transmittance")),
+                                ior=finite(values.get("ior")),
+                                thin=values.get("thin") if kind == "glass" else None,
+                                used_by=used.get(name, [])))
+    return rows

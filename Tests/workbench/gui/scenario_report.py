@@ -1,0 +1,94 @@
+"""GUI scenario: the Report command (issue 13, item 5).
+
+From the Start page the user opens the example office (built by Examples/office.py without
+solving) in the Lighting workbench: Report sits in the analysis toolbar after Results and is
+inactive without results. After Run analysis it is active; the user chooses a file name in the
+save dialog (stubbed: ask_path) and gets the PDF, the console shows the equivalent
+``lighting.report(...)`` line, the status bar the file written. The PDF's text holds the
+targets and their Em."""
+import os
+import subprocess
+
+from guilib import STATUS, expect, log, main_window, pump, scenario, wait_until
+
+PHOTONS = 50000
+
+
+def build_example() -> str:
+    repo = os.environ["LIGHTING_SOURCE_DIR"]
+    out = os.path.join(os.environ.get("LIGHTING_GUI_OUT", os.getcwd()), "office.FCStd")
+    env = dict(os.environ, LIGHTING_OUT=out, LIGHTING_BUILD_ONLY="1",
+               LIGHTING_PHOTONS=str(PHOTONS))
+    proc = subprocess.run(["freecadcmd", os.path.join(repo, "Examples", "office.py")], env=env,
+                          capture_output=True, text=True, timeout=240)
+    expect(proc.returncode == 0 and os.path.exists(out),
+           f"Examples/office.py failed: {proc.stdout[-800:]} {proc.stderr[-800:]}")
+    return out
+
+
+def toolbar_actions(title: str) -> list:
+    from PySide import QtGui
+
+    for bar in main_window().findChildren(QtGui.QToolBar):
+        if bar.windowTitle() == title:
+            return [a.text() for a in bar.actions()]
+    return []
+
+
+def body() -> None:
+    import FreeCAD
+    import FreeCADGui
+
+    from lighting.commands import report as report_cmd
+    from lighting.taskpanels import analysis_panel
+
+    path = build_example()
+    FreeCADGui.activateWorkbench("LightingWorkbench")
+    doc = FreeCAD.openDocument(path)
+    pump(1.0)
+    actions = toolbar_actions("Lighting analysis")
+    STATUS["toolbar"] = actions
+    expect("Report" in actions and actions.index("Report") == actions.index("Results") + 1,
+           f"Report is not after Results in the analysis toolbar: {actions}")
+    expect(not report_cmd.CommandReport().IsActive(), "Report is active before any results")
+
+    FreeCADGui.runCommand("Lighting_Run")
+    wait_until(lambda: analysis_panel.last_run() is not None and
+               analysis_panel.last_run().stage in ("done", "failed", "cancelled"), 180)
+    job = analysis_panel.last_run()
+    expect(job is not None and job.stage == "done", f"the run did not finish: {job}")
+    FreeCADGui.Control.closeDialog()
+    pump(0.5)
+    expect(report_cmd.CommandReport().IsActive(), "Report is not active after the run")
+    analysis = doc.getObject("LightingAnalysis")
+    expect(report_cmd.default_path(analysis) ==
+           os.path.join(os.path.dirname(path), f"{doc.Label} lighting report.pdf"),
+           f"default report path {report_cmd.default_path(analysis)!r}")
+
+    out = os.path.join(os.path.dirname(path), "office report.pdf")
+    report_cmd.ask_path = lambda analysis: out  # the user's choice in the save dialog
+    FreeCADGui.runCommand("Lighting_Report")
+    ok = wait_until(lambda: os.path.exists(out), 120)
+    expect(ok, "no report written")
+    if ok:
+        with open(out, "rb") as stream:
+            expect(stream.read(5) == b"%PDF-", "the report is not a PDF")
+        text = subprocess.run(["pdftotext", "-layout", out, "-"], capture_output=True,
+                              text=True).stdout
+        STATUS["pdf_text_head"] = text[:400]
+        import lighting
+
+        results = lighting.results(doc)
+        from lighting.reporting import report_module
+
+        fmt = report_module().fmt
+        for target in results.targets:
+            expect(target.label in text and fmt.lux(target.mean_lux) in text,
+                   f"{target.label} Em {fmt.lux(target.mean_lux)} not in the PDF text")
+    message = main_window().statusBar().currentMessage()
+    STATUS["status_bar"] = message
+    log(f"status bar: {message}")
+    expect("report written to" in message, f"status bar after the report: {message!r}")
+
+
+scenario(body)
