@@ -202,3 +202,17 @@ def test_an_unknown_backend_is_refused_with_the_registry_names():
     assert '"cuda"' in message
     for b in lightsolver.backends():
         assert b["name"] in message, message
+
+
+def test_solve_leaves_the_callers_floating_point_modes_alone():
+    """Embree's threads flush denormals to zero; the calling thread (which TBB also traces on)
+    must get its modes back, or numpy and plain Python arithmetic lose subnormals after a
+    solve()."""
+    tiny = float("5e-324")  # the smallest subnormal double, at run time (no constant folding)
+    assert tiny * 1.0 > 0.0
+    s = lightsolver.Scene()
+    s.add_light("lamp", "point", position=[0, 0, 1], flux_lm=100.0)
+    s.add_target("g", "grid", corner=[-1, -1, 0], edge1=[2, 0, 0], edge2=[0, 2, 0], cells=[2, 2])
+    lightsolver.solve(s, photons=20_000, backend="embree", threads=1)
+    assert tiny * 1.0 > 0.0
+    assert np.finfo(np.float64).smallest_subnormal > 0.0

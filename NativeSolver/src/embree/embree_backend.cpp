@@ -37,10 +37,15 @@ class EmbreeBackend final : public Backend {
     tbb::enumerable_thread_specific<TallyBlock> local([&] { return TallyBlock(out.bins.size()); });
     tbb::parallel_for(tbb::blocked_range<std::uint64_t>(first, first + count, 256),
                       [&](const tbb::blocked_range<std::uint64_t>& r) {
-                        // Embree wants denormals flushed in every tracing thread.
+                        // Embree wants denormals flushed in every tracing thread. TBB also runs
+                        // chunks on the caller's thread (Python's, say): its modes come back.
+                        const unsigned ftz = _MM_GET_FLUSH_ZERO_MODE();
+                        const unsigned daz = _MM_GET_DENORMALS_ZERO_MODE();
                         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
                         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
                         trace_range(r.begin(), r.end(), seed, local.local());
+                        _MM_SET_FLUSH_ZERO_MODE(ftz);
+                        _MM_SET_DENORMALS_ZERO_MODE(daz);
                       });
     for (const TallyBlock& t : local) out.add(t);
   }
