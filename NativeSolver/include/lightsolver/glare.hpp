@@ -104,7 +104,7 @@ struct UgrResult {
   double sum = 0.0;  ///< sum of L^2 omega / p^2 over the counted luminaires
   std::vector<GlareContribution> contributions;  ///< one per source, in input order
   /// Sources outside CIE 117's range of validity (solid angle below 0.0003 sr or above
-  /// 0.1 sr: CIE 147 / CIE 232 apply) and other remarks.
+  /// 0.1 sr: CIE 147 applies) and other remarks.
   Warnings warnings;
 };
 

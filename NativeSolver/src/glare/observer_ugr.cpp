@@ -11,8 +11,8 @@ namespace lightsolver {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-// CIE 117's formula holds for sources of 0.0003 to 0.1 sr (CIE 147 for smaller ones, CIE 232
-// for larger ones); outside it the result is still computed but flagged.
+// CIE 117's formula holds for sources of 0.0003 to 0.1 sr (CIE 147 rates smaller and larger
+// ones); outside it the result is still computed but flagged.
 constexpr double kSmallSourceSr = 3e-4;
 constexpr double kLargeSourceSr = 0.1;
 
@@ -146,7 +146,7 @@ UgrResult compute_ugr(const GlareObserver& observer, const std::vector<GlareSour
           result.warnings.push_back(src.name + ": solid angle " + format_g(c.solid_angle_sr) +
                                     " sr is outside CIE 117's range 0.0003-0.1 sr (" +
                                     (c.solid_angle_sr < kSmallSourceSr ? "small source, CIE 147"
-                                                                       : "large source, CIE 232") +
+                                                                       : "large source, CIE 147") +
                                     ")");
       }
     }

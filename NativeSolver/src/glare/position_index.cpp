@@ -14,9 +14,9 @@ constexpr double kVoid = 0.0;
 
 // CIE 117-1995 Table 4.1, one row per T/R, one column per H/R. kVoid marks the table's void
 // entries (positions hidden by brow and forehead). The values are the standard's as quoted by
-// the public eulumdat-ugr package (github.com/123VincentB/eulumdat-ugr, guth.py), whose first
-// row and field limits agree with the IES Lighting Handbook's Guth table; the entry
-// T/R = 2.7, H/R = 0.6 reads 7.50 there as published (a likely misprint for about 7.0).
+// the public eulumdat-ugr package (github.com/123VincentB/eulumdat-ugr, guth.py, "transcribed
+// from the official document"); the entry T/R = 2.7, H/R = 0.6 reads 7.50 there, noted as
+// published (a likely misprint for about 7.0).
 constexpr std::array<std::array<double, kHCols>, kTRows> kTable{{
     {1.00, 1.26, 1.53, 1.90,  2.35,  2.86,  3.50,  4.20,  5.00,  6.00,
      7.00, 8.10, 9.25, 10.35, 11.70, 13.15, 14.70, 16.20, kVoid, kVoid},

@@ -235,7 +235,7 @@ UgrTable ugr_table(const PhotometricData& data, const UgrTableOptions& options) 
   if (large > 0)
     table.warnings.push_back(std::to_string(large) + " of " + std::to_string(counted) +
                              " luminaire positions counted subtend more than 0.1 sr, above "
-                             "CIE 117's range (large sources: CIE 232)");
+                             "CIE 117's range (large sources: CIE 147)");
   return table;
 }
 

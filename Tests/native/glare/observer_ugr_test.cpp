@@ -63,6 +63,18 @@ TEST(ObserverUgr, NoSourceInViewGivesNoValue) {
   EXPECT_EQ(r.sum, 0.0);
 }
 
+TEST(ObserverUgr, SourcesOutsideCie117RangeAreFlagged) {
+  const GlareObserver eye{{0, 0, 1.2}, {0, 1, 0}, {0, 0, 1}};
+  // 0.01 m2 at 8.2 m: omega = 0.01 (2 / 8.25) / 68 = 3.6e-5 sr < 0.0003 sr.
+  const UgrResult small = compute_ugr(
+      eye, {lambertian_glare_source("tiny", {0, 8, 3.2}, {0, 0, -1}, 0.01, 100.0)}, 40.0);
+  ASSERT_EQ(small.warnings.size(), 1u);
+  EXPECT_NE(small.warnings[0].find("tiny"), std::string::npos);
+  EXPECT_TRUE(small.ugr.has_value());  // still computed
+  const UgrResult normal = compute_ugr(eye, {panel("ahead", 0.0, 4.0)}, 40.0);
+  EXPECT_TRUE(normal.warnings.empty());
+}
+
 TEST(ObserverUgr, BadBackgroundIsAnInputError) {
   const GlareObserver eye;
   EXPECT_THROW(compute_ugr(eye, {}, 0.0), InputError);

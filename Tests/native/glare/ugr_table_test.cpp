@@ -136,6 +136,28 @@ TEST(UgrTable, DarkerRoomsGlareMore) {
   for (const UgrTableRow& row : t.rows) EXPECT_GT(*row.crosswise[1], *row.crosswise[0]);
 }
 
+TEST(UgrTable, ObserverMethodWithTheTablesGeometryGivesTheTablesValue) {
+  // The documented conventions, through the public observer API: room 4H x 8H (H = 2 m),
+  // S = 1 H, eye on the mid-wall at the reference plane looking along +y, luminaires aimed
+  // down with C0 toward the observer (crosswise), L_b as the table computed it.
+  const PhotometricData d = load_photometry(luminaire("batwing_panel.ldt"));
+  UgrTableOptions o;
+  o.spacing_to_height = 1.0;
+  const UgrTable t = ugr_table(d, o);
+  auto data = std::make_shared<const PhotometricData>(d);
+  auto sampler = std::make_shared<const PhotometricSampler>(d);
+  std::vector<GlareSource> sources;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 8; ++j)
+      sources.push_back(photometric_glare_source(
+          "", data, sampler, {-4.0 + 2.0 * i + 1.0, 2.0 * j + 1.0, 2.0}, {0, 0, -1}, {0, -1, 0}));
+  const GlareObserver eye{{0, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const UgrTableRow& row = t.rows[10];
+  const UgrResult r = compute_ugr(eye, sources, row.background_luminance_cd_m2[0]);
+  ASSERT_TRUE(r.ugr.has_value());
+  EXPECT_NEAR(*r.ugr, *row.crosswise[0], 1e-9);
+}
+
 TEST(UgrTable, PointOpeningIsRefused) {
   PhotometricData d = load_photometry(luminaire("downlight.ies"));
   d.opening_shape = OpeningShape::Point;
