@@ -14,6 +14,7 @@
 
 #include "backend_option.hpp"
 #include "lightsolver/backends.hpp"
+#include "lightsolver/glare.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -226,10 +227,11 @@ int list_backends() {
   return 0;
 }
 
-int photometry(const std::string& file, const std::string& plot) {
+int photometry(const std::string& file, const std::string& plot, bool ugr_table) {
   if (!plot.empty()) lightsolver::check_writable(plot, "plot");
   const lightsolver::PhotometricData data = lightsolver::load_photometry(file);
   std::cout << lightsolver::photometry_summary(data);
+  if (ugr_table) std::cout << "\n" << lightsolver::format_ugr_table(lightsolver::ugr_table(data));
   if (!plot.empty()) {
     lightsolver::write_polar_plot_png(data, plot);
     std::cout << "polar plot written to " << plot << "\n";
@@ -296,6 +298,9 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   photometry_cmd->add_option("--plot", plot_file, "Write a polar diagram (PNG) here");
+  bool ugr_table = false;
+  photometry_cmd->add_flag("--ugr-table", ugr_table,
+                           "Print the luminaire's UGR table (CIE 190 tabular method)");
 
   CLI::App* backends_cmd = app.add_subcommand(
       "backends", "List the tracing backends of this build and whether each can start here");
@@ -307,7 +312,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(ra);
     if (*cost_cmd) return cost(ca, max_photons);
-    if (*photometry_cmd) return photometry(photometry_file, plot_file);
+    if (*photometry_cmd) return photometry(photometry_file, plot_file, ugr_table);
     if (*backends_cmd) return list_backends();
   } catch (const lightsolver::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";

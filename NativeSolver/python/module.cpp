@@ -12,6 +12,7 @@
 
 #include "lightsolver/backends.hpp"
 #include "lightsolver/defaults.hpp"
+#include "lightsolver/glare.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_check.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -424,6 +425,42 @@ PYBIND11_MODULE(lightsolver, m) {
         "header fields), input_watts (0 if not given), warnings and the text summary. Raises "
         "lightsolver.InputError (a ValueError) for a bad "
         "file.");
+  m.def(
+      "ugr_table",
+      [](const std::string& path, double spacing_to_height) {
+        UgrTableOptions o;
+        o.spacing_to_height = spacing_to_height;
+        const UgrTable t = ugr_table(load_photometry(path), o);
+        py::list refl, rows;
+        for (const RoomReflectances& r : t.reflectances)
+          refl.append(py::make_tuple(r.ceiling, r.walls, r.floor));
+        for (const UgrTableRow& r : t.rows) {
+          py::dict row;
+          row["x_h"] = r.x_h;
+          row["y_h"] = r.y_h;
+          row["crosswise"] = r.crosswise;
+          row["endwise"] = r.endwise;
+          row["background_luminance_cd_m2"] = r.background_luminance_cd_m2;
+          row["direct_floor_fraction"] = r.direct_floor_fraction;
+          rows.append(row);
+        }
+        py::dict d;
+        d["file"] = path;
+        d["luminaire_flux_lm"] = t.luminaire_flux_lm;
+        d["spacing_to_height"] = t.spacing_to_height;
+        d["reflectances"] = refl;
+        d["rows"] = rows;
+        d["warnings"] = t.warnings;
+        d["text"] = format_ugr_table(t);
+        return d;
+      },
+      py::arg("path"), py::arg("spacing_to_height") = 0.25,
+      "The luminaire's UGR table (CIE 190 tabular method; docs/glare.md), as `lightsolver "
+      "photometry FILE --ugr-table` prints it: reflectances [(ceiling, walls, floor)], rows "
+      "[{x_h, y_h, crosswise, endwise (one UGR per reflectance, None where no luminaire "
+      "counts), background_luminance_cd_m2, direct_floor_fraction}], luminaire_flux_lm, "
+      "warnings, text. Raises lightsolver.InputError for a bad file or one without a luminous "
+      "area.");
   m.def(
       "cost",
       [](const Scene& scene, std::uint64_t max_photons, std::optional<std::uint64_t> seed,
