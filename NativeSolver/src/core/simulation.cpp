@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "core/backend.hpp"
+#include "core/decide.hpp"
 
 namespace lightsolver {
 namespace detail {
@@ -105,7 +106,7 @@ RunForecast make_forecast(const detail::PreparedScene& s, const detail::TallyBlo
 // photon count: an explicit count (the optimizer's evaluations, --photons) is traced to the
 // end unless an explicit time limit is given too.
 void plan_run(const Scene& scene, const SolveOptions& o, Results& r) {
-  const bool open_budget = o.target_accuracy && !o.photons;
+  const bool open_budget = (o.target_accuracy || r.decide) && !o.photons;
   // The open budget stays within what exact 64-bit tallies allow at this max_bounces.
   const std::uint64_t budget =
       std::min(kAccuracyPhotonBudget, max_photons(scene.settings.max_bounces));
@@ -125,11 +126,27 @@ std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double 
   return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
 }
 
+// Cell and grid estimates at any alpha, for the simultaneous intervals of grid_intervals();
+// z is computed once per alpha (the cells share it).
+GridSampler grid_sampler(const Target& t, const detail::PreparedScene& s,
+                         const detail::TallyBlock& tallies, std::uint32_t bin,
+                         std::uint64_t photons) {
+  auto estimate = [&s, &tallies, bin, photons, alpha = -1.0, z = 0.0](std::uint32_t b,
+                                                                      double a) mutable {
+    if (a != alpha) z = z_for_alpha(alpha = a);
+    return make_estimate_z(tallies.bins[bin + b], photons,
+                           s.total_flux_lm / s.bins[bin + b].area_m2, z);
+  };
+  return {t.nu * t.nv, [estimate](double a) mutable { return estimate(0, a); },
+          [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
+}
+
 TargetResult make_target(const Target& t, const detail::PreparedScene& s,
                          const detail::TallyBlock& tallies, std::uint32_t bin,
-                         std::uint64_t photons, double confidence) {
+                         std::uint64_t photons, double confidence, bool judged) {
   TargetResult r;
   r.name = t.name;
+  r.requirements = t.requirements;
   r.is_grid = t.type == Target::Type::Grid;
   r.area_m2 = s.bins[bin].area_m2;
   auto estimate = [&](std::uint32_t b) {
@@ -146,6 +163,10 @@ TargetResult make_target(const Target& t, const detail::PreparedScene& s,
   r.min_lux = lo->mean;
   r.max_lux = hi->mean;
   r.uniformity = r.estimate.mean > 0.0 ? r.min_lux / r.estimate.mean : 0.0;
+  if (judged) {
+    r.intervals = grid_intervals(grid_sampler(t, s, tallies, bin, photons), confidence, r.min_lux,
+                                 r.max_lux, r.estimate.mean);
+  }
   return r;
 }
 
@@ -170,6 +191,11 @@ void add_warnings(const Scene& scene, Results& r) {
                          "for this scene");
   }
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
+  if (r.decide && r.verdict == VerdictKind::Undecided) {
+    r.warnings.push_back(
+        "the run ended before every verdict was decided; each undecided one says what "
+        "deciding it would cost (to_decide)");
+  }
   if (r.target_accuracy && !r.accuracy_met && r.stop_reason == kStopPhotons) {
     r.warnings.push_back(
         "the photon budget ran out before every target reached the requested "
@@ -323,6 +349,8 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   const Scene& scene = state_->scene;
   const detail::PreparedScene& prepared = state_->prepared;
   Results r;
+  r.decide = options.decide.value_or(scene.settings.decide);
+  r.judged = detail::judges_requirements(scene, r.decide, options.target_accuracy.has_value());
   plan_run(scene, options, r);
   r.seed = options.seed.value_or(scene.settings.seed);
   r.confidence = options.confidence.value_or(scene.settings.confidence);
@@ -338,9 +366,18 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   detail::TallyBlock tallies(prepared.bins.size());
+  auto targets_at = [&](std::uint64_t photons) {
+    std::vector<TargetResult> targets;
+    for (std::size_t i = 0; i < scene.targets.size(); ++i) {
+      targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
+                                    photons, r.confidence, r.judged));
+    }
+    return targets;
+  };
+  double tracing_s = 0.0;
   if (prepared.total_flux_lm > 0.0) {
     tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
-    const bool accuracy_mode = r.target_accuracy.has_value();
+    const bool accuracy_mode = r.target_accuracy.has_value() || r.decide;  // doubling batches
     const auto tracing_start = Clock::now();
     bool forecast_due = static_cast<bool>(options.forecast);
     CheckpointTracer tracer(options, prepared, tracing_start);
@@ -367,6 +404,13 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         r.stop_reason = kStopAccuracy;
         break;
       }
+      if (r.decide) {
+        std::vector<TargetResult> now = targets_at(r.photons);
+        if (detail::all_decided(now)) {
+          r.stop_reason = kStopDecided;
+          break;
+        }
+      }
       // The first batches include warm-up; half a second of tracing gives a usable rate.
       const double traced_s = seconds_since(tracing_start);
       if (forecast_due && traced_s >= 0.5 && r.photons < r.photons_requested) {
@@ -378,6 +422,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         break;
       }
     }
+    tracing_s = seconds_since(tracing_start);
   } else {
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
@@ -385,10 +430,9 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
-  for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-    r.targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
-                                    r.photons, r.confidence));
-  }
+  r.targets = targets_at(r.photons);
+  detail::add_verdicts(r);
+  detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   add_warnings(scene, r);
   add_stop_warnings(r);
   r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());

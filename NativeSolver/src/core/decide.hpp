@@ -1,0 +1,31 @@
+#pragma once
+// Verdicts of a run's targets, and the `decide` stopping rule with its cost estimates: the
+// Simulation's loop calls these (docs/statistics.md, "Deciding").
+#include <vector>
+
+#include "lightsolver/solver.hpp"
+
+namespace lightsolver::detail {
+
+/// Whether a run judges requirements (some target has them), and checks a decide request:
+/// InputError when deciding is asked without requirements or together with an accuracy goal.
+bool judges_requirements(const Scene& scene, bool decide, bool accuracy_goal);
+
+/// Sets each target's verdicts and overall verdict (targets with requirements; grids need
+/// their intervals filled) and the run's overall verdict.
+void add_verdicts(Results& r);
+
+/// True when no verdict of `targets` (with verdicts added) is undecided.
+bool all_decided(std::vector<TargetResult>& targets);
+
+/// For each undecided verdict: photons (of a whole run) and tracing seconds estimated to decide
+/// it, from interval width ~ N^-1/2 and the run's rate of `photons_per_second` (0: unknown).
+void add_to_decide(Results& r, double photons_per_second);
+
+/// Photons a run would need for an interval [low, high] around `value` (from `photons`) to
+/// exclude or clear `required`: photons * (w / |value - required|)^2, w the half-width on
+/// the side facing the bound. Empty when the value sits on the bound or nothing was traced.
+std::optional<double> photons_to_decide(double value, double low, double high, double required,
+                                        std::uint64_t photons);
+
+}  // namespace lightsolver::detail
