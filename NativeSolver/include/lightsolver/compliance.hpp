@@ -50,9 +50,9 @@ VerdictKind judge(double ci_low, double ci_high, double required);
 /// Intervals of a grid's statistics at the run's confidence c = 1 - alpha. Every interval holds
 /// its estimate; all finite.
 struct GridIntervals {
-  double min_low = 0.0, min_high = 0.0;  ///< Emin: Bonferroni over the cells at alpha / m
-  double max_low = 0.0, max_high = 0.0;  ///< Emax: the same simultaneous cell intervals
-  double u0_low = 0.0, u0_high = 0.0;    ///< U0 = Emin / Em: alpha split, Emin and Em at alpha/2
+  double min_low = 0.0, min_high = 0.0;          ///< Emin
+  double max_low = 0.0, max_high = 0.0;          ///< Emax
+  double u0_low = 0.0, u0_high = 0.0;            ///< U0 = Emin / Em
   double ud = 0.0, ud_low = 0.0, ud_high = 0.0;  ///< Ud = Emin / Emax (0 when Emax is 0)
 };
 
@@ -65,8 +65,10 @@ struct GridSampler {
 };
 
 /// Emin, Emax, U0 and Ud intervals at `confidence` (docs/statistics.md, "Emin over noisy
-/// cells"): simultaneous (Bonferroni) cell intervals, so the minimum's interval is honest about
-/// being taken over many noisy cells. `min_lux`, `max_lux`, `mean_lux` are the point estimates.
+/// cells"): Emin's lower end is the smallest cell lower bound, its upper end the smallest upper
+/// bound of cell intervals that hold simultaneously (Bonferroni), so it is honest about being
+/// a minimum over many noisy cells; Emax mirrors it; U0 and Ud split alpha between their two
+/// factors. `min_lux`, `max_lux`, `mean_lux` are the point estimates.
 GridIntervals grid_intervals(const GridSampler& s, double confidence, double min_lux,
                              double max_lux, double mean_lux);
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace lightsolver {
 
@@ -37,20 +39,16 @@ VerdictKind overall(const std::vector<VerdictKind>& verdicts) {
 
 namespace {
 
-// Smallest and largest cell bounds of cell intervals that hold simultaneously with probability
-// >= 1 - alpha (Bonferroni: each cell at alpha / m). If every cell's interval holds its true
-// value, then min_i low_i <= min_i E_i <= min_i high_i (and likewise for the maximum): min and
-// max are monotone in each argument. So [min low, min high] covers the true minimum at least
-// as often as all cells are covered together, whatever the correlation between cells.
+// The smallest and largest lower and upper cell bounds, each cell's interval at the two-sided
+// level 1 - alpha (each end: one-sided alpha / 2).
 struct Extremes {
   double min_low = 0.0, min_high = 0.0, max_low = 0.0, max_high = 0.0;
 };
 
-Extremes simultaneous_extremes(const GridSampler& s, double alpha) {
-  const double per_cell = alpha / double(std::max<std::uint32_t>(s.cells, 1));
+Extremes cell_extremes(const GridSampler& s, double alpha) {
   Extremes x;
   for (std::uint32_t c = 0; c < s.cells; ++c) {
-    const Estimate e = s.cell(c, per_cell);
+    const Estimate e = s.cell(c, alpha);
     if (c == 0) {
       x = {e.ci_low, e.ci_high, e.ci_low, e.ci_high};
       continue;
@@ -61,6 +59,23 @@ Extremes simultaneous_extremes(const GridSampler& s, double alpha) {
     x.max_high = std::max(x.max_high, e.ci_high);
   }
   return x;
+}
+
+// One-sided bounds of Emin and Emax whose tails are each at most `tail`:
+//  - min_i low_i > Emin needs low_j > E_j for the (fixed, unknown) darkest cell j: one cell's
+//    tail, so each cell's bound at one-sided `tail` serves;
+//  - min_i high_i < Emin needs high_i < E_i for some cell: a union over all m cells, so each
+//    cell's bound at one-sided tail / m (Bonferroni, whatever the correlation between cells).
+// Emax mirrors it (its upper end is one cell's, its lower end the union's).
+struct Bounds {
+  double min_low, min_high, max_low, max_high;
+};
+
+Bounds extreme_bounds(const GridSampler& s, double tail) {
+  const double m = double(s.cells);
+  const Extremes one = cell_extremes(s, 2.0 * tail);      // one-sided tail per end
+  const Extremes all = cell_extremes(s, 2.0 * tail / m);  // one-sided tail / m per end
+  return {one.min_low, all.min_high, all.max_low, one.max_high};
 }
 
 // The interval of a/b for a in [a_low, a_high], b in [b_low, b_high] (all >= 0), knowing the
@@ -83,24 +98,24 @@ GridIntervals grid_intervals(const GridSampler& s, double confidence, double min
   if (s.cells == 0) throw std::invalid_argument("grid_intervals: a grid without cells");
   const double alpha = 1.0 - confidence;
   GridIntervals g;
-  // Emin, Emax and Ud from one set of simultaneous cell intervals at alpha: when all cells are
-  // covered, all three are, so Ud needs no further split.
-  const Extremes at_alpha = simultaneous_extremes(s, alpha);
-  g.min_low = std::min(at_alpha.min_low, min_lux);  // contain the estimate against rounding
-  g.min_high = std::max(at_alpha.min_high, min_lux);
-  g.max_low = std::min(at_alpha.max_low, max_lux);
-  g.max_high = std::max(at_alpha.max_high, max_lux);
+  // Emin and Emax: alpha / 2 on each side (docs/statistics.md). The estimates are held
+  // against rounding (each lies between its cell's bounds).
+  const Bounds b = extreme_bounds(s, 0.5 * alpha);
+  g.min_low = std::min(b.min_low, min_lux);
+  g.min_high = std::max(b.min_high, min_lux);
+  g.max_low = std::min(b.max_low, max_lux);
+  g.max_high = std::max(b.max_high, max_lux);
+  // Ratios: each side of the interval rests on two bounds, alpha / 4 each, so each side
+  // misses with probability <= alpha / 2 (Bonferroni over the two bounds of that side).
+  const Bounds q = extreme_bounds(s, 0.25 * alpha);
+  const double q_min_low = std::min(q.min_low, min_lux), q_min_high = std::max(q.min_high, min_lux);
   g.ud = max_lux > 0.0 ? min_lux / max_lux : 0.0;
-  std::tie(g.ud_low, g.ud_high) =
-      ratio_interval(g.min_low, g.min_high, g.max_low, g.max_high, g.ud);
-  // U0 = Emin / Em: Emin's cells at alpha/2 and Em at alpha/2, so both hold together with
-  // probability >= 1 - alpha (Bonferroni over the two).
-  const Extremes at_half = simultaneous_extremes(s, 0.5 * alpha);
-  const Estimate em = s.grid(0.5 * alpha);
+  std::tie(g.ud_low, g.ud_high) = ratio_interval(
+      q_min_low, q_min_high, std::min(q.max_low, max_lux), std::max(q.max_high, max_lux), g.ud);
+  const Estimate em = s.grid(0.5 * alpha);  // two-sided alpha / 2: one-sided alpha / 4 per end
   const double u0 = mean_lux > 0.0 ? min_lux / mean_lux : 0.0;
-  std::tie(g.u0_low, g.u0_high) =
-      ratio_interval(std::min(at_half.min_low, min_lux), std::max(at_half.min_high, min_lux),
-                     std::min(em.ci_low, mean_lux), std::max(em.ci_high, mean_lux), u0);
+  std::tie(g.u0_low, g.u0_high) = ratio_interval(
+      q_min_low, q_min_high, std::min(em.ci_low, mean_lux), std::max(em.ci_high, mean_lux), u0);
   return g;
 }
 
