@@ -1,6 +1,7 @@
 // Verdicts per target and the rule that ends a decide run (docs/statistics.md, "Deciding").
 #include "core/decide.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lightsolver::detail {
@@ -70,13 +71,12 @@ void add_verdicts(Results& r) {
 }
 
 bool all_decided(std::vector<TargetResult>& targets) {
-  for (TargetResult& t : targets) {
+  bool decided = true;
+  for (TargetResult& t : targets) {  // every target judged, even after an undecided one
     judge_target(t);
-    for (const Verdict& v : t.verdicts) {
-      if (v.verdict == VerdictKind::Undecided) return false;
-    }
+    for (const Verdict& v : t.verdicts) decided = decided && v.verdict != VerdictKind::Undecided;
   }
-  return true;
+  return decided;
 }
 
 std::optional<double> photons_to_decide(double value, double low, double high, double required,
@@ -88,6 +88,21 @@ std::optional<double> photons_to_decide(double value, double low, double high, d
   const double need = double(photons) * ratio * ratio;
   if (!std::isfinite(need)) return std::nullopt;
   return std::max(need, double(photons));
+}
+
+std::uint64_t photons_to_decide_all(std::vector<TargetResult>& targets, std::uint64_t photons,
+                                    std::uint64_t budget) {
+  all_decided(targets);  // judges them
+  double most = double(photons);
+  for (const TargetResult& t : targets) {
+    for (const Verdict& v : t.verdicts) {
+      if (v.verdict != VerdictKind::Undecided) continue;
+      const auto need = photons_to_decide(v.value, v.ci_low, v.ci_high, v.required, photons);
+      if (!need) return budget;
+      most = std::max(most, *need);
+    }
+  }
+  return most >= double(budget) ? budget : static_cast<std::uint64_t>(most);
 }
 
 void add_to_decide(Results& r, double photons_per_second) {

@@ -22,6 +22,12 @@ bool all_decided(std::vector<TargetResult>& targets);
 /// it, from interval width ~ N^-1/2 and the run's rate of `photons_per_second` (0: unknown).
 void add_to_decide(Results& r, double photons_per_second);
 
+/// Photons a decide run is expected to trace in all: the most any undecided verdict of
+/// `targets` needs at `photons` traced, within [photons, budget]; the budget when one cannot be
+/// estimated.
+std::uint64_t photons_to_decide_all(std::vector<TargetResult>& targets, std::uint64_t photons,
+                                    std::uint64_t budget);
+
 /// Photons a run would need for an interval [low, high] around `value` (from `photons`) to
 /// exclude or clear `required`: photons * (w / |value - required|)^2, w the half-width on
 /// the side facing the bound. Empty when the value sits on the bound or nothing was traced.

@@ -415,7 +415,13 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
       const double traced_s = seconds_since(tracing_start);
       if (forecast_due && traced_s >= 0.5 && r.photons < r.photons_requested) {
         forecast_due = false;
-        options.forecast(make_forecast(prepared, tallies, r, traced_s));
+        RunForecast f = make_forecast(prepared, tallies, r, traced_s);
+        if (r.decide) {  // the photons the verdicts still open are expected to need
+          std::vector<TargetResult> now = targets_at(r.photons);
+          f.photons = detail::photons_to_decide_all(now, r.photons, r.photons_requested);
+          f.seconds = double(f.photons) / f.photons_per_second;
+        }
+        options.forecast(f);
       }
       if (progress && !progress(r.photons, r.photons_requested)) {
         if (r.photons < r.photons_requested) r.stop_reason = kStopCancelled;
