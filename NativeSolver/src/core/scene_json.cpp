@@ -135,15 +135,7 @@ Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
                       detail::luminaire_type_names() + ")");
   }
   l.type = row->type;
-  if (!n.has("power_w")) {
-    row->read(n, l, base_dir);
-    return l;
-  }
-  // Keys every type may have are read here; the type's reader sees the entry without them.
-  l.power_w = n.at("power_w").number();
-  nlohmann::json own = n.object();
-  own.erase("power_w");
-  row->read(JsonNode(own, n.path(), n.file()), l, base_dir);
+  detail::read_luminaire_keys(*row, n, l, base_dir);
   return l;
 }
 
