@@ -386,9 +386,10 @@ PYBIND11_MODULE(lightsolver, m) {
         "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean; "
         "without photons the budget is 1e10 photons within max_seconds (default 300 s). "
         "max_seconds limits the tracing time (default: Scene.max_seconds). The dict's "
-        "stop_reason says which limit ended the run: photons, accuracy, time, cancelled or decided. "
-        "decide=True traces until every requirement's verdict is pass or fail (default: the "
-        "scene's settings.decide); targets with requirements carry verdicts either way.");
+        "stop_reason says which limit ended the run: photons, accuracy, time, cancelled or "
+        "decided. decide=True traces until every requirement's verdict is pass or fail "
+        "(default: the scene's settings.decide); targets with requirements carry verdicts "
+        "either way.");
   m.def(
       "check_scene", [](const Scene& s) { return check_dict(check_scene(s)); }, py::arg("scene"),
       "Check a Scene as a run would (validate, then the warnings a run gives before tracing) "
