@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace lightsolver::detail {
 namespace {
@@ -44,6 +45,11 @@ void judge_target(TargetResult& t) {
 }
 
 }  // namespace
+
+double look_confidence(double confidence, int look) {
+  const double k = std::max(look, 1);
+  return 1.0 - (1.0 - confidence) * 6.0 / (std::numbers::pi * std::numbers::pi * k * k);
+}
 
 bool judges_requirements(const Scene& scene, bool decide, bool accuracy_goal) {
   bool any = false;

@@ -11,6 +11,12 @@ namespace lightsolver::detail {
 /// InputError when deciding is asked without requirements or together with an accuracy goal.
 bool judges_requirements(const Scene& scene, bool decide, bool accuracy_goal);
 
+/// The confidence at which a decide run judges its verdicts at look `look` (1, 2, ...):
+/// 1 - alpha * 6 / (pi^2 look^2), so the error rates of all looks add up to at most alpha
+/// (alpha spending; docs/statistics.md, "Deciding"): stopping at the first decided look does
+/// not make a wrong verdict likelier than one look at `confidence` would.
+double look_confidence(double confidence, int look);
+
 /// Sets each target's verdicts and overall verdict (targets with requirements; grids need
 /// their intervals filled) and the run's overall verdict.
 void add_verdicts(Results& r);

@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -366,15 +367,16 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   detail::TallyBlock tallies(prepared.bins.size());
-  auto targets_at = [&](std::uint64_t photons) {
+  auto targets_at = [&](std::uint64_t photons, double confidence) {
     std::vector<TargetResult> targets;
     for (std::size_t i = 0; i < scene.targets.size(); ++i) {
       targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
-                                    photons, r.confidence, r.judged));
+                                    photons, confidence, r.judged));
     }
     return targets;
   };
   double tracing_s = 0.0;
+  int looks = 0;  // decide: verdicts judged so far (each at its own spent confidence)
   if (prepared.total_flux_lm > 0.0) {
     tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
     const bool accuracy_mode = r.target_accuracy.has_value() || r.decide;  // doubling batches
@@ -404,8 +406,11 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         r.stop_reason = kStopAccuracy;
         break;
       }
-      if (r.decide) {
-        std::vector<TargetResult> now = targets_at(r.photons);
+      // Decide: verdicts are looked at when the photons double (a bounded number of looks,
+      // each spending its share of alpha).
+      if (r.decide && std::has_single_bit(r.photons)) {
+        std::vector<TargetResult> now =
+            targets_at(r.photons, detail::look_confidence(r.confidence, ++looks));
         if (detail::all_decided(now)) {
           r.stop_reason = kStopDecided;
           break;
@@ -417,7 +422,8 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         forecast_due = false;
         RunForecast f = make_forecast(prepared, tallies, r, traced_s);
         if (r.decide) {  // the photons the verdicts still open are expected to need
-          std::vector<TargetResult> now = targets_at(r.photons);
+          std::vector<TargetResult> now =
+              targets_at(r.photons, detail::look_confidence(r.confidence, looks));
           f.photons = detail::photons_to_decide_all(now, r.photons, r.photons_requested);
           f.seconds = double(f.photons) / f.photons_per_second;
         }
@@ -436,7 +442,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
-  r.targets = targets_at(r.photons);
+  r.targets = targets_at(r.photons, r.confidence);
   detail::add_verdicts(r);
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   add_warnings(scene, r);

@@ -1,6 +1,8 @@
 // Coverage of the Emin, U0 and Ud intervals over many seeds on closed-form grids, and decide
 // runs: a requirement 1 % above the truth fails with fewer photons than per-cell accuracy
 // would take; a budget too small ends undecided and says what deciding would cost.
+#include "core/decide.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -165,7 +167,10 @@ TEST(Decide, OnePercentAboveTheTruthFailsWithFewerPhotonsThanPerCellAccuracy) {
   const double per_cell_photons = double(r.photons) * (worst / 0.01) * (worst / 0.01);
   RecordProperty("decide_photons", std::to_string(r.photons));
   RecordProperty("per_cell_photons", std::to_string(per_cell_photons));
-  EXPECT_LT(double(r.photons), per_cell_photons / 4);
+  // Decide spends alpha over its looks (docs/statistics.md), which costs it a factor ~2-3;
+  // per-cell accuracy needs ~16x the photons of the mean's (16 cells) and more for the dark
+  // corners: measured 1.0e6 against 6.0e6.
+  EXPECT_LT(double(r.photons), per_cell_photons / 2);
   EXPECT_EQ(r.photons & (r.photons - 1), 0u) << "doubling batches from 2^14";
 }
 
@@ -194,6 +199,37 @@ TEST(Decide, ABudgetTooSmallEndsUndecidedAndSaysWhatDecidingCosts) {
   EXPECT_NE(said, r.warnings.end());
   const std::string table = results_table(r);
   EXPECT_NE(table.find("undecided (to decide: about"), std::string::npos) << table;
+}
+
+// A requirement exactly at the truth: every decided verdict (pass or fail) is wrong there, so
+// the rate of decided runs is the rate of wrong verdicts. Stopping at the first decided look
+// of many would raise it above alpha; spending alpha over the looks keeps it below.
+TEST(Decide, StoppingAtTheFirstDecidedLookKeepsWrongVerdictsBelowAlpha) {
+  PointOverGrid setup;
+  setup.scene.targets[0].requirements = {};
+  setup.scene.targets[0].requirements.em_lux = setup.mean_lux;
+  Simulation sim(setup.scene, {"embree", 0, {}});
+  constexpr int kRuns = 300;
+  int decided = 0;
+  for (int seed = 1; seed <= kRuns; ++seed) {
+    SolveOptions o;
+    o.decide = true;
+    o.photons = 1 << 17;  // looks at 2^14 ... 2^17 photons: four
+    o.seed = seed;
+    decided += sim.run(o).stop_reason == kStopDecided;
+  }
+  const double rate = double(decided) / kRuns;
+  RecordProperty("wrong_verdict_rate", std::to_string(rate));
+  EXPECT_LE(rate, 0.05 + 4.0 * std::sqrt(0.05 * 0.95 / kRuns));
+}
+
+TEST(Decide, AlphaIsSpentOverTheLooks) {
+  EXPECT_NEAR(1.0 - detail::look_confidence(0.95, 1),
+              0.05 * 6 / (std::numbers::pi * std::numbers::pi), 1e-15);
+  double spent = 0.0;
+  for (int k = 1; k <= 100000; ++k) spent += 1.0 - detail::look_confidence(0.95, k);
+  EXPECT_LT(spent, 0.05);
+  EXPECT_GT(spent, 0.0499);
 }
 
 TEST(Decide, ResultsWithoutRequirementsKeepTheirLayout) {
