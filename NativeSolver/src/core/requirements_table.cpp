@@ -55,10 +55,12 @@ std::string closest_ids(const std::string& id, const nlohmann::json& tasks) {
 
 struct Table {
   std::string path;
+  fs::file_time_type modified;
   nlohmann::json doc;
 };
 
-// The table, parsed once per path (scene files may name tasks on many targets).
+// The table, parsed once per path and version (scene files may name tasks on many targets; a
+// long-lived process sees an edited table).
 const Table& load_table(const JsonNode& where, const std::string& base_dir) {
   static thread_local Table cached;
   const std::string path = requirements_table_path(base_dir);
@@ -67,11 +69,13 @@ const Table& load_table(const JsonNode& where, const std::string& base_dir) {
                            "file, or put ") +
                kTableFile + " next to the scene)");
   }
-  if (cached.path == path) return cached;
+  std::error_code ec;
+  const fs::file_time_type modified = fs::last_write_time(path, ec);
+  if (cached.path == path && cached.modified == modified) return cached;
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  Table t{path, parse_json_text(text.str(), path)};
+  Table t{path, modified, parse_json_text(text.str(), path)};
   if (!t.doc.is_object() || !t.doc.contains("tasks") || !t.doc["tasks"].is_array()) {
     throw InputError(path, "tasks", "the requirements table has no \"tasks\" list");
   }
