@@ -335,6 +335,10 @@ PYBIND11_MODULE(lightsolver, m) {
           },
           "Time limit of the tracing in seconds, or None")
       .def_property(
+          "decide", [](const Scene& s) { return s.settings.decide; },
+          [](Scene& s, bool v) { s.settings.decide = v; },
+          "Trace until every requirement's verdict is decided (settings.decide)")
+      .def_property(
           "max_bounces", [](const Scene& s) { return s.settings.max_bounces; },
           [](Scene& s, std::uint32_t v) { s.settings.max_bounces = v; })
       .def_property_readonly("warnings", [](const Scene& s) { return s.warnings; })

@@ -132,6 +132,27 @@ def test_verdicts_follow_the_contract_in_cli_and_solve(cli, room_scene, tmp_path
     assert grid["ud_ci_low"] <= grid["ud"] <= grid["ud_ci_high"]
 
 
+def test_scene_decide_setting_and_requirements_in_memory():
+    scene = lightsolver.Scene()
+    scene.add_light("lamp", "point", position=[1, 1, 2], flux_lm=10000, power_w=80)
+    scene.add_target("floor", "grid", corner=[0, 0, 0], edge1=[2, 0, 0], edge2=[0, 2, 0],
+                     cells=[4, 4], task="office-writing")
+    scene.add_target("dim", "grid", corner=[0, 0, 0], edge1=[2, 0, 0], edge2=[0, 2, 0],
+                     cells=[2, 2], requirements={"em_lux": 100})
+    assert scene.decide is False
+    scene.decide = True
+    r = lightsolver.solve(scene, backend="embree", photons=10**8, seed=4)
+    assert errors(plain(r)) == []
+    assert r["decide"] is True and r["stop_reason"] == "decided"
+    assert r["photons"] < 10**8
+    assert r["verdict"] == "fail"  # about 160 lx against office-writing's 500
+    assert r["targets"][0]["verdicts"]["em"]["verdict"] == "fail"
+    assert r["targets"][1]["verdict"] == "pass"
+    with pytest.raises(lightsolver.InputError, match="unknown task"):
+        scene.add_target("x", "grid", corner=[0, 0, 0], edge1=[1, 0, 0], edge2=[0, 1, 0],
+                         cells=[1, 1], task="office")
+
+
 def test_schema_rejects_broken_verdicts(cli, room_scene, tmp_path):
     good = cli_results(cli, room_with_requirements(room_scene, tmp_path), tmp_path, "--photons",
                        "20000")

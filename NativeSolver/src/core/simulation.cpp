@@ -379,7 +379,8 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   int looks = 0;  // decide: verdicts judged so far (each at its own spent confidence)
   if (prepared.total_flux_lm > 0.0) {
     tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
-    const bool accuracy_mode = r.target_accuracy.has_value() || r.decide;  // doubling batches
+    const bool accuracy_mode = r.target_accuracy.has_value();
+    const bool doubling = accuracy_mode || r.decide;  // batches: deterministic stopping points
     const auto tracing_start = Clock::now();
     bool forecast_due = static_cast<bool>(options.forecast);
     CheckpointTracer tracer(options, prepared, tracing_start);
@@ -394,7 +395,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         r.stop_reason = kStopTime;
         break;
       }
-      std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode, rate);
+      std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
       if (r.max_seconds) n = fit_time_limit(n, rate, *r.max_seconds - elapsed);
       tracer.trace(r.photons, n, r, tallies, [&](std::uint64_t first, std::uint64_t count) {
         arena.execute([&] { state_->backend->trace(first, count, r.seed, tallies); });
