@@ -79,6 +79,7 @@ struct RunArgs {
   int threads = 0;
   bool quiet = false;
   bool per_cell = false;  // --accuracy judged per grid cell
+  bool decide = false;  // --decide (false: the scene's settings.decide)
 };
 
 lightsolver::SolveOptions options_from(const RunArgs& a) {
@@ -91,6 +92,7 @@ lightsolver::SolveOptions options_from(const RunArgs& a) {
   opt.target_accuracy = a.accuracy;
   if (a.per_cell) opt.accuracy_per_cell = true;  // else the scene's settings.accuracy_per_cell
   opt.max_seconds = a.max_seconds;
+  if (a.decide) opt.decide = true;
   opt.cancel = &g_interrupted;
   return opt;
 }
@@ -274,6 +276,10 @@ int main(int argc, char** argv) {
                    "Stop tracing after this many seconds (overrides settings.max_seconds; "
                    "default: none, 300 for --accuracy without --photons)")
       ->check(CLI::PositiveNumber);
+  run_cmd->add_flag("--decide", ra.decide,
+                    "Trace until every requirement's verdict is pass or fail, within --photons "
+                    "(else up to 1e10 photons) and --max-seconds (default 300); undecided ones "
+                    "say what deciding them would cost");
   run_cmd->add_flag("--quiet,-q", ra.quiet, "Do not print the table");
 
   RunArgs ca;

@@ -200,7 +200,8 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
                   const std::string& backend, py::object progress,
                   std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
-                  std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell) {
+                  std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell,
+                  std::optional<bool> decide) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
   // solve() validates the copy (and reports dropped triangles among the warnings).
   const Scene snapshot = scene;
@@ -213,6 +214,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   opt.target_accuracy = target_accuracy;
   opt.max_seconds = max_seconds;
   opt.accuracy_per_cell = accuracy_per_cell;
+  opt.decide = decide;
   CancelToken token = cancel.value_or(CancelToken{});
   opt.cancel = token.flag.get();
   std::exception_ptr callback_error;
@@ -339,6 +341,10 @@ PYBIND11_MODULE(lightsolver, m) {
           },
           "Time limit of the tracing in seconds, or None")
       .def_property(
+          "decide", [](const Scene& s) { return s.settings.decide; },
+          [](Scene& s, bool v) { s.settings.decide = v; },
+          "Trace until every requirement's verdict is decided (settings.decide)")
+      .def_property(
           "max_bounces", [](const Scene& s) { return s.settings.max_bounces; },
           [](Scene& s, std::uint32_t v) { s.settings.max_bounces = v; })
       .def_property_readonly("warnings", [](const Scene& s) { return s.warnings; })
@@ -385,6 +391,7 @@ PYBIND11_MODULE(lightsolver, m) {
         py::arg("backend") = kAutoBackend, py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
         py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
+        py::arg("decide") = py::none(),
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
         "progress(done, total) may return False to stop; the result is then marked partial. "
         "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean "
@@ -392,7 +399,10 @@ PYBIND11_MODULE(lightsolver, m) {
         "mean judged against that 1%; default: the scene's settings.accuracy_per_cell); "
         "without photons the budget is 1e10 photons within max_seconds (default 300 s). "
         "max_seconds limits the tracing time (default: Scene.max_seconds). The dict's "
-        "stop_reason says which limit ended the run: photons, accuracy, time or cancelled.");
+        "stop_reason says which limit ended the run: photons, accuracy, time, cancelled or "
+        "decided. decide=True traces until every requirement's verdict is pass or fail "
+        "(default: the scene's settings.decide); targets with requirements carry verdicts "
+        "either way.");
   m.def(
       "check_scene", [](const Scene& s) { return check_dict(check_scene(s)); }, py::arg("scene"),
       "Check a Scene as a run would (validate, then the warnings a run gives before tracing) "

@@ -79,3 +79,100 @@ def test_schema_rejects_what_the_contract_forbids(cli, room_scene, tmp_path):
     bad = copy.deepcopy(good)
     del bad["targets"][1]["cells"]
     assert errors(bad), "a grid without cells"
+
+
+def room_with_requirements(room_scene, tmp_path, **settings) -> str:
+    """Examples/room (inline geometry) with requirements on its desk (Em) and workplane (an
+    EN 12464-1 task plus Ud), and a luminaire's power."""
+    scene = json.loads(room_scene.read_text())
+    for target in scene["targets"]:
+        if target["name"] == "desk top":
+            target["requirements"] = {"em_lux": 300}
+        if target["name"] == "workplane":
+            target["task"] = "office-writing"
+            target["requirements"] = {"ud": 0.5}
+    scene["luminaires"][0]["power_w"] = 36.0
+    scene["settings"].update(settings)
+    path = tmp_path / "requirements.json"
+    path.write_text(json.dumps(scene))
+    return str(path)
+
+
+@pytest.mark.parametrize("decide", [False, True])
+def test_verdicts_follow_the_contract_in_cli_and_solve(cli, room_scene, tmp_path, decide):
+    scene = room_with_requirements(room_scene, tmp_path)
+    extra = ["--decide"] if decide else []
+    from_cli = cli_results(cli, scene, tmp_path, "--photons", "300000", "--seed", "3",
+                           "--backend", "embree", *extra)
+    from_py = plain(lightsolver.solve(lightsolver.load_scene(scene), photons=300000, seed=3,
+                                      backend="embree", decide=decide or None))
+    assert errors(from_cli) == []
+    assert errors(from_py) == []
+    for doc in (from_cli, from_py):
+        for key in TIMINGS:
+            doc.pop(key)
+        # to_decide's seconds come from the tracing rate: a timing too.
+        for target in doc["targets"]:
+            for verdict in target.get("verdicts", {}).values():
+                verdict.get("to_decide", {}).pop("seconds", None)
+    assert from_py == from_cli
+    assert from_cli["decide"] is decide
+    desk, grid, floor = from_cli["targets"]
+    assert set(desk["verdicts"]) == {"em"}
+    assert set(grid["verdicts"]) == {"em", "u0", "ud"}
+    assert grid["requirements"]["task"] == "office-writing"
+    assert grid["requirements"]["em_lux"] == 500 and grid["requirements"]["u0"] == 0.6
+    assert "EN 12464-1:2021" in grid["requirements"]["source"]
+    assert "verdicts" not in floor and "requirements" not in floor
+    for t in (desk, grid):
+        for v in t["verdicts"].values():
+            assert v["ci_low"] <= v["value"] <= v["ci_high"]
+    assert grid["min_ci_low_lux"] <= grid["min_lux"] <= grid["min_ci_high_lux"]
+    assert grid["uniformity_ci_low"] <= grid["uniformity"] <= grid["uniformity_ci_high"]
+    assert grid["ud_ci_low"] <= grid["ud"] <= grid["ud_ci_high"]
+
+
+def test_scene_decide_setting_and_requirements_in_memory():
+    scene = lightsolver.Scene()
+    scene.add_light("lamp", "point", position=[1, 1, 2], flux_lm=10000, power_w=80)
+    scene.add_target("floor", "grid", corner=[0, 0, 0], edge1=[2, 0, 0], edge2=[0, 2, 0],
+                     cells=[4, 4], task="office-writing")
+    scene.add_target("dim", "grid", corner=[0, 0, 0], edge1=[2, 0, 0], edge2=[0, 2, 0],
+                     cells=[2, 2], requirements={"em_lux": 100})
+    assert scene.decide is False
+    scene.decide = True
+    r = lightsolver.solve(scene, backend="embree", photons=10**8, seed=4)
+    assert errors(plain(r)) == []
+    assert r["decide"] is True and r["stop_reason"] == "decided"
+    assert r["photons"] < 10**8
+    assert r["verdict"] == "fail"  # about 160 lx against office-writing's 500
+    assert r["targets"][0]["verdicts"]["em"]["verdict"] == "fail"
+    assert r["targets"][1]["verdict"] == "pass"
+    with pytest.raises(lightsolver.InputError, match="unknown task"):
+        scene.add_target("x", "grid", corner=[0, 0, 0], edge1=[1, 0, 0], edge2=[0, 1, 0],
+                         cells=[1, 1], task="office")
+
+
+def test_schema_rejects_broken_verdicts(cli, room_scene, tmp_path):
+    good = cli_results(cli, room_with_requirements(room_scene, tmp_path), tmp_path, "--photons",
+                       "20000")
+    assert errors(good) == []
+    desk, grid = good["targets"][0], good["targets"][1]
+    some = next(iter(grid["verdicts"]))
+    undecided = {"verdict": "undecided", "value": 1.0, "ci_low": 0.5, "ci_high": 1.5,
+                 "required": 1.0, "relation": ">="}
+    for mutate in [lambda d: d["targets"][1]["verdicts"][some].update(verdict="maybe"),
+                   lambda d: d["targets"][1]["verdicts"][some].update(relation="<="),
+                   lambda d: d["targets"][1].update(verdict="ok"),
+                   lambda d: d["targets"][1]["verdicts"].update(glare=undecided),
+                   lambda d: d["targets"][1]["verdicts"].update(em=undecided),  # no to_decide
+                   lambda d: d["targets"][0]["verdicts"].update(u0=dict(
+                       undecided, to_decide={"photons": 1, "seconds": 1})),  # u0 on a surface
+                   lambda d: d["targets"][1].pop("verdicts"),
+                   lambda d: d.pop("decide"),
+                   lambda d: d["targets"][1].update(uniformity_ci_high=1.5),
+                   lambda d: d["targets"][1]["requirements"].update(u0=0)]:
+        bad = copy.deepcopy(good)
+        mutate(bad)
+        assert errors(bad), "the schema accepted a broken verdict"
+    assert desk["verdict"] in ("pass", "fail", "undecided")

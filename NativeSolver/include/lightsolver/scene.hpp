@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "lightsolver/compliance.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
 
@@ -79,6 +80,9 @@ struct Luminaire {
   std::string file;
   glm::dvec3 aim{0, 0, -1};
   double rotation_deg = 0.0;
+  /// Electrical power (W), any type: read and range-checked, ignored by tracing (the report's
+  /// luminaire schedule and W/m2 use it). Empty when not given.
+  std::optional<double> power_w;
 };
 
 /// Where illuminance is reported.
@@ -89,6 +93,8 @@ struct Target {
   int mesh = -1;                                   ///< surface: index into Scene::meshes
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< grid rectangle
   std::uint32_t nu = 1, nv = 1;                    ///< grid cells along edge1, edge2
+  /// What the target must reach (scene keys "requirements" and "task"); none when !any().
+  Requirements requirements;
 };
 
 /// Run settings (defaults as documented).
@@ -103,6 +109,8 @@ struct Settings {
   /// Accuracy goals of runs on this scene judge every grid cell, not only target means
   /// (SolveOptions::accuracy_per_cell).
   bool accuracy_per_cell = false;
+  /// Trace until every requirement's verdict is decided (SolveOptions::decide).
+  bool decide = false;
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().
@@ -134,6 +142,8 @@ inline constexpr double kMaxIlluminance_lx = 1e7;  ///< directional (sunlight: ~
 inline constexpr double kMaxIntensity_cd = 1e15;   ///< photometric peak, as scaled
 inline constexpr std::uint64_t kMaxGridCells = 10'000'000;  ///< one grid, and all grids together
 inline constexpr std::uint32_t kMaxBounces = 1'000'000;     ///< settings.max_bounces
+inline constexpr double kMaxPower_W = 1e9;                  ///< a luminaire's power_w
+inline constexpr double kMaxRequiredIlluminance_lx = 1e7;   ///< requirements em_lux, emin_lux
 }  // namespace limits
 
 /// Throws InputError(file, where) unless 1 <= photons <= max_photons(max_bounces)

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "lightsolver/compliance.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/statistics.hpp"
 
@@ -85,6 +86,11 @@ struct SolveOptions {
   /// runs without an explicit photon count, which stop after kDefaultAccuracySeconds. Where a
   /// time limit ends a run depends on the machine's speed.
   std::optional<double> max_seconds;
+  /// Trace until every requirement's verdict is pass or fail (default:
+  /// scene.settings.decide), in doubling batches as accuracy runs, within the same budget
+  /// (`photons`, else kAccuracyPhotonBudget within the time limit). Needs a target with
+  /// requirements; not together with `target_accuracy`.
+  std::optional<bool> decide;
   const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current batch
   /// Called once, when the first batches give a tracing rate: what the run is expected to
   /// cost (the CLI prints it for runs longer than a minute).
@@ -106,6 +112,8 @@ inline constexpr const char* kStopPhotons = "photons";
 inline constexpr const char* kStopAccuracy = "accuracy";
 inline constexpr const char* kStopTime = "time";
 inline constexpr const char* kStopCancelled = "cancelled";
+/// A decide run ended because every verdict was pass or fail.
+inline constexpr const char* kStopDecided = "decided";
 
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
 /// grid / its area) and `cells` holds every cell, row by row (index = iv * nu + iu).
@@ -117,16 +125,21 @@ struct TargetResult {
   std::uint32_t nu = 0, nv = 0;
   std::vector<Estimate> cells;
   double min_lux = 0.0, max_lux = 0.0, uniformity = 0.0;  ///< grids: over cell means; U0 = min/mean
+  Requirements requirements;  ///< as resolved from the scene (none: !requirements.any())
+  /// Grids, in runs that judge requirements: intervals of Emin, Emax, U0 and Ud.
+  std::optional<GridIntervals> intervals;
+  std::vector<Verdict> verdicts;  ///< one per requirement, in the order em, u0, emin, ud
+  VerdictKind verdict = VerdictKind::Undecided;  ///< overall; meaningful with verdicts only
 };
 
 struct Results {
   std::vector<TargetResult> targets;
-  std::uint64_t photons = 0;            ///< traced (== requested when stop_reason is "photons")
-  std::uint64_t photons_requested = 0;  ///< the count or budget asked for
-  bool partial = false;                 ///< stopped early by cancel or progress callback
-  std::optional<double> target_accuracy;  ///< the goal, when one was set
-  bool accuracy_met = false;            ///< every target reached target_accuracy
-  bool accuracy_per_cell = false;       ///< the goal was judged per cell (with target_accuracy)
+  std::uint64_t photons = 0;               ///< traced (== requested when stop_reason is "photons")
+  std::uint64_t photons_requested = 0;     ///< the count or budget asked for
+  bool partial = false;                    ///< stopped early by cancel or progress callback
+  std::optional<double> target_accuracy;   ///< the goal, when one was set
+  bool accuracy_met = false;               ///< every target reached target_accuracy
+  bool accuracy_per_cell = false;          ///< the goal was judged per cell (with target_accuracy)
   std::string stop_reason = kStopPhotons;  ///< which limit ended the run (kStop*)
   std::optional<double> max_seconds;       ///< the time limit that applied, if any
   double seconds = 0.0;
@@ -134,12 +147,16 @@ struct Results {
   double confidence = 0.95;
   std::uint64_t seed = 0;
   std::uint64_t ray_segments = 0;
-  std::uint64_t capped_paths = 0;       ///< paths still alive at max_bounces (bias, warned)
+  std::uint64_t capped_paths = 0;  ///< paths still alive at max_bounces (bias, warned)
   /// Paths a device's own loop limit stopped even when traced alone (Mesa lavapipe ends a
   /// shader after 65535 loop iterations); their light is missing (bias, warned).
   std::uint64_t cut_paths = 0;
   double total_flux_lm = 0.0;
   Warnings warnings;
+  /// Some target has requirements: verdicts, grid intervals and `decide` are reported.
+  bool judged = false;
+  bool decide = false;  ///< the run traced until decided (SolveOptions::decide)
+  VerdictKind verdict = VerdictKind::Undecided;  ///< overall over the judged targets
 };
 
 /// Runs the photon tracer. Deterministic: same scene, seed and photons give bit-identical

@@ -54,6 +54,13 @@ double z_for_confidence(double confidence);
 /// for a negative or non-finite scale, std::overflow_error if a number would not be finite.
 Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double confidence);
 
+/// Two-sided standard-normal critical value for P(|Z| > z) = alpha, precise for tiny alpha.
+double z_for_alpha(double alpha);
+
+/// make_estimate() at the critical value `z` instead of a confidence (z_for_alpha gives it for
+/// the small alphas of simultaneous intervals).
+Estimate make_estimate_z(const Tally& t, std::uint64_t paths, double scale, double z);
+
 /// Outcome of comparing two estimates at a confidence level.
 enum class Relation { Greater, Less, Indistinguishable };
 

@@ -21,6 +21,7 @@ class JsonNode {
   [[noreturn]] void fail(const std::string& what) const { throw InputError(file_, path_, what); }
 
   const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
   bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
   JsonNode at(const char* key) const;                    // required member
   JsonNode operator[](std::size_t i) const;              // array element

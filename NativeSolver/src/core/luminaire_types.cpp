@@ -267,6 +267,15 @@ const std::array<LuminaireType, 5> kTypes = {{
 
 }  // namespace
 
+void read_luminaire_keys(const LuminaireType& row, const JsonNode& n, Luminaire& l,
+                         const std::string& base_dir) {
+  if (!n.has("power_w")) return row.read(n, l, base_dir);
+  l.power_w = n.at("power_w").number();  // range: validate()
+  nlohmann::json own = n.object();
+  own.erase("power_w");
+  row.read(JsonNode(own, n.path(), n.file()), l, base_dir);
+}
+
 std::span<const LuminaireType> luminaire_types() { return kTypes; }
 
 const LuminaireType& luminaire_type(Luminaire::Type type) {

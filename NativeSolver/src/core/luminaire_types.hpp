@@ -61,6 +61,11 @@ struct LuminaireType {
   bool placed;
 };
 
+/// Reads a luminaire entry's keys ("name" and "type" already read): the keys every type may
+/// have (`power_w`), then the row's own, which sees the entry without the common ones.
+void read_luminaire_keys(const LuminaireType& row, const JsonNode& n, Luminaire& l,
+                         const std::string& base_dir);
+
 /// The spot profile (relative intensity at `theta` from the axis; half angles in radians).
 double spot_profile(double theta, double half_beam, double half_field);
 

@@ -1,7 +1,8 @@
 // Results as JSON (lightsolver.results/1) and as a plain-text table for the terminal.
-#include <nlohmann/json.hpp>
-
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "lightsolver/defaults.hpp"
@@ -11,14 +12,78 @@ namespace lightsolver {
 namespace {
 
 nlohmann::json estimate_fields(const Estimate& e) {
-  return {{"mean_lux", e.mean}, {"ci_low_lux", e.ci_low}, {"ci_high_lux", e.ci_high},
-          {"sigma_lux", e.sigma}, {"hits", e.hits}};
+  return {{"mean_lux", e.mean},
+          {"ci_low_lux", e.ci_low},
+          {"ci_high_lux", e.ci_high},
+          {"sigma_lux", e.sigma},
+          {"hits", e.hits}};
+}
+
+// The requirements as resolved (table row values with the scene's own on top).
+nlohmann::json requirements_json(const Requirements& q) {
+  nlohmann::json j = nlohmann::json::object();
+  if (q.em_lux) j["em_lux"] = *q.em_lux;
+  if (q.u0) j["u0"] = *q.u0;
+  if (q.emin_lux) j["emin_lux"] = *q.emin_lux;
+  if (q.ud) j["ud"] = *q.ud;
+  if (!q.task.empty()) j["task"] = q.task;
+  if (!q.source.empty()) j["source"] = q.source;
+  return j;
+}
+
+nlohmann::json optional_number(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json verdicts_json(const std::vector<Verdict>& verdicts) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const Verdict& v : verdicts) {
+    nlohmann::json one = {{"verdict", to_string(v.verdict)},
+                          {"value", v.value},
+                          {"ci_low", v.ci_low},
+                          {"ci_high", v.ci_high},
+                          {"required", v.required},
+                          {"relation", ">="}};
+    if (v.verdict == VerdictKind::Undecided) {
+      const auto photons = v.photons_to_decide;  // a whole count (estimates are finite)
+      one["to_decide"] = {
+          {"photons",
+           photons ? nlohmann::json(static_cast<std::uint64_t>(std::ceil(std::min(*photons, 1e19))))
+                   : nlohmann::json(nullptr)},
+          {"seconds", optional_number(v.seconds_to_decide)}};
+    }
+    j[v.name] = std::move(one);
+  }
+  return j;
+}
+
+void add_grid_intervals(const GridIntervals& g, nlohmann::json& j) {
+  j["min_ci_low_lux"] = g.min_low;
+  j["min_ci_high_lux"] = g.min_high;
+  j["max_ci_low_lux"] = g.max_low;
+  j["max_ci_high_lux"] = g.max_high;
+  j["uniformity_ci_low"] = g.u0_low;
+  j["uniformity_ci_high"] = g.u0_high;
+  j["ud"] = g.ud;
+  j["ud_ci_low"] = g.ud_low;
+  j["ud_ci_high"] = g.ud_high;
+}
+
+// Requirements, verdicts and overall verdict: only on targets with requirements, so results
+// of scenes without any keep their layout (and the golden files their bits).
+void add_compliance(const TargetResult& t, nlohmann::json& j) {
+  if (t.intervals) add_grid_intervals(*t.intervals, j);
+  if (!t.requirements.any()) return;
+  j["requirements"] = requirements_json(t.requirements);
+  j["verdicts"] = verdicts_json(t.verdicts);
+  j["verdict"] = to_string(t.verdict);
 }
 
 nlohmann::json target_json(const TargetResult& t) {
-  nlohmann::json j = {{"name", t.name}, {"type", t.is_grid ? "grid" : "surface"},
-                      {"area_m2", t.area_m2}};
+  nlohmann::json j = {
+      {"name", t.name}, {"type", t.is_grid ? "grid" : "surface"}, {"area_m2", t.area_m2}};
   j.update(estimate_fields(t.estimate));
+  add_compliance(t, j);
   if (!t.is_grid) return j;
   j["cells_uv"] = {t.nu, t.nv};
   j["min_lux"] = t.min_lux;
@@ -49,6 +114,7 @@ std::string stop_text(const Results& r) {
     return "stopped: time limit " + fmt("%g s", r.max_seconds.value_or(0.0));
   }
   if (r.stop_reason == kStopCancelled) return "stopped: cancelled";
+  if (r.stop_reason == kStopDecided) return "stopped: every verdict decided";
   return "stopped: photon count reached";
 }
 
@@ -75,18 +141,46 @@ std::string results_to_json(const Results& r) {
     j["accuracy_met"] = r.accuracy_met;
     j["accuracy_per_cell"] = r.accuracy_per_cell;
   }
+  if (r.judged) {
+    j["verdict"] = to_string(r.verdict);
+    j["decide"] = r.decide;
+  }
   nlohmann::json targets = nlohmann::json::array();
   for (const auto& t : r.targets) targets.push_back(target_json(t));
   j["targets"] = std::move(targets);
   return j.dump(2) + "\n";
 }
 
+namespace {
+
+// One line per requirement: "  desk: u0 0.612 [0.571, 0.655] >= 0.6: undecided (to decide:
+// about 4.1e+06 photons, 12 s)".
+void verdict_lines(const Results& r, std::ostringstream& out) {
+  for (const auto& t : r.targets) {
+    for (const Verdict& v : t.verdicts) {
+      const char* f = v.name == "u0" || v.name == "ud" ? "%.3f" : "%.2f";
+      out << "  " << t.name << ": " << v.name << " " << fmt(f, v.value) << " [" << fmt(f, v.ci_low)
+          << ", " << fmt(f, v.ci_high) << "] >= " << fmt("%g", v.required) << ": "
+          << to_string(v.verdict);
+      if (v.verdict == VerdictKind::Undecided) {
+        out << " (to decide: "
+            << (v.photons_to_decide ? "about " + fmt("%.2g", *v.photons_to_decide) + " photons"
+                                    : std::string("unknown"))
+            << (v.seconds_to_decide ? ", " + fmt("%.2g", *v.seconds_to_decide) + " s" : "") << ")";
+      }
+      out << "\n";
+    }
+  }
+}
+
+}  // namespace
+
 std::string results_table(const Results& r) {
   std::ostringstream out;
   char line[256];
-  std::snprintf(line, sizeof line, "%-24s %12s %10s %10s %10s %10s %7s\n", "target", "E [lx]",
+  std::snprintf(line, sizeof line, "%-24s %12s %10s %10s %10s %10s %7s", "target", "E [lx]",
                 "± [lx]", "hits", "Emin [lx]", "Emax [lx]", "U0");
-  out << line;
+  out << line << (r.judged ? " verdict\n" : "\n");
   for (const auto& t : r.targets) {
     const Estimate& e = t.estimate;
     const double half = 0.5 * (e.ci_high - e.ci_low);
@@ -98,7 +192,12 @@ std::string results_table(const Results& r) {
       std::snprintf(line, sizeof line, " %10s %10s %7s", fmt("%.2f", t.min_lux).c_str(),
                     fmt("%.2f", t.max_lux).c_str(), fmt("%.3f", t.uniformity).c_str());
       out << line;
+    } else if (t.requirements.any()) {  // pad to the verdict column
+      std::snprintf(line, sizeof line, " %10s %10s %7s", "", "", "");
+      out << line;
     }
+    if (t.requirements.any())
+      out << " " << (t.verdict == VerdictKind::Fail ? "FAIL" : to_string(t.verdict));
     out << "\n";
   }
   std::snprintf(line, sizeof line,
@@ -106,6 +205,11 @@ std::string results_table(const Results& r) {
                 static_cast<unsigned long long>(r.photons), r.partial ? " (PARTIAL)" : "",
                 100.0 * r.confidence, r.backend.c_str(), r.seconds, stop_text(r).c_str());
   out << line;
+  if (r.judged) {
+    out << "verdicts (" << (r.decide ? "traced until decided" : "at the photons traced")
+        << "): " << to_string(r.verdict) << "\n";
+    verdict_lines(r, out);
+  }
   for (const auto& w : r.warnings) out << "warning: " << w << "\n";
   return out.str();
 }

@@ -233,6 +233,10 @@ class Validator {
   void luminaire(std::size_t i) {
     Luminaire& l = s_.luminaires[i];
     detail::luminaire_type(l.type).check(LuminaireFields(*this, i), l);
+    if (l.power_w && !(*l.power_w >= 0.0 && *l.power_w <= limits::kMaxPower_W)) {
+      fail(at("luminaires", i, "power_w"),
+           "must be a finite value in 0..10^9 W (got " + show(*l.power_w) + ")");
+    }
   }
 
   // corner + s*edge1 + t*edge2 with a non-zero area (area luminaires, sun openings, grids).
@@ -274,8 +278,33 @@ class Validator {
     mesh(i);
   }
 
+  // Requirements: illuminances > 0 and at most 10^7 lx, ratios in (0, 1]; a surface target
+  // has no cells, so only em_lux applies to it.
+  void requirements(std::size_t i, const Target& t) const {
+    const Requirements& r = t.requirements;
+    const std::string where = at("targets", i, "requirements");
+    for (const auto& [key, v] :
+         {std::pair{"em_lux", r.em_lux}, std::pair{"emin_lux", r.emin_lux}}) {
+      if (v && !(*v > 0.0 && *v <= limits::kMaxRequiredIlluminance_lx)) {
+        fail(where + "." + key, "must be > 0 and at most 10^7 lx (got " + show(*v) + ")");
+      }
+    }
+    for (const auto& [key, v] : {std::pair{"u0", r.u0}, std::pair{"ud", r.ud}}) {
+      if (v && !(*v > 0.0 && *v <= 1.0)) {
+        fail(where + "." + key, "must lie in (0, 1] (got " + show(*v) + ")");
+      }
+    }
+    if (t.type == Target::Type::Surface && (r.u0 || r.emin_lux || r.ud)) {
+      const char* key = r.u0 ? "u0" : r.emin_lux ? "emin_lux" : "ud";
+      fail(where + "." + key,
+           "a surface target has no cells: only em_lux applies to it (use a grid target for "
+           "U0, Emin and Ud)");
+    }
+  }
+
   void target(std::size_t i) {
     const Target& t = s_.targets[i];
+    requirements(i, t);
     if (t.type == Target::Type::Grid) return grid(i, t);
     if (bad_meshes_.count(t.mesh)) return;
     if (t.mesh < 0 || t.mesh >= static_cast<int>(s_.meshes.size())) {

@@ -8,6 +8,7 @@
 
 #include "core/json_reader.hpp"
 #include "core/luminaire_types.hpp"
+#include "core/requirements_table.hpp"
 #include "core/scene_document.hpp"
 #include "lightsolver/scene_io.hpp"
 
@@ -134,22 +135,22 @@ Luminaire read_luminaire(const JsonNode& n, const std::string& base_dir) {
                       detail::luminaire_type_names() + ")");
   }
   l.type = row->type;
-  row->read(n, l, base_dir);
+  detail::read_luminaire_keys(*row, n, l, base_dir);
   return l;
 }
 
-Target read_target(const JsonNode& n, const Scene& scene) {
+Target read_target(const JsonNode& n, const Scene& scene, const std::string& base_dir) {
   Target t;
   t.name = n.at("name").string();
   const std::string type = n.at("type").string();
   if (type == "surface") {
-    n.require_object({"name", "type", "mesh"});
+    n.require_object({"name", "type", "mesh", "requirements", "task"});
     t.type = Target::Type::Surface;
     const std::string mesh = n.at("mesh").string();
     t.mesh = scene.find_mesh(mesh);
     if (t.mesh < 0) n.at("mesh").fail("unknown mesh \"" + mesh + "\"");
   } else if (type == "grid") {
-    n.require_object({"name", "type", "corner", "edge1", "edge2", "cells"});
+    n.require_object({"name", "type", "corner", "edge1", "edge2", "cells", "requirements", "task"});
     t.type = Target::Type::Grid;
     t.corner = n.at("corner").vec3();
     t.edge1 = n.at("edge1").vec3();
@@ -168,12 +169,16 @@ Target read_target(const JsonNode& n, const Scene& scene) {
   } else {
     n.at("type").fail("unknown target type \"" + type + "\" (expected surface or grid)");
   }
+  t.requirements = detail::read_requirements(n, base_dir);
+  // A surface has no cells: a task's U0 applies to grids only (an explicit one is an error).
+  const bool explicit_u0 = n.has("requirements") && n.at("requirements").has("u0");
+  if (t.type == Target::Type::Surface && !explicit_u0) t.requirements.u0.reset();
   return t;
 }
 
 Settings read_settings(const JsonNode& n) {
-  n.require_object(
-      {"photons", "max_bounces", "seed", "confidence", "max_seconds", "accuracy_per_cell"});
+  n.require_object({"photons", "max_bounces", "seed", "confidence", "max_seconds",
+                    "accuracy_per_cell", "decide"});
   Settings s;
   if (n.has("photons")) s.photons = n.at("photons").unsigned_integer();
   if (n.has("max_bounces")) {
@@ -183,6 +188,7 @@ Settings read_settings(const JsonNode& n) {
   }
   if (n.has("seed")) s.seed = n.at("seed").unsigned_integer();
   s.confidence = n.number_or("confidence", s.confidence);
+  s.decide = n.boolean_or("decide", s.decide);
   if (n.has("max_seconds")) {
     s.max_seconds = n.at("max_seconds").number();  // finite
     if (!(*s.max_seconds > 0.0)) n.at("max_seconds").fail("must be > 0 (seconds)");
@@ -218,7 +224,7 @@ Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::
   }
   const JsonNode targets = root.at("targets");
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
-    scene.targets.push_back(read_target(targets[i], scene));
+    scene.targets.push_back(read_target(targets[i], scene, base_dir));
   }
   if (root.has("settings")) scene.settings = read_settings(root.at("settings"));
   if (root.has("optimization")) root.at("optimization").object();  // read by the optimizer
@@ -271,7 +277,7 @@ Luminaire luminaire_from_json(const nlohmann::json& entry, const std::string& wh
 }
 
 Target target_from_json(const nlohmann::json& entry, const std::string& where, const Scene& scene) {
-  return read_target(JsonNode(entry, "", where), scene);
+  return read_target(JsonNode(entry, "", where), scene, "");
 }
 
 }  // namespace lightsolver

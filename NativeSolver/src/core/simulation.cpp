@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
+#include "core/decide.hpp"
 
 namespace lightsolver {
 namespace detail {
@@ -113,7 +115,7 @@ RunForecast make_forecast(const Scene& scene, const detail::PreparedScene& s,
 // photon count: an explicit count (the optimizer's evaluations, --photons) is traced to the
 // end unless an explicit time limit is given too.
 void plan_run(const Scene& scene, const SolveOptions& o, Results& r) {
-  const bool open_budget = o.target_accuracy && !o.photons;
+  const bool open_budget = (o.target_accuracy || r.decide) && !o.photons;
   // The open budget stays within what exact 64-bit tallies allow at this max_bounces.
   const std::uint64_t budget =
       std::min(kAccuracyPhotonBudget, max_photons(scene.settings.max_bounces));
@@ -133,11 +135,27 @@ std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double 
   return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
 }
 
+// Cell and grid estimates at any alpha, for the simultaneous intervals of grid_intervals();
+// z is computed once per alpha (the cells share it).
+GridSampler grid_sampler(const Target& t, const detail::PreparedScene& s,
+                         const detail::TallyBlock& tallies, std::uint32_t bin,
+                         std::uint64_t photons) {
+  auto estimate = [&s, &tallies, bin, photons, alpha = -1.0, z = 0.0](std::uint32_t b,
+                                                                      double a) mutable {
+    if (a != alpha) z = z_for_alpha(alpha = a);
+    return make_estimate_z(tallies.bins[bin + b], photons,
+                           s.total_flux_lm / s.bins[bin + b].area_m2, z);
+  };
+  return {t.nu * t.nv, [estimate](double a) mutable { return estimate(0, a); },
+          [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
+}
+
 TargetResult make_target(const Target& t, const detail::PreparedScene& s,
                          const detail::TallyBlock& tallies, std::uint32_t bin,
-                         std::uint64_t photons, double confidence) {
+                         std::uint64_t photons, double confidence, bool judged) {
   TargetResult r;
   r.name = t.name;
+  r.requirements = t.requirements;
   r.is_grid = t.type == Target::Type::Grid;
   r.area_m2 = s.bins[bin].area_m2;
   auto estimate = [&](std::uint32_t b) {
@@ -154,6 +172,10 @@ TargetResult make_target(const Target& t, const detail::PreparedScene& s,
   r.min_lux = lo->mean;
   r.max_lux = hi->mean;
   r.uniformity = r.estimate.mean > 0.0 ? r.min_lux / r.estimate.mean : 0.0;
+  if (judged) {
+    r.intervals = grid_intervals(grid_sampler(t, s, tallies, bin, photons), confidence, r.min_lux,
+                                 r.max_lux, r.estimate.mean);
+  }
   return r;
 }
 
@@ -178,6 +200,11 @@ void add_warnings(const Scene& scene, Results& r) {
                          "for this scene");
   }
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
+  if (r.decide && r.verdict == VerdictKind::Undecided) {
+    r.warnings.push_back(
+        "the run ended before every verdict was decided; each undecided one says what "
+        "deciding it would cost (to_decide)");
+  }
   if (r.target_accuracy && !r.accuracy_met && r.stop_reason == kStopPhotons) {
     r.warnings.push_back(std::string("the photon budget ran out before every ") +
                          (r.accuracy_per_cell ? "cell" : "target") +
@@ -341,6 +368,8 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   const Scene& scene = state_->scene;
   const detail::PreparedScene& prepared = state_->prepared;
   Results r;
+  r.decide = options.decide.value_or(scene.settings.decide);
+  r.judged = detail::judges_requirements(scene, r.decide, options.target_accuracy.has_value());
   plan_run(scene, options, r);
   r.seed = options.seed.value_or(scene.settings.seed);
   r.confidence = options.confidence.value_or(scene.settings.confidence);
@@ -358,9 +387,20 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   detail::TallyBlock tallies(prepared.bins.size());
+  auto targets_at = [&](std::uint64_t photons, double confidence) {
+    std::vector<TargetResult> targets;
+    for (std::size_t i = 0; i < scene.targets.size(); ++i) {
+      targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
+                                    photons, confidence, r.judged));
+    }
+    return targets;
+  };
+  double tracing_s = 0.0;
+  int looks = 0;  // decide: verdicts judged so far (each at its own spent confidence)
   if (prepared.total_flux_lm > 0.0) {
     tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
     const bool accuracy_mode = r.target_accuracy.has_value();
+    const bool doubling = accuracy_mode || r.decide;  // batches: deterministic stopping points
     const auto tracing_start = Clock::now();
     bool forecast_due = static_cast<bool>(options.forecast);
     CheckpointTracer tracer(options, scene, prepared, tracing_start);
@@ -375,7 +415,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         r.stop_reason = kStopTime;
         break;
       }
-      std::uint64_t n = next_batch(r.photons, r.photons_requested, accuracy_mode, rate);
+      std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
       if (r.max_seconds) n = fit_time_limit(n, rate, *r.max_seconds - elapsed);
       tracer.trace(r.photons, n, r, tallies, [&](std::uint64_t first, std::uint64_t count) {
         arena.execute([&] { state_->backend->trace(first, count, r.seed, tallies); });
@@ -386,17 +426,35 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         r.stop_reason = kStopAccuracy;
         break;
       }
+      // Decide: verdicts are looked at when the photons double (a bounded number of looks,
+      // each spending its share of alpha).
+      if (r.decide && std::has_single_bit(r.photons)) {
+        std::vector<TargetResult> now =
+            targets_at(r.photons, detail::look_confidence(r.confidence, ++looks));
+        if (detail::all_decided(now)) {
+          r.stop_reason = kStopDecided;
+          break;
+        }
+      }
       // The first batches include warm-up; half a second of tracing gives a usable rate.
       const double traced_s = seconds_since(tracing_start);
       if (forecast_due && traced_s >= 0.5 && r.photons < r.photons_requested) {
         forecast_due = false;
-        options.forecast(make_forecast(scene, prepared, tallies, r, traced_s));
+        RunForecast f = make_forecast(scene, prepared, tallies, r, traced_s);
+        if (r.decide) {  // the photons the verdicts still open are expected to need
+          std::vector<TargetResult> now =
+              targets_at(r.photons, detail::look_confidence(r.confidence, looks));
+          f.photons = detail::photons_to_decide_all(now, r.photons, r.photons_requested);
+          f.seconds = double(f.photons) / f.photons_per_second;
+        }
+        options.forecast(f);
       }
       if (progress && !progress(r.photons, r.photons_requested)) {
         if (r.photons < r.photons_requested) r.stop_reason = kStopCancelled;
         break;
       }
     }
+    tracing_s = seconds_since(tracing_start);
   } else {
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
@@ -404,10 +462,9 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
-  for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-    r.targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
-                                    r.photons, r.confidence));
-  }
+  r.targets = targets_at(r.photons, r.confidence);
+  detail::add_verdicts(r);
+  detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   add_warnings(scene, r);
   add_stop_warnings(r);
   r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());

@@ -86,13 +86,24 @@ bool finite(const Estimate& e) {
 }  // namespace
 
 Estimate make_estimate(const Tally& t, std::uint64_t paths, double scale, double confidence) {
+  return make_estimate_z(t, paths, scale, cached_z(confidence));
+}
+
+double z_for_alpha(double alpha) {
+  if (!(alpha > 0.0 && alpha < 1.0)) throw std::invalid_argument("alpha must lie in (0, 1)");
+  // erfc^-1 of alpha itself: full relative precision for the tiny alphas of simultaneous
+  // intervals over many cells (1 - alpha would round there).
+  return boost::math::constants::root_two<double>() * boost::math::erfc_inv(alpha);
+}
+
+Estimate make_estimate_z(const Tally& t, std::uint64_t paths, double scale, double z) {
   if (!(scale >= 0.0 && std::isfinite(scale))) {
     throw std::invalid_argument("make_estimate: scale must be finite and >= 0");
   }
+  if (!(z >= 0.0 && std::isfinite(z))) throw std::invalid_argument("make_estimate: bad z");
   Estimate e;
   e.hits = t.sum;
   if (paths == 0) return e;
-  const double z = cached_z(confidence);
   const double n = static_cast<double>(paths);
   const double p = static_cast<double>(t.sum) / n;
   e.mean = scale * p;

@@ -1,0 +1,78 @@
+#pragma once
+/// \file compliance.hpp
+/// Requirements on targets (EN 12464-1 style: Em, U0, Emin, Ud) and verdicts decided from the
+/// confidence intervals: pass when the whole interval lies on the allowed side, fail when it
+/// lies wholly on the other, undecided otherwise (docs/statistics.md, "Verdicts").
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "lightsolver/statistics.hpp"
+
+namespace lightsolver {
+
+/// What a target must reach; every value is a lower bound (relation ">="). Any subset.
+struct Requirements {
+  std::optional<double> em_lux;    ///< maintained mean illuminance Em
+  std::optional<double> u0;        ///< Emin / Em (grids only)
+  std::optional<double> emin_lux;  ///< smallest cell (grids only)
+  std::optional<double> ud;        ///< Emin / Emax (grids only)
+  std::string task;                ///< the requirements table row it came from, or empty
+  std::string source;              ///< the table's source (e.g. "EN 12464-1:2021 ..."), or empty
+
+  bool any() const { return em_lux || u0 || emin_lux || ud; }
+};
+
+/// Outcome of one requirement.
+enum class VerdictKind { Pass, Fail, Undecided };
+
+/// "pass", "fail", "undecided".
+const char* to_string(VerdictKind v);
+
+/// One requirement judged: value and its interval against `required` (value >= required).
+struct Verdict {
+  std::string name;  ///< "em", "u0", "emin" or "ud"
+  VerdictKind verdict = VerdictKind::Undecided;
+  double value = 0.0, ci_low = 0.0, ci_high = 0.0, required = 0.0;
+  /// Undecided only: estimated photons (of a whole run) and tracing seconds to decide it;
+  /// empty when no estimate can be made (value exactly at the bound, nothing traced).
+  std::optional<double> photons_to_decide, seconds_to_decide;
+};
+
+/// The interval rule for "value >= required": Pass iff ci_low >= required (the interval lies in
+/// the allowed set [required, inf), its end included); Fail iff ci_high < required (no point
+/// of it is allowed); Undecided otherwise, including ci_high == required.
+VerdictKind judge(double ci_low, double ci_high, double required);
+
+/// Intervals of a grid's statistics at the run's confidence c = 1 - alpha. Every interval holds
+/// its estimate; all finite.
+struct GridIntervals {
+  double min_low = 0.0, min_high = 0.0;          ///< Emin
+  double max_low = 0.0, max_high = 0.0;          ///< Emax
+  double u0_low = 0.0, u0_high = 0.0;            ///< U0 = Emin / Em
+  double ud = 0.0, ud_low = 0.0, ud_high = 0.0;  ///< Ud = Emin / Emax (0 when Emax is 0)
+};
+
+/// A grid's interval inputs: its whole-grid estimate and its cells' estimates, each at the
+/// two-sided level 1 - alpha it is called with.
+struct GridSampler {
+  std::uint32_t cells = 0;
+  std::function<Estimate(double alpha)> grid;
+  std::function<Estimate(std::uint32_t cell, double alpha)> cell;
+};
+
+/// Emin, Emax, U0 and Ud intervals at `confidence` (docs/statistics.md, "Emin over noisy
+/// cells"): Emin's lower end is the smallest cell lower bound, its upper end the smallest upper
+/// bound of cell intervals that hold simultaneously (Bonferroni), so it is honest about being
+/// a minimum over many noisy cells; Emax mirrors it; U0 and Ud split alpha between their two
+/// factors. `min_lux`, `max_lux`, `mean_lux` are the point estimates.
+GridIntervals grid_intervals(const GridSampler& s, double confidence, double min_lux,
+                             double max_lux, double mean_lux);
+
+/// The overall verdict of a list: Fail if any fails, else Undecided if any is, else Pass.
+VerdictKind overall(const std::vector<VerdictKind>& verdicts);
+
+}  // namespace lightsolver
