@@ -252,8 +252,8 @@ class CheckpointTracer {
         c.seconds = seconds_since(start_);
         c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
         for (std::size_t i = 0; i < scene_.targets.size(); ++i) {
-          c.targets.push_back(
-              make_target(scene_.targets[i], s_, tallies, s_.target_bin[i], at, r.confidence));
+          c.targets.push_back(make_target(scene_.targets[i], s_, tallies, s_.target_bin[i], at,
+                                          r.confidence, r.judged));
         }
         o_.checkpoint(c);
       }
