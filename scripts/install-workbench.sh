@@ -72,10 +72,11 @@ for dir in "${mod_dirs[@]}"; do
   rm -rf "$target"
   if [ "$mode" = copy ]; then
     cp -r "$src" "$target"
-    # The shipped photometric files live beside Workbench/ in the source tree; a copy takes
-    # them along (lighting/luminaire_library.py looks in both places).
+    # The shipped data (photometric files, the EN 12464-1 table) lives beside Workbench/ in
+    # the source tree; a copy takes it along (lighting/resources.py looks in both places).
     mkdir -p "$target/Resources"
     cp -r "$repo/Resources/luminaires" "$target/Resources/luminaires"
+    cp -r "$repo/Resources/requirements" "$target/Resources/requirements"
     find "$target" -name __pycache__ -prune -exec rm -rf {} +
     touch "$target/.installed-by-lighting"
   else

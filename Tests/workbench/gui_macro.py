@@ -132,6 +132,7 @@ def cancel_run(doc):
 
     analysis = doc.getObject("LightingAnalysis")
     analysis.Photons = 500000000
+    analysis.Decide = False  # a run that only Cancel ends
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(analysis)
     loop = QtCore.QEventLoop()

@@ -35,8 +35,11 @@ class OfficeExport(DocTestCase):
         print(f"triangles: {triangles}")
         self.assertGreater(triangles, 100)
         self.assertLess(triangles, 3000)  # the office must stay small
+        # The office's work plane has requirements: the run decides them (Photons: the budget).
         self.assertEqual(scene["settings"], {"photons": 100000, "max_bounces": 1000, "seed": 1,
-                                             "confidence": 0.95})
+                                             "confidence": 0.95, "decide": True})
+        workplane = next(t for t in scene["targets"] if t["name"] == "Workplane")
+        self.assertEqual(workplane["requirements"], {"em_lux": 500.0, "u0": 0.6})
         self.assertEqual(len({m["name"] for m in scene["meshes"]}), len(scene["meshes"]))
         for m in scene["meshes"]:
             self.assertIn(m["material"], scene["materials"])

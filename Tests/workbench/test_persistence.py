@@ -155,6 +155,7 @@ class Persistence(DocTestCase):
         import jsonschema
 
         doc = build_office(photons=50000)
+        doc.getObject("LightingAnalysis").Decide = False  # exactly the photons asked for
         second = lighting.make_analysis(doc, "SecondAnalysis", photons=20000)
         lighting.make_luminaire(doc, (2.5, 2.0, 2.5), kind="Point", flux_lm=1000.0,
                                 name="SecondLamp", analysis=second)

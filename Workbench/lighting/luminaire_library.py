@@ -162,10 +162,9 @@ def _candidate_shipped_dirs() -> List[str]:
     env = os.environ.get(ENV_SHIPPED)
     if env:
         dirs.append(env)
-    for here in (os.path.abspath(__file__), os.path.realpath(__file__)):
-        workbench = os.path.dirname(os.path.dirname(here))  # .../Workbench or Mod/Lighting
-        dirs.append(os.path.join(workbench, "Resources", "luminaires"))
-        dirs.append(os.path.join(os.path.dirname(workbench), "Resources", "luminaires"))
+    from lighting import resources
+
+    dirs.extend(resources.candidates("luminaires"))
     return list(dict.fromkeys(dirs))
 
 

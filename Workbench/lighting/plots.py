@@ -13,7 +13,7 @@ from __future__ import annotations
 import io
 import math
 from dataclasses import dataclass
-from typing import Any, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -44,6 +44,12 @@ class GridPlot:
     required_uniformity: float = 0.0
     axis_names: Tuple[str, str] = ("u", "v")
     origin_m: Tuple[float, float] = (0.0, 0.0)
+    #: The solver's verdicts by requirement ("em", "u0", ...: {"verdict": ...}), when it
+    #: judged them from the intervals.
+    verdicts: Optional[Dict[str, Dict[str, Any]]] = None
+
+    def _judged(self, key: str, met: bool) -> str:
+        return _judged_word(self.verdicts, key, met)
 
     def caption(self) -> str:
         """Em, Emin, Emax and U0, and the requirement when there is one."""
@@ -51,12 +57,20 @@ class GridPlot:
                 f"Emax {self.max_lux:.0f} lx   U0 {self.uniformity:.2f}")
         needs = []
         if self.required_lux > 0:
-            met = "met" if self.mean_lux >= self.required_lux else "NOT met"
-            needs.append(f"Em \u2265 {self.required_lux:g} lx ({met})")
+            needs.append(f"Em \u2265 {self.required_lux:g} lx "
+                         f"({self._judged('em', self.mean_lux >= self.required_lux)})")
         if self.required_uniformity > 0:
-            met = "met" if self.uniformity >= self.required_uniformity else "NOT met"
-            needs.append(f"U0 \u2265 {self.required_uniformity:g} ({met})")
+            needs.append(f"U0 \u2265 {self.required_uniformity:g} "
+                         f"({self._judged('u0', self.uniformity >= self.required_uniformity)})")
         return text + (f"\nrequired: {', '.join(needs)}" if needs else "")
+
+
+def _judged_word(verdicts: Optional[Dict[str, Dict[str, Any]]], key: str, met: bool) -> str:
+    """The solver's verdict (from the interval) or, for older results, the estimate's."""
+    found = (verdicts or {}).get(key, {}).get("verdict")
+    if found:
+        return {"pass": "pass", "fail": "FAIL"}.get(found, "undecided")
+    return "met (estimate)" if met else "NOT met (estimate)"
 
 
 def analysis_scale(analysis: Any) -> Scale:
@@ -111,7 +125,13 @@ def grid_plot_data(analysis: Any, target: Any) -> Optional[GridPlot]:
                     max_lux=float(found.MaxLux[index]), uniformity=float(found.Uniformity[index]),
                     required_lux=float(target.RequiredLux),
                     required_uniformity=float(target.RequiredUniformity),
-                    axis_names=names, origin_m=origin)
+                    axis_names=names, origin_m=origin, verdicts=_verdicts_of(found, index))
+
+
+def _verdicts_of(found: Any, index: int) -> Optional[Dict[str, Dict[str, Any]]]:
+    """The stored target's verdicts (None for results without them)."""
+    targets = (results_mod.data(found) or {}).get("targets", [])
+    return targets[index].get("verdicts") if index < len(targets) else None
 
 
 def _colormap(scale: Scale) -> Any:

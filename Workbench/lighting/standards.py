@@ -58,40 +58,84 @@ class Requirement(NamedTuple):
     uniformity: float
 
 
-# Rows of EN 12464-1:2021 as quoted by luminaire makers (verify against
-# the standard before relying on one): task area Em and U0, walls and ceiling Em with U0 >= 0.10.
-# "General" is the standard's minimum for walls (75 lx) and ceilings (50 lx) in any interior;
-# offices, conference rooms and drawing offices ask 150 lx on walls and 100 lx on the ceiling.
-# A floor grid is judged like the task area (corridors are evaluated at floor level).
-_WALL_U0 = 0.10
-_ROWS = {
-    # activity: (task Em, task U0, wall Em, ceiling Em)
-    "General": (0.0, 0.0, 75.0, 50.0),
-    "Office: writing, typing, reading, data processing": (500.0, 0.60, 150.0, 100.0),
-    "Office: filing, copying": (300.0, 0.40, 150.0, 100.0),
-    "Conference and meeting rooms": (500.0, 0.60, 150.0, 100.0),
-    "Technical drawing": (750.0, 0.70, 150.0, 100.0),
-    "Corridors and circulation areas": (100.0, 0.40, 75.0, 50.0),
-}
-#: The presets a grid's ``Activity`` offers, "Custom" first.
-ACTIVITIES = (CUSTOM,) + tuple(_ROWS)
+#: The requirements table shipped as data (Resources/requirements/en12464-1.json), the one the
+#: solver reads for a target's "task": the presets come from it, not from code.
+TABLE_PARTS = ("requirements", "en12464-1.json")
+#: Preset of walls and ceilings in any interior (no task area).
+GENERAL = "General (walls and ceilings of any interior)"
+
+
+class Task(NamedTuple):
+    """One row of the table: what a preset fills in."""
+
+    id: str
+    name: str
+    area: str
+    task: Requirement
+    wall: Requirement
+    ceiling: Requirement
+    ugr_limit: Optional[float]
+
+
+def _load_table() -> Tuple[dict, Tuple[Task, ...]]:
+    """The table's document and its rows (ValueError naming the file when it is unreadable)."""
+    import json
+
+    from lighting import resources
+
+    path = resources.find(*TABLE_PARTS)
+    if path is None:
+        raise ValueError(f"the requirements table Resources/{'/'.join(TABLE_PARTS)} was not found "
+                         f"(looked in {', '.join(resources.candidates(*TABLE_PARTS))})")
+    try:
+        with open(path, encoding="utf-8") as stream:
+            doc = json.load(stream)
+        u0 = float(doc["walls_and_ceilings"]["u0"])
+        rows = tuple(Task(r["id"], f"{r['area'].capitalize()}: {r['name']}", r["area"],
+                          Requirement(float(r["em_lux"]), float(r["u0"])),
+                          Requirement(float(r["wall_em_lux"]), u0),
+                          Requirement(float(r["ceiling_em_lux"]), u0), r.get("ugr_l"))
+                     for r in doc["tasks"])
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise ValueError(f"{path}: not a readable requirements table ({exc})") from exc
+    return doc, rows
+
+
+_DOC, TASKS = _load_table()
+_WC = _DOC["walls_and_ceilings"]
+_GENERAL = Task("", GENERAL, "", Requirement(0.0, 0.0),
+                Requirement(float(_WC["general_wall_em_lux"]), float(_WC["u0"])),
+                Requirement(float(_WC["general_ceiling_em_lux"]), float(_WC["u0"])), None)
+_BY_NAME = {t.name: t for t in (_GENERAL,) + TASKS}
+#: Where the figures come from (for reports and tooltips).
+SOURCE = str(_DOC.get("source", ""))
+#: The presets a grid's ``Activity`` offers: "Custom" first, then the general wall/ceiling
+#: minimum, then the table's task areas.
+ACTIVITIES = (CUSTOM,) + tuple(_BY_NAME)
+
+
+def task_of(activity: str) -> Optional[Task]:
+    """The table row of a preset name (None for Custom and General)."""
+    row = _BY_NAME.get(activity)
+    return row if row is not None and row.id else None
 
 
 def requirement(activity: str, surface: str) -> Optional[Requirement]:
     """The EN 12464-1 requirement of ``surface`` (one of SURFACE_KINDS) in ``activity`` (one of
-    ACTIVITIES); None for "Custom". Raises ValueError naming an unknown activity or surface."""
+    ACTIVITIES); None for "Custom". A floor grid is judged like the task area (corridors are
+    evaluated at floor level). Raises ValueError naming an unknown activity or surface."""
     if surface not in SURFACE_KINDS:
         raise ValueError(f"unknown surface kind {surface!r}; one of {SURFACE_KINDS}")
     if activity == CUSTOM:
         return None
-    if activity not in _ROWS:
+    row = _BY_NAME.get(activity)
+    if row is None:
         raise ValueError(f"unknown activity {activity!r}; one of {ACTIVITIES}")
-    task_lux, task_u0, wall_lux, ceiling_lux = _ROWS[activity]
     if surface == "Wall":
-        return Requirement(wall_lux, _WALL_U0)
+        return row.wall
     if surface == "Ceiling":
-        return Requirement(ceiling_lux, _WALL_U0)
-    return Requirement(task_lux, task_u0)
+        return row.ceiling
+    return row.task
 
 
 def surface_kind(normal_z: float) -> str:

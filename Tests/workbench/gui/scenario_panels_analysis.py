@@ -114,6 +114,14 @@ def body() -> None:
             for r in range(panel.table.rowCount())}
     STATUS["table"] = rows
     expect(set(rows) >= {"Workplane", "Desk top", "North wall"}, f"table rows: {rows}")
+    # The Check column is the solver's verdict from the intervals (the office decides its
+    # work plane's 500 lx / U0 0.6 by default), not a point estimate.
+    last = panel.table.columnCount() - 1
+    verdicts = {panel.table.item(r, 0).text(): panel.table.item(r, last).text()
+                for r in range(panel.table.rowCount())}
+    STATUS["verdicts"] = verdicts
+    expect(verdicts.get("Workplane") in ("pass", "FAIL", "undecided"),
+           f"the work plane's verdict is not the solver's: {verdicts}")
     expect(300.0 < float(rows.get("Workplane", "0")) < 900.0, f"Workplane Em: {rows}")
     expect(geometry["table_visible"], f"the results table is not inside the viewport: {geometry}")
     expect(geometry["table_columns_px"] <= geometry["table_viewport_px"],

@@ -10,6 +10,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtGui
 
+from lighting import standards
 from lighting.objects import analysis as analysis_mod
 from lighting.objects.base import proxy_type
 from lighting.viewproviders.base import icon_path
@@ -155,8 +156,8 @@ class CommandGrid(BaseCommand):
            "(any planar face): a wall or ceiling grid on it, facing the room, with the "
            "EN 12464-1 wall/ceiling requirement")
     #: Object name and Activity preset of a new grid by its Surface kind.
-    KINDS = {"Work plane": ("Workplane", None), "Wall": ("WallGrid", "General"),
-             "Ceiling": ("CeilingGrid", "General"), "Floor": ("FloorGrid", None)}
+    KINDS = {"Work plane": ("Workplane", None), "Wall": ("WallGrid", standards.GENERAL),
+             "Ceiling": ("CeilingGrid", standards.GENERAL), "Floor": ("FloorGrid", None)}
 
     def IsActive(self) -> bool:  # noqa: N802
         return _doc() is not None and bool(FreeCADGui.Selection.getSelection())

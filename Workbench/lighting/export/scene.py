@@ -236,7 +236,8 @@ class SceneBuilder:
             self.labels[tgt.Name] = tgt.Label
             if tgt.TargetType == "Grid":
                 try:
-                    targets.append(target_mod.grid_rectangle(tgt).scene_entry(tgt.Name))
+                    targets.append(dict(target_mod.grid_rectangle(tgt).scene_entry(tgt.Name),
+                                        **target_mod.requirements_entry(tgt)))
                 except ValueError as exc:
                     self.report.add("error", str(exc), tgt.Name)
                 continue
@@ -246,7 +247,8 @@ class SceneBuilder:
                 continue
             meshes.append(builder.scene_entry())
             result.mesh_triangles[builder.name] = len(builder.triangles)
-            targets.append({"name": tgt.Name, "type": "surface", "mesh": builder.name})
+            targets.append({"name": tgt.Name, "type": "surface", "mesh": builder.name,
+                            **target_mod.requirements_entry(tgt)})
         luminaires = []
         for lum in lums:
             self.labels[lum.Name] = lum.Label

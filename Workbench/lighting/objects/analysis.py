@@ -54,6 +54,11 @@ class Analysis(BaseProxy):
                         "usable, else the CPU) or one this solver build has", "auto",
                         items=FALLBACK_BACKENDS),
         "Threads": Prop("App::PropertyInteger", "Solver", "Worker threads (0 = all cores)", 0),
+        "Decide": Prop("App::PropertyBool", "Solver",
+                       "When targets have requirements (and TargetAccuracy is 0): trace until "
+                       "every requirement is decided pass or fail from its interval, with Photons "
+                       "as the budget (undecided ones say what deciding would cost); off: trace "
+                       "exactly Photons", True),
         # Export
         "LinearDeflection": Prop("App::PropertyLength", "Export",
                                  "Tessellation: largest distance between a curved surface and "
@@ -164,9 +169,24 @@ def find_analysis(doc: Any, name: Optional[str] = None) -> Optional[Any]:
 
 
 def settings(analysis: Any) -> Dict[str, Any]:
-    """The scene's ``settings`` object (docs/scene-format.md)."""
-    return {"photons": int(analysis.Photons), "max_bounces": int(analysis.MaxBounces),
-            "seed": int(analysis.Seed), "confidence": float(analysis.Confidence)}
+    """The scene's ``settings`` object (docs/scene-format.md): ``decide`` when the analysis
+    decides its targets' requirements (a scene file then reproduces the run in the CLI)."""
+    out = {"photons": int(analysis.Photons), "max_bounces": int(analysis.MaxBounces),
+           "seed": int(analysis.Seed), "confidence": float(analysis.Confidence)}
+    if decides(analysis):
+        out["decide"] = True
+    return out
+
+
+def decides(analysis: Any) -> bool:
+    """Whether a run traces until the requirements are decided: Decide on, no accuracy goal,
+    and some target with a requirement."""
+    if not bool(getattr(analysis, "Decide", False)) or float(analysis.TargetAccuracy) > 0.0:
+        return False
+    return any(float(getattr(t, "RequiredLux", 0.0)) > 0.0
+               or (getattr(t, "TargetType", "") == "Grid"
+                   and float(getattr(t, "RequiredUniformity", 0.0)) > 0.0)
+               for t in targets(analysis))
 
 
 def check(analysis: Any) -> List[tuple]:

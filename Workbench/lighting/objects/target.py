@@ -179,6 +179,26 @@ def apply_preset(obj: Any) -> None:
         obj.RequiredUniformity = wanted.uniformity
 
 
+def requirements_entry(obj: Any) -> Dict[str, Any]:
+    """The target's requirements as scene-entry keys (docs/scene-format.md): ``task`` (the
+    table row of a task-area preset, so results and reports name it) and ``requirements``
+    with the values the document holds (they replace the row's). The solver judges them from
+    the intervals; a face target takes only Em. Empty without requirements."""
+    entry: Dict[str, Any] = {}
+    is_grid = obj.TargetType == "Grid"
+    task = standards.task_of(obj.Activity) if "Activity" in obj.PropertiesList else None
+    if task is not None and is_grid and obj.Surface in ("Work plane", "Floor"):
+        entry["task"] = task.id
+    wanted: Dict[str, float] = {}
+    if float(obj.RequiredLux) > 0.0:
+        wanted["em_lux"] = float(obj.RequiredLux)
+    if is_grid and float(obj.RequiredUniformity) > 0.0:
+        wanted["u0"] = float(obj.RequiredUniformity)
+    if wanted:
+        entry["requirements"] = wanted
+    return entry
+
+
 def grid_display_shape(rect: GridRect) -> Any:
     """Compound with one face per cell, in cell order (index = iv*nu + iu), for colouring."""
     import Part

@@ -57,18 +57,38 @@ class TargetResult:
     cells_hits: List[float] = field(default_factory=list)
     required_lux: float = 0.0
     required_uniformity: float = 0.0
+    #: The solver's overall verdict on the target's requirements ("pass", "fail",
+    #: "undecided"), judged from the intervals; None when it judged none.
+    verdict: Optional[str] = None
+    #: The solver's verdict per requirement (docs/scene-format.md, "Requirements and verdicts").
+    verdicts: Dict[str, Dict[str, Any]] = field(default_factory=dict)
+    #: The solver's U0 interval (honest for a minimum over noisy cells), when it gave one.
+    solver_uniformity_ci: Optional[Tuple[float, float]] = None
 
     @property
     def uniformity_ci(self) -> Tuple[float, float]:
-        """Conservative interval of U0 = Emin/Em from the intervals of Emin and Em."""
+        """The solver's U0 interval when it judged requirements; otherwise a conservative one
+        from the intervals of Emin and Em."""
+        if self.solver_uniformity_ci is not None:
+            return self.solver_uniformity_ci
         if self.uniformity is None or self.ci_high_lux <= 0.0:
             return (0.0, 0.0)
         low = self.min_ci_lux[0] / self.ci_high_lux
         high = self.min_ci_lux[1] / self.ci_low_lux if self.ci_low_lux > 0 else float("inf")
         return (low, high)
 
+    def verdict_text(self) -> str:
+        """"pass", "FAIL" or "undecided" as the solver judged the intervals; for results of
+        older versions (no verdicts) the point estimate against the requirement, marked "(est.)";
+        "" without requirements."""
+        if self.verdict is not None:
+            return {"pass": "pass", "fail": "FAIL"}.get(self.verdict, "undecided")
+        passed = self.passes()
+        return "" if passed is None else ("pass (est.)" if passed else "FAIL (est.)")
+
     def passes(self) -> Optional[bool]:
-        """True/False against RequiredLux/RequiredUniformity; None when none is set."""
+        """True/False against RequiredLux/RequiredUniformity from the point estimates; None when
+        none is set (the solver's verdicts, from the intervals, are ``verdict``)."""
         checks = []
         if self.required_lux > 0.0:
             checks.append(self.mean_lux >= self.required_lux)
@@ -106,7 +126,23 @@ class TargetResult:
                 i_max = max(range(len(result.cells_lux)), key=result.cells_lux.__getitem__)
                 result.min_ci_lux = (result.cells_ci_low_lux[i_min], result.cells_ci_high_lux[i_min])
                 result.max_ci_lux = (result.cells_ci_low_lux[i_max], result.cells_ci_high_lux[i_max])
+            _solver_intervals(result, entry)
+        if entry.get("verdict") in ("pass", "fail", "undecided"):
+            result.verdict = str(entry["verdict"])
+            result.verdicts = dict(entry.get("verdicts") or {})
         return result
+
+
+def _solver_intervals(result: TargetResult, entry: Dict[str, Any]) -> None:
+    """The solver's intervals of Emin, Emax and U0 (simultaneous over the cells, so honest for a
+    minimum or maximum of noisy cells: docs/statistics.md), where the run judged requirements."""
+    if "min_ci_low_lux" in entry:
+        result.min_ci_lux = (_float(entry["min_ci_low_lux"]), _float(entry["min_ci_high_lux"]))
+    if "max_ci_low_lux" in entry:
+        result.max_ci_lux = (_float(entry["max_ci_low_lux"]), _float(entry["max_ci_high_lux"]))
+    if "uniformity_ci_low" in entry:
+        result.solver_uniformity_ci = (_float(entry["uniformity_ci_low"]),
+                                       _float(entry["uniformity_ci_high"]))
 
 
 @dataclass
@@ -168,8 +204,7 @@ def format_table(result: AnalysisResult) -> str:
               "Emax CI", "U0", "U0 CI", "Check")
     rows = [header]
     for t in result.targets:
-        passed = t.passes()
-        verdict = "" if passed is None else ("pass" if passed else "FAIL")
+        verdict = t.verdict_text()
         if t.kind == "grid":
             u_lo, u_hi = t.uniformity_ci
             rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", _ci(t.ci_low_lux, t.ci_high_lux),

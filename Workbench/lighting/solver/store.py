@@ -138,9 +138,9 @@ def summary_line(result: AnalysisResult, limit: int = 3) -> str:
         text = f"{t.label} Em {t.mean_lux:.0f} lx"
         if t.kind == "grid":
             text += f" U0 {t.uniformity:.2f}"
-        verdict = t.passes()
-        if verdict is not None:
-            text += " pass" if verdict else " FAIL"
+        verdict = t.verdict_text()
+        if verdict:
+            text += f" {verdict}"
         parts.append(text)
     if len(result.targets) > limit:
         parts.append(f"+{len(result.targets) - limit} more")

@@ -15,11 +15,11 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from lighting.colormap import Scale
 from lighting.messages import CheckError, LightingError
 from lighting.objects.analysis import COLOR_MAPS, SCALE_MODES
 from lighting.solver import machine, results as results_mod, store
 from lighting.taskpanels import plan_view
+from lighting.taskpanels.legend_widget import LegendWidget
 from lighting.taskpanels.modeless import ModelessPanel
 from lighting.viewproviders import coloring
 from lighting.viewproviders.base import icon_path
@@ -44,11 +44,14 @@ def last_panel() -> Optional["AnalysisTaskPanel"]:
     return _last_panel
 
 
+#: Text colours of the verdict column: pass green, FAIL red, undecided amber.
+VERDICT_COLOURS = {"pass": (0, 130, 0), "FAIL": (200, 0, 0), "undecided": (190, 110, 0)}
+
+
 def _rows(result: results_mod.AnalysisResult) -> List[List[str]]:
     rows = []
     for t in result.targets:
-        passed = t.passes()
-        verdict = "" if passed is None else ("pass" if passed else "FAIL")
+        verdict = t.verdict_text()
         ci = f"{t.ci_low_lux:.1f} - {t.ci_high_lux:.1f}"
         if t.kind == "grid":
             u_lo, u_hi = t.uniformity_ci
@@ -67,37 +70,6 @@ def _stacked_form() -> QtGui.QFormLayout:
     form.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)
     form.setFieldGrowthPolicy(QtGui.QFormLayout.AllNonFixedFieldsGrow)
     return form
-
-
-class LegendWidget(QtGui.QWidget):
-    """A horizontal colour bar with min and max labels."""
-
-    def __init__(self, parent: Optional[QtGui.QWidget] = None) -> None:
-        super().__init__(parent)
-        self.scale: Optional[Scale] = None
-        self.setMinimumHeight(34)
-
-    def set_scale(self, scale: Optional[Scale]) -> None:
-        self.scale = scale
-        self.update()
-
-    def paintEvent(self, event: Any) -> None:  # noqa: N802 (Qt API name)
-        if self.scale is None:
-            return
-        painter = QtGui.QPainter(self)
-        rect = self.rect().adjusted(2, 2, -2, -18)
-        gradient = QtGui.QLinearGradient(rect.left(), 0, rect.right(), 0)
-        for i in range(11):
-            r, g, b = self.scale.colour(self.scale.min_lux + i / 10.0 *
-                                        (self.scale.max_lux - self.scale.min_lux))
-            gradient.setColorAt(i / 10.0, QtGui.QColor.fromRgbF(r, g, b))
-        painter.fillRect(rect, QtGui.QBrush(gradient))
-        painter.drawText(rect.left(), rect.bottom() + 15, f"{self.scale.min_lux:.0f} lx")
-        right = f"{self.scale.max_lux:.0f} lx"
-        width = painter.fontMetrics().horizontalAdvance(right) if hasattr(
-            painter.fontMetrics(), "horizontalAdvance") else painter.fontMetrics().width(right)
-        painter.drawText(rect.right() - width, rect.bottom() + 15, right)
-        painter.end()
 
 
 class AnalysisTaskPanel(ModelessPanel):
@@ -217,8 +189,14 @@ class AnalysisTaskPanel(ModelessPanel):
         self.accuracy.setValue(float(self.analysis.TargetAccuracy) * 100.0)
         self.accuracy.setToolTip("Stop when every target's confidence interval is this "
                                  "narrow (relative half width); off: trace all photons")
+        self.decide = QtGui.QCheckBox("Decide requirements")
+        self.decide.setChecked(bool(getattr(self.analysis, "Decide", False)))
+        self.decide.setToolTip("Trace until every requirement is pass or fail from its interval "
+                               "(Photons is then the budget; undecided ones say what deciding "
+                               "would cost)")
         form.addRow("Photons", self.photons)
         form.addRow("Target accuracy", self.accuracy)
+        form.addRow(self.decide)
         return form
 
     def _build_results(self) -> QtGui.QLayout:
@@ -324,7 +302,8 @@ class AnalysisTaskPanel(ModelessPanel):
     def _write_settings(self) -> None:
         # One "Lighting settings" undo step only when a value really changes.
         store.write_settings(self.analysis, Photons=self.photons.value(),
-                             TargetAccuracy=self.accuracy.value() / 100.0)
+                             TargetAccuracy=self.accuracy.value() / 100.0,
+                             Decide=self.decide.isChecked())
 
     def show_state(self, state: Optional[Any] = None) -> None:
         """Show whether the stored results are current or stale (red, with what changed)."""
@@ -368,14 +347,18 @@ class AnalysisTaskPanel(ModelessPanel):
             for column, value in enumerate(values):
                 item = QtGui.QTableWidgetItem(value)
                 item.setToolTip(tip)
-                if value == "FAIL":
-                    item.setForeground(QtGui.QBrush(QtGui.QColor(200, 0, 0)))
+                colour = VERDICT_COLOURS.get(value.split(" ")[0]) if column == len(values) - 1 \
+                    else None
+                if colour is not None:
+                    item.setForeground(QtGui.QBrush(QtGui.QColor(*colour)))
                 self.table.setItem(row, column, item)
         self._layout_table()
         facts = (f"{result.photons:.0f} photons, {result.seconds:.2f} s, "
                  f"{result.confidence * 100:g} % confidence intervals")
         if result.partial:
             facts += " - PARTIAL (cancelled)"
+        elif result.data.get("stop_reason") == "decided":
+            facts += " - every requirement decided"
         self.facts.setText(facts)
 
     def _pump(self, text: str) -> None:

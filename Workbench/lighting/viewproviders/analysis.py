@@ -180,7 +180,21 @@ class ViewProviderAnalysis(ViewProviderBase):
         holder.removeAllChildren()
         vobj = getattr(self, "ViewObject", None)
         if scale is not None and (vobj is None or vobj.Visibility):
-            holder.addChild(build_legend(scale, stale=self.results_stale()))
+            holder.addChild(build_legend(scale, title=self.legend_title(),
+                                         stale=self.results_stale()))
+
+    def legend_title(self) -> str:
+        """The legend's title, with the overall verdict on the requirements when the solver
+        judged them (pass, FAIL or undecided: from the intervals, docs/statistics.md)."""
+        try:
+            from lighting.objects import results as results_obj
+
+            stored = results_obj.data(results_obj.of_analysis(self.Object)) or {}
+        except Exception:  # noqa: BLE001 - never break the legend
+            stored = {}
+        word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
+            stored.get("verdict", ""))
+        return "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
 
     def results_stale(self) -> bool:
         """True when the stored results no longer describe the model (or cannot tell)."""
