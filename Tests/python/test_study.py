@@ -268,3 +268,22 @@ def test_study_checks_its_outputs_before_tracing(cli, scene_file, tmp_path):
     r = run(cli, "study", str(scene_file), "--max-photons", "20000", "--plot", str(svg))
     assert r.returncode == 0, r.stderr
     assert svg.read_text().lstrip().startswith("<?xml") and "<path" in svg.read_text()
+
+
+def test_study_and_cost_trace_every_checkpoint_in_a_scene_that_decides(tmp_path):
+    """A scene whose settings decide its requirements (the workbench's default) is still
+    studied to its last checkpoint: deciding would stop at the first decided look."""
+    doc = closed_form_scene()
+    doc["targets"][0]["requirements"] = {"em_lux": 1.0}  # far below the truth: decided at once
+    doc["settings"] = {"decide": True}
+    path = tmp_path / "decides.json"
+    path.write_text(json.dumps(doc))
+    scene = lightsolver.load_scene(str(path))
+    assert lightsolver.solve(scene, photons=160_000)["stop_reason"] == "decided"
+    study = lightsolver.study(scene, max_photons=80_000, seed=9)
+    assert [row["photons"] for row in study["rows"]] == [10_000, 20_000, 40_000, 80_000]
+    plain = dict(doc, settings={})
+    path.write_text(json.dumps(plain))
+    without = lightsolver.cost(lightsolver.load_scene(str(path)), max_photons=80_000, seed=9)
+    cost = lightsolver.cost(scene, max_photons=80_000, seed=9)
+    assert [r["photons"] for r in cost["rows"]] == [r["photons"] for r in without["rows"]]

@@ -26,6 +26,7 @@ from typing import Any
 __version__ = "0.1.0"
 
 _EXPORTS = {
+    "accuracy_study": "lighting.api",
     "add_luminaire_layout": "lighting.api",
     "analyze": "lighting.api",
     "check": "lighting.api",

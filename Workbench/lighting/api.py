@@ -286,3 +286,14 @@ def add_luminaire_layout(doc: Any, base: Any = None, face: Optional[str] = None,
         analysis.addObject(layout)
     layout.recompute()
     return layout
+
+
+def accuracy_study(doc: Any, analysis: Any = None, max_photons: int = 1_280_000,
+                   output_dir: Optional[str] = None) -> Any:
+    """What accuracy costs for the analysis' scene: ``lightsolver study`` (one run with
+    doubling checkpoints). Returns a :class:`lighting.solver.study.StudyResult`: ``data``
+    (rows: photons, seconds, mean and worst per-cell width; the N^-1/2 fit), ``goals``
+    (photons and seconds for 10, 5, 2, 1 and 0.5 % per cell), ``plot_file`` (PNG)."""
+    from lighting.solver.study import study_analysis
+
+    return study_analysis(_analysis(doc, analysis), max_photons, output_dir)

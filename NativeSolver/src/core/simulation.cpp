@@ -368,7 +368,9 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   const Scene& scene = state_->scene;
   const detail::PreparedScene& prepared = state_->prepared;
   Results r;
-  r.decide = options.decide.value_or(scene.settings.decide);
+  // A checkpointed run (cost, study) traces to its last checkpoint: the scene's own decide
+  // setting does not cut it short (an explicit option still could).
+  r.decide = options.decide.value_or(scene.settings.decide && options.checkpoints.empty());
   r.judged = detail::judges_requirements(scene, r.decide, options.target_accuracy.has_value());
   plan_run(scene, options, r);
   r.seed = options.seed.value_or(scene.settings.seed);

@@ -222,6 +222,7 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
   opt.photons = r.photons;
   opt.seed = r.seed;
   opt.confidence = confidence_;
+  opt.decide = false;  // the search's own n/N photons, whatever the scene's settings say
   const auto trace_start = Clock::now();
   last_ = simulation_.run(opt);
   e.trace_seconds = seconds_since(trace_start);

@@ -180,6 +180,21 @@ def body() -> None:
     expect(panel.table.rowCount() == len(rows) + 1,
            f"the new target is not in the table: {panel.table.rowCount()} rows")
     grab_window("panels_after_toolbar")
+
+    # What accuracy costs: the panel's study runs on a worker and shows its curve and goals.
+    view = panel.study_view
+    view.max_photons.setValue(80_000)
+    view.button.click()
+    expect(not view.button.isEnabled(), "Study accuracy did not start")
+    expect(wait_until(lambda: not view.busy(), 120.0), "the accuracy study did not finish")
+    pump(0.3)
+    STATUS["study_goals"] = view.goals.text()
+    pixmap = view.image.pixmap()
+    expect(pixmap is not None and not pixmap.isNull() and pixmap.width() > 100,
+           "the study plot is not shown")
+    expect("\u00b11 % per cell" in view.goals.text(), f"study goals: {view.goals.text()}")
+    panel.scroll.ensureWidgetVisible(view.goals)
+    grab_window("panels_study", docs_name="panels-study.png")
     FreeCADGui.Control.closeDialog()
     FreeCAD.closeDocument(doc.Name)
 

@@ -18,7 +18,7 @@ from PySide import QtCore, QtGui
 from lighting.messages import CheckError, LightingError
 from lighting.objects.analysis import COLOR_MAPS, SCALE_MODES
 from lighting.solver import machine, results as results_mod, store
-from lighting.taskpanels import plan_view
+from lighting.taskpanels import plan_view, study_view
 from lighting.taskpanels.legend_widget import LegendWidget
 from lighting.taskpanels.modeless import ModelessPanel
 from lighting.viewproviders import coloring
@@ -124,6 +124,10 @@ class AnalysisTaskPanel(ModelessPanel):
         plan = QtGui.QVBoxLayout()
         plan.addWidget(self.plan_view)
         self.add_section("plan", "Plan view", plan)
+        self.study_view = study_view.section(self)  # accuracy vs time (taskpanels/study_view.py)
+        study = QtGui.QVBoxLayout()
+        study.addWidget(self.study_view)
+        self.add_section("study", "Accuracy vs time", study)
         self.add_section("log", "Log", self._build_log())
 
     def add_section(self, name: str, title: str, content: QtGui.QLayout,
