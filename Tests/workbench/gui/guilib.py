@@ -141,6 +141,22 @@ def toolbar_enabled(command: str) -> bool:
     return bool(actions) and all(a.isEnabled() for a in actions)
 
 
+def build_example_file(photons: int) -> str:
+    """The example office as a user has it: a file written by Examples/office.py (freecadcmd,
+    build only), in the scenario's output folder."""
+    import subprocess
+
+    repo = os.environ["LIGHTING_SOURCE_DIR"]
+    out = os.path.join(OUT, "office.FCStd")
+    env = dict(os.environ, LIGHTING_OUT=out, LIGHTING_BUILD_ONLY="1",
+               LIGHTING_PHOTONS=str(photons))
+    proc = subprocess.run(["freecadcmd", os.path.join(repo, "Examples", "office.py")], env=env,
+                          capture_output=True, text=True, timeout=240)
+    expect(proc.returncode == 0 and os.path.exists(out),
+           f"Examples/office.py failed: {proc.stdout[-800:]} {proc.stderr[-800:]}")
+    return out
+
+
 def run_macro_file(path: str, globals_: Optional[dict] = None) -> None:
     """Execute a macro file the way FreeCAD's Macro dialog does (in the GUI's interpreter, with
     ``__name__ == '__main__'``)."""

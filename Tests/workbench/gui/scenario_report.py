@@ -9,21 +9,13 @@ targets and their Em."""
 import os
 import subprocess
 
-from guilib import STATUS, expect, log, main_window, pump, scenario, wait_until
+from guilib import build_example_file, STATUS, expect, log, main_window, pump, scenario, wait_until
 
 PHOTONS = 50000
 
 
 def build_example() -> str:
-    repo = os.environ["LIGHTING_SOURCE_DIR"]
-    out = os.path.join(os.environ.get("LIGHTING_GUI_OUT", os.getcwd()), "office.FCStd")
-    env = dict(os.environ, LIGHTING_OUT=out, LIGHTING_BUILD_ONLY="1",
-               LIGHTING_PHOTONS=str(PHOTONS))
-    proc = subprocess.run(["freecadcmd", os.path.join(repo, "Examples", "office.py")], env=env,
-                          capture_output=True, text=True, timeout=240)
-    expect(proc.returncode == 0 and os.path.exists(out),
-           f"Examples/office.py failed: {proc.stdout[-800:]} {proc.stderr[-800:]}")
-    return out
+    return build_example_file(PHOTONS)
 
 
 def toolbar_actions(title: str) -> list:

@@ -10,23 +10,14 @@ left out, and the results are stale."""
 import os
 import subprocess
 
-from guilib import (STATUS, expect, grab_window, log, main_window, pump, scenario,
+from guilib import (build_example_file, STATUS, expect, grab_window, log, main_window, pump, scenario,
                     wait_until)
 
 PHOTONS = 100000
 
 
 def build_example() -> str:
-    """The example office as a user has it: a file written by Examples/office.py."""
-    repo = os.environ["LIGHTING_SOURCE_DIR"]
-    out = os.path.join(os.environ.get("LIGHTING_GUI_OUT", os.getcwd()), "office.FCStd")
-    env = dict(os.environ, LIGHTING_OUT=out, LIGHTING_BUILD_ONLY="1",
-               LIGHTING_PHOTONS=str(PHOTONS))
-    proc = subprocess.run(["freecadcmd", os.path.join(repo, "Examples", "office.py")], env=env,
-                          capture_output=True, text=True, timeout=240)
-    expect(proc.returncode == 0 and os.path.exists(out),
-           f"Examples/office.py failed: {proc.stdout[-800:]} {proc.stderr[-800:]}")
-    return out
+    return build_example_file(PHOTONS)
 
 
 def run_from_toolbar(doc) -> object:
