@@ -6,7 +6,7 @@ annotation with its own orthographic camera, inside a group that the view's boun
 ignores (FreeCAD's SoSkipBoundingGroup) so that "fit all" is unaffected."""
 from __future__ import annotations
 
-from typing import Any, Optional, Tuple
+from typing import Any, List, Optional, Sequence, Tuple
 
 import FreeCAD
 
@@ -53,9 +53,15 @@ def _washed(rgb: Tuple[float, float, float]) -> Tuple[float, float, float]:
     return tuple(STALE_WASH * g + (1.0 - STALE_WASH) * c for c, g in zip(rgb, STALE_GREY))
 
 
-def build_legend(scale: Scale, title: str = "Illuminance [lx]", stale: bool = False) -> Any:
+#: Colours of the verdict markers under the legend: pass green, FAIL red, undecided amber.
+VERDICT_RGB = {"pass": (0.0, 0.55, 0.0), "FAIL": (0.85, 0.0, 0.0), "undecided": (0.85, 0.5, 0.0)}
+
+
+def build_legend(scale: Scale, title: str = "Illuminance [lx]", stale: bool = False,
+                 verdicts: Sequence[Tuple[str, str]] = ()) -> Any:
     """Coin nodes of a vertical colour bar with tick labels at the left of the view; greyed,
-    with a title that says so, when the results are stale."""
+    with a title that says so, when the results are stale. ``verdicts``: (target label,
+    verdict word) lines drawn under the bar in the verdict's colour."""
     coin = _coin()
     root = coin.SoAnnotation()
     camera = coin.SoOrthographicCamera()
@@ -122,6 +128,18 @@ def build_legend(scale: Scale, title: str = "Illuminance [lx]", stale: bool = Fa
     text.string = STALE_TITLE if stale else title
     title_sep.addChild(text)
     text_sep.addChild(title_sep)
+    for row, (label, word) in enumerate(verdicts):
+        line = coin.SoSeparator()
+        move = coin.SoTranslation()
+        move.translation = (X0, Y0 - 0.07 - 0.05 * row, 0.0)
+        line.addChild(move)
+        colour = coin.SoBaseColor()
+        colour.rgb = VERDICT_RGB.get(word, (0.0, 0.0, 0.0))
+        line.addChild(colour)
+        marker = coin.SoText2()
+        marker.string = f"{label}: {word}"
+        line.addChild(marker)
+        text_sep.addChild(line)
     root.addChild(text_sep)
     return root
 
@@ -181,7 +199,8 @@ class ViewProviderAnalysis(ViewProviderBase):
         vobj = getattr(self, "ViewObject", None)
         if scale is not None and (vobj is None or vobj.Visibility):
             holder.addChild(build_legend(scale, title=self.legend_title(),
-                                         stale=self.results_stale()))
+                                         stale=self.results_stale(),
+                                         verdicts=self.verdict_lines()))
 
     def legend_title(self) -> str:
         """The legend's title, with the overall verdict on the requirements when the solver
@@ -195,6 +214,25 @@ class ViewProviderAnalysis(ViewProviderBase):
         word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
             stored.get("verdict", ""))
         return "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
+
+    def verdict_lines(self) -> List[Tuple[str, str]]:
+        """(label, pass/FAIL/undecided) of every target the solver judged, for the markers
+        under the legend."""
+        try:
+            from lighting.objects import results as results_obj
+
+            stored = results_obj.data(results_obj.of_analysis(self.Object)) or {}
+            doc = self.Object.Document
+        except Exception:  # noqa: BLE001 - never break the legend
+            return []
+        lines = []
+        for target in stored.get("targets", []):
+            word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
+                target.get("verdict", ""))
+            if word:
+                obj = doc.getObject(str(target.get("name", "")))
+                lines.append((obj.Label if obj is not None else str(target["name"]), word))
+        return lines
 
     def results_stale(self) -> bool:
         """True when the stored results no longer describe the model (or cannot tell)."""
