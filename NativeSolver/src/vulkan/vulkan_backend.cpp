@@ -281,12 +281,6 @@ class VulkanBackend final : public Backend {
 }  // namespace
 
 std::unique_ptr<Backend> make_vulkan_backend(const PreparedScene& scene) {
-  // The shaders have no indirect-only tally yet: refuse rather than count direct light at an
-  // observer ("auto" then traces with embree and says why).
-  if (!scene.observers.empty()) {
-    throw std::runtime_error("the vulkan backend does not trace observer targets yet (target \"" +
-                             scene.observers.front() + "\"): use the embree backend");
-  }
   return std::make_unique<VulkanBackend>(scene);
 }
 

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <stdexcept>
 
 #include "lightsolver/glare.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -56,34 +55,18 @@ Target observer(const std::string& name, dvec3 eye, dvec3 view, std::optional<do
   return t;
 }
 
-class Observer : public ::testing::TestWithParam<std::string> {
- protected:
-  // The vulkan backend refuses observers (no indirect-only tally in its shaders yet), naming
-  // the observer; true when the run is refused as it must be.
-  bool refused(const Scene& s) {
-    if (GetParam() != "vulkan") return false;
-    try {
-      run_on_backend(GetParam(), s, 1000, 1);
-    } catch (const std::runtime_error& e) {
-      EXPECT_NE(std::string(e.what()).find(s.targets.front().name), std::string::npos) << e.what();
-      return true;
-    }
-    ADD_FAILURE() << "the vulkan backend traced an observer";
-    return true;
-  }
-};
+class Observer : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Observer, BackgroundLuminanceOfAGlowingCubeMatchesTheClosedForm) {
   const double rho = 0.75;
   Scene s = glowing_cube(rho);
   s.targets.push_back(observer("eye +y", {0.4, 0.5, 0.5}, {0, 1, 0}, std::nullopt));
   s.targets.push_back(observer("eye diagonal", {0.6, 0.3, 0.6}, {1, 1, 0.2}, std::nullopt));
-  if (refused(s)) return;
-  const Results r = run_on_backend(GetParam(), s, 2'000'000, 7);
+  const Results r = run_on_backend(GetParam(), s, 600'000, 7);
   const double e_ind = kFluxPerWall_lm * rho / (1.0 - rho);  // Phi/A = 1000 lx, A = 6 m2
   for (const TargetResult& t : r.targets) {
     ASSERT_TRUE(t.is_observer && t.glare);
-    expect_in_ci(t.estimate, e_ind, 0.1, t.name);
+    expect_in_ci(t.estimate, e_ind, 0.15, t.name);
     const ObserverGlare& g = *t.glare;
     EXPECT_DOUBLE_EQ(g.background_luminance_cd_m2, t.estimate.mean / std::numbers::pi);
     EXPECT_LE(g.background_ci_low_cd_m2, e_ind / std::numbers::pi) << t.name;
@@ -95,7 +78,6 @@ TEST_P(Observer, CountsOnlyReflectedLight) {
   Scene s = glowing_cube(0.0);  // black walls: everything reaching the eye is direct
   s.targets.push_back(observer("eye", {0.4, 0.5, 0.5}, {0, 1, 0}, 19.0));
   s.targets.push_back(grid("same square", {0.35, 0.5, 0.45}, {0, 0, 0.1}, {0.1, 0, 0}, 1, 1));
-  if (refused(s)) return;
   const Results r = run_on_backend(GetParam(), s, 200'000, 3);
   EXPECT_EQ(r.targets[0].estimate.hits, 0u);
   EXPECT_EQ(r.targets[0].estimate.mean, 0.0);
@@ -118,8 +100,7 @@ TEST_P(Observer, UgrIntervalIsComputeUgrAtTheEndsOfTheBackgroundInterval) {
   s.targets.push_back(observer("lenient", eye, view, 40.0));
   s.targets.push_back(observer("strict", eye, view, 1.0));
   s.targets.push_back(observer("borderline", eye, view, std::nullopt));
-  if (refused(s)) return;
-  Results r = run_on_backend(GetParam(), s, 1'000'000, 11, 0.95);
+  Results r = run_on_backend(GetParam(), s, 300'000, 11, 0.95);
   // The same sources built independently: only the wall ahead (y = 1) is in the field.
   std::vector<GlareSource> sources;
   for (const Luminaire& l : s.luminaires) {
@@ -162,7 +143,7 @@ TEST_P(Observer, UgrIntervalIsComputeUgrAtTheEndsOfTheBackgroundInterval) {
   EXPECT_EQ(j["targets"][0]["luminaires"].size(), 7u);
   // At a limit inside the interval the verdict is undecided, with an estimate of the cost.
   s.targets[2].requirements.ugr_max = *g.ugr;
-  r = run_on_backend(GetParam(), s, 1'000'000, 11, 0.95);
+  r = run_on_backend(GetParam(), s, 300'000, 11, 0.95);
   const Verdict& u = r.targets[2].verdicts.at(0);
   EXPECT_EQ(u.verdict, VerdictKind::Undecided);
   EXPECT_EQ(u.verdict, judge_at_most(u.ci_low, u.ci_high, u.required));
