@@ -64,10 +64,12 @@ uint deposits_flush() {
 }
 
 // Virtual grids crossed from the front by o + t d, 0 <= t <= t_max (core/path_deposits.hpp).
-void cross_grids(vec3 o, vec3 d, float t_max) {
+// `bounce`: reflections before this segment; indirect-only grids (observers) skip bounce 0.
+void cross_grids(vec3 o, vec3 d, float t_max, uint bounce) {
   const float t_end = t_max * (1.0 + 1e-5) + 1e-6;
   for (uint k = 0u; k < pc.grid_count; ++k) {
     const GridGpu g = grids[k];
+    if ((g.flags & kGridIndirectOnly) != 0u && bounce == 0u) continue;
     const float denom = dot(d, g.normal);
     if (!(denom < 0.0)) continue;  // parallel, or from behind
     const float t = dot(g.corner - o, g.normal) / denom;

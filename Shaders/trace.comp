@@ -38,7 +38,7 @@ void trace_path(uint64_t id, bool first_pass) {
   for (uint bounce = 0u;; ++bounce) {
     const Hit h = trace_scene(o, d);
     if (first_pass) ++g_segments;
-    if (HAS_GRIDS) cross_grids(o, d, h.t);
+    if (HAS_GRIDS) cross_grids(o, d, h.t, bounce);
     if (h.tri == kNone) return;
     const MeshInfo mesh = meshes[tris[h.tri].mesh];
     const vec3 n = hit_normal(h);

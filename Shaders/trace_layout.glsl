@@ -77,8 +77,9 @@ struct GridGpu {
   vec3 corner; uint nu;
   vec3 normal; uint nv;
   vec3 du; uint bin;
-  vec3 dv; uint pad;
+  vec3 dv; uint flags;  // bit 0 (kGridIndirectOnly): count reflected light only (observers)
 };
+const uint kGridIndirectOnly = 1u;
 
 layout(std430, set = 0, binding = LS_BINDING_MESHES) readonly buffer Meshes { MeshInfo meshes[]; };
 layout(std430, set = 0, binding = LS_BINDING_MATERIALS) readonly buffer Materials {

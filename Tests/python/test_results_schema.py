@@ -176,3 +176,45 @@ def test_schema_rejects_broken_verdicts(cli, room_scene, tmp_path):
         mutate(bad)
         assert errors(bad), "the schema accepted a broken verdict"
     assert desk["verdict"] in ("pass", "fail", "undecided")
+
+
+def room_with_observers(room_scene, tmp_path) -> str:
+    """Examples/room with two observers (docs/glare.md): one at an office task's UGR limit,
+    one with an explicit limit, and a point light the UGR must list as excluded."""
+    scene = json.loads(room_scene.read_text())
+    scene["luminaires"].append({"name": "spot-ish", "type": "point", "flux_lm": 50,
+                                "position": [1.0, 1.0, 2.0]})
+    scene["targets"] += [
+        {"name": "seated", "type": "observer", "position": [0.5, 0.5, 1.2],
+         "view_direction": [1, 1, 0], "task": "office-writing"},
+        {"name": "standing", "type": "observer", "position": [1.0, 0.4, 1.7],
+         "view_direction": [0, 1, 0], "up": [0, 0, 1], "requirements": {"ugr_max": 40}}]
+    path = tmp_path / "observers.json"
+    path.write_text(json.dumps(scene))
+    return str(path)
+
+
+def test_observer_results_follow_the_schema(cli, room_scene, tmp_path):
+    r = cli_results(cli, room_with_observers(room_scene, tmp_path), tmp_path, "--photons",
+                    "300000", "--seed", "2", "--backend", "embree")
+    assert errors(r) == []
+    seated, standing = r["targets"][-2], r["targets"][-1]
+    assert seated["type"] == "observer" and seated["requirements"]["ugr_max"] == 19
+    assert "em_lux" not in seated["requirements"]
+    for t in (seated, standing):
+        assert t["background_ci_low_cd_m2"] <= t["background_luminance_cd_m2"] \
+            <= t["background_ci_high_cd_m2"]
+        v = t["verdicts"]["ugr"]
+        assert v["relation"] == "<="
+        assert [p["name"] for p in t["luminaires"]][-1] == "spot-ish"
+        assert t["luminaires"][-1]["counted"] is False
+        if t["ugr"] is not None:
+            assert t["ugr_ci_low"] <= t["ugr"] <= t["ugr_ci_high"]
+    for mutate in [lambda t: t["verdicts"]["ugr"].update(relation=">="),
+                   lambda t: t.pop("ugr"),
+                   lambda t: t["verdicts"].update(em=t["verdicts"]["ugr"]),
+                   lambda t: t["luminaires"][-1].pop("why_not"),
+                   lambda t: t.update(type="surface")]:
+        bad = copy.deepcopy(r)
+        mutate(bad["targets"][-1])
+        assert errors(bad), "the schema accepted a broken observer"

@@ -14,16 +14,18 @@
 
 namespace lightsolver {
 
-/// What a target must reach; every value is a lower bound (relation ">="). Any subset.
+/// What a target must reach; every value is a lower bound (relation ">="), except ugr_max, an
+/// upper bound (relation "<=", observers only). Any subset.
 struct Requirements {
   std::optional<double> em_lux;    ///< maintained mean illuminance Em
   std::optional<double> u0;        ///< Emin / Em (grids only)
   std::optional<double> emin_lux;  ///< smallest cell (grids only)
   std::optional<double> ud;        ///< Emin / Emax (grids only)
+  std::optional<double> ugr_max;   ///< largest allowed UGR (observers only; EN 12464-1 UGR_L)
   std::string task;                ///< the requirements table row it came from, or empty
   std::string source;              ///< the table's source (e.g. "EN 12464-1:2021 ..."), or empty
 
-  bool any() const { return em_lux || u0 || emin_lux || ud; }
+  bool any() const { return em_lux || u0 || emin_lux || ud || ugr_max; }
 };
 
 /// Outcome of one requirement.
@@ -32,11 +34,16 @@ enum class VerdictKind { Pass, Fail, Undecided };
 /// "pass", "fail", "undecided".
 const char* to_string(VerdictKind v);
 
-/// One requirement judged: value and its interval against `required` (value >= required).
+/// One requirement judged: value and its interval against `required` (value >= required, or
+/// value <= required for "ugr").
 struct Verdict {
-  std::string name;  ///< "em", "u0", "emin" or "ud"
+  std::string name;  ///< "em", "u0", "emin", "ud" or "ugr"
   VerdictKind verdict = VerdictKind::Undecided;
   double value = 0.0, ci_low = 0.0, ci_high = 0.0, required = 0.0;
+  const char* relation = ">=";  ///< ">=" (a lower bound) or "<=" (ugr: an upper bound)
+  /// UGR only: false when the value or the interval's upper end is unbounded (no background
+  /// luminance measured: L_b = 0 or its lower bound 0); the JSON then writes null.
+  bool value_known = true, ci_high_known = true;
   /// Undecided only: estimated photons (of a whole run) and tracing seconds to decide it;
   /// empty when no estimate can be made (value exactly at the bound, nothing traced).
   std::optional<double> photons_to_decide, seconds_to_decide;
@@ -46,6 +53,10 @@ struct Verdict {
 /// the allowed set [required, inf), its end included); Fail iff ci_high < required (no point
 /// of it is allowed); Undecided otherwise, including ci_high == required.
 VerdictKind judge(double ci_low, double ci_high, double required);
+
+/// The interval rule for "value <= required" (UGR): Pass iff ci_high <= required, Fail iff
+/// ci_low > required, Undecided otherwise.
+VerdictKind judge_at_most(double ci_low, double ci_high, double required);
 
 /// Intervals of a grid's statistics at the run's confidence c = 1 - alpha. Every interval holds
 /// its estimate; all finite.

@@ -85,14 +85,19 @@ struct Luminaire {
   std::optional<double> power_w;
 };
 
-/// Where illuminance is reported.
+/// Where illuminance is reported. An observer is an eye (docs/glare.md): the tracer tallies the
+/// light reaching it after at least one reflection (its background luminance) and the results
+/// give its UGR.
 struct Target {
-  enum class Type { Surface, Grid };
+  enum class Type { Surface, Grid, Observer };
   std::string name;
   Type type = Type::Surface;
   int mesh = -1;                                   ///< surface: index into Scene::meshes
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< grid rectangle
   std::uint32_t nu = 1, nv = 1;                    ///< grid cells along edge1, edge2
+  /// Observer: eye position (m), line of sight and up direction (unit length after validate();
+  /// up is made orthogonal to the line of sight where it is used).
+  glm::dvec3 position{0.0}, view_direction{0.0, 1.0, 0.0}, up{0.0, 0.0, 1.0};
   /// What the target must reach (scene keys "requirements" and "task"); none when !any().
   Requirements requirements;
 };
@@ -144,6 +149,7 @@ inline constexpr std::uint64_t kMaxGridCells = 10'000'000;  ///< one grid, and a
 inline constexpr std::uint32_t kMaxBounces = 1'000'000;     ///< settings.max_bounces
 inline constexpr double kMaxPower_W = 1e9;                  ///< a luminaire's power_w
 inline constexpr double kMaxRequiredIlluminance_lx = 1e7;   ///< requirements em_lux, emin_lux
+inline constexpr double kMaxUgr = 40.0;  ///< requirements ugr_max: (0, 40] (EN 12464-1: 10..28)
 }  // namespace limits
 
 /// Throws InputError(file, where) unless 1 <= photons <= max_photons(max_bounces)

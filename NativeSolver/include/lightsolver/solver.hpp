@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lightsolver/compliance.hpp"
+#include "lightsolver/glare.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/statistics.hpp"
 
@@ -23,10 +24,10 @@ inline constexpr double kDefaultAccuracySeconds = 300.0;
 
 /// What a run is expected to cost, measured on its first batches.
 struct RunForecast {
-  std::uint64_t photons = 0;        ///< expected photons: the requested count or, with an
-                                    ///< accuracy goal, extrapolated from the interval widths
-  double photons_per_second = 0.0;  ///< tracing rate so far
-  double seconds = 0.0;             ///< expected tracing time for `photons` at that rate
+  std::uint64_t photons = 0;          ///< expected photons: the requested count or, with an
+                                      ///< accuracy goal, extrapolated from the interval widths
+  double photons_per_second = 0.0;    ///< tracing rate so far
+  double seconds = 0.0;               ///< expected tracing time for `photons` at that rate
   std::optional<double> max_seconds;  ///< the time limit, when one applies
   bool accuracy_goal = false;         ///< `photons` is an extrapolation to the accuracy goal
 };
@@ -115,11 +116,33 @@ inline constexpr const char* kStopCancelled = "cancelled";
 /// A decide run ended because every verdict was pass or fail.
 inline constexpr const char* kStopDecided = "decided";
 
+/// Discomfort glare at an observer target (docs/glare.md): the background luminance from the
+/// traced indirect illuminance at the eye, and the UGR of the scene's luminaires with the
+/// interval that L_b's interval gives (the luminaire sum has no Monte-Carlo noise).
+struct ObserverGlare {
+  /// L_b = E_ind / pi (cd/m2), with its interval: the target's estimate (lux) over pi.
+  double background_luminance_cd_m2 = 0.0, background_ci_low_cd_m2 = 0.0,
+         background_ci_high_cd_m2 = 0.0;
+  /// UGR at L_b; absent when no luminaire counts (no glare) or L_b is 0 (unbounded).
+  std::optional<double> ugr;
+  /// UGR at L_b's upper end (always, when a luminaire counts and L_b's upper end is > 0) and at
+  /// its lower end (absent when that is 0: the interval is open above).
+  std::optional<double> ugr_ci_low, ugr_ci_high;
+  /// Sum of L^2 omega / p^2 over the counted luminaires (0: none counts, no glare).
+  double luminaire_sum = 0.0;
+  std::vector<GlareContribution> contributions;  ///< one per scene luminaire, in scene order
+  Warnings warnings;
+};
+
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
 /// grid / its area) and `cells` holds every cell, row by row (index = iv * nu + iu).
 struct TargetResult {
   std::string name;
   bool is_grid = false;
+  /// An observer: `estimate` is the indirect illuminance at its eye (lux, on a small square
+  /// facing the line of sight, light reflected at least once) and `glare` its UGR.
+  bool is_observer = false;
+  std::optional<ObserverGlare> glare;
   double area_m2 = 0.0;
   Estimate estimate;  ///< lux
   std::uint32_t nu = 0, nv = 0;
@@ -128,7 +151,7 @@ struct TargetResult {
   Requirements requirements;  ///< as resolved from the scene (none: !requirements.any())
   /// Grids, in runs that judge requirements: intervals of Emin, Emax, U0 and Ud.
   std::optional<GridIntervals> intervals;
-  std::vector<Verdict> verdicts;  ///< one per requirement, in the order em, u0, emin, ud
+  std::vector<Verdict> verdicts;  ///< one per requirement, in the order em, u0, emin, ud, ugr
   VerdictKind verdict = VerdictKind::Undecided;  ///< overall; meaningful with verdicts only
 };
 

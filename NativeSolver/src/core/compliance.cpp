@@ -28,6 +28,12 @@ VerdictKind judge(double ci_low, double ci_high, double required) {
   return VerdictKind::Undecided;
 }
 
+VerdictKind judge_at_most(double ci_low, double ci_high, double required) {
+  if (ci_high <= required) return VerdictKind::Pass;  // [low, high] inside (-inf, required]
+  if (ci_low > required) return VerdictKind::Fail;
+  return VerdictKind::Undecided;
+}
+
 VerdictKind overall(const std::vector<VerdictKind>& verdicts) {
   VerdictKind o = VerdictKind::Pass;
   for (const VerdictKind v : verdicts) {

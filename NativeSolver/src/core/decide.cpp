@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 namespace lightsolver::detail {
 namespace {
@@ -19,6 +20,34 @@ Verdict make_verdict(const char* name, double value, double low, double high, do
   return v;
 }
 
+// UGR <= ugr_max from the UGR interval (docs/glare.md). No luminaire counting: no glare, a
+// pass at any limit (value unknown: "< 10" on data sheets). An interval open above (L_b's lower
+// end 0) can fail but not pass.
+Verdict ugr_verdict(const ObserverGlare& g, double required) {
+  Verdict v;
+  v.name = "ugr";
+  v.relation = "<=";
+  v.required = required;
+  const bool no_glare = !(g.luminaire_sum > 0.0);
+  v.value_known = g.ugr.has_value();
+  v.value = g.ugr.value_or(0.0);
+  v.ci_high_known = g.ugr_ci_high.has_value();
+  v.ci_high = g.ugr_ci_high.value_or(0.0);
+  v.ci_low = g.ugr_ci_low.value_or(0.0);
+  if (no_glare) {
+    v.ci_high_known = v.value_known = false;
+    v.verdict = VerdictKind::Pass;
+  } else if (!g.ugr_ci_low) {
+    v.verdict = VerdictKind::Undecided;  // nothing measured yet: L_b's upper end is 0
+    v.ci_high_known = false;
+  } else if (!v.ci_high_known) {
+    v.verdict = *g.ugr_ci_low > required ? VerdictKind::Fail : VerdictKind::Undecided;
+  } else {
+    v.verdict = judge_at_most(v.ci_low, v.ci_high, required);
+  }
+  return v;
+}
+
 // One verdict per requirement, em first. A grid's U0, Emin and Ud use the honest intervals of
 // grid_intervals(); Em uses the target's own interval.
 std::vector<Verdict> verdicts_of(const TargetResult& t) {
@@ -26,6 +55,7 @@ std::vector<Verdict> verdicts_of(const TargetResult& t) {
   std::vector<Verdict> out;
   const Estimate& e = t.estimate;
   if (q.em_lux) out.push_back(make_verdict("em", e.mean, e.ci_low, e.ci_high, *q.em_lux));
+  if (q.ugr_max && t.glare) out.push_back(ugr_verdict(*t.glare, *q.ugr_max));
   if (!t.intervals) return out;  // a surface: em only (validate() refuses the others)
   const GridIntervals& g = *t.intervals;
   if (q.u0) out.push_back(make_verdict("u0", t.uniformity, g.u0_low, g.u0_high, *q.u0));
@@ -96,6 +126,20 @@ std::optional<double> photons_to_decide(double value, double low, double high, d
   return std::max(need, double(photons));
 }
 
+namespace {
+
+// photons_to_decide() for either relation: "<=" mirrors the axis; an interval open above or
+// without a value gives no estimate.
+std::optional<double> photons_for(const Verdict& v, std::uint64_t photons) {
+  if (!v.value_known || !v.ci_high_known) return std::nullopt;
+  if (std::string(v.relation) == "<=") {
+    return photons_to_decide(-v.value, -v.ci_high, -v.ci_low, -v.required, photons);
+  }
+  return photons_to_decide(v.value, v.ci_low, v.ci_high, v.required, photons);
+}
+
+}  // namespace
+
 std::uint64_t photons_to_decide_all(std::vector<TargetResult>& targets, std::uint64_t photons,
                                     std::uint64_t budget) {
   all_decided(targets);  // judges them
@@ -103,7 +147,7 @@ std::uint64_t photons_to_decide_all(std::vector<TargetResult>& targets, std::uin
   for (const TargetResult& t : targets) {
     for (const Verdict& v : t.verdicts) {
       if (v.verdict != VerdictKind::Undecided) continue;
-      const auto need = photons_to_decide(v.value, v.ci_low, v.ci_high, v.required, photons);
+      const auto need = photons_for(v, photons);
       if (!need) return budget;
       most = std::max(most, *need);
     }
@@ -115,7 +159,7 @@ void add_to_decide(Results& r, double photons_per_second) {
   for (TargetResult& t : r.targets) {
     for (Verdict& v : t.verdicts) {
       if (v.verdict != VerdictKind::Undecided) continue;
-      v.photons_to_decide = photons_to_decide(v.value, v.ci_low, v.ci_high, v.required, r.photons);
+      v.photons_to_decide = photons_for(v, r.photons);
       if (v.photons_to_decide && photons_per_second > 0.0) {
         v.seconds_to_decide = *v.photons_to_decide / photons_per_second;
       }

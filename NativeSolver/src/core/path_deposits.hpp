@@ -1,9 +1,8 @@
 #pragma once
 // Per-path bookkeeping of deposits, so each bin gets this path's total c and c^2 (the per-path
 // variance estimate needs whole-path totals, not individual hits). Also the virtual-grid test.
-#include <glm/geometric.hpp>
-
 #include <cstdint>
+#include <glm/geometric.hpp>
 #include <vector>
 
 #include "core/prepared_scene.hpp"
@@ -41,10 +40,13 @@ class PathDeposits {
 // Counts the crossing of every virtual grid by the segment origin + t * dir, 0 <= t <= t_max,
 // from the grid's front. A grid lying on a surface still counts the photons arriving there:
 // the end of the segment is extended by a relative 1e-5 to absorb float error in t_max.
+// `bounce`: reflections before this segment (0: straight from the luminaire); indirect-only
+// grids (observers) skip direct segments.
 inline void cross_grids(const std::vector<PreparedGrid>& grids, const vec3& o, const vec3& d,
-                        float t_max, PathDeposits& deposits) {
+                        float t_max, std::uint32_t bounce, PathDeposits& deposits) {
   const float t_end = t_max * (1.0f + 1e-5f) + 1e-6f;
   for (const auto& g : grids) {
+    if (g.indirect_only && bounce == 0) continue;
     const float denom = glm::dot(d, g.normal);
     if (!(denom < 0.0f)) continue;  // parallel, or crossing from behind
     const float t = glm::dot(g.corner - o, g.normal) / denom;

@@ -24,6 +24,7 @@ glm::dvec3 scene_centre(const Scene& s) {
   for (const auto& l : s.luminaires) grow(luminaire_type(l.type).anchor(l));
   for (const auto& t : s.targets) {
     if (t.type == Target::Type::Grid) grow(t.corner);
+    if (t.type == Target::Type::Observer) grow(t.position);
   }
   return 0.5 * (lo + hi);
 }
@@ -76,6 +77,23 @@ PreparedGrid prepare_grid(const Target& t, const glm::dvec3& origin, std::uint32
   return g;
 }
 
+// An observer's tally: a virtual square of kObserverSquare_m side centred on the eye, facing
+// the line of sight (light travelling toward the eye from the viewed half-space crosses it
+// against its normal), counting only reflected light.
+PreparedGrid prepare_observer(const Target& t, const glm::dvec3& origin, std::uint32_t bin) {
+  Target square = t;
+  const glm::dvec3 v = glm::normalize(t.view_direction);
+  const glm::dvec3 side = glm::normalize(glm::cross(v, t.up));
+  const glm::dvec3 up = glm::cross(v, side);  // side x up = v: the square's normal is v
+  square.edge1 = kObserverSquare_m * side;
+  square.edge2 = kObserverSquare_m * up;
+  square.corner = t.position - 0.5 * (square.edge1 + square.edge2);
+  square.nu = square.nv = 1;
+  PreparedGrid g = prepare_grid(square, origin, bin);
+  g.indirect_only = 1;
+  return g;
+}
+
 PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin) {
   PreparedLuminaire p;
   p.type = l.type;
@@ -122,6 +140,14 @@ PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movabl
       continue;
     }
     const auto bin = static_cast<std::uint32_t>(out.bins.size());
+    if (t.type == Target::Type::Observer) {
+      const double square_m2 = kObserverSquare_m * kObserverSquare_m;
+      out.bins.insert(out.bins.end(), 2, {square_m2});
+      out.grids.push_back(prepare_observer(t, out.origin, bin));
+      out.observers.push_back(t.name);
+      out.target_bin.push_back(bin);
+      continue;
+    }
     const double area = glm::length(glm::cross(t.edge1, t.edge2));
     out.bins.push_back({area});
     out.bins.resize(out.bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});

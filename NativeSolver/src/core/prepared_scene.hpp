@@ -35,7 +35,13 @@ struct PreparedGrid {
   vec3 du, dv;          // dual vectors: local (a, b) = (dot(p - corner, du), dot(p - corner, dv))
   std::uint32_t nu = 1, nv = 1;
   std::uint32_t bin = 0;  // whole-grid bin; cell (iu, iv) is bin + 1 + iv * nu + iu
+  // Observers' tallies: count only segments after at least one reflection (path depth >= 1).
+  std::uint32_t indirect_only = 0;
 };
+
+// Side of an observer's virtual square at the eye (m): small against a room (its mean over
+// 10 cm of a smooth indirect field is the value at the eye), large enough to catch photons.
+inline constexpr double kObserverSquare_m = 0.1;
 
 struct PreparedLuminaire {
   Luminaire::Type type = Luminaire::Type::Point;
@@ -63,6 +69,7 @@ struct PreparedScene {
   std::vector<double> luminaire_cdf;  // cumulative flux fractions, last = 1
   std::vector<BinInfo> bins;
   std::vector<std::uint32_t> target_bin;  // first bin of each Scene target
+  std::vector<std::string> observers;     // names of the observer targets (indirect-only grids)
   double total_flux_lm = 0.0;
   std::uint32_t max_bounces = 1000;
   std::size_t triangle_count = 0;

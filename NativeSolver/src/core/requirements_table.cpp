@@ -96,6 +96,7 @@ void apply_task(const JsonNode& task, const std::string& base_dir, Requirements&
     r.task = id;
     r.em_lux = number("em_lux");
     r.u0 = number("u0");
+    r.ugr_max = number("ugr_l");
     std::string source = table.doc.value("source", table.doc.value("standard", table.path));
     if (row.contains("ref") && row["ref"].is_string()) {
       source += ", ref. " + row["ref"].get<std::string>() + " (2011 numbering)";
@@ -130,11 +131,12 @@ Requirements read_requirements(const JsonNode& n, const std::string& base_dir) {
   if (n.has("task")) apply_task(n.at("task"), base_dir, r);
   if (!n.has("requirements")) return r;
   const JsonNode q = n.at("requirements");
-  q.require_object({"em_lux", "u0", "emin_lux", "ud"});
+  q.require_object({"em_lux", "u0", "emin_lux", "ud", "ugr_max"});
   if (q.has("em_lux")) r.em_lux = q.at("em_lux").number();
   if (q.has("u0")) r.u0 = q.at("u0").number();
   if (q.has("emin_lux")) r.emin_lux = q.at("emin_lux").number();
   if (q.has("ud")) r.ud = q.at("ud").number();
+  if (q.has("ugr_max")) r.ugr_max = q.at("ugr_max").number();
   return r;
 }
 

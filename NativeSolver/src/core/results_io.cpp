@@ -26,6 +26,7 @@ nlohmann::json requirements_json(const Requirements& q) {
   if (q.u0) j["u0"] = *q.u0;
   if (q.emin_lux) j["emin_lux"] = *q.emin_lux;
   if (q.ud) j["ud"] = *q.ud;
+  if (q.ugr_max) j["ugr_max"] = *q.ugr_max;
   if (!q.task.empty()) j["task"] = q.task;
   if (!q.source.empty()) j["source"] = q.source;
   return j;
@@ -39,11 +40,11 @@ nlohmann::json verdicts_json(const std::vector<Verdict>& verdicts) {
   nlohmann::json j = nlohmann::json::object();
   for (const Verdict& v : verdicts) {
     nlohmann::json one = {{"verdict", to_string(v.verdict)},
-                          {"value", v.value},
+                          {"value", v.value_known ? nlohmann::json(v.value) : nullptr},
                           {"ci_low", v.ci_low},
-                          {"ci_high", v.ci_high},
+                          {"ci_high", v.ci_high_known ? nlohmann::json(v.ci_high) : nullptr},
                           {"required", v.required},
-                          {"relation", ">="}};
+                          {"relation", v.relation}};
     if (v.verdict == VerdictKind::Undecided) {
       const auto photons = v.photons_to_decide;  // a whole count (estimates are finite)
       one["to_decide"] = {
@@ -79,10 +80,37 @@ void add_compliance(const TargetResult& t, nlohmann::json& j) {
   j["verdict"] = to_string(t.verdict);
 }
 
+// An observer's glare: L_b and its interval, UGR and its interval (null where unbounded or
+// absent: no luminaire counts), each luminaire's part, and the remarks.
+void add_glare(const ObserverGlare& g, nlohmann::json& j) {
+  j["background_luminance_cd_m2"] = g.background_luminance_cd_m2;
+  j["background_ci_low_cd_m2"] = g.background_ci_low_cd_m2;
+  j["background_ci_high_cd_m2"] = g.background_ci_high_cd_m2;
+  j["ugr"] = optional_number(g.ugr);
+  j["ugr_ci_low"] = optional_number(g.ugr_ci_low);
+  j["ugr_ci_high"] = optional_number(g.ugr_ci_high);
+  nlohmann::json parts = nlohmann::json::array();
+  for (const GlareContribution& c : g.contributions) {
+    nlohmann::json one = {{"name", c.name}, {"counted", c.counted}};
+    if (c.counted) {
+      one["ugr_alone"] = optional_number(c.ugr_alone);
+      one["luminance_cd_m2"] = c.luminance_cd_m2;
+      one["solid_angle_sr"] = c.solid_angle_sr;
+      one["position_index"] = c.position_index;
+    } else {
+      one["why_not"] = c.why_not;
+    }
+    parts.push_back(std::move(one));
+  }
+  j["luminaires"] = std::move(parts);
+  j["warnings"] = g.warnings;
+}
+
 nlohmann::json target_json(const TargetResult& t) {
-  nlohmann::json j = {
-      {"name", t.name}, {"type", t.is_grid ? "grid" : "surface"}, {"area_m2", t.area_m2}};
+  const char* type = t.is_grid ? "grid" : t.is_observer ? "observer" : "surface";
+  nlohmann::json j = {{"name", t.name}, {"type", type}, {"area_m2", t.area_m2}};
   j.update(estimate_fields(t.estimate));
+  if (t.glare) add_glare(*t.glare, j);
   add_compliance(t, j);
   if (!t.is_grid) return j;
   j["cells_uv"] = {t.nu, t.nv};
@@ -159,9 +187,9 @@ void verdict_lines(const Results& r, std::ostringstream& out) {
   for (const auto& t : r.targets) {
     for (const Verdict& v : t.verdicts) {
       const char* f = v.name == "u0" || v.name == "ud" ? "%.3f" : "%.2f";
-      out << "  " << t.name << ": " << v.name << " " << fmt(f, v.value) << " [" << fmt(f, v.ci_low)
-          << ", " << fmt(f, v.ci_high) << "] >= " << fmt("%g", v.required) << ": "
-          << to_string(v.verdict);
+      out << "  " << t.name << ": " << v.name << " " << (v.value_known ? fmt(f, v.value) : "-")
+          << " [" << fmt(f, v.ci_low) << ", " << (v.ci_high_known ? fmt(f, v.ci_high) : "open")
+          << "] " << v.relation << " " << fmt("%g", v.required) << ": " << to_string(v.verdict);
       if (v.verdict == VerdictKind::Undecided) {
         out << " (to decide: "
             << (v.photons_to_decide ? "about " + fmt("%.2g", *v.photons_to_decide) + " photons"
@@ -205,6 +233,16 @@ std::string results_table(const Results& r) {
                 static_cast<unsigned long long>(r.photons), r.partial ? " (PARTIAL)" : "",
                 100.0 * r.confidence, r.backend.c_str(), r.seconds, stop_text(r).c_str());
   out << line;
+  for (const auto& t : r.targets) {
+    if (!t.glare) continue;
+    const ObserverGlare& g = *t.glare;
+    const auto show = [](const std::optional<double>& v) { return v ? fmt("%.1f", *v) : "-"; };
+    out << "observer " << t.name << ": UGR " << show(g.ugr) << " [" << show(g.ugr_ci_low) << ", "
+        << show(g.ugr_ci_high) << "], L_b " << fmt("%.3g", g.background_luminance_cd_m2)
+        << " cd/m2 [" << fmt("%.3g", g.background_ci_low_cd_m2) << ", "
+        << fmt("%.3g", g.background_ci_high_cd_m2) << "]\n";
+    for (const auto& w : g.warnings) out << "warning: " << w << "\n";
+  }
   if (r.judged) {
     out << "verdicts (" << (r.decide ? "traced until decided" : "at the photons traced")
         << "): " << to_string(r.verdict) << "\n";

@@ -294,6 +294,16 @@ class Validator {
         fail(where + "." + key, "must lie in (0, 1] (got " + show(*v) + ")");
       }
     }
+    if (r.ugr_max && !(*r.ugr_max > 0.0 && *r.ugr_max <= limits::kMaxUgr)) {
+      fail(where + ".ugr_max", "must be > 0 and at most 40 (got " + show(*r.ugr_max) + ")");
+    }
+    if (t.type != Target::Type::Observer && r.ugr_max) {
+      fail(where + ".ugr_max", "UGR is judged at an observer: give it on an \"observer\" target");
+    }
+    if (t.type == Target::Type::Observer && (r.em_lux || r.u0 || r.emin_lux || r.ud)) {
+      const char* key = r.em_lux ? "em_lux" : r.u0 ? "u0" : r.emin_lux ? "emin_lux" : "ud";
+      fail(where + "." + key, "an observer target has only ugr_max (illuminance needs a grid)");
+    }
     if (t.type == Target::Type::Surface && (r.u0 || r.emin_lux || r.ud)) {
       const char* key = r.u0 ? "u0" : r.emin_lux ? "emin_lux" : "ud";
       fail(where + "." + key,
@@ -306,6 +316,7 @@ class Validator {
     const Target& t = s_.targets[i];
     requirements(i, t);
     if (t.type == Target::Type::Grid) return grid(i, t);
+    if (t.type == Target::Type::Observer) return observer(i);
     if (bad_meshes_.count(t.mesh)) return;
     if (t.mesh < 0 || t.mesh >= static_cast<int>(s_.meshes.size())) {
       fail(at("targets", i, "mesh"), "unknown mesh");
@@ -345,6 +356,22 @@ class Validator {
     const double cell_m2 = glm::length(glm::cross(t.edge1, t.edge2)) / double(count);
     if (cell_m2 < limits::kMinArea_m2) {
       fail(cells, "a cell's area is " + show(cell_m2) + " m2, below (1 um)^2 = 1e-12 m2");
+    }
+  }
+
+  // Observers: an eye inside the coordinate range, a line of sight and an up direction that
+  // are not parallel (normalised here; up is made orthogonal to the line of sight when used).
+  void observer(std::size_t i) {
+    Target& t = s_.targets[i];
+    coordinates(at("targets", i, "position"), t.position);
+    direction(at("targets", i, "view_direction"), t.view_direction);
+    direction(at("targets", i, "up"), t.up);
+    t.view_direction = glm::normalize(t.view_direction);
+    t.up = glm::normalize(t.up);
+    if (glm::length(glm::cross(t.view_direction, t.up)) < 1e-6) {
+      fail(at("targets", i, "up"),
+           "is parallel to view_direction: the observer needs an up "
+           "direction across its line of sight (default +z)");
     }
   }
 

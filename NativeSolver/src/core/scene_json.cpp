@@ -166,10 +166,23 @@ Target read_target(const JsonNode& n, const Scene& scene, const std::string& bas
     }
     t.nu = static_cast<std::uint32_t>(nu);
     t.nv = static_cast<std::uint32_t>(nv);
+  } else if (type == "observer") {
+    n.require_object({"name", "type", "position", "view_direction", "up", "requirements", "task"});
+    t.type = Target::Type::Observer;
+    t.position = n.at("position").vec3();
+    t.view_direction = n.at("view_direction").vec3();
+    if (n.has("up")) t.up = n.at("up").vec3();
   } else {
-    n.at("type").fail("unknown target type \"" + type + "\" (expected surface or grid)");
+    n.at("type").fail("unknown target type \"" + type + "\" (expected surface, grid or observer)");
   }
   t.requirements = detail::read_requirements(n, base_dir);
+  // A task row's UGR limit applies to observers, its illuminances to surfaces and grids.
+  const bool explicit_ugr = n.has("requirements") && n.at("requirements").has("ugr_max");
+  if (t.type != Target::Type::Observer && !explicit_ugr) t.requirements.ugr_max.reset();
+  if (t.type == Target::Type::Observer && n.has("task")) {
+    t.requirements.em_lux.reset();
+    t.requirements.u0.reset();
+  }
   // A surface has no cells: a task's U0 applies to grids only (an explicit one is an error).
   const bool explicit_u0 = n.has("requirements") && n.at("requirements").has("u0");
   if (t.type == Target::Type::Surface && !explicit_u0) t.requirements.u0.reset();

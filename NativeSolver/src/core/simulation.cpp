@@ -17,6 +17,7 @@
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
 #include "core/decide.hpp"
+#include "glare/observer_target.hpp"
 
 namespace lightsolver {
 namespace detail {
@@ -150,18 +151,20 @@ GridSampler grid_sampler(const Target& t, const detail::PreparedScene& s,
           [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
 }
 
-TargetResult make_target(const Target& t, const detail::PreparedScene& s,
+TargetResult make_target(const Scene& scene, const Target& t, const detail::PreparedScene& s,
                          const detail::TallyBlock& tallies, std::uint32_t bin,
                          std::uint64_t photons, double confidence, bool judged) {
   TargetResult r;
   r.name = t.name;
   r.requirements = t.requirements;
   r.is_grid = t.type == Target::Type::Grid;
+  r.is_observer = t.type == Target::Type::Observer;
   r.area_m2 = s.bins[bin].area_m2;
   auto estimate = [&](std::uint32_t b) {
     return make_estimate(tallies.bins[b], photons, s.total_flux_lm / s.bins[b].area_m2, confidence);
   };
   r.estimate = estimate(bin);
+  if (r.is_observer) r.glare = detail::observer_glare(t, scene.luminaires, r.estimate);
   if (!r.is_grid) return r;
   r.nu = t.nu;
   r.nv = t.nv;
@@ -252,8 +255,8 @@ class CheckpointTracer {
         c.seconds = seconds_since(start_);
         c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
         for (std::size_t i = 0; i < scene_.targets.size(); ++i) {
-          c.targets.push_back(make_target(scene_.targets[i], s_, tallies, s_.target_bin[i], at,
-                                          r.confidence, r.judged));
+          c.targets.push_back(make_target(scene_, scene_.targets[i], s_, tallies, s_.target_bin[i],
+                                          at, r.confidence, r.judged));
         }
         o_.checkpoint(c);
       }
@@ -392,8 +395,8 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   auto targets_at = [&](std::uint64_t photons, double confidence) {
     std::vector<TargetResult> targets;
     for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-      targets.push_back(make_target(scene.targets[i], prepared, tallies, prepared.target_bin[i],
-                                    photons, confidence, r.judged));
+      targets.push_back(make_target(scene, scene.targets[i], prepared, tallies,
+                                    prepared.target_bin[i], photons, confidence, r.judged));
     }
     return targets;
   };

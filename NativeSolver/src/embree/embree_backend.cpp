@@ -111,7 +111,8 @@ class EmbreeBackend final : public Backend {
     rtcIntersect1(embree_.handle(), &context, &lane.rh);
     ++t.ray_segments;
     if (!s_.grids.empty()) {
-      cross_grids(s_.grids, lane.ray.origin, lane.ray.direction, lane.rh.ray.tfar, lane.deposits);
+      cross_grids(s_.grids, lane.ray.origin, lane.ray.direction, lane.rh.ray.tfar, lane.bounce,
+                  lane.deposits);
     }
     if (lane.rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     bool instanced = false;

@@ -91,8 +91,9 @@ struct Grid {
   float du[3];
   std::uint32_t bin;
   float dv[3];
-  std::uint32_t pad;
+  std::uint32_t flags;  ///< kGridIndirectOnly: an observer's tally (reflected light only)
 };
+inline constexpr std::uint32_t kGridIndirectOnly = 1u;  ///< Shaders/trace_layout.glsl
 
 struct TracePush {
   std::uint64_t first_path;

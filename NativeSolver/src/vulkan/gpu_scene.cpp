@@ -76,6 +76,7 @@ gpu::Grid pack_grid(const PreparedGrid& p) {
   put(g.du, p.du);
   g.bin = p.bin;
   put(g.dv, p.dv);
+  g.flags = p.indirect_only ? gpu::kGridIndirectOnly : 0u;
   return g;
 }
 
