@@ -47,6 +47,7 @@ _EXPORTS = {
     "make_face_target": "lighting.objects.factory",
     "make_grid_target": "lighting.objects.factory",
     "make_placement_domain": "lighting.objects.factory",
+    "make_observer": "lighting.objects.factory",
     "grid_spacing_m": "lighting.standards",
     "LightingError": "lighting.messages",
     "CheckError": "lighting.messages",

@@ -172,6 +172,20 @@ def ceiling_above(point: FreeCAD.Vector, solids: List[Any]) -> Optional[float]:
     return best
 
 
+def floor_below(point: FreeCAD.Vector, solids: List[Any]) -> Optional[float]:
+    """Height (z, mm) of the highest upward-facing horizontal face below ``point`` whose
+    outline contains it (the floor an observer stands on), or None."""
+    best = None
+    for face in (f for s in solids for f in s.Faces
+                 if is_planar(f) and face_normal(f).z > HORIZONTAL_COS):
+        z = face.Vertexes[0].Point.z
+        if z >= point.z or (best is not None and z <= best):
+            continue
+        if face.isInside(V(point.x, point.y, z), 0.01, True):
+            best = z
+    return best
+
+
 def _downward_faces(solids: List[Any]) -> List[Any]:
     return [f for s in solids for f in s.Faces
             if is_planar(f) and face_normal(f).z < -HORIZONTAL_COS]

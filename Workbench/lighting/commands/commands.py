@@ -334,7 +334,8 @@ ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPla
        CommandCheck, CommandExport, CommandRun, CommandOptimize, CommandResults,
        CommandClearResults)
 MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_LuminaireLayout",
-                  "Lighting_Target", "Lighting_Grid", "Lighting_PlacementDomain"]
+                  "Lighting_Target", "Lighting_Grid", "Lighting_Observer",
+                  "Lighting_PlacementDomain"]
 RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Optimize",
                 "Lighting_Results", "Lighting_ClearResults"]
 
@@ -346,9 +347,10 @@ EXCLUSION_COMMANDS = exclusion.NAMES
 
 def register() -> None:
     """Add every command to FreeCAD (once)."""
+    from lighting.commands import glare
     from lighting.commands.layout import CommandLuminaireLayout
 
-    for cls in ALL + exclusion.ALL + (CommandLuminaireLayout,):
+    for cls in ALL + exclusion.ALL + (CommandLuminaireLayout,) + glare.ALL:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)

@@ -223,6 +223,9 @@ def of_analysis(analysis: Any) -> Dict[str, str]:
         result[f"luminaire:{lum.Name}"] = _luminaire_entry(lum)
     for tgt in analysis_mod.targets(analysis):
         result[f"target:{tgt.Name}"] = _target_entry(tgt)
+    for eye in analysis_mod.observers(analysis):
+        result[f"observer:{eye.Name}"] = _digest([_properties(eye),
+                                                  str(eye.getGlobalPlacement())])
     for obj in collect.exported_objects(analysis.Document):
         result[f"object:{obj.Name}"] = _geometry_entry(obj)
     return result

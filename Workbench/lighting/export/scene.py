@@ -26,6 +26,7 @@ from lighting.messages import ExportError, Report
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import luminaire as luminaire_mod
 from lighting.objects import luminaire_layout as layout_mod
+from lighting.objects import observer as observer_mod
 from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
 
@@ -249,6 +250,9 @@ class SceneBuilder:
             result.mesh_triangles[builder.name] = len(builder.triangles)
             targets.append({"name": tgt.Name, "type": "surface", "mesh": builder.name,
                             **target_mod.requirements_entry(tgt)})
+        for eye in analysis_mod.observers(self.analysis):
+            self.labels[eye.Name] = eye.Label
+            targets.append(observer_mod.scene_entry(eye))
         luminaires = []
         for lum in lums:
             self.labels[lum.Name] = lum.Label

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any, Dict, List, Optional
 
-from lighting.objects import luminaire, placement_domain, target
+from lighting.objects import luminaire, observer, placement_domain, target
 from lighting.objects.base import BaseProxy, Prop, READ_ONLY, objects_of_type
 from lighting.solver import run as solver_run
 
@@ -153,6 +153,11 @@ def luminaires(analysis: Any) -> List[Any]:
 def targets(analysis: Any) -> List[Any]:
     """Targets used by the analysis."""
     return members(analysis, target.TYPE)
+
+
+def observers(analysis: Any) -> List[Any]:
+    """Observers (eyes for glare) used by the analysis."""
+    return members(analysis, observer.TYPE)
 
 
 def placement_domains(analysis: Any) -> List[Any]:

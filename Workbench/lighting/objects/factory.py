@@ -142,6 +142,27 @@ def make_grid_target(doc: Any, base: Any, face: Optional[str] = None, height_m: 
     return obj
 
 
+def make_observer(doc: Any, position_m: Vec = (0.0, 0.0, 1.2), view: Vec = (1.0, 0.0, 0.0),
+                  ugr_max: float = 0.0, posture: str = "Seated", name: str = "Observer",
+                  analysis: Optional[Any] = None) -> Any:
+    """Create an observer (an eye for UGR) at ``position_m`` looking along ``view`` (level:
+    its z is dropped), with the UGR limit ``ugr_max`` (0: none)."""
+    from lighting.objects.observer import LOCAL_VIEW, Observer
+
+    level = FreeCAD.Vector(view[0], view[1], 0.0)
+    if level.Length == 0.0:
+        raise ValueError(f"observer {name!r}: the view direction must not be vertical or zero")
+    obj = doc.addObject("Part::FeaturePython", name)
+    Observer(obj)
+    obj.Placement = FreeCAD.Placement(
+        FreeCAD.Vector(*(c * M_TO_MM for c in position_m)),
+        FreeCAD.Rotation(LOCAL_VIEW, level.normalize()))
+    obj.UgrMax = float(ugr_max)
+    obj.Posture = posture
+    _add_to_analysis(obj, analysis)
+    return obj
+
+
 def make_placement_domain(doc: Any, base: Any, face: str, resolution_m: float = 0.6,
                           max_luminaires: int = 4, offset_m: float = 0.05,
                           edge_margin_m: float = 0.3, template: Optional[Any] = None,

@@ -24,6 +24,7 @@ from lighting.messages import LightingError, Report, SolverUnavailableError
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import luminaire as luminaire_mod
 from lighting.objects import luminaire_layout as layout_mod
+from lighting.objects import observer as observer_mod
 from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
 from lighting.solver import run
@@ -223,10 +224,11 @@ def check_and_export(analysis: Any, need_solver: bool = True,
     lums = analysis_mod.luminaires(analysis)
     placed = layout_mod.placed_luminaires(analysis)  # layout members in, their templates out
     tgts = analysis_mod.targets(analysis)
+    eyes = analysis_mod.observers(analysis)
     if not placed:
         report.add("error", "No luminaires: add at least one (Lighting > Luminaire, or "
                             "lighting.make_luminaire)")
-    if not tgts:
+    if not tgts and not eyes:
         report.add("error", "No targets: select faces or a floor/space and add a target "
                             "(Lighting > Target, or lighting.make_face_target / make_grid_target)")
     for lum in lums:
@@ -235,6 +237,8 @@ def check_and_export(analysis: Any, need_solver: bool = True,
         report.extend(layout_mod.check(layout), layout.Name)
     for tgt in tgts:
         report.extend(target_mod.check(tgt), tgt.Name)
+    for eye in eyes:
+        report.extend(observer_mod.check(eye), eye.Name)
     for domain in analysis_mod.placement_domains(analysis):
         report.extend(domain_mod.check(domain), domain.Name)
     if exported is None:

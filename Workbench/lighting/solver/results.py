@@ -64,6 +64,18 @@ class TargetResult:
     verdicts: Dict[str, Dict[str, Any]] = field(default_factory=dict)
     #: The solver's U0 interval (honest for a minimum over noisy cells), when it gave one.
     solver_uniformity_ci: Optional[Tuple[float, float]] = None
+    #: Observers: the UGR (None when no luminaire counts or no reflected light reached the
+    #: eye) and its interval (an end None when unbounded), from the traced background
+    #: luminance (docs/glare.md).
+    ugr: Optional[float] = None
+    ugr_ci: Tuple[Optional[float], Optional[float]] = (None, None)
+
+    def ugr_text(self) -> Tuple[str, str]:
+        """("UGR 17.2", "16.9-17.5") of an observer; "-" where a value is absent."""
+        def show(value: Optional[float]) -> str:
+            return "-" if value is None else f"{value:.1f}"
+
+        return (f"UGR {show(self.ugr)}", f"{show(self.ugr_ci[0])}-{show(self.ugr_ci[1])}")
 
     @property
     def uniformity_ci(self) -> Tuple[float, float]:
@@ -108,6 +120,10 @@ class TargetResult:
                      sigma_lux=_float(entry.get("sigma_lux")), hits=_float(entry.get("hits")),
                      area_m2=_float(entry.get("area_m2")),
                      required_lux=required[0], required_uniformity=required[1])
+        if result.kind == "observer":
+            result.ugr = _optional(entry.get("ugr"))
+            result.ugr_ci = (_optional(entry.get("ugr_ci_low")),
+                             _optional(entry.get("ugr_ci_high")))
         cells = entry.get("cells") or []
         if result.kind == "grid":
             uv = entry.get("cells_uv") or [len(cells), 1]
@@ -131,6 +147,14 @@ class TargetResult:
             result.verdict = str(entry["verdict"])
             result.verdicts = dict(entry.get("verdicts") or {})
         return result
+
+
+def _optional(value: Any) -> Optional[float]:
+    """A finite number, or None (JSON null, absent)."""
+    if value is None:
+        return None
+    number = _float(value, float("nan"))
+    return number if math.isfinite(number) else None
 
 
 def _solver_intervals(result: TargetResult, entry: Dict[str, Any]) -> None:
@@ -211,6 +235,8 @@ def format_table(result: AnalysisResult) -> str:
                          f"{t.min_lux:.1f}", _ci(*t.min_ci_lux), f"{t.max_lux:.1f}",
                          _ci(*t.max_ci_lux), f"{t.uniformity:.2f}", f"{u_lo:.2f}-{u_hi:.2f}",
                          verdict))
+        elif t.kind == "observer":
+            rows.append((t.label, t.kind, *t.ugr_text(), "-", "-", "-", "-", "-", "-", verdict))
         else:
             rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", _ci(t.ci_low_lux, t.ci_high_lux),
                          "-", "-", "-", "-", "-", "-", verdict))

@@ -135,7 +135,8 @@ def summary_line(result: AnalysisResult, limit: int = 3) -> str:
     Desk top 612 lx; 200000 photons, 1.2 s"."""
     parts = []
     for t in result.targets[:limit]:
-        text = f"{t.label} Em {t.mean_lux:.0f} lx"
+        text = (f"{t.label} {t.ugr_text()[0]}" if t.kind == "observer"
+                else f"{t.label} Em {t.mean_lux:.0f} lx")
         if t.kind == "grid":
             text += f" U0 {t.uniformity:.2f}"
         verdict = t.verdict_text()

@@ -31,6 +31,7 @@ VIEW_PROVIDERS: Dict[str, Tuple[str, str]] = {
     "Lighting::PlacementDomain": ("placement_domain", "ViewProviderPlacementDomain"),
     "Lighting::Results": ("results", "ViewProviderResults"),
     "Lighting::LuminaireLayout": ("luminaire_layout", "ViewProviderLuminaireLayout"),
+    "Lighting::Observer": ("eye", "ViewProviderObserver"),
 }
 
 _observer: Optional["LightingObserver"] = None

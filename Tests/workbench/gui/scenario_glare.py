@@ -1,0 +1,59 @@
+"""GUI scenario: discomfort glare. From the Start page the user builds the office, adds an
+observer with the toolbar's *Observer* command (nothing selected: seated in the middle of the
+room, looking along +X), picks the office preset for its UGR limit, runs the analysis in its
+panel and reads the observer's UGR, interval and verdict in the results table."""
+import os
+import sys
+
+from guilib import STATUS, expect, grab_window, log, pump, scenario, toolbar_enabled, wait_until
+
+sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
+
+
+def body() -> None:
+    import FreeCADGui
+
+    import office_model
+    from lighting.taskpanels import analysis_panel
+
+    doc = office_model.build_office(photons=200000)
+    office_model.show_in_gui(doc)
+    pump(0.5)
+    FreeCADGui.Selection.clearSelection()
+    expect(toolbar_enabled("Lighting_Observer"), "the Observer command is not enabled")
+    before = {o.Name for o in doc.Objects}
+    FreeCADGui.runCommand("Lighting_Observer")
+    pump(0.5)
+    made = [doc.getObject(n) for n in {o.Name for o in doc.Objects} - before]
+    eyes = [o for o in made if type(getattr(o, "Proxy", None)).__name__ == "Observer"]
+    expect(len(eyes) == 1, f"Observer made {[o.Name for o in made]}")
+    if not eyes:
+        return
+    eye = eyes[0]
+    z_m = eye.Placement.Base.z / 1000.0
+    STATUS["eye_m"] = [round(c / 1000.0, 3) for c in eye.Placement.Base]
+    expect(abs(z_m - 1.2) < 0.01, f"the eye is not seated at 1.2 m above the floor: {z_m}")
+    eye.Activity = "Offices: Writing, typing, reading, data processing"
+    expect(float(eye.UgrMax) == 19.0, f"the office preset gave UgrMax {eye.UgrMax}")
+    analysis = doc.getObject(office_model.OBJECTS["analysis"])
+    analysis.Decide = False
+    FreeCADGui.Selection.addSelection(analysis)
+    FreeCADGui.runCommand("Lighting_Run")
+    ok = wait_until(lambda: analysis_panel.last_run() is not None
+                    and analysis_panel.last_run().finished, 120.0)
+    expect(ok, "the run did not finish")
+    pump(0.5)
+    panel = analysis_panel.last_panel()
+    last = panel.table.columnCount() - 1
+    rows = {panel.table.item(r, 0).text(): (panel.table.item(r, 2).text(),
+                                            panel.table.item(r, last).text())
+            for r in range(panel.table.rowCount())}
+    STATUS["rows"] = rows
+    log(f"rows {rows}")
+    ugr, verdict = rows.get(eye.Label, ("", ""))
+    expect(ugr.startswith("UGR"), f"the observer's row shows no UGR: {rows}")
+    expect(verdict in ("pass", "FAIL", "undecided"), f"the observer's verdict: {rows}")
+    grab_window("glare", docs_name="glare-observer.png")
+
+
+scenario(body)

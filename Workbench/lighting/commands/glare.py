@@ -1,0 +1,54 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""Command "Observer": an eye for discomfort glare (UGR), seated by default, placed at the
+selected point or over the selected floor face, else at the middle of the room; it looks
+level, along +X (turn it with its Placement)."""
+from __future__ import annotations
+
+from typing import Any, Tuple
+
+import FreeCAD
+import FreeCADGui
+
+from lighting.commands import commands
+
+
+def _eye_spot() -> Tuple[Any, str]:
+    """(eye position mm, description) from the selection or the room under the model."""
+    from lighting import placement
+    from lighting.objects.observer import EYE_HEIGHT_M
+
+    doc = FreeCAD.ActiveDocument
+    eye_mm = EYE_HEIGHT_M["Seated"] * 1000.0
+    for sel in FreeCADGui.Selection.getSelectionEx():
+        for name, sub in zip(sel.SubElementNames, sel.SubObjects):
+            if sub.ShapeType == "Vertex":
+                return FreeCAD.Vector(sub.Point), f"at {sel.Object.Label} {name}"
+            if sub.ShapeType == "Face":
+                centre = placement.face_centre(sub)
+                return (FreeCAD.Vector(centre.x, centre.y, centre.z + eye_mm),
+                        f"1.2 m above the centre of {sel.Object.Label} {name}")
+    position, _, _ = placement.default_spot(doc)
+    floor = placement.floor_below(position, placement.model_solids(doc))
+    z = (floor if floor is not None else 0.0) + eye_mm
+    return FreeCAD.Vector(position.x, position.y, z), "seated (1.2 m) in the middle of the room"
+
+
+class CommandObserver(commands.BaseCommand):
+    NAME, ICON = "Lighting_Observer", "Lighting_Observer"
+    MENU = "Observer (glare)"
+    TIP = ("An eye for discomfort glare (UGR, CIE 117): seated at 1.2 m over the selected floor "
+           "face or point, else in the middle of the room, looking level along +X")
+
+    def IsActive(self) -> bool:  # noqa: N802
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self) -> None:  # noqa: N802
+        position, where = _eye_spot()
+        commands._run_transaction("Create observer", [
+            f"lighting.make_observer(FreeCAD.ActiveDocument, ({position.x / 1000.0:.4f}, "
+            f"{position.y / 1000.0:.4f}, {position.z / 1000.0:.4f}), "
+            f"analysis={commands._analysis_arg()})"])
+        FreeCAD.Console.PrintMessage(f"Lighting: observer placed {where}\n")
+
+
+ALL = (CommandObserver,)
