@@ -207,6 +207,19 @@ class Assignment(LibraryCase):
 
 
 class PolarDiagram(LibraryCase):
+    @needs_solver
+    def test_headline_ugr_is_the_tables_4h_8h_entry(self):
+        """The chooser's UGR line is the solver's CIE 190 table at 4H x 8H, 0.7/0.5/0.2."""
+        from lighting.solver import run
+
+        path = os.path.join(SHIPPED_DIR, "downlight.ldt")
+        crosswise, endwise = library.headline_ugr(path)
+        table = run.load_module().ugr_table(path)
+        row = next(r for r in table["rows"] if (r["x_h"], r["y_h"]) == (4.0, 8.0))
+        self.assertEqual((crosswise, endwise), (row["crosswise"][0], row["endwise"][0]))
+        self.assertTrue(10.0 < crosswise < 35.0)
+        self.assertIs(library.headline_ugr(path), library.headline_ugr(path))  # cached
+
     def test_polar_png_from_the_native_plotter(self):
         if run.cli_executable() is None:
             if os.environ.get("LIGHTSOLVER_REQUIRED") == "1":

@@ -267,6 +267,38 @@ def polar_diagram_png(path: str, out_dir: Optional[str] = None) -> str:
     return png
 
 
+_ugr_cache: Dict[Tuple[str, int, int], Optional[Tuple[float, float]]] = {}
+#: The data-sheet headline of a UGR table: room 4H x 8H, reflectances 0.70/0.50/0.20.
+UGR_HEADLINE_ROOM = (4.0, 8.0)
+
+
+def headline_ugr(path: str) -> Optional[Tuple[float, float]]:
+    """(crosswise, endwise) UGR of the file in the CIE 190 standard room 4H x 8H with
+    reflectances 0.70/0.50/0.20 (the figure data sheets quote), from the solver's tabular
+    method (``lightsolver.ugr_table``); None when the solver is missing or the file has no
+    luminous area to judge. Cached by path and modification time (a table takes ~1 s)."""
+    from lighting.solver import run
+
+    stat = os.stat(path)
+    key = (os.path.abspath(path), stat.st_mtime_ns, stat.st_size)
+    if key in _ugr_cache:
+        return _ugr_cache[key]
+    found: Optional[Tuple[float, float]] = None
+    if run.solver_available()[0]:
+        module = run.load_module()
+        try:
+            table = module.ugr_table(os.path.abspath(path))
+            column = [tuple(round(r, 2) for r in refl)
+                      for refl in table["reflectances"]].index((0.7, 0.5, 0.2))
+            for row in table["rows"]:
+                if (row["x_h"], row["y_h"]) == UGR_HEADLINE_ROOM:
+                    found = (float(row["crosswise"][column]), float(row["endwise"][column]))
+        except (ValueError, KeyError, IndexError, AttributeError):
+            found = None  # e.g. a point opening: no luminance to judge
+    _ugr_cache[key] = found
+    return found
+
+
 # -- assignment ------------------------------------------------------------------------------
 def _readable(path: str) -> LibraryEntry:
     entry = read_entry(path)

@@ -277,7 +277,7 @@ class LuminaireChooserPanel(ModelessPanel):
             self.polar.show_png(None)
             self.caption.setText("")
         else:
-            self.summary.setText(_summary_html(entry))
+            self.summary.setText(_summary_html(entry) + _ugr_html(entry))
             self._show_polar(entry)
         self._update_buttons()
 
@@ -393,6 +393,17 @@ class LuminaireChooserPanel(ModelessPanel):
 
     def accept(self) -> bool:
         return self.reject()
+
+
+def _ugr_html(entry: library.LibraryEntry) -> str:
+    """The data-sheet UGR line (CIE 190 room 4H x 8H, 0.70/0.50/0.20), when it can be judged."""
+    if not entry.ok:
+        return ""
+    ugr = library.headline_ugr(entry.path)
+    if ugr is None:
+        return ""
+    return (f"<br>UGR (4H\u00d78H, 0.7/0.5/0.2, CIE 190): {ugr[0]:.1f} crosswise, "
+            f"{ugr[1]:.1f} endwise")
 
 
 def _summary_html(entry: library.LibraryEntry) -> str:
