@@ -371,3 +371,27 @@ def test_tracing_first_leaves_no_numpy_warning(tmp_path, room_scene):
                         str(tmp_path / "r.html")], capture_output=True, text=True, timeout=120,
                        env={**os.environ, "PYTHONPATH": os.pathsep.join(_pythonpath())})
     assert r.returncode == 0 and "subnormal" not in r.stderr, r.stderr
+
+
+def test_an_observer_is_reported_with_its_ugr_interval_and_verdict(tmp_path):
+    """Observers (eyes for discomfort glare) get their own kind of area: the UGR with its
+    interval and the ugr_max verdict, the eye's illuminance said to be reflected light."""
+    scene = json.loads((SOURCE_DIR / "Examples" / "room" / "room.json").read_text())
+    scene["targets"].append({"name": "seated eye", "type": "observer",
+                             "position": [1.0, 2.0, 1.2], "view_direction": [1, 0, 0],
+                             "requirements": {"ugr_max": 19}})
+    path = tmp_path / "room_with_eye.json"
+    path.write_text(json.dumps(scene))
+    for mesh in scene.get("meshes", []):  # mesh files next to the scene, as in Examples/room
+        if "file" in mesh:
+            shutil.copy(SOURCE_DIR / "Examples" / "room" / mesh["file"], tmp_path / mesh["file"])
+    results = lightsolver.solve(lightsolver.load_scene(str(path)), photons=200_000)
+    eye = next(t for t in results["targets"] if t["name"] == "seated eye")
+    html = render_html(scene, json.loads(json.dumps(results, default=lambda o: o.tolist())),
+                       date=DATE)
+    assert "Observer: an eye for discomfort glare" in html
+    assert "UGR" in html and "seated eye" in html
+    if eye["ugr"] is not None:
+        assert f"{eye['ugr']:.1f}"[:3] in html  # the printed UGR is the results' value
+    verdict = eye["verdicts"]["ugr"]["verdict"]
+    assert {"pass": "PASS", "fail": "FAIL", "undecided": "UNDECIDED"}[verdict] in html

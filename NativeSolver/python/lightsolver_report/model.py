@@ -94,6 +94,8 @@ class Area:
     verdict: Optional[str] = None
     verdicts: List[Verdict] = field(default_factory=list)
     grid: Optional[GridData] = None
+    #: Observers (eyes for discomfort glare): the UGR with its interval (docs/glare.md).
+    ugr: Optional[Stat] = None
     horizontal: bool = False
     power_density_w_m2: Optional[float] = None
     power_density_w_m2_100lx: Optional[float] = None
@@ -250,6 +252,8 @@ def build_area(target: Dict[str, Any], scene_target: Dict[str, Any],
         area.cells_uv = (int(uv[0]), int(uv[1])) if uv else None
         area.grid = _grid_data(target, scene_target)
         area.horizontal = _is_horizontal_up(scene_target)
+    if area.type == "observer":
+        area.ugr = _stat(target, "ugr", "ugr_ci_low", "ugr_ci_high")
     req = target.get("requirements")
     if req is None:  # a solver that does not resolve them: show what the scene states
         req = scene_target.get("requirements")
