@@ -230,6 +230,11 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
     assert "cat. no. LS-DL-150" in html and "Lighting project" in html
     assert "1 more copy of it" in html
     assert str(tmp_path) not in html
+    # The data-sheet UGR of each file is the solver's CIE 190 table at 4H x 8H, 0.7/0.5/0.2.
+    table = lightsolver.ugr_table(str(lum_dir / "downlight.ldt"))
+    row = next(r for r in table["rows"] if (r["x_h"], r["y_h"]) == (4.0, 8.0))
+    assert ldt.ugr_4h8h == (row["crosswise"][0], row["endwise"][0])
+    assert "UGR (CIE 190, room 4H × 8H, 0.7/0.5/0.2)" in html
 
 
 def test_large_grids_print_every_kth_value():

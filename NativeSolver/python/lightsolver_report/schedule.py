@@ -34,6 +34,9 @@ class LuminaireRow:
     file_watts: Optional[float] = None
     names: List[str] = field(default_factory=list)
     files: List[str] = field(default_factory=list)  # identical files (copies) of the row
+    #: The data-sheet UGR of the file (CIE 190 room 4H x 8H, reflectances 0.7/0.5/0.2):
+    #: (crosswise, endwise), when the solver's tabular method can judge it.
+    ugr_4h8h: Optional[Tuple[float, float]] = None
     flux_lm: float = 0.0  # emitted in the calculation (maintained, when a factor applied)
     maintenance_factor: Optional[float] = None
     power_w: Optional[float] = None
@@ -163,6 +166,8 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
                               f"{summary.get('format_version', '')}".strip()
             row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
             row.file_watts = finite(summary.get("input_watts")) or None
+            row.ugr_4h8h = _headline_ugr(file if os.path.isabs(file) else
+                                         os.path.join(base_dir, file))
         same_file = _content_key(file, base_dir)
         key = (row.kind, same_file, row.flux_lm, row.maintenance_factor, row.power_w)
         entry = rows.setdefault(key, row)
@@ -170,6 +175,22 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
         if file is not None and file not in entry.files:
             entry.files.append(file)
     return list(rows.values()), warnings
+
+
+def _headline_ugr(path: str) -> Optional[Tuple[float, float]]:
+    """(crosswise, endwise) UGR of the file in CIE 190's room 4H x 8H with reflectances
+    0.7/0.5/0.2, from ``lightsolver.ugr_table`` (docs/glare.md); None where it cannot judge
+    (no module, a point opening)."""
+    try:
+        import lightsolver
+
+        table = lightsolver.ugr_table(path)
+        column = [tuple(round(r, 2) for r in refl)
+                  for refl in table["reflectances"]].index((0.7, 0.5, 0.2))
+        row = next(r for r in table["rows"] if (r["x_h"], r["y_h"]) == (4.0, 8.0))
+        return float(row["crosswise"][column]), float(row["endwise"][column])
+    except Exception:  # noqa: BLE001 - no UGR is printed rather than a wrong one
+        return None
 
 
 def _content_key(file: Optional[str], base_dir: str) -> Optional[str]:
