@@ -268,35 +268,33 @@ def polar_diagram_png(path: str, out_dir: Optional[str] = None) -> str:
 
 
 _ugr_cache: Dict[Tuple[str, int, int], Optional[Tuple[float, float]]] = {}
-#: The data-sheet headline of a UGR table: room 4H x 8H, reflectances 0.70/0.50/0.20.
-UGR_HEADLINE_ROOM = (4.0, 8.0)
 
 
 def headline_ugr(path: str) -> Optional[Tuple[float, float]]:
-    """(crosswise, endwise) UGR of the file in the CIE 190 standard room 4H x 8H with
-    reflectances 0.70/0.50/0.20 (the figure data sheets quote), from the solver's tabular
-    method (``lightsolver.ugr_table``); None when the solver is missing or the file has no
-    luminous area to judge. Cached by path and modification time (a table takes ~1 s)."""
+    """(crosswise, endwise) data-sheet UGR of the file (CIE 190 room 4H x 8H, reflectances
+    0.7/0.5/0.2): the report's figure (``lightsolver_report.schedule.headline_ugr``), None
+    when the solver is missing or cannot judge the file. Cached by path and modification
+    time (a table takes ~1 s)."""
+    import importlib
+
     from lighting.solver import run
 
     stat = os.stat(path)
     key = (os.path.abspath(path), stat.st_mtime_ns, stat.st_size)
-    if key in _ugr_cache:
-        return _ugr_cache[key]
-    found: Optional[Tuple[float, float]] = None
-    if run.solver_available()[0]:
-        module = run.load_module()
-        try:
-            table = module.ugr_table(os.path.abspath(path))
-            column = [tuple(round(r, 2) for r in refl)
-                      for refl in table["reflectances"]].index((0.7, 0.5, 0.2))
-            for row in table["rows"]:
-                if (row["x_h"], row["y_h"]) == UGR_HEADLINE_ROOM:
-                    found = (float(row["crosswise"][column]), float(row["endwise"][column]))
-        except (ValueError, KeyError, IndexError, AttributeError):
-            found = None  # e.g. a point opening: no luminance to judge
-    _ugr_cache[key] = found
-    return found
+    if key not in _ugr_cache:
+        found = None
+        if run.solver_available()[0]:
+            from lighting.messages import LightingError
+            from lighting.reporting import report_module
+
+            try:
+                report_module()
+                schedule = importlib.import_module("lightsolver_report.schedule")
+                found = schedule.headline_ugr(os.path.abspath(path))
+            except (LightingError, ImportError):
+                found = None  # no report package beside the module: no figure
+        _ugr_cache[key] = found
+    return _ugr_cache[key]
 
 
 # -- assignment ------------------------------------------------------------------------------

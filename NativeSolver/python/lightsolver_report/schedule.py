@@ -166,8 +166,8 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
                               f"{summary.get('format_version', '')}".strip()
             row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
             row.file_watts = finite(summary.get("input_watts")) or None
-            row.ugr_4h8h = _headline_ugr(file if os.path.isabs(file) else
-                                         os.path.join(base_dir, file))
+            row.ugr_4h8h = headline_ugr(file if os.path.isabs(file) else
+                                        os.path.join(base_dir, file))
         same_file = _content_key(file, base_dir)
         key = (row.kind, same_file, row.flux_lm, row.maintenance_factor, row.power_w)
         entry = rows.setdefault(key, row)
@@ -177,10 +177,11 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
     return list(rows.values()), warnings
 
 
-def _headline_ugr(path: str) -> Optional[Tuple[float, float]]:
+def headline_ugr(path: str) -> Optional[Tuple[float, float]]:
     """(crosswise, endwise) UGR of the file in CIE 190's room 4H x 8H with reflectances
-    0.7/0.5/0.2, from ``lightsolver.ugr_table`` (docs/glare.md); None where it cannot judge
-    (no module, a point opening)."""
+    0.7/0.5/0.2 (the figure data sheets quote), from ``lightsolver.ugr_table``
+    (docs/glare.md); None where it cannot judge (no module, a point opening). The
+    workbench's luminaire chooser shows the same figure through this function."""
     try:
         import lightsolver
 
