@@ -485,11 +485,7 @@ class AnalysisTaskPanel(ModelessPanel):
             self.job.cancel()
             self.job.wait(5.0)
         self.timer.stop()
-        FreeCADGui.Control.closeDialog()
-        try:
-            FreeCADGui.ActiveDocument.resetEdit()
-        except Exception:  # noqa: BLE001 - not in edit mode
-            pass
+        self.close_dialog()
         return True
 
     def accept(self) -> bool:

@@ -384,11 +384,7 @@ class LuminaireChooserPanel(ModelessPanel):
     def reject(self) -> bool:
         """Close (nothing to undo: every Assign was its own undo step)."""
         FreeCADGui.Selection.removeObserver(self.observer)
-        FreeCADGui.Control.closeDialog()
-        try:
-            FreeCADGui.ActiveDocument.resetEdit()
-        except Exception:  # noqa: BLE001 - not in edit mode
-            pass
+        self.close_dialog()
         return True
 
     def accept(self) -> bool:

@@ -20,3 +20,13 @@ class ModelessPanel:
 
     def isAllowedAlterSelection(self) -> bool:  # noqa: N802 (FreeCAD API name)
         return True
+
+    def close_dialog(self) -> None:
+        """Close the task dialog and leave edit mode (a panel opened by double-click)."""
+        import FreeCADGui
+
+        FreeCADGui.Control.closeDialog()
+        try:
+            FreeCADGui.ActiveDocument.resetEdit()
+        except Exception:  # noqa: BLE001 - not in edit mode
+            pass
