@@ -1,7 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Command "Choose luminaire data": opens the luminaire chooser (taskpanels/
-luminaire_chooser.py) for the selected luminaires, or for a new one. commands.py imports this
-module at its end, which adds the command to its ALL and MODEL_COMMANDS (toolbar and menu)."""
+luminaire_chooser.py) for the selected luminaires, or for a new one."""
 from __future__ import annotations
 
 from typing import Any
@@ -26,16 +25,3 @@ def show_chooser(luminaire: Any = None) -> Any:
     from lighting.taskpanels import luminaire_chooser
 
     return luminaire_chooser.show(luminaire)
-
-
-def _extend_lists() -> None:
-    """Toolbar and menu place: right after the Luminaire command."""
-    if CommandChooseLuminaire not in _commands.ALL:
-        _commands.ALL = tuple(_commands.ALL) + (CommandChooseLuminaire,)
-    if NAME not in _commands.MODEL_COMMANDS:
-        after = _commands.MODEL_COMMANDS.index("Lighting_Luminaire") + 1 \
-            if "Lighting_Luminaire" in _commands.MODEL_COMMANDS else len(_commands.MODEL_COMMANDS)
-        _commands.MODEL_COMMANDS.insert(after, NAME)
-
-
-_extend_lists()

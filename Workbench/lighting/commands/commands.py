@@ -333,11 +333,13 @@ class CommandClearResults(BaseCommand):
 ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPlacementDomain,
        CommandCheck, CommandExport, CommandRun, CommandOptimize, CommandResults,
        CommandClearResults)
-MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_LuminaireLayout",
-                  "Lighting_Target", "Lighting_Grid", "Lighting_Observer",
-                  "Lighting_PlacementDomain"]
+# Toolbar and menu order; the commands of their own modules (layout, chooser, observer,
+# report, exclusion) are registered by register() below.
+MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_ChooseLuminaire",
+                  "Lighting_LuminaireLayout", "Lighting_Target", "Lighting_Grid",
+                  "Lighting_Observer", "Lighting_PlacementDomain"]
 RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Optimize",
-                "Lighting_Results", "Lighting_ClearResults"]
+                "Lighting_Results", "Lighting_Report", "Lighting_ClearResults"]
 
 
 from lighting.commands import exclusion  # noqa: E402 - "Exclude from lighting" / "Include"
@@ -347,14 +349,12 @@ EXCLUSION_COMMANDS = exclusion.NAMES
 
 def register() -> None:
     """Add every command to FreeCAD (once)."""
-    from lighting.commands import glare
+    from lighting.commands import chooser, glare, report
     from lighting.commands.layout import CommandLuminaireLayout
 
-    for cls in ALL + exclusion.ALL + (CommandLuminaireLayout,) + glare.ALL:
+    more = (CommandLuminaireLayout, chooser.CommandChooseLuminaire, report.CommandReport)
+    for cls in ALL + exclusion.ALL + more + glare.ALL:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)
 
-
-from lighting.commands import chooser as _chooser  # noqa: E402,F401 - "Choose luminaire data"
-from lighting.commands import report as _report  # noqa: E402,F401 - "Report" (PDF/HTML)

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Command "Report": writes the calculation report of the analysis' stored results as PDF or
-HTML (``lighting.report``, docs/report.md), asking where. commands.py imports this module at
-its end, which adds the command to its ALL and RUN_COMMANDS (toolbar, menu) after Results."""
+HTML (``lighting.report``, docs/report.md), asking where. commands.register() adds it;
+RUN_COMMANDS places it after Results."""
 from __future__ import annotations
 
 import os
@@ -81,16 +81,3 @@ class CommandReport(_commands.BaseCommand):
         path = ask_path(analysis)
         if path:
             write_report(analysis, path)
-
-
-def _extend_lists() -> None:
-    """Toolbar and menu place: right after the Results command."""
-    if CommandReport not in _commands.ALL:
-        _commands.ALL = tuple(_commands.ALL) + (CommandReport,)
-    if NAME not in _commands.RUN_COMMANDS:
-        after = _commands.RUN_COMMANDS.index("Lighting_Results") + 1 \
-            if "Lighting_Results" in _commands.RUN_COMMANDS else len(_commands.RUN_COMMANDS)
-        _commands.RUN_COMMANDS.insert(after, NAME)
-
-
-_extend_lists()
