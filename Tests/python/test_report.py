@@ -237,6 +237,48 @@ def test_photometric_luminaires_say_what_their_files_say(tmp_path):
     assert "UGR (CIE 190, room 4H × 8H, 0.7/0.5/0.2)" in html
 
 
+
+def test_each_photometric_file_gets_its_full_ugr_table(tmp_path):
+    """The data-sheet UGR table (CIE 190, 19 rooms x 5 reflectances, crosswise and endwise)
+    of each photometric file, once per file, every value the solver's to one decimal."""
+    lum_dir = SOURCE_DIR / "Resources" / "luminaires"
+    shutil.copy(lum_dir / "batwing_panel.ldt", tmp_path / "batwing_panel.ldt")
+    scene = {
+        "format": "lightsolver.scene/1",
+        "materials": {"floor": {"type": "diffuse", "reflectance": 0.2}},
+        "meshes": [{"name": "floor", "material": "floor",
+                    "vertices": [[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0]],
+                    "triangles": [[0, 1, 2], [0, 2, 3]]}],
+        # Two schedule rows (two fluxes) of one file: one table.
+        "luminaires": [{"name": "a", "type": "photometric", "file": "batwing_panel.ldt",
+                        "position": [1, 1, 3]},
+                       {"name": "b", "type": "photometric", "file": "batwing_panel.ldt",
+                        "position": [3, 3, 3], "flux_lm": 2000},
+                       {"name": "c", "type": "point", "position": [2, 2, 3], "flux_lm": 100}],
+        "targets": [{"name": "floor grid", "type": "grid", "corner": [0, 0, 0],
+                     "edge1": [4, 0, 0], "edge2": [0, 4, 0], "cells": [2, 2]}],
+        "settings": {"photons": 20000, "seed": 3}}
+    path = tmp_path / "panels.json"
+    path.write_text(json.dumps(scene))
+    results = lightsolver_report.trace(path)
+    report = build(path, results, date=DATE)
+    assert len(report.luminaires) == 3 and len(report.ugr_tables) == 1
+    html = render_html(path, results, date=DATE)
+    assert html.count("UGR table: batwing_panel.ldt") == 1
+    assert "S = 0.25 H. Corrections for other spacings are not given." in html
+    expected = lightsolver.ugr_table(str(lum_dir / "batwing_panel.ldt"))
+    block = html.split("UGR table: batwing_panel.ldt", 1)[1].split("</table>", 1)[0]
+    body = block.split("<tbody>", 1)[1]
+    printed = [re.findall(r'<td class="r[^"]*">([^<]*)</td>', row)
+               for row in re.findall(r"<tr[^>]*>(.*?)</tr>", body, re.S)]
+    assert len(printed) == 19
+    for row, cells in zip(expected["rows"], printed):
+        assert cells == [f"{v:.1f}" for v in row["crosswise"] + row["endwise"]]
+    assert [r.x_h for r in report.ugr_tables[0].ugr_table.rows][:7] == [2.0] * 6 + [4.0]
+    # The headline in the schedule is the table's 4H x 8H, 0.7/0.5/0.2 entry.
+    row = next(r for r in expected["rows"] if (r["x_h"], r["y_h"]) == (4.0, 8.0))
+    assert report.luminaires[0].ugr_4h8h == (row["crosswise"][0], row["endwise"][0])
+
 def test_large_grids_print_every_kth_value():
     import numpy as np
 

@@ -117,5 +117,11 @@ def metres(value: Optional[float]) -> str:
     return f"{value:.2f}"
 
 
-FILTERS = {"lux": lux, "ratio": ratio, "ratio2": ratio2, "number": number, "sci": sci,
+def ugr(value: Optional[float]) -> str:
+    """A UGR as data sheets print it, one decimal: 25.8; "–" where no luminaire counts."""
+    value = finite(value)
+    return "–" if value is None else f"{value:.1f}"
+
+
+FILTERS = {"ugr": ugr, "lux": lux, "ratio": ratio, "ratio2": ratio2, "number": number, "sci": sci,
            "count": count, "seconds": seconds, "percent": percent, "metres": metres}

@@ -134,6 +134,18 @@ class Report:
     solver_total_flux_lm: Optional[float]
 
     @property
+    def ugr_tables(self) -> List[LuminaireRow]:
+        """The schedule's rows whose file has a UGR table, one per file (rows of the same file
+        at other fluxes share the table: it is the file's, for the file's own flux)."""
+        seen, out = set(), []
+        for row in self.luminaires:
+            key = tuple(sorted(row.files))
+            if row.ugr_table is not None and key not in seen:
+                seen.add(key)
+                out.append(row)
+        return out
+
+    @property
     def total_count(self) -> int:
         return sum(r.count for r in self.luminaires)
 

@@ -37,6 +37,8 @@ class LuminaireRow:
     #: The data-sheet UGR of the file (CIE 190 room 4H x 8H, reflectances 0.7/0.5/0.2):
     #: (crosswise, endwise), when the solver's tabular method can judge it.
     ugr_4h8h: Optional[Tuple[float, float]] = None
+    #: The file's full UGR table (CIE 190), as data sheets print it; None where not judged.
+    ugr_table: Optional["UgrTableView"] = None
     flux_lm: float = 0.0  # emitted in the calculation (maintained, when a factor applied)
     maintenance_factor: Optional[float] = None
     power_w: Optional[float] = None
@@ -166,8 +168,9 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
                               f"{summary.get('format_version', '')}".strip()
             row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
             row.file_watts = finite(summary.get("input_watts")) or None
-            row.ugr_4h8h = headline_ugr(file if os.path.isabs(file) else
-                                        os.path.join(base_dir, file))
+            row.ugr_table = ugr_table_view(file if os.path.isabs(file) else
+                                           os.path.join(base_dir, file))
+            row.ugr_4h8h = row.ugr_table.headline() if row.ugr_table else None
         same_file = _content_key(file, base_dir)
         key = (row.kind, same_file, row.flux_lm, row.maintenance_factor, row.power_w)
         entry = rows.setdefault(key, row)
@@ -177,21 +180,77 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
     return list(rows.values()), warnings
 
 
+@dataclass
+class UgrTableRowView:
+    """One room of a UGR table: X (across the line of sight) and Y (along it) in multiples of
+    H, and one UGR per reflectance combination, crosswise and endwise (None: no luminaire
+    counts)."""
+
+    x_h: float
+    y_h: float
+    crosswise: List[Optional[float]]
+    endwise: List[Optional[float]]
+
+
+@dataclass
+class UgrTableView:
+    """A photometric file's UGR table by CIE 190's tabular method (``lightsolver.ugr_table``,
+    docs/glare.md), laid out as data sheets print it: 19 rooms from 2H x 2H to 12H x 8H, five
+    (ceiling, walls, floor) reflectance combinations, crosswise and endwise."""
+
+    spacing_to_height: float
+    luminaire_flux_lm: float
+    reflectances: List[Tuple[float, float, float]]
+    rows: List[UgrTableRowView]
+    warnings: List[str] = field(default_factory=list)
+
+    def headline(self) -> Optional[Tuple[float, float]]:
+        """(crosswise, endwise) in room 4H x 8H at 0.7/0.5/0.2, the figure data sheets quote."""
+        try:
+            column = [tuple(round(r, 2) for r in refl)
+                      for refl in self.reflectances].index((0.7, 0.5, 0.2))
+            row = next(r for r in self.rows if (r.x_h, r.y_h) == (4.0, 8.0))
+        except (ValueError, StopIteration):
+            return None
+        cross, end = row.crosswise[column], row.endwise[column]
+        return None if cross is None or end is None else (cross, end)
+
+    def groups(self) -> List[List[UgrTableRowView]]:
+        """The rooms grouped by X, as data sheets separate them."""
+        out: List[List[UgrTableRowView]] = []
+        for row in self.rows:
+            if not out or out[-1][0].x_h != row.x_h:
+                out.append([])
+            out[-1].append(row)
+        return out
+
+
+def ugr_table_view(path: str) -> Optional[UgrTableView]:
+    """The file's UGR table from ``lightsolver.ugr_table`` at the data-sheet spacing
+    S = 0.25 H; None where it cannot be judged (no module, a point opening, a bad file)."""
+    try:
+        import lightsolver
+
+        table = lightsolver.ugr_table(path)
+        rows = [UgrTableRowView(float(r["x_h"]), float(r["y_h"]),
+                                [finite(v) for v in r["crosswise"]],
+                                [finite(v) for v in r["endwise"]]) for r in table["rows"]]
+        return UgrTableView(spacing_to_height=float(table["spacing_to_height"]),
+                            luminaire_flux_lm=float(table["luminaire_flux_lm"]),
+                            reflectances=[tuple(float(x) for x in refl)
+                                          for refl in table["reflectances"]],
+                            rows=rows, warnings=[str(w) for w in table.get("warnings", [])])
+    except Exception:  # noqa: BLE001 - no table is printed rather than a wrong one
+        return None
+
+
 def headline_ugr(path: str) -> Optional[Tuple[float, float]]:
     """(crosswise, endwise) UGR of the file in CIE 190's room 4H x 8H with reflectances
     0.7/0.5/0.2 (the figure data sheets quote), from ``lightsolver.ugr_table``
     (docs/glare.md); None where it cannot judge (no module, a point opening). The
     workbench's luminaire chooser shows the same figure through this function."""
-    try:
-        import lightsolver
-
-        table = lightsolver.ugr_table(path)
-        column = [tuple(round(r, 2) for r in refl)
-                  for refl in table["reflectances"]].index((0.7, 0.5, 0.2))
-        row = next(r for r in table["rows"] if (r["x_h"], r["y_h"]) == (4.0, 8.0))
-        return float(row["crosswise"][column]), float(row["endwise"][column])
-    except Exception:  # noqa: BLE001 - no UGR is printed rather than a wrong one
-        return None
+    view = ugr_table_view(path)
+    return view.headline() if view else None
 
 
 def _content_key(file: Optional[str], base_dir: str) -> Optional[str]:
