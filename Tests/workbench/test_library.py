@@ -218,7 +218,23 @@ class PolarDiagram(LibraryCase):
         row = next(r for r in table["rows"] if (r["x_h"], r["y_h"]) == (4.0, 8.0))
         self.assertEqual((crosswise, endwise), (row["crosswise"][0], row["endwise"][0]))
         self.assertTrue(10.0 < crosswise < 35.0)
-        self.assertIs(library.headline_ugr(path), library.headline_ugr(path))  # cached
+        self.assertIs(library.ugr_table(path), library.ugr_table(path))  # cached
+
+    @needs_solver
+    def test_full_ugr_table_is_the_solvers(self):
+        """The chooser's UGR table window shows the solver's 19 x 10 table, one decimal."""
+        from lighting.solver import run
+        path = os.path.join(SHIPPED_DIR, "batwing_panel.ldt")
+        view = library.ugr_table(path)
+        table = run.load_module().ugr_table(path)
+        texts = library.ugr_table_texts(view)
+        self.assertEqual(len(texts), 19)
+        for shown, row in zip(texts, table["rows"]):
+            self.assertEqual(shown[1], f"{row['y_h']:g}H")
+            self.assertEqual(shown[2:], [f"{v:.1f}" for v in row["crosswise"] + row["endwise"]])
+        self.assertEqual([t[0] for t in texts if t[0]], ["2H", "4H", "8H", "12H"])
+        self.assertIn("S = 0.25 H. Corrections for other spacings are not given.",
+                      library.ugr_table_note(view))
 
     def test_polar_png_from_the_native_plotter(self):
         if run.cli_executable() is None:

@@ -267,14 +267,13 @@ def polar_diagram_png(path: str, out_dir: Optional[str] = None) -> str:
     return png
 
 
-_ugr_cache: Dict[Tuple[str, int, int], Optional[Tuple[float, float]]] = {}
+_ugr_cache: Dict[Tuple[str, int, int], Optional[Any]] = {}
 
 
-def headline_ugr(path: str) -> Optional[Tuple[float, float]]:
-    """(crosswise, endwise) data-sheet UGR of the file (CIE 190 room 4H x 8H, reflectances
-    0.7/0.5/0.2): the report's figure (``lightsolver_report.schedule.headline_ugr``), None
-    when the solver is missing or cannot judge the file. Cached by path and modification
-    time (a table takes ~1 s)."""
+def ugr_table(path: str) -> Optional[Any]:
+    """The file's full UGR table (CIE 190 tabular method, as data sheets print it): the
+    report's ``lightsolver_report.schedule.UgrTableView``, None when the solver is missing or
+    cannot judge the file. Cached by path and modification time (a table takes ~1 s)."""
     import importlib
 
     from lighting.solver import run
@@ -290,11 +289,40 @@ def headline_ugr(path: str) -> Optional[Tuple[float, float]]:
             try:
                 report_module()
                 schedule = importlib.import_module("lightsolver_report.schedule")
-                found = schedule.headline_ugr(os.path.abspath(path))
+                found = schedule.ugr_table_view(os.path.abspath(path))
             except (LightingError, ImportError):
-                found = None  # no report package beside the module: no figure
+                found = None  # no report package beside the module: no table
         _ugr_cache[key] = found
     return _ugr_cache[key]
+
+
+def headline_ugr(path: str) -> Optional[Tuple[float, float]]:
+    """(crosswise, endwise) data-sheet UGR of the file (CIE 190 room 4H x 8H, reflectances
+    0.7/0.5/0.2): the report's figure, from the same table as ``ugr_table``."""
+    table = ugr_table(path)
+    return table.headline() if table is not None else None
+
+
+def ugr_table_note(table: Any) -> str:
+    """What a UGR table (``ugr_table``) is and is not, as the report says it."""
+    note = (f"CIE 190 tabular method for the file's own flux, {table.luminaire_flux_lm:.0f} lm "
+            "(corrected values). Room X across and Y along the line of sight, in multiples of "
+            "H, the luminaires' height above the eye; observer at the middle of the wall; "
+            f"luminaire spacing S = {table.spacing_to_height:g} H. Corrections for other "
+            "spacings are not given. Crosswise: line of sight in the file's C0-C180 plane. "
+            "\u2013: no luminaire counts.")
+    return " ".join([note] + [f"Warning: {w}." for w in table.warnings])
+
+
+def ugr_table_texts(table: Any) -> List[List[str]]:
+    """A UGR table's printed rows: X (on the first row of its group only), Y, then the ten
+    UGR values to one decimal (crosswise, endwise; \u2013 where no luminaire counts)."""
+    rows: List[List[str]] = []
+    for group in table.groups():
+        for i, row in enumerate(group):
+            values = [("\u2013" if v is None else f"{v:.1f}") for v in row.crosswise + row.endwise]
+            rows.append([f"{row.x_h:g}H" if i == 0 else "", f"{row.y_h:g}H"] + values)
+    return rows
 
 
 # -- assignment ------------------------------------------------------------------------------

@@ -85,6 +85,38 @@ def check_fits(panel):
         expect(right <= form.width(), f"{type(widget).__name__} cut at the right ({right} px)")
 
 
+def check_ugr_table(panel):
+    """'UGR table...' opens the file's full CIE 190 table in its own window: 19 rooms, ten
+    values each, the 4H x 8H row equal to the headline, nothing scrolled out of view."""
+    from guilib import OUT
+    from lighting import luminaire_library as library
+
+    dialog = panel.show_ugr_table()
+    pump(0.5)
+    expect(dialog is not None and dialog.isVisible(), "the UGR table window did not open")
+    if dialog is None:
+        return
+    texts = dialog.texts()
+    STATUS["ugr_table_rows"] = len(texts)
+    expect(len(texts) == 20, f"UGR table has {len(texts)} rows, expected 1 + 19")
+    row, x = None, ""
+    for t in texts[1:]:
+        x = t[0] or x  # X is printed on the first row of its group only
+        if (x, t[1]) == ("4H", "8H"):
+            row = t
+    head = library.headline_ugr(panel.current_entry().path)
+    expect(row is not None and row[2] == f"{head[0]:.1f}" and row[7] == f"{head[1]:.1f}",
+           f"4H x 8H row {row} against the headline {head}")
+    grid = dialog.grid
+    expect(grid.horizontalScrollBar().maximum() == 0 and grid.verticalScrollBar().maximum() == 0,
+           "the UGR table window scrolls")
+    path = os.path.join(OUT, "chooser_ugr_table.png")
+    dialog.grab().save(path)
+    STATUS["images"]["chooser_ugr_table"] = path
+    log(f"screenshot {path}")
+    dialog.close()
+
+
 def body() -> None:
     import FreeCAD
     import FreeCADGui
@@ -122,8 +154,13 @@ def body() -> None:
     expect(pixels[0] > 500 and pixels[1] > 50 and pixels[2] > 50,
            f"polar diagram looks blank (non-white, red, blue samples: {pixels})")
     expect("cd/klm" in panel.caption.text(), f"caption {panel.caption.text()!r}")
+    expect("UGR (4H\u00d78H, 0.7/0.5/0.2, CIE 190): 25.8 crosswise, 22.9 endwise" in summary,
+           "summary lacks the data-sheet UGR")
     check_fits(panel)
+    expect(visible_in_window(panel.ugr_button) and panel.ugr_button.isEnabled(),
+           "'UGR table...' button not visible or disabled")
     grab_window("chooser", docs_name="chooser.png")
+    check_ugr_table(panel)
 
     steps = list(FreeCAD.ActiveDocument.UndoNames)
     panel.button_box.button(panel.button_box.Apply).click()

@@ -22,6 +22,7 @@ from lighting.objects.base import proxy_type
 from lighting.objects.luminaire import TYPE as LUMINAIRE_TYPE
 from lighting.viewproviders.base import icon_path
 from lighting.taskpanels.modeless import ModelessPanel
+from lighting.taskpanels.ugr_table_dialog import UgrTableDialog
 
 GROUP_TITLES = {library.SHIPPED: "Shipped samples", library.USER: "User folder"}
 ERROR_COLOUR = QtGui.QColor(190, 30, 30)
@@ -164,6 +165,13 @@ class LuminaireChooserPanel(ModelessPanel):
         self.tree.header().setSectionResizeMode(1, QtGui.QHeaderView.ResizeToContents)
         self.tree.currentItemChanged.connect(lambda *_: self._show_current())
         layout.addWidget(self.tree)
+        # The full UGR table needs twelve columns: its own window, not the narrow panel;
+        # the button sits under the list, where it is seen without scrolling.
+        self.ugr_button = QtGui.QPushButton("UGR table...")
+        self.ugr_button.setToolTip("The file's UGR table (CIE 190) as data sheets print it")
+        self.ugr_button.clicked.connect(self.show_ugr_table)
+        layout.addWidget(self.ugr_button)
+        self.ugr_dialog: Optional[UgrTableDialog] = None
 
         folder_row = QtGui.QHBoxLayout()
         self.folder = QtGui.QLineEdit()
@@ -279,7 +287,21 @@ class LuminaireChooserPanel(ModelessPanel):
         else:
             self.summary.setText(_summary_html(entry) + _ugr_html(entry))
             self._show_polar(entry)
+        self.ugr_button.setEnabled(entry is not None and entry.ok
+                                   and library.ugr_table(entry.path) is not None)
         self._update_buttons()
+
+    def show_ugr_table(self) -> Optional[UgrTableDialog]:
+        """Open the current file's UGR table in its own window (replacing one already open)."""
+        entry = self.current_entry()
+        table = library.ugr_table(entry.path) if entry is not None and entry.ok else None
+        if table is None:
+            return None
+        if self.ugr_dialog is not None:
+            self.ugr_dialog.close()
+        self.ugr_dialog = UgrTableDialog(entry.name, table, self.form)
+        self.ugr_dialog.show()
+        return self.ugr_dialog
 
     def _show_polar(self, entry: library.LibraryEntry) -> None:
         if not entry.ok:
@@ -384,6 +406,8 @@ class LuminaireChooserPanel(ModelessPanel):
     def reject(self) -> bool:
         """Close (nothing to undo: every Assign was its own undo step)."""
         FreeCADGui.Selection.removeObserver(self.observer)
+        if self.ugr_dialog is not None:
+            self.ugr_dialog.close()
         self.close_dialog()
         return True
 
