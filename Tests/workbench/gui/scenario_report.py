@@ -27,6 +27,31 @@ def toolbar_actions(title: str) -> list:
     return []
 
 
+def check_ugr_table(pdf: str, text: str, table) -> None:
+    """The PDF holds the file's UGR table (its 4H x 8H row as the chooser shows it); its page
+    is kept as an image to look at."""
+    from guilib import OUT
+    from lighting import luminaire_library as library
+
+    expect(table is not None, "no UGR table for batwing_panel.ldt")
+    expect("UGR table:" in text and "Viewed crosswise" in text, "no UGR table in the PDF")
+    if table is None:
+        return
+    rows, x = library.ugr_table_texts(table), ""
+    for row in rows:
+        x = row[0] or x
+        if (x, row[1]) == ("4H", "8H"):
+            line = " ".join(row[1:7])  # Y and the five crosswise values, as pdftotext lays out
+            STATUS["ugr_4h8h_line"] = line
+            expect(" ".join(line.split()) in " ".join(text.split()),
+                   f"4H x 8H row {line!r} not in the PDF text")
+    page = next((i + 1 for i, p in enumerate(text.split("\f")) if "UGR table:" in p), None)
+    if page:
+        subprocess.run(["pdftoppm", "-r", "80", "-png", "-f", str(page), "-l", str(page), pdf,
+                        os.path.join(OUT, "report_ugr_page")], check=False)
+        STATUS["ugr_page"] = page
+
+
 def body() -> None:
     import FreeCAD
     import FreeCADGui
@@ -43,6 +68,14 @@ def body() -> None:
     expect("Report" in actions and actions.index("Report") == actions.index("Results") + 1,
            f"Report is not after Results in the analysis toolbar: {actions}")
     expect(not report_cmd.CommandReport().IsActive(), "Report is active before any results")
+    # One luminaire photometric (as the chooser's Assign does): the report prints its file's
+    # full UGR table.
+    import lighting
+    from lighting import luminaire_library as library
+
+    ldt = os.path.join(os.environ["LIGHTING_SOURCE_DIR"], "Resources", "luminaires",
+                       "batwing_panel.ldt")
+    lighting.assign_photometry(doc, [doc.getObject("Luminaire01")], ldt)
 
     FreeCADGui.runCommand("Lighting_Run")
     wait_until(lambda: analysis_panel.last_run() is not None and
@@ -77,6 +110,7 @@ def body() -> None:
         for target in results.targets:
             expect(target.label in text and fmt.lux(target.mean_lux) in text,
                    f"{target.label} Em {fmt.lux(target.mean_lux)} not in the PDF text")
+        check_ugr_table(out, text, library.ugr_table(ldt))
     message = main_window().statusBar().currentMessage()
     STATUS["status_bar"] = message
     log(f"status bar: {message}")
