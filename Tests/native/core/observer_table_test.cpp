@@ -104,7 +104,8 @@ TEST(ObserverAgainstTable, StandardRoomCrosswiseWithinTheMethodsTolerance) {
   std::cout << "table " << table_ugr << " (L_b " << row.background_luminance_cd_m2[0]
             << " cd/m2; at the offset eye " << at_offset_eye.ugr.value_or(-1) << ")\n"
             << "observer " << *g.ugr << " [" << *g.ugr_ci_low << ", " << *g.ugr_ci_high << "] (L_b "
-            << g.background_luminance_cd_m2 << " cd/m2, " << r.targets[0].estimate.hits
+            << g.background_luminance_cd_m2 << " [" << g.background_ci_low_cd_m2 << ", "
+            << g.background_ci_high_cd_m2 << "] cd/m2, " << r.targets[0].estimate.hits
             << " hits)\n";
 
   EXPECT_NEAR(*g.ugr, table_ugr, kMethodTolerance);

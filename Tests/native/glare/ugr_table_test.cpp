@@ -1,6 +1,6 @@
 // The tabular method (CIE 190): transfer factors against CIE 190's Table 5, and the table's
-// internal consistency on shipped luminaires (no public worked example with its photometric
-// file was found; docs/glare.md).
+// internal consistency on shipped luminaires (the published tables of CIE 190's example
+// luminaire: ugr_table_reference_test.cpp; docs/glare.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -113,6 +113,7 @@ def check_ugr_table(panel):
     path = os.path.join(OUT, "chooser_ugr_table.png")
     dialog.grab().save(path)
     STATUS["images"]["chooser_ugr_table"] = path
+    STATUS["docs_images"]["chooser_ugr_table"] = "chooser-ugr-table.png"
     log(f"screenshot {path}")
     dialog.close()
 
