@@ -136,6 +136,32 @@ TEST_P(ObserverGrid, EveryEyeOfAGlowingCubeSeesTheClosedFormAndTheMaxIntervalCov
 
 INSTANTIATE_TEST_SUITE_P(Backends, ObserverGrid, ::testing::ValuesIn(backends()));
 
+// An accuracy goal judges every eye, not only the grid's first: the eye looking up at the
+// ceiling next to the lamp is met long before the one looking down at the floor.
+TEST(ObserverGridAccuracy, TheGoalIsMetByEveryEye) {
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 4, 3), 2));
+  s.luminaires.push_back(point_light({2, 2, 2.9}, 1000.0));
+  Target t = eye_grid("eyes", {{2, 2, 1.2}}, {{0, 0.05, 1}, {0, 0.05, -1}});
+  t.up = {1, 0, 0};
+  s.targets.push_back(t);
+  validate(s);
+  SolveOptions o;
+  o.seed = 3;
+  o.backend = "embree";
+  o.target_accuracy = 0.1;
+  const Results r = solve(s, o);
+  ASSERT_TRUE(r.accuracy_met);
+  const std::vector<ObserverGlare>& eyes = r.targets.at(0).observer_grid->points;
+  const auto width = [](const ObserverGlare& e) {
+    return 0.5 * (e.background_ci_high_cd_m2 - e.background_ci_low_cd_m2) /
+           e.background_luminance_cd_m2;
+  };
+  EXPECT_LT(width(eyes[0]), 0.7 * width(eyes[1]));  // the ceiling's eye is far ahead
+  for (const ObserverGlare& e : eyes) EXPECT_LE(width(e), 0.1);
+}
+
 TEST(ObserverGridDirections, AStepOf90IsTheAxialPairBothWays) {
   Target t;
   t.view_step_deg = 90.0;
