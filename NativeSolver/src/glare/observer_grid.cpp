@@ -79,6 +79,11 @@ ObserverGridOutcome observer_grid_glare(const Target& t, const std::vector<Lumin
       eye.view_direction = view;
       const std::size_t k = out.grid.points.size();
       ObserverGlare g = observer_glare(eye, luminaires, tallies.estimate(k));
+      // "No luminaire counts" is said once for the grid below, not once per eye.
+      if (!(g.luminaire_sum > 0.0) && !g.warnings.empty() &&
+          g.warnings.back().find("no luminaire counts") != std::string::npos) {
+        g.warnings.pop_back();
+      }
       for (std::string& w : g.warnings) {
         if (seen.insert(w).second) warnings.push_back(std::move(w));
       }
@@ -95,6 +100,19 @@ ObserverGridOutcome observer_grid_glare(const Target& t, const std::vector<Lumin
   eye.view_direction = out.grid.view_directions[out.estimate_point % nd];
   out.max = observer_glare(eye, luminaires, tallies.estimate(out.estimate_point));
   for (ObserverGlare& g : out.grid.points) g.contributions.clear();
+  const std::size_t eyes = out.grid.points.size();
+  if (glare.empty()) {
+    warnings.push_back(t.name + ": no luminaire counts toward UGR at any of its " +
+                       std::to_string(eyes) +
+                       " eyes (none in a field of view with a luminous area): no discomfort "
+                       "glare from luminaires");
+  } else if (glare.size() < eyes) {
+    warnings.push_back(t.name + ": " + std::to_string(eyes - glare.size()) + " of its " +
+                       std::to_string(eyes) +
+                       " eyes (position x direction) have no rated luminaire in their field: "
+                       "no glare there; the maximum is over the other " +
+                       std::to_string(glare.size()));
+  }
   out.max.warnings = std::move(warnings);
   if (glare.empty()) return out;
   max_bounds(out.grid.points, glare, confidence, tallies, out.max);

@@ -72,6 +72,7 @@ TEST_P(ObserverGrid, OneEyeAndOneDirectionIsThePlainObserverBitForBit) {
   EXPECT_EQ(p.ugr_ci_low, x.glare->ugr_ci_low);
   EXPECT_EQ(p.background_luminance_cd_m2, x.glare->background_luminance_cd_m2);
   EXPECT_EQ(y.glare->contributions.size(), x.glare->contributions.size());
+  EXPECT_EQ(y.glare->warnings, x.glare->warnings);
   ASSERT_EQ(x.verdicts.size(), 1u);
   ASSERT_EQ(y.verdicts.size(), 1u);
   EXPECT_EQ(x.verdicts[0].verdict, y.verdicts[0].verdict);
