@@ -319,6 +319,10 @@ std::uint64_t check_directions(const TargetChecks& c, Target& t) {
       c.fail("view_step_deg",
              "must be > 0 and divide 360 (e.g. 15, 45, 90; got " + show(step) + ")");
     }
+    // Before the count is converted: a tiny step gives an infinite or huge one.
+    if (!(turns <= double(limits::kMaxObserverGridPoints))) {
+      c.fail("view_step_deg", "gives " + show(turns) + " view directions, more than 1024");
+    }
     if (!t.view_directions.empty()) c.fail("view_directions", "give it or view_step_deg, not both");
     return static_cast<std::uint64_t>(std::round(turns));
   }
