@@ -61,5 +61,45 @@ class Observers(DocTestCase):
         self.assertIn("UGR", result.table())
 
 
+class ObserverGrids(DocTestCase):
+    def test_grid_mode_exports_an_observer_grid_over_the_room(self):
+        doc = build_office()
+        eye = lighting.make_observer(doc, (2.5, 0.6, 1.2), ugr_max=19.0, name="Eyes")
+        room = FreeCAD.BoundBox(0.0, 0.0, 0.0, 5000.0, 4000.0, 3000.0)
+        observer_mod.fit_grid(eye, room)  # 0.5 m off the walls, at the eye's height
+        eye.GridCellsX, eye.GridCellsY, eye.ViewStep = 3, 2, 45.0
+        doc.recompute()
+        entry = observer_mod.scene_entry(eye)
+        self.assertEqual(entry["type"], "observer_grid")
+        self.assertEqual(entry["corner"], [0.5, 0.5, 1.2])
+        self.assertEqual(entry["edge1"], [4.0, 0.0, 0.0])
+        self.assertEqual(entry["edge2"], [0.0, 3.0, 0.0])
+        self.assertEqual(entry["cells"], [3, 2])
+        self.assertEqual(entry["view_step_deg"], 45.0)
+        self.assertEqual(entry["requirements"], {"ugr_max": 19.0})
+        eye.GridMode = False  # back to one eye
+        self.assertEqual(observer_mod.scene_entry(eye)["type"], "observer")
+
+    @needs_solver
+    def test_office_observer_grid_reports_its_maximum_ugr(self):
+        doc = build_office(photons=200_000)
+        analysis = doc.getObject("LightingAnalysis")
+        analysis.Decide = False
+        eye = lighting.make_observer(doc, (1.0, 1.0, 1.2), ugr_max=19.0, name="EyeGrid",
+                                     analysis=analysis)
+        eye.GridMode, eye.GridLength, eye.GridWidth = True, 3000.0, 2000.0
+        result = lighting.analyze(doc, output_dir=work_dir("glare_grid"))
+        grid = result["EyeGrid"]
+        self.assertEqual(grid.kind, "observer_grid")
+        entry = next(t for t in result.data["targets"] if t["name"] == "EyeGrid")
+        self.assertEqual(len(entry["observer_grid"]["positions"]), 4)
+        self.assertEqual(len(entry["observer_grid"]["view_directions"]), 4)
+        values = [u for row in entry["observer_grid"]["ugr"] for u in row if u is not None]
+        if grid.ugr is not None:
+            self.assertEqual(grid.ugr, max(values))
+        self.assertIn("max UGR", result.table())
+        self.assertIn(grid.verdict, ("pass", "fail", "undecided"))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -87,17 +87,24 @@ struct Luminaire {
 
 /// Where illuminance is reported. An observer is an eye (docs/glare.md): the tracer tallies the
 /// light reaching it after at least one reflection (its background luminance) and the results
-/// give its UGR.
+/// give its UGR. An observer grid is many eyes (positions x view directions) and its maximum
+/// UGR. Each type's keys, checks, tallies and results: core/target_types.cpp.
 struct Target {
-  enum class Type { Surface, Grid, Observer };
+  enum class Type { Surface, Grid, Observer, ObserverGrid };
   std::string name;
   Type type = Type::Surface;
   int mesh = -1;                                   ///< surface: index into Scene::meshes
-  glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< grid rectangle
+  glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< grid (observer grid) rectangle
   std::uint32_t nu = 1, nv = 1;                    ///< grid cells along edge1, edge2
   /// Observer: eye position (m), line of sight and up direction (unit length after validate();
   /// up is made orthogonal to the line of sight where it is used).
   glm::dvec3 position{0.0}, view_direction{0.0, 1.0, 0.0}, up{0.0, 0.0, 1.0};
+  /// Observer grid: the eyes are `positions` or, when that is empty, the centres of the nu x nv
+  /// cells of the rectangle corner, edge1, edge2 (put it at eye height). The lines of sight are
+  /// `view_directions` or, with view_step_deg, every view_step_deg degrees about `up` starting
+  /// from +x (docs/scene-format.md). Every eye looks in every direction.
+  std::vector<glm::dvec3> positions, view_directions;
+  std::optional<double> view_step_deg;
   /// What the target must reach (scene keys "requirements" and "task"); none when !any().
   Requirements requirements;
 };
@@ -150,6 +157,9 @@ inline constexpr std::uint32_t kMaxBounces = 1'000'000;     ///< settings.max_bo
 inline constexpr double kMaxPower_W = 1e9;                  ///< a luminaire's power_w
 inline constexpr double kMaxRequiredIlluminance_lx = 1e7;   ///< requirements em_lux, emin_lux
 inline constexpr double kMaxUgr = 40.0;  ///< requirements ugr_max: (0, 40] (EN 12464-1: 10..28)
+/// An observer grid's positions x view directions: each is a tally square that every ray
+/// segment is tested against, so tracing slows in proportion.
+inline constexpr std::uint64_t kMaxObserverGridPoints = 1024;
 }  // namespace limits
 
 /// Throws InputError(file, where) unless 1 <= photons <= max_photons(max_bounces)

@@ -134,15 +134,31 @@ struct ObserverGlare {
   Warnings warnings;
 };
 
+/// Glare over an observer grid (docs/glare.md, "Observer grids"): every (position, direction)
+/// with its UGR and interval. The maximum, with an interval that holds for all points at once,
+/// is the target's `glare`.
+struct ObserverGridGlare {
+  std::vector<glm::dvec3> positions, view_directions;
+  /// Point k = position * view_directions.size() + direction; contributions are left out (the
+  /// maximum's point has them in TargetResult::glare).
+  std::vector<ObserverGlare> points;
+  /// The point of the largest UGR estimate; absent when no point has glare from a luminaire.
+  std::optional<std::size_t> max_at;
+};
+
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
 /// grid / its area) and `cells` holds every cell, row by row (index = iv * nu + iu).
 struct TargetResult {
   std::string name;
+  std::string type;  ///< the scene file's target type ("surface", "grid", "observer", ...)
   bool is_grid = false;
   /// An observer: `estimate` is the indirect illuminance at its eye (lux, on a small square
   /// facing the line of sight, light reflected at least once) and `glare` its UGR.
   bool is_observer = false;
+  /// An observer's glare; for an observer grid the maximum UGR (its interval simultaneous over
+  /// the points, its L_b and luminaires those of the point where it occurs).
   std::optional<ObserverGlare> glare;
+  std::optional<ObserverGridGlare> observer_grid;  ///< an observer grid's points
   double area_m2 = 0.0;
   Estimate estimate;  ///< lux
   std::uint32_t nu = 0, nv = 0;

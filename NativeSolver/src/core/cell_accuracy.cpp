@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/target_types.hpp"
 #include "lightsolver/accuracy.hpp"
 
 namespace lightsolver {
@@ -78,8 +79,12 @@ double worst_cell_relative_half_width(const Scene& scene, const PreparedScene& s
     };
     const Estimate whole = estimate(bin);
     if (whole.hits == 0 || !(whole.mean > 0.0)) return kInf;
-    if (scene.targets[i].type != Target::Type::Grid) {
-      worst = std::max(worst, target_relative_half_width(whole));
+    if (!target_type(scene.targets[i].type).cells) {
+      for (const std::uint32_t b : s.goal_bins[i]) {  // each eye of an observer grid
+        const Estimate e = estimate(b);
+        if (e.hits == 0 || !(e.mean > 0.0)) return kInf;
+        worst = std::max(worst, target_relative_half_width(e));
+      }
       continue;
     }
     const std::uint32_t cells = scene.targets[i].nu * scene.targets[i].nv;

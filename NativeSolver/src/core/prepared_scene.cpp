@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/luminaire_types.hpp"
+#include "core/target_types.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -23,8 +24,7 @@ glm::dvec3 scene_centre(const Scene& s) {
   }
   for (const auto& l : s.luminaires) grow(luminaire_type(l.type).anchor(l));
   for (const auto& t : s.targets) {
-    if (t.type == Target::Type::Grid) grow(t.corner);
-    if (t.type == Target::Type::Observer) grow(t.position);
+    if (const auto at = target_type(t.type).anchor(t)) grow(*at);
   }
   return 0.5 * (lo + hi);
 }
@@ -63,37 +63,6 @@ PreparedMesh prepare_mesh(const Mesh& m, const glm::dvec3& origin,
   return out;
 }
 
-PreparedGrid prepare_grid(const Target& t, const glm::dvec3& origin, std::uint32_t bin) {
-  PreparedGrid g;
-  const glm::dvec3 n = glm::normalize(glm::cross(t.edge1, t.edge2));
-  const glm::dvec3 du = glm::cross(t.edge2, n), dv = glm::cross(n, t.edge1);
-  g.corner = local(t.corner, origin);
-  g.normal = vec3(n);
-  g.du = vec3(du / glm::dot(t.edge1, du));
-  g.dv = vec3(dv / glm::dot(t.edge2, dv));
-  g.nu = t.nu;
-  g.nv = t.nv;
-  g.bin = bin;
-  return g;
-}
-
-// An observer's tally: a virtual square of kObserverSquare_m side centred on the eye, facing
-// the line of sight (light travelling toward the eye from the viewed half-space crosses it
-// against its normal), counting only reflected light.
-PreparedGrid prepare_observer(const Target& t, const glm::dvec3& origin, std::uint32_t bin) {
-  Target square = t;
-  const glm::dvec3 v = glm::normalize(t.view_direction);
-  const glm::dvec3 side = glm::normalize(glm::cross(v, t.up));
-  const glm::dvec3 up = glm::cross(v, side);  // side x up = v: the square's normal is v
-  square.edge1 = kObserverSquare_m * side;
-  square.edge2 = kObserverSquare_m * up;
-  square.corner = t.position - 0.5 * (square.edge1 + square.edge2);
-  square.nu = square.nv = 1;
-  PreparedGrid g = prepare_grid(square, origin, bin);
-  g.indirect_only = 1;
-  return g;
-}
-
 PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin) {
   PreparedLuminaire p;
   p.type = l.type;
@@ -117,7 +86,7 @@ PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movabl
   out.max_bounces = scene.settings.max_bounces;
   std::vector<bool> is_target(scene.meshes.size()), is_movable(scene.meshes.size());
   for (const auto& t : scene.targets) {
-    if (t.type == Target::Type::Surface) is_target.at(t.mesh) = true;
+    if (target_type(t.type).tally == TallyKind::MeshBin) is_target.at(t.mesh) = true;
   }
   for (std::size_t i : movable) is_movable.at(i) = true;
   CoincidentGeometry coincident = find_coincident(scene, out.origin, is_target, is_movable);
@@ -129,31 +98,7 @@ PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movabl
         prepare_mesh(scene.meshes[i], out.origin, coincident.displacements[i], mesh_area[i]));
     out.triangle_count += scene.meshes[i].triangles.size();
   }
-  for (const auto& t : scene.targets) {
-    if (t.type == Target::Type::Surface) {
-      PreparedMesh& m = out.meshes[t.mesh];
-      if (m.bin < 0) {  // two targets naming one mesh share its bin
-        m.bin = static_cast<std::int32_t>(out.bins.size());
-        out.bins.push_back({mesh_area[t.mesh]});
-      }
-      out.target_bin.push_back(static_cast<std::uint32_t>(m.bin));
-      continue;
-    }
-    const auto bin = static_cast<std::uint32_t>(out.bins.size());
-    if (t.type == Target::Type::Observer) {
-      const double square_m2 = kObserverSquare_m * kObserverSquare_m;
-      out.bins.insert(out.bins.end(), 2, {square_m2});
-      out.grids.push_back(prepare_observer(t, out.origin, bin));
-      out.observers.push_back(t.name);
-      out.target_bin.push_back(bin);
-      continue;
-    }
-    const double area = glm::length(glm::cross(t.edge1, t.edge2));
-    out.bins.push_back({area});
-    out.bins.resize(out.bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
-    out.grids.push_back(prepare_grid(t, out.origin, bin));
-    out.target_bin.push_back(bin);
-  }
+  for (const auto& t : scene.targets) target_type(t.type).prepare(t, mesh_area, out);
   for (std::size_t i : movable) out.meshes.at(i).movable = true;
   prepare_luminaires(scene, out);
   return out;

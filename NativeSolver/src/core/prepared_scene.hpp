@@ -69,7 +69,10 @@ struct PreparedScene {
   std::vector<double> luminaire_cdf;  // cumulative flux fractions, last = 1
   std::vector<BinInfo> bins;
   std::vector<std::uint32_t> target_bin;  // first bin of each Scene target
-  std::vector<std::string> observers;     // names of the observer targets (indirect-only grids)
+  // Per Scene target, the bins an accuracy goal judges: its whole bin (each eye's for an
+  // observer grid).
+  std::vector<std::vector<std::uint32_t>> goal_bins;
+  std::vector<std::string> observers;  // the target of each eye's tally (indirect-only grids)
   double total_flux_lm = 0.0;
   std::uint32_t max_bounces = 1000;
   std::size_t triangle_count = 0;

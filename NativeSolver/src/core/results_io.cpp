@@ -106,11 +106,54 @@ void add_glare(const ObserverGlare& g, nlohmann::json& j) {
   j["warnings"] = g.warnings;
 }
 
+// An observer grid's points: positions and view directions, then per position one array over
+// the directions of L_b, UGR and the UGR interval (null where unbounded or without glare).
+nlohmann::json observer_grid_json(const ObserverGridGlare& g) {
+  const auto points = [](const std::vector<glm::dvec3>& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (const auto& p : v) a.push_back({p.x, p.y, p.z});
+    return a;
+  };
+  nlohmann::json j = {{"positions", points(g.positions)},
+                      {"view_directions", points(g.view_directions)}};
+  const std::size_t nd = g.view_directions.size();
+  nlohmann::json lb = nlohmann::json::array(), lb_low = lb, lb_high = lb, ugr = lb, ugr_low = lb,
+                 ugr_high = lb;
+  for (std::size_t p = 0; p < g.positions.size(); ++p) {
+    nlohmann::json rows[6];
+    for (auto& r : rows) r = nlohmann::json::array();
+    for (std::size_t d = 0; d < nd; ++d) {
+      const ObserverGlare& o = g.points[p * nd + d];
+      rows[0].push_back(o.background_luminance_cd_m2);
+      rows[1].push_back(o.background_ci_low_cd_m2);
+      rows[2].push_back(o.background_ci_high_cd_m2);
+      rows[3].push_back(optional_number(o.ugr));
+      rows[4].push_back(optional_number(o.ugr_ci_low));
+      rows[5].push_back(optional_number(o.ugr_ci_high));
+    }
+    lb.push_back(rows[0]);
+    lb_low.push_back(rows[1]);
+    lb_high.push_back(rows[2]);
+    ugr.push_back(rows[3]);
+    ugr_low.push_back(rows[4]);
+    ugr_high.push_back(rows[5]);
+  }
+  j["background_luminance_cd_m2"] = std::move(lb);
+  j["background_ci_low_cd_m2"] = std::move(lb_low);
+  j["background_ci_high_cd_m2"] = std::move(lb_high);
+  j["ugr"] = std::move(ugr);
+  j["ugr_ci_low"] = std::move(ugr_low);
+  j["ugr_ci_high"] = std::move(ugr_high);
+  j["max_at"] = nullptr;
+  if (g.max_at) j["max_at"] = {{"position", *g.max_at / nd}, {"direction", *g.max_at % nd}};
+  return j;
+}
+
 nlohmann::json target_json(const TargetResult& t) {
-  const char* type = t.is_grid ? "grid" : t.is_observer ? "observer" : "surface";
-  nlohmann::json j = {{"name", t.name}, {"type", type}, {"area_m2", t.area_m2}};
+  nlohmann::json j = {{"name", t.name}, {"type", t.type}, {"area_m2", t.area_m2}};
   j.update(estimate_fields(t.estimate));
   if (t.glare) add_glare(*t.glare, j);
+  if (t.observer_grid) j["observer_grid"] = observer_grid_json(*t.observer_grid);
   add_compliance(t, j);
   if (!t.is_grid) return j;
   j["cells_uv"] = {t.nu, t.nv};
@@ -201,6 +244,18 @@ void verdict_lines(const Results& r, std::ostringstream& out) {
   }
 }
 
+// Where an observer grid's maximum is ("" for an observer).
+std::string max_place(const TargetResult& t) {
+  if (!t.observer_grid || !t.observer_grid->max_at) return "";
+  const ObserverGridGlare& g = *t.observer_grid;
+  const std::size_t k = *g.max_at, nd = g.view_directions.size();
+  const glm::dvec3 p = g.positions[k / nd], v = g.view_directions[k % nd];
+  char at[160];
+  std::snprintf(at, sizeof at, " at (%.3g, %.3g, %.3g) looking (%.2f, %.2f, %.2f)", p.x, p.y, p.z,
+                v.x, v.y, v.z);
+  return at;
+}
+
 }  // namespace
 
 std::string results_table(const Results& r) {
@@ -237,10 +292,11 @@ std::string results_table(const Results& r) {
     if (!t.glare) continue;
     const ObserverGlare& g = *t.glare;
     const auto show = [](const std::optional<double>& v) { return v ? fmt("%.1f", *v) : "-"; };
-    out << "observer " << t.name << ": UGR " << show(g.ugr) << " [" << show(g.ugr_ci_low) << ", "
-        << show(g.ugr_ci_high) << "], L_b " << fmt("%.3g", g.background_luminance_cd_m2)
+    out << (t.observer_grid ? "observer grid " : "observer ") << t.name
+        << (t.observer_grid ? ": max UGR " : ": UGR ") << show(g.ugr) << " [" << show(g.ugr_ci_low)
+        << ", " << show(g.ugr_ci_high) << "], L_b " << fmt("%.3g", g.background_luminance_cd_m2)
         << " cd/m2 [" << fmt("%.3g", g.background_ci_low_cd_m2) << ", "
-        << fmt("%.3g", g.background_ci_high_cd_m2) << "]\n";
+        << fmt("%.3g", g.background_ci_high_cd_m2) << "]" << max_place(t) << "\n";
     for (const auto& w : g.warnings) out << "warning: " << w << "\n";
   }
   if (r.judged) {

@@ -7,9 +7,11 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 
 #include "core/luminaire_types.hpp"
+#include "core/target_types.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/statistics.hpp"
 
@@ -186,15 +188,6 @@ class Validator {
     return !(c > 1e-7 * glm::length(e1) * glm::length(e2));
   }
 
-  static double area_m2(const Mesh& m) {
-    double area = 0.0;
-    for (const auto& t : m.triangles) {
-      area += 0.5 * glm::length(glm::cross(m.vertices[t[1]] - m.vertices[t[0]],
-                                           m.vertices[t[2]] - m.vertices[t[0]]));
-    }
-    return area;
-  }
-
   // The shared checks a luminaire type's own check (luminaire_types.cpp) calls, with field
   // paths under luminaires[i].
   class LuminaireFields final : public detail::LuminaireChecks {
@@ -297,83 +290,57 @@ class Validator {
     if (r.ugr_max && !(*r.ugr_max > 0.0 && *r.ugr_max <= limits::kMaxUgr)) {
       fail(where + ".ugr_max", "must be > 0 and at most 40 (got " + show(*r.ugr_max) + ")");
     }
-    if (t.type != Target::Type::Observer && r.ugr_max) {
-      fail(where + ".ugr_max", "UGR is judged at an observer: give it on an \"observer\" target");
+    const detail::TargetType& row = detail::target_type(t.type);
+    if (r.ugr_max && !(row.requirements & detail::kRequireUgr)) {
+      fail(where + ".ugr_max",
+           "UGR is judged at an observer: give it on an \"observer\" or \"observer_grid\" "
+           "target");
     }
-    if (t.type == Target::Type::Observer && (r.em_lux || r.u0 || r.emin_lux || r.ud)) {
-      const char* key = r.em_lux ? "em_lux" : r.u0 ? "u0" : r.emin_lux ? "emin_lux" : "ud";
-      fail(where + "." + key, "an observer target has only ugr_max (illuminance needs a grid)");
-    }
-    if (t.type == Target::Type::Surface && (r.u0 || r.emin_lux || r.ud)) {
-      const char* key = r.u0 ? "u0" : r.emin_lux ? "emin_lux" : "ud";
-      fail(where + "." + key,
-           "a surface target has no cells: only em_lux applies to it (use a grid target for "
-           "U0, Emin and Ud)");
+    for (const auto& [key, bit, v] : {std::tuple{"em_lux", detail::kRequireEm, r.em_lux},
+                                      std::tuple{"u0", detail::kRequireU0, r.u0},
+                                      std::tuple{"emin_lux", detail::kRequireEmin, r.emin_lux},
+                                      std::tuple{"ud", detail::kRequireUd, r.ud}}) {
+      if (v && !(row.requirements & bit)) fail(where + "." + key, row.other_requirements);
     }
   }
 
   void target(std::size_t i) {
-    const Target& t = s_.targets[i];
-    requirements(i, t);
-    if (t.type == Target::Type::Grid) return grid(i, t);
-    if (t.type == Target::Type::Observer) return observer(i);
-    if (bad_meshes_.count(t.mesh)) return;
-    if (t.mesh < 0 || t.mesh >= static_cast<int>(s_.meshes.size())) {
-      fail(at("targets", i, "mesh"), "unknown mesh");
-    }
-    const Mesh& m = s_.meshes[t.mesh];
-    if (m.triangles.empty()) {
-      fail(at("targets", i, "mesh"), "mesh \"" + m.name + "\" has zero area (no usable triangle)");
-    }
-    const double area = area_m2(m);
-    if (!(area >= limits::kMinArea_m2)) {
-      fail(at("targets", i, "mesh"), "mesh \"" + m.name + "\" has an area of " + show(area) +
-                                         " m2, below (1 um)^2 = 1e-12 m2");
-    }
-  }
-
-  // Grids divide flux by their cells' areas: sizes below 1 um are below any physical use (a
-  // 1 mm cell is fine) and would only make the estimates huge and meaningless.
-  void grid(std::size_t i, const Target& t) {
-    parallelogram("targets", i, t.corner, t.edge1, t.edge2, "the grid has zero area");
-    const double u_m = glm::length(t.edge1), v_m = glm::length(t.edge2);
-    for (const auto& [key, length] : {std::pair{"edge1", u_m}, std::pair{"edge2", v_m}}) {
-      if (length < limits::kMinGridEdge_m) {
-        fail(at("targets", i, key), "is " + show(length) + " m long, shorter than 1 um");
-      }
-    }
-    const std::string cells = at("targets", i, "cells");
-    if (t.nu == 0 || t.nv == 0) fail(cells, "need at least 1x1 cells");
-    const std::uint64_t count = std::uint64_t(t.nu) * t.nv;
-    if (count > limits::kMaxGridCells) {
-      fail(cells, std::to_string(count) + " cells, more than 10^7 in one grid");
-    }
-    grid_cells_ += count;
-    if (u_m / t.nu < limits::kMinGridEdge_m || v_m / t.nv < limits::kMinGridEdge_m) {
-      fail(cells, "cells of " + show(u_m / t.nu) + " x " + show(v_m / t.nv) +
-                      " m: a cell edge is shorter than 1 um");
-    }
-    const double cell_m2 = glm::length(glm::cross(t.edge1, t.edge2)) / double(count);
-    if (cell_m2 < limits::kMinArea_m2) {
-      fail(cells, "a cell's area is " + show(cell_m2) + " m2, below (1 um)^2 = 1e-12 m2");
-    }
-  }
-
-  // Observers: an eye inside the coordinate range, a line of sight and an up direction that
-  // are not parallel (normalised here; up is made orthogonal to the line of sight when used).
-  void observer(std::size_t i) {
     Target& t = s_.targets[i];
-    coordinates(at("targets", i, "position"), t.position);
-    direction(at("targets", i, "view_direction"), t.view_direction);
-    direction(at("targets", i, "up"), t.up);
-    t.view_direction = glm::normalize(t.view_direction);
-    t.up = glm::normalize(t.up);
-    if (glm::length(glm::cross(t.view_direction, t.up)) < 1e-6) {
-      fail(at("targets", i, "up"),
-           "is parallel to view_direction: the observer needs an up "
-           "direction across its line of sight (default +z)");
-    }
+    requirements(i, t);
+    detail::target_type(t.type).check(TargetFields(*this, i), t);
   }
+
+  // The shared checks a target type's own check (target_types.cpp) calls, with field paths
+  // under targets[i].
+  class TargetFields final : public detail::TargetChecks {
+   public:
+    TargetFields(Validator& v, std::size_t i) : v_(v), i_(i) {}
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const override {
+      v_.fail(where(key), what);
+    }
+    void coordinates(const std::string& key, const glm::dvec3& p) const override {
+      v_.coordinates(where(key), p);
+    }
+    void direction(const std::string& key, const glm::dvec3& d) const override {
+      v_.direction(where(key), d);
+    }
+    void parallelogram(const Target& t, const char* what) const override {
+      v_.parallelogram("targets", i_, t.corner, t.edge1, t.edge2, what);
+    }
+    const Mesh* mesh(int index) const override {
+      if (v_.bad_meshes_.count(index)) return nullptr;
+      if (index < 0 || index >= static_cast<int>(v_.s_.meshes.size())) fail("mesh", "unknown mesh");
+      return &v_.s_.meshes[index];
+    }
+    void add_grid_cells(std::uint64_t cells) const override { v_.grid_cells_ += cells; }
+
+   private:
+    std::string where(const std::string& key) const {
+      return "targets[" + std::to_string(i_) + "]." + key;
+    }
+    Validator& v_;
+    std::size_t i_;
+  };
 
   void settings() {
     if (s_.settings.max_bounces > limits::kMaxBounces) {

@@ -10,6 +10,7 @@
 #include "core/luminaire_types.hpp"
 #include "core/requirements_table.hpp"
 #include "core/scene_document.hpp"
+#include "core/target_types.hpp"
 #include "lightsolver/scene_io.hpp"
 
 namespace lightsolver {
@@ -143,49 +144,26 @@ Target read_target(const JsonNode& n, const Scene& scene, const std::string& bas
   Target t;
   t.name = n.at("name").string();
   const std::string type = n.at("type").string();
-  if (type == "surface") {
-    n.require_object({"name", "type", "mesh", "requirements", "task"});
-    t.type = Target::Type::Surface;
-    const std::string mesh = n.at("mesh").string();
-    t.mesh = scene.find_mesh(mesh);
-    if (t.mesh < 0) n.at("mesh").fail("unknown mesh \"" + mesh + "\"");
-  } else if (type == "grid") {
-    n.require_object({"name", "type", "corner", "edge1", "edge2", "cells", "requirements", "task"});
-    t.type = Target::Type::Grid;
-    t.corner = n.at("corner").vec3();
-    t.edge1 = n.at("edge1").vec3();
-    t.edge2 = n.at("edge2").vec3();
-    const JsonNode cells = n.at("cells");
-    if (cells.array_size() != 2) cells.fail("expected [nu, nv]");
-    const std::uint64_t nu = cells[0].unsigned_integer(), nv = cells[1].unsigned_integer();
-    if (nu == 0 || nv == 0) cells.fail("a grid needs at least 1x1 cells");
-    // Each factor first: nu * nv must not wrap around in 64 bits before the comparison.
-    if (nu > limits::kMaxGridCells || nv > limits::kMaxGridCells ||
-        nu * nv > limits::kMaxGridCells) {
-      cells.fail("more than 10^7 cells in one grid");
-    }
-    t.nu = static_cast<std::uint32_t>(nu);
-    t.nv = static_cast<std::uint32_t>(nv);
-  } else if (type == "observer") {
-    n.require_object({"name", "type", "position", "view_direction", "up", "requirements", "task"});
-    t.type = Target::Type::Observer;
-    t.position = n.at("position").vec3();
-    t.view_direction = n.at("view_direction").vec3();
-    if (n.has("up")) t.up = n.at("up").vec3();
-  } else {
-    n.at("type").fail("unknown target type \"" + type + "\" (expected surface, grid or observer)");
+  const detail::TargetType* row = detail::find_target_type(type);
+  if (!row) {
+    n.at("type").fail("unknown target type \"" + type + "\" (expected " +
+                      detail::target_type_names() + ")");
   }
+  t.type = row->type;
+  row->read(n, scene, t);
   t.requirements = detail::read_requirements(n, base_dir);
-  // A task row's UGR limit applies to observers, its illuminances to surfaces and grids.
-  const bool explicit_ugr = n.has("requirements") && n.at("requirements").has("ugr_max");
-  if (t.type != Target::Type::Observer && !explicit_ugr) t.requirements.ugr_max.reset();
-  if (t.type == Target::Type::Observer && n.has("task")) {
-    t.requirements.em_lux.reset();
-    t.requirements.u0.reset();
-  }
-  // A surface has no cells: a task's U0 applies to grids only (an explicit one is an error).
-  const bool explicit_u0 = n.has("requirements") && n.at("requirements").has("u0");
-  if (t.type == Target::Type::Surface && !explicit_u0) t.requirements.u0.reset();
+  // A task row's limits apply where the type takes them (UGR at observers, illuminances on
+  // surfaces and grids); explicit others are left for validate() to refuse.
+  const auto drop = [&](const char* key, unsigned bit, std::optional<double>& value) {
+    const bool explicit_value = n.has("requirements") && n.at("requirements").has(key);
+    if (!(row->requirements & bit) && !explicit_value) value.reset();
+  };
+  Requirements& r = t.requirements;
+  drop("em_lux", detail::kRequireEm, r.em_lux);
+  drop("u0", detail::kRequireU0, r.u0);
+  drop("emin_lux", detail::kRequireEmin, r.emin_lux);
+  drop("ud", detail::kRequireUd, r.ud);
+  drop("ugr_max", detail::kRequireUgr, r.ugr_max);
   return t;
 }
 

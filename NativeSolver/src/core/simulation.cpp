@@ -17,7 +17,7 @@
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
 #include "core/decide.hpp"
-#include "glare/observer_target.hpp"
+#include "core/target_types.hpp"
 
 namespace lightsolver {
 namespace detail {
@@ -58,16 +58,18 @@ std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_
   return std::min(size, total - done);
 }
 
-// Largest relative half-width over the targets (scale-free, so the per-path tallies' estimates
-// serve); infinity while a target has no hit. The one measure of a run's accuracy: the stopping
-// rule, the forecast and the cost checkpoints all read it.
+// Largest relative half-width over the targets and an observer grid's eyes (scale-free, so the
+// per-path tallies' estimates serve); infinity while a target has no hit. The one measure of a
+// run's accuracy: the stopping rule, the forecast and the cost checkpoints all read it.
 double worst_relative_half_width(const detail::PreparedScene& s, const detail::TallyBlock& t,
                                  std::uint64_t photons, double confidence) {
   double worst = 0.0;
-  for (const std::uint32_t bin : s.target_bin) {
-    const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
-    if (e.hits == 0 || !(e.mean > 0.0)) return std::numeric_limits<double>::infinity();
-    worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
+  for (const auto& bins : s.goal_bins) {
+    for (const std::uint32_t bin : bins) {
+      const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
+      if (e.hits == 0 || !(e.mean > 0.0)) return std::numeric_limits<double>::infinity();
+      worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
+    }
   }
   return worst;
 }
@@ -136,49 +138,19 @@ std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double 
   return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
 }
 
-// Cell and grid estimates at any alpha, for the simultaneous intervals of grid_intervals();
-// z is computed once per alpha (the cells share it).
-GridSampler grid_sampler(const Target& t, const detail::PreparedScene& s,
-                         const detail::TallyBlock& tallies, std::uint32_t bin,
-                         std::uint64_t photons) {
-  auto estimate = [&s, &tallies, bin, photons, alpha = -1.0, z = 0.0](std::uint32_t b,
-                                                                      double a) mutable {
-    if (a != alpha) z = z_for_alpha(alpha = a);
-    return make_estimate_z(tallies.bins[bin + b], photons,
-                           s.total_flux_lm / s.bins[bin + b].area_m2, z);
-  };
-  return {t.nu * t.nv, [estimate](double a) mutable { return estimate(0, a); },
-          [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
-}
-
+// A target's result: the common fields here, the type's own in its row (target_types.cpp).
 TargetResult make_target(const Scene& scene, const Target& t, const detail::PreparedScene& s,
                          const detail::TallyBlock& tallies, std::uint32_t bin,
                          std::uint64_t photons, double confidence, bool judged) {
+  const detail::TargetType& row = detail::target_type(t.type);
+  const detail::TargetTallies at{scene, t, s, tallies, bin, photons, confidence, judged};
   TargetResult r;
   r.name = t.name;
+  r.type = row.name;
   r.requirements = t.requirements;
-  r.is_grid = t.type == Target::Type::Grid;
-  r.is_observer = t.type == Target::Type::Observer;
   r.area_m2 = s.bins[bin].area_m2;
-  auto estimate = [&](std::uint32_t b) {
-    return make_estimate(tallies.bins[b], photons, s.total_flux_lm / s.bins[b].area_m2, confidence);
-  };
-  r.estimate = estimate(bin);
-  if (r.is_observer) r.glare = detail::observer_glare(t, scene.luminaires, r.estimate);
-  if (!r.is_grid) return r;
-  r.nu = t.nu;
-  r.nv = t.nv;
-  r.cells.reserve(std::size_t(t.nu) * t.nv);
-  for (std::uint32_t c = 0; c < t.nu * t.nv; ++c) r.cells.push_back(estimate(bin + 1 + c));
-  const auto [lo, hi] = std::minmax_element(r.cells.begin(), r.cells.end(),
-                                            [](auto& a, auto& b) { return a.mean < b.mean; });
-  r.min_lux = lo->mean;
-  r.max_lux = hi->mean;
-  r.uniformity = r.estimate.mean > 0.0 ? r.min_lux / r.estimate.mean : 0.0;
-  if (judged) {
-    r.intervals = grid_intervals(grid_sampler(t, s, tallies, bin, photons), confidence, r.min_lux,
-                                 r.max_lux, r.estimate.mean);
-  }
+  r.estimate = at.estimate(bin);
+  row.result(at, r);
   return r;
 }
 

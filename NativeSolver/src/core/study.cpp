@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/json_reader.hpp"
+#include "core/target_types.hpp"
 #include "lightsolver/accuracy.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/simulation.hpp"
@@ -49,10 +50,10 @@ TargetResult reference_target(const JsonNode& n, const Target& t, const std::str
   TargetResult r;
   r.name = n.at("name").string();
   if (r.name != t.name) n.at("name").fail("is \"" + r.name + "\"" + from_other);
-  r.is_grid = n.at("type").string() == "grid";
-  if (r.is_grid != (t.type == Target::Type::Grid)) {
-    n.at("type").fail("is not the scene's target type" + from_other);
-  }
+  r.type = n.at("type").string();
+  const detail::TargetType& row = detail::target_type(t.type);
+  if (r.type != row.name) n.at("type").fail("is not the scene's target type" + from_other);
+  r.is_grid = row.cells;
   r.estimate = reference_estimate(n, "mean_lux");
   if (!r.is_grid) return r;
   const JsonNode uv = n.at("cells_uv"), cells = n.at("cells");

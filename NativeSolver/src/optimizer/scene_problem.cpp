@@ -11,6 +11,7 @@
 #include "core/json_reader.hpp"
 #include "core/luminaire_types.hpp"
 #include "core/scene_document.hpp"
+#include "core/target_types.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "optimizer/placement_region.hpp"
 
@@ -286,8 +287,9 @@ Intention read_intention(const JsonNode& n, const Scene& s) {
   const Target* t = find_target(s, target);
   if (!t) n.at("target").fail("unknown target \"" + target + "\"");
   const bool needs_grid = type == "maximize_uniformity" || type == "minimize_installed_flux";
-  if (needs_grid && t->type != Target::Type::Grid) {
-    n.at("target").fail("uniformity needs a grid target; \"" + target + "\" is a surface");
+  if (needs_grid && !detail::target_type(t->type).cells) {
+    n.at("target").fail("uniformity needs a grid target; \"" + target + "\" is of type \"" +
+                        detail::target_type(t->type).name + "\"");
   }
   auto positive = [&](const char* key) {
     const double x = n.at(key).number();

@@ -270,6 +270,36 @@ inline Mesh sphere_mesh(const std::string& name, int material, dvec3 centre, dou
 // The backends every closed-form test runs on: every one the registry lists (auto aside), so a
 // backend added to the build is tested without editing this list (backends_test.cpp checks the
 // registry itself against the build).
+inline constexpr double kFluxPerWall_lm = 1000.0;
+
+// A closed unit cube of reflectance rho whose six walls each carry a flush area luminaire of
+// kFluxPerWall_lm emitting into the room: the emitted radiance is the same everywhere inside
+// (M0 = Phi / A), so every wall receives M0, and the reflected light is uniform too. Its
+// radiosity sums the geometric series M0 (rho + rho^2 + ...) = M0 rho / (1 - rho): the
+// illuminance at any interior point, on any plane, from light reflected at least once.
+inline Scene glowing_cube(double rho) {
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, rho);
+  s.meshes.push_back(room_mesh("cube", 0, dvec3(0), dvec3(1), 2));
+  struct Face {
+    dvec3 corner, e1, e2;  // e1 x e2 points into the cube
+  };
+  const Face faces[] = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}},
+                        {{0, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+                        {{0, 0, 0}, {0, 0, 1}, {1, 0, 0}}, {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}}};
+  for (const Face& f : faces) {
+    Luminaire l;
+    l.name = "wall " + std::to_string(s.luminaires.size());
+    l.type = Luminaire::Type::Area;
+    l.corner = f.corner;
+    l.edge1 = f.e1;
+    l.edge2 = f.e2;
+    l.flux_lm = kFluxPerWall_lm;
+    s.luminaires.push_back(l);
+  }
+  return s;
+}
+
 inline std::vector<std::string> backends() {
   std::vector<std::string> names;
   for (const BackendInfo& b : lightsolver::backends()) {

@@ -1,7 +1,9 @@
 """GUI scenario: discomfort glare. From the Start page the user builds the office, adds an
 observer with the toolbar's *Observer* command (nothing selected: seated in the middle of the
 room, looking along +X), picks the office preset for its UGR limit, runs the analysis in its
-panel and reads the observer's UGR, interval and verdict in the results table."""
+panel and reads the observer's UGR, interval and verdict in the results table. An *Observer
+grid* over the model (nothing selected) adds eyes at 1.2 m looking every 90 degrees; its row
+shows the maximum UGR."""
 import os
 import sys
 
@@ -35,6 +37,18 @@ def body() -> None:
     expect(abs(z_m - 1.2) < 0.01, f"the eye is not seated at 1.2 m above the floor: {z_m}")
     eye.Activity = "Offices: Writing, typing, reading, data processing"
     expect(float(eye.UgrMax) == 19.0, f"the office preset gave UgrMax {eye.UgrMax}")
+    before = {o.Name for o in doc.Objects}
+    FreeCADGui.runCommand("Lighting_ObserverGrid")
+    pump(0.5)
+    grids = [doc.getObject(n) for n in {o.Name for o in doc.Objects} - before]
+    grids = [o for o in grids if getattr(o, "GridMode", False)]
+    expect(len(grids) == 1, "Observer grid made no grid-mode observer")
+    if grids:
+        g = grids[0]
+        expect(abs(g.Placement.Base.z / 1000.0 - 1.2) < 0.05,
+               f"the grid's eyes are not seated: z {g.Placement.Base.z / 1000.0}")
+        expect(float(g.GridLength) > 1000.0 and float(g.GridWidth) > 1000.0,
+               f"the grid is {g.GridLength} x {g.GridWidth}")
     analysis = doc.getObject(office_model.OBJECTS["analysis"])
     analysis.Decide = False
     FreeCADGui.Selection.addSelection(analysis)
@@ -53,6 +67,9 @@ def body() -> None:
     ugr, verdict = rows.get(eye.Label, ("", ""))
     expect(ugr.startswith("UGR"), f"the observer's row shows no UGR: {rows}")
     expect(verdict in ("pass", "FAIL", "undecided"), f"the observer's verdict: {rows}")
+    if grids:
+        ugr, verdict = rows.get(grids[0].Label, ("", ""))
+        expect(ugr.startswith("max UGR"), f"the observer grid's row shows no max UGR: {rows}")
     grab_window("glare", docs_name="glare-observer.png")
 
 

@@ -337,7 +337,7 @@ ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPla
 # report, exclusion) are registered by register() below.
 MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_ChooseLuminaire",
                   "Lighting_LuminaireLayout", "Lighting_Target", "Lighting_Grid",
-                  "Lighting_Observer", "Lighting_PlacementDomain"]
+                  "Lighting_Observer", "Lighting_ObserverGrid", "Lighting_PlacementDomain"]
 RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Optimize",
                 "Lighting_Results", "Lighting_Report", "Lighting_ClearResults"]
 

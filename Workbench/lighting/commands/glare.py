@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Command "Observer": an eye for discomfort glare (UGR), seated by default, placed at the
 selected point or over the selected floor face, else at the middle of the room; it looks
-level, along +X (turn it with its Placement)."""
+level, along +X (turn it with its Placement). Command "Observer grid": seated eyes over the
+selected floor face (else the model), each looking every 90 degrees; the maximum UGR is
+reported (docs/glare.md, "Observer grids")."""
 from __future__ import annotations
 
 from typing import Any, Tuple
@@ -51,4 +53,49 @@ class CommandObserver(commands.BaseCommand):
         FreeCAD.Console.PrintMessage(f"Lighting: observer placed {where}\n")
 
 
-ALL = (CommandObserver,)
+def _grid_box() -> Tuple[Any, float, str]:
+    """(bound box mm, floor height mm, description): the selected floor face's, else the
+    model's with the floor under its middle."""
+    from lighting import placement
+
+    for sel in FreeCADGui.Selection.getSelectionEx():
+        for name, sub in zip(sel.SubElementNames, sel.SubObjects):
+            if sub.ShapeType == "Face":
+                return sub.BoundBox, sub.BoundBox.ZMax, f"over {sel.Object.Label} {name}"
+    solids = placement.model_solids(FreeCAD.ActiveDocument)
+    box = FreeCAD.BoundBox()
+    for solid in solids:
+        box.add(solid.BoundBox)
+    if not box.isValid():
+        return FreeCAD.BoundBox(0.0, 0.0, 0.0, 4000.0, 4000.0, 0.0), 0.0, "over 4 x 4 m"
+    floor = placement.floor_below(box.Center, solids)
+    return box, box.ZMin if floor is None else floor, "over the model"
+
+
+class CommandObserverGrid(commands.BaseCommand):
+    NAME, ICON = "Lighting_ObserverGrid", "Lighting_Observer"
+    MENU = "Observer grid (glare)"
+    TIP = ("Seated eyes (1.2 m) over the selected floor face, else the model, 0.5 m off its "
+           "edges, 2 x 2 positions each looking every 90 degrees (CIE's axial directions): the "
+           "maximum UGR with its interval, and where it is")
+
+    def IsActive(self) -> bool:  # noqa: N802
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self) -> None:  # noqa: N802
+        from lighting.objects.observer import EYE_HEIGHT_M
+
+        box, floor_mm, where = _grid_box()
+        z_m = floor_mm / 1000.0 + EYE_HEIGHT_M["Seated"]
+        corners = ", ".join(f"{v:.1f}" for v in (box.XMin, box.YMin, box.ZMin, box.XMax,
+                                                  box.YMax, box.ZMax))
+        commands._run_transaction("Create observer grid", [
+            "from lighting.objects import observer as _observer",
+            f"_eyes = lighting.make_observer(FreeCAD.ActiveDocument, ({box.Center.x / 1000.0:.4f},"
+            f" {box.Center.y / 1000.0:.4f}, {z_m:.4f}), name='ObserverGrid', "
+            f"analysis={commands._analysis_arg()})",
+            f"_observer.fit_grid(_eyes, FreeCAD.BoundBox({corners}))"])
+        FreeCAD.Console.PrintMessage(f"Lighting: observer grid placed {where}\n")
+
+
+ALL = (CommandObserver, CommandObserverGrid)

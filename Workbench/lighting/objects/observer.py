@@ -6,7 +6,13 @@ local +X axis, up along local +Z (usually level: a seated or standing person loo
 the room). The solver traces the indirect illuminance at the eye in the view direction
 (background luminance L_b = E/π, with its interval) and reports the UGR of the scene's
 luminaires with an interval and, with ``UgrMax``, a verdict (pass when the whole interval is
-at or below the limit)."""
+at or below the limit).
+
+In grid mode (``GridMode``) it is an observer grid (docs/glare.md, "Observer grids"): eyes at
+the cell centres of a GridLength x GridWidth rectangle in the eye's level plane, starting at
+the Placement and spanning its local +X and +Y, each looking every ``ViewStep`` degrees around
+(90: CIE's crosswise and endwise directions); the solver reports the maximum UGR with an
+interval that holds for the maximum, and where it is."""
 from __future__ import annotations
 
 from typing import Any, Dict, List
@@ -40,6 +46,18 @@ class Observer(BaseProxy):
                         "is placed on (the eye's height is the Placement's; this records the "
                         "convention used)", "Seated", items=tuple(EYE_HEIGHT_M)),
         "SymbolSize": Prop("App::PropertyLength", "Display", "Size of the eye symbol", 300.0),
+        "GridMode": Prop("App::PropertyBool", "Grid",
+                         "An observer grid: eyes over a rectangle, looking every ViewStep "
+                         "degrees; the maximum UGR is reported", False),
+        "GridLength": Prop("App::PropertyLength", "Grid",
+                           "Rectangle side along the local +X axis from the Placement", 2000.0),
+        "GridWidth": Prop("App::PropertyLength", "Grid",
+                          "Rectangle side along the local +Y axis from the Placement", 2000.0),
+        "GridCellsX": Prop("App::PropertyInteger", "Grid", "Eyes along GridLength", 2),
+        "GridCellsY": Prop("App::PropertyInteger", "Grid", "Eyes along GridWidth", 2),
+        "ViewStep": Prop("App::PropertyFloat", "Grid",
+                         "Degrees between the view directions of every eye (divides 360; 90: "
+                         "the two axial directions both ways, 15: a fine scan)", 90.0),
     }
 
     def execute(self, obj: Any) -> None:
@@ -55,6 +73,11 @@ class Observer(BaseProxy):
         corners = [FreeCAD.Vector(r, -3.0 * r, 0), FreeCAD.Vector(r, -3.0 * r, 1.9 * r),
                    FreeCAD.Vector(r, 3.0 * r, 1.9 * r), FreeCAD.Vector(r, 3.0 * r, 0)]
         shapes.append(Part.makePolygon(corners + [corners[0]]))
+        if getattr(obj, "GridMode", False):  # the rectangle of eyes, in the eye's level plane
+            length, width = float(obj.GridLength), float(obj.GridWidth)
+            outline = [FreeCAD.Vector(0, 0, 0), FreeCAD.Vector(length, 0, 0),
+                       FreeCAD.Vector(length, width, 0), FreeCAD.Vector(0, width, 0)]
+            shapes.append(Part.makePolygon(outline + [outline[0]]))
         shape = Part.makeCompound(shapes)
         shape.Placement = obj.Placement
         obj.Shape = shape
@@ -82,8 +105,40 @@ def up_direction(obj: Any) -> FreeCAD.Vector:
     return obj.getGlobalPlacement().Rotation.multVec(LOCAL_UP).normalize()
 
 
+def grid_entry(obj: Any) -> Dict[str, Any]:
+    """An observer in grid mode as an ``observer_grid`` entry (docs/scene-format.md)."""
+    placement = obj.getGlobalPlacement()
+    edge1 = placement.Rotation.multVec(FreeCAD.Vector(1, 0, 0)) * float(obj.GridLength)
+    edge2 = placement.Rotation.multVec(FreeCAD.Vector(0, 1, 0)) * float(obj.GridWidth)
+    up = up_direction(obj)
+    return {"name": obj.Name, "type": "observer_grid", "corner": vec_m(placement.Base),
+            "edge1": vec_m(edge1), "edge2": vec_m(edge2),
+            "cells": [int(obj.GridCellsX), int(obj.GridCellsY)],
+            "view_step_deg": float(obj.ViewStep), "up": [up.x, up.y, up.z]}
+
+
+def fit_grid(obj: Any, bound_box: Any, margin_m: float = 0.5) -> None:
+    """Grid mode over ``bound_box`` (a selected face's or the room's, mm) less ``margin_m``
+    on each side (EN 12464-1's wall band), at the eye's height, level and along the axes."""
+    margin = margin_m / MM_TO_M
+    length = max(bound_box.XLength - 2 * margin, 1.0)
+    width = max(bound_box.YLength - 2 * margin, 1.0)
+    base = FreeCAD.Vector(bound_box.XMin + 0.5 * (bound_box.XLength - length),
+                          bound_box.YMin + 0.5 * (bound_box.YLength - width),
+                          obj.Placement.Base.z)
+    obj.Placement = FreeCAD.Placement(base, FreeCAD.Rotation())
+    obj.GridLength, obj.GridWidth = length, width
+    obj.GridMode = True
+
+
 def scene_entry(obj: Any) -> Dict[str, Any]:
-    """The observer as a ``targets[]`` entry of docs/scene-format.md (metres)."""
+    """The observer as a ``targets[]`` entry of docs/scene-format.md (metres): an ``observer``,
+    or in grid mode an ``observer_grid``."""
+    if getattr(obj, "GridMode", False):
+        entry = grid_entry(obj)
+        if float(obj.UgrMax) > 0.0:
+            entry["requirements"] = {"ugr_max": float(obj.UgrMax)}
+        return entry
     view, up = view_direction(obj), up_direction(obj)
     entry: Dict[str, Any] = {"name": obj.Name, "type": "observer",
                              "position": vec_m(obj.getGlobalPlacement().Base),

@@ -18,6 +18,8 @@ def _float(value: Any, default: float = 0.0) -> float:
 
 #: Grid-cell numpy arrays that ``lightsolver.solve()`` adds beside the results layout.
 CELL_ARRAYS = ("cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits")
+#: Target types whose result is a UGR (an observer grid's is its maximum).
+GLARE_KINDS = ("observer", "observer_grid")
 
 
 def normalise(raw: Dict[str, Any]) -> Dict[str, Any]:
@@ -75,7 +77,8 @@ class TargetResult:
         def show(value: Optional[float]) -> str:
             return "-" if value is None else f"{value:.1f}"
 
-        return (f"UGR {show(self.ugr)}", f"{show(self.ugr_ci[0])}-{show(self.ugr_ci[1])}")
+        name = "max UGR" if self.kind == "observer_grid" else "UGR"
+        return (f"{name} {show(self.ugr)}", f"{show(self.ugr_ci[0])}-{show(self.ugr_ci[1])}")
 
     @property
     def uniformity_ci(self) -> Tuple[float, float]:
@@ -120,7 +123,7 @@ class TargetResult:
                      sigma_lux=_float(entry.get("sigma_lux")), hits=_float(entry.get("hits")),
                      area_m2=_float(entry.get("area_m2")),
                      required_lux=required[0], required_uniformity=required[1])
-        if result.kind == "observer":
+        if result.kind in GLARE_KINDS:  # an observer grid's: the maximum's
             result.ugr = _optional(entry.get("ugr"))
             result.ugr_ci = (_optional(entry.get("ugr_ci_low")),
                              _optional(entry.get("ugr_ci_high")))
@@ -235,7 +238,7 @@ def format_table(result: AnalysisResult) -> str:
                          f"{t.min_lux:.1f}", _ci(*t.min_ci_lux), f"{t.max_lux:.1f}",
                          _ci(*t.max_ci_lux), f"{t.uniformity:.2f}", f"{u_lo:.2f}-{u_hi:.2f}",
                          verdict))
-        elif t.kind == "observer":
+        elif t.kind in GLARE_KINDS:
             rows.append((t.label, t.kind, *t.ugr_text(), "-", "-", "-", "-", "-", "-", verdict))
         else:
             rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", _ci(t.ci_low_lux, t.ci_high_lux),

@@ -17,7 +17,7 @@ import FreeCAD
 from lighting.export import fingerprint as fingerprint_mod
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import results as results_obj
-from lighting.solver.results import AnalysisResult
+from lighting.solver.results import GLARE_KINDS, AnalysisResult
 
 #: Properties that older versions wrote onto the analysis and onto its targets (migrate()).
 LEGACY_ANALYSIS = ("ResultsJson", "ResultsFile", "PhotonsTraced", "SolveSeconds", "Partial",
@@ -135,7 +135,7 @@ def summary_line(result: AnalysisResult, limit: int = 3) -> str:
     Desk top 612 lx; 200000 photons, 1.2 s"."""
     parts = []
     for t in result.targets[:limit]:
-        text = (f"{t.label} {t.ugr_text()[0]}" if t.kind == "observer"
+        text = (f"{t.label} {t.ugr_text()[0]}" if t.kind in GLARE_KINDS
                 else f"{t.label} Em {t.mean_lux:.0f} lx")
         if t.kind == "grid":
             text += f" U0 {t.uniformity:.2f}"

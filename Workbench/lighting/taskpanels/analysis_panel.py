@@ -59,7 +59,7 @@ def _rows(result: results_mod.AnalysisResult) -> List[List[str]]:
                          f"{t.min_ci_lux[0]:.1f} - {t.min_ci_lux[1]:.1f}", f"{t.max_lux:.1f}",
                          f"{t.max_ci_lux[0]:.1f} - {t.max_ci_lux[1]:.1f}",
                          f"{t.uniformity:.2f}", f"{u_lo:.2f} - {u_hi:.2f}", verdict])
-        elif t.kind == "observer":  # the Em columns show its UGR
+        elif t.kind in results_mod.GLARE_KINDS:  # the Em columns show its (max) UGR
             rows.append([t.label, t.kind, *t.ugr_text()] + ["-"] * 6 + [verdict])
         else:
             rows.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci] + ["-"] * 6 + [verdict])

@@ -1,0 +1,451 @@
+// The target types, one section each: scene-file keys, value checks, tallies and results.
+// Numbers and messages are those the reader, validator, prepare() and make_target had before
+// the table; the golden results (Tests/golden) pin that nothing moved.
+#include "core/target_types.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/json_reader.hpp"
+#include "glare/observer_grid.hpp"
+#include "glare/observer_target.hpp"
+
+namespace lightsolver::detail {
+
+Estimate TargetTallies::estimate(std::uint32_t b) const {
+  return make_estimate(tallies.bins[b], photons, prepared.total_flux_lm / prepared.bins[b].area_m2,
+                       confidence);
+}
+
+Estimate TargetTallies::estimate_z(std::uint32_t b, double z) const {
+  return make_estimate_z(tallies.bins[b], photons,
+                         prepared.total_flux_lm / prepared.bins[b].area_m2, z);
+}
+
+namespace {
+
+// Numbers in messages: 6 significant digits, as the validator prints them.
+std::string show(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+vec3 local(const glm::dvec3& p, const glm::dvec3& origin) { return vec3(p - origin); }
+
+std::optional<glm::dvec3> no_anchor(const Target&) { return std::nullopt; }
+std::optional<glm::dvec3> at_corner(const Target& t) { return t.corner; }
+std::optional<glm::dvec3> at_position(const Target& t) { return t.position; }
+
+void no_result(const TargetTallies&, TargetResult&) {}
+
+// "cells": [nu, nv], each >= 1, at most `most` together.
+void read_cells(const JsonNode& n, Target& t, std::uint64_t most, const char* too_many) {
+  const JsonNode cells = n.at("cells");
+  if (cells.array_size() != 2) cells.fail("expected [nu, nv]");
+  const std::uint64_t nu = cells[0].unsigned_integer(), nv = cells[1].unsigned_integer();
+  if (nu == 0 || nv == 0) cells.fail("a grid needs at least 1x1 cells");
+  // Each factor first: nu * nv must not wrap around in 64 bits before the comparison.
+  if (nu > most || nv > most || nu * nv > most) cells.fail(too_many);
+  t.nu = static_cast<std::uint32_t>(nu);
+  t.nv = static_cast<std::uint32_t>(nv);
+}
+
+// A grid row over the target's rectangle, its whole-grid bin at `bin`.
+PreparedGrid prepare_grid(const Target& t, const glm::dvec3& origin, std::uint32_t bin) {
+  PreparedGrid g;
+  const glm::dvec3 n = glm::normalize(glm::cross(t.edge1, t.edge2));
+  const glm::dvec3 du = glm::cross(t.edge2, n), dv = glm::cross(n, t.edge1);
+  g.corner = local(t.corner, origin);
+  g.normal = vec3(n);
+  g.du = vec3(du / glm::dot(t.edge1, du));
+  g.dv = vec3(dv / glm::dot(t.edge2, dv));
+  g.nu = t.nu;
+  g.nv = t.nv;
+  g.bin = bin;
+  return g;
+}
+
+// An eye's tally: a virtual square of kObserverSquare_m side centred on the eye, facing the line
+// of sight (light travelling toward the eye from the viewed half-space crosses it against its
+// normal), counting only reflected light. Two bins (whole square, its one cell) at the end.
+void add_eye(const glm::dvec3& eye, const glm::dvec3& view, const glm::dvec3& up_hint,
+             const std::string& name, PreparedScene& out) {
+  const auto bin = static_cast<std::uint32_t>(out.bins.size());
+  Target square;
+  const glm::dvec3 v = glm::normalize(view);
+  const glm::dvec3 side = glm::normalize(glm::cross(v, up_hint));
+  const glm::dvec3 up = glm::cross(v, side);  // side x up = v: the square's normal is v
+  square.edge1 = kObserverSquare_m * side;
+  square.edge2 = kObserverSquare_m * up;
+  square.corner = eye - 0.5 * (square.edge1 + square.edge2);
+  square.nu = square.nv = 1;
+  PreparedGrid g = prepare_grid(square, out.origin, bin);
+  g.indirect_only = 1;
+  const double square_m2 = kObserverSquare_m * kObserverSquare_m;
+  out.bins.insert(out.bins.end(), 2, {square_m2});
+  out.grids.push_back(g);
+  out.observers.push_back(name);
+  out.goal_bins.back().push_back(bin);
+}
+
+// --- surface: a mesh's absorbed and reflected light -----------------------------------------
+
+void read_surface(const JsonNode& n, const Scene& scene, Target& t) {
+  n.require_object({"name", "type", "mesh", "requirements", "task"});
+  const std::string mesh = n.at("mesh").string();
+  t.mesh = scene.find_mesh(mesh);
+  if (t.mesh < 0) n.at("mesh").fail("unknown mesh \"" + mesh + "\"");
+}
+
+double mesh_area_m2(const Mesh& m) {
+  double area = 0.0;
+  for (const auto& t : m.triangles) {
+    area += 0.5 * glm::length(glm::cross(m.vertices[t[1]] - m.vertices[t[0]],
+                                         m.vertices[t[2]] - m.vertices[t[0]]));
+  }
+  return area;
+}
+
+void check_surface(const TargetChecks& c, Target& t) {
+  const Mesh* m = c.mesh(t.mesh);
+  if (!m) return;
+  if (m->triangles.empty()) {
+    c.fail("mesh", "mesh \"" + m->name + "\" has zero area (no usable triangle)");
+  }
+  const double area = mesh_area_m2(*m);
+  if (!(area >= limits::kMinArea_m2)) {
+    c.fail("mesh", "mesh \"" + m->name + "\" has an area of " + show(area) +
+                       " m2, below (1 um)^2 = 1e-12 m2");
+  }
+}
+
+void prepare_surface(const Target& t, const std::vector<double>& mesh_area, PreparedScene& out) {
+  PreparedMesh& m = out.meshes[t.mesh];
+  if (m.bin < 0) {  // two targets naming one mesh share its bin
+    m.bin = static_cast<std::int32_t>(out.bins.size());
+    out.bins.push_back({mesh_area[t.mesh]});
+  }
+  out.target_bin.push_back(static_cast<std::uint32_t>(m.bin));
+  out.goal_bins.push_back({static_cast<std::uint32_t>(m.bin)});
+}
+
+// --- grid: a virtual rectangle of cells (light crossing it from the front) ------------------
+
+void read_grid(const JsonNode& n, const Scene&, Target& t) {
+  n.require_object({"name", "type", "corner", "edge1", "edge2", "cells", "requirements", "task"});
+  t.corner = n.at("corner").vec3();
+  t.edge1 = n.at("edge1").vec3();
+  t.edge2 = n.at("edge2").vec3();
+  read_cells(n, t, limits::kMaxGridCells, "more than 10^7 cells in one grid");
+}
+
+// Grids divide flux by their cells' areas: sizes below 1 um are below any physical use (a
+// 1 mm cell is fine) and would only make the estimates huge and meaningless.
+void check_grid(const TargetChecks& c, Target& t) {
+  c.parallelogram(t, "the grid has zero area");
+  const double u_m = glm::length(t.edge1), v_m = glm::length(t.edge2);
+  for (const auto& [key, length] : {std::pair{"edge1", u_m}, std::pair{"edge2", v_m}}) {
+    if (length < limits::kMinGridEdge_m) {
+      c.fail(key, "is " + show(length) + " m long, shorter than 1 um");
+    }
+  }
+  if (t.nu == 0 || t.nv == 0) c.fail("cells", "need at least 1x1 cells");
+  const std::uint64_t count = std::uint64_t(t.nu) * t.nv;
+  if (count > limits::kMaxGridCells) {
+    c.fail("cells", std::to_string(count) + " cells, more than 10^7 in one grid");
+  }
+  c.add_grid_cells(count);
+  if (u_m / t.nu < limits::kMinGridEdge_m || v_m / t.nv < limits::kMinGridEdge_m) {
+    c.fail("cells", "cells of " + show(u_m / t.nu) + " x " + show(v_m / t.nv) +
+                        " m: a cell edge is shorter than 1 um");
+  }
+  const double cell_m2 = glm::length(glm::cross(t.edge1, t.edge2)) / double(count);
+  if (cell_m2 < limits::kMinArea_m2) {
+    c.fail("cells", "a cell's area is " + show(cell_m2) + " m2, below (1 um)^2 = 1e-12 m2");
+  }
+}
+
+void prepare_grid_target(const Target& t, const std::vector<double>&, PreparedScene& out) {
+  const auto bin = static_cast<std::uint32_t>(out.bins.size());
+  const double area = glm::length(glm::cross(t.edge1, t.edge2));
+  out.bins.push_back({area});
+  out.bins.resize(out.bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
+  out.grids.push_back(prepare_grid(t, out.origin, bin));
+  out.target_bin.push_back(bin);
+  out.goal_bins.push_back({bin});
+}
+
+// Cell and grid estimates at any alpha, for the simultaneous intervals of grid_intervals();
+// z is computed once per alpha (the cells share it).
+GridSampler grid_sampler(const TargetTallies& tt) {
+  auto estimate = [&tt, alpha = -1.0, z = 0.0](std::uint32_t b, double a) mutable {
+    if (a != alpha) z = z_for_alpha(alpha = a);
+    return tt.estimate_z(tt.bin + b, z);
+  };
+  return {tt.target.nu * tt.target.nv, [estimate](double a) mutable { return estimate(0, a); },
+          [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
+}
+
+void grid_result(const TargetTallies& tt, TargetResult& r) {
+  const Target& t = tt.target;
+  r.is_grid = true;
+  r.nu = t.nu;
+  r.nv = t.nv;
+  r.cells.reserve(std::size_t(t.nu) * t.nv);
+  for (std::uint32_t c = 0; c < t.nu * t.nv; ++c) r.cells.push_back(tt.estimate(tt.bin + 1 + c));
+  const auto [lo, hi] = std::minmax_element(r.cells.begin(), r.cells.end(),
+                                            [](auto& a, auto& b) { return a.mean < b.mean; });
+  r.min_lux = lo->mean;
+  r.max_lux = hi->mean;
+  r.uniformity = r.estimate.mean > 0.0 ? r.min_lux / r.estimate.mean : 0.0;
+  if (tt.judged) {
+    r.intervals =
+        grid_intervals(grid_sampler(tt), tt.confidence, r.min_lux, r.max_lux, r.estimate.mean);
+  }
+}
+
+// --- observer: an eye's reflected light, and its UGR ----------------------------------------
+
+void read_observer(const JsonNode& n, const Scene&, Target& t) {
+  n.require_object({"name", "type", "position", "view_direction", "up", "requirements", "task"});
+  t.position = n.at("position").vec3();
+  t.view_direction = n.at("view_direction").vec3();
+  if (n.has("up")) t.up = n.at("up").vec3();
+}
+
+// Checks `up` and makes it unit length.
+void check_up(const TargetChecks& c, Target& t) {
+  c.direction("up", t.up);
+  t.up = glm::normalize(t.up);
+}
+
+bool across(const glm::dvec3& view, const glm::dvec3& up) {
+  return glm::length(glm::cross(view, up)) >= 1e-6;
+}
+
+// An eye inside the coordinate range, a line of sight and an up direction that are not
+// parallel (normalised here; up is made orthogonal to the line of sight when used).
+void check_observer(const TargetChecks& c, Target& t) {
+  c.coordinates("position", t.position);
+  c.direction("view_direction", t.view_direction);
+  c.direction("up", t.up);
+  t.view_direction = glm::normalize(t.view_direction);
+  t.up = glm::normalize(t.up);
+  if (!across(t.view_direction, t.up)) {
+    c.fail("up",
+           "is parallel to view_direction: the observer needs an up "
+           "direction across its line of sight (default +z)");
+  }
+}
+
+void prepare_observer(const Target& t, const std::vector<double>&, PreparedScene& out) {
+  out.target_bin.push_back(static_cast<std::uint32_t>(out.bins.size()));
+  out.goal_bins.emplace_back();
+  add_eye(t.position, t.view_direction, t.up, t.name, out);
+}
+
+void observer_result(const TargetTallies& tt, TargetResult& r) {
+  r.is_observer = true;
+  r.glare = observer_glare(tt.target, tt.scene.luminaires, r.estimate);
+}
+
+// --- observer grid: eyes x lines of sight, and the largest UGR ------------------------------
+
+void read_observer_grid(const JsonNode& n, const Scene&, Target& t) {
+  n.require_object({"name", "type", "positions", "corner", "edge1", "edge2", "cells",
+                    "view_directions", "view_step_deg", "up", "requirements", "task"});
+  if (n.has("positions")) {
+    for (const char* key : {"corner", "edge1", "edge2", "cells"}) {
+      if (n.has(key)) n.fail("give either \"positions\" or corner, edge1, edge2 and cells");
+    }
+    const JsonNode list = n.at("positions");
+    if (list.array_size() == 0) list.fail("must list at least one eye position");
+    if (list.array_size() > limits::kMaxObserverGridPoints) {
+      list.fail("more than 1024 eye positions");
+    }
+    for (std::size_t i = 0; i < list.array_size(); ++i) t.positions.push_back(list[i].vec3());
+  } else {
+    t.corner = n.at("corner").vec3();
+    t.edge1 = n.at("edge1").vec3();
+    t.edge2 = n.at("edge2").vec3();
+    read_cells(n, t, limits::kMaxObserverGridPoints, "more than 1024 eye positions");
+  }
+  if (n.has("view_directions") == n.has("view_step_deg")) {
+    n.fail("give either \"view_directions\" or \"view_step_deg\"");
+  }
+  if (n.has("view_step_deg")) t.view_step_deg = n.at("view_step_deg").number();
+  if (n.has("view_directions")) {
+    const JsonNode list = n.at("view_directions");
+    if (list.array_size() == 0) list.fail("must list at least one view direction");
+    if (list.array_size() > limits::kMaxObserverGridPoints) {
+      list.fail("more than 1024 view directions");
+    }
+    for (std::size_t i = 0; i < list.array_size(); ++i) {
+      t.view_directions.push_back(list[i].vec3());
+    }
+  }
+  if (n.has("up")) t.up = n.at("up").vec3();
+}
+
+// The eyes: listed, or the rectangle's cells (within 1024, each cell centre in range).
+std::uint64_t check_positions(const TargetChecks& c, const Target& t) {
+  if (!t.positions.empty()) {
+    for (std::size_t i = 0; i < t.positions.size(); ++i) {
+      c.coordinates("positions[" + std::to_string(i) + "]", t.positions[i]);
+    }
+    return t.positions.size();
+  }
+  c.parallelogram(t, "the rectangle of eye positions has zero area");
+  const std::uint64_t count = std::uint64_t(t.nu) * t.nv;
+  if (t.nu == 0 || t.nv == 0) c.fail("cells", "need at least 1x1 eye positions");
+  if (count > limits::kMaxObserverGridPoints) {
+    c.fail("cells", std::to_string(count) + " eye positions, more than 1024");
+  }
+  return count;
+}
+
+// The lines of sight: listed (each across `up`), or a step that divides the full turn.
+std::uint64_t check_directions(const TargetChecks& c, Target& t) {
+  if (t.view_step_deg) {
+    const double step = *t.view_step_deg;
+    const double turns = 360.0 / step;
+    if (!(step > 0.0 && step <= 360.0) || std::abs(turns - std::round(turns)) > 1e-9 * turns) {
+      c.fail("view_step_deg",
+             "must be > 0 and divide 360 (e.g. 15, 45, 90; got " + show(step) + ")");
+    }
+    // Before the count is converted: a tiny step gives an infinite or huge one.
+    if (!(turns <= double(limits::kMaxObserverGridPoints))) {
+      c.fail("view_step_deg", "gives " + show(turns) + " view directions, more than 1024");
+    }
+    if (!t.view_directions.empty()) c.fail("view_directions", "give it or view_step_deg, not both");
+    return static_cast<std::uint64_t>(std::round(turns));
+  }
+  if (t.view_directions.empty()) {
+    c.fail("view_directions", "must list at least one view direction (or give view_step_deg)");
+  }
+  for (std::size_t i = 0; i < t.view_directions.size(); ++i) {
+    const std::string key = "view_directions[" + std::to_string(i) + "]";
+    c.direction(key, t.view_directions[i]);
+    t.view_directions[i] = glm::normalize(t.view_directions[i]);
+    if (!across(t.view_directions[i], t.up)) {
+      c.fail(key, "is parallel to up: an eye needs an up direction across its line of sight");
+    }
+  }
+  return t.view_directions.size();
+}
+
+void check_observer_grid(const TargetChecks& c, Target& t) {
+  check_up(c, t);
+  const std::uint64_t positions = check_positions(c, t);
+  const std::uint64_t directions = check_directions(c, t);
+  if (positions * directions > limits::kMaxObserverGridPoints) {
+    c.fail(t.positions.empty() ? "cells" : "positions",
+           std::to_string(positions) + " positions x " + std::to_string(directions) +
+               " view directions = " + std::to_string(positions * directions) +
+               " eyes, more than 1024 (each is a tally every ray segment is tested against)");
+  }
+}
+
+std::optional<glm::dvec3> observer_grid_anchor(const Target& t) {
+  return t.positions.empty() ? t.corner : t.positions.front();
+}
+
+void prepare_observer_grid(const Target& t, const std::vector<double>&, PreparedScene& out) {
+  out.target_bin.push_back(static_cast<std::uint32_t>(out.bins.size()));
+  out.goal_bins.emplace_back();
+  const std::vector<glm::dvec3> directions = observer_grid_directions(t);
+  for (const glm::dvec3& eye : observer_grid_positions(t)) {
+    for (const glm::dvec3& view : directions) add_eye(eye, view, t.up, t.name, out);
+  }
+}
+
+// Point k's tallies are the two bins at bin + 2k (prepare_observer_grid's order).
+void observer_grid_result(const TargetTallies& tt, TargetResult& r) {
+  const ObserverGridTallies points{
+      [&tt](std::size_t k) { return tt.estimate(tt.bin + 2 * std::uint32_t(k)); },
+      [&tt](std::size_t k, double z) { return tt.estimate_z(tt.bin + 2 * std::uint32_t(k), z); }};
+  ObserverGridOutcome o =
+      observer_grid_glare(tt.target, tt.scene.luminaires, tt.confidence, points);
+  r.estimate = points.estimate(o.estimate_point);
+  r.glare = std::move(o.max);
+  r.observer_grid = std::move(o.grid);
+}
+
+using T = Target::Type;
+constexpr unsigned kIlluminance = kRequireEm | kRequireU0 | kRequireEmin | kRequireUd;
+const std::array<TargetType, 4> kTypes = {{
+    {T::Surface, "surface", read_surface, check_surface, kRequireEm,
+     "a surface target has no cells: only em_lux applies to it (use a grid target for U0, Emin "
+     "and Ud)",
+     TallyKind::MeshBin, false, no_anchor, prepare_surface, no_result},
+    {T::Grid, "grid", read_grid, check_grid, kIlluminance, "", TallyKind::GridRows, true, at_corner,
+     prepare_grid_target, grid_result},
+    {T::Observer, "observer", read_observer, check_observer, kRequireUgr,
+     "an observer target has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
+     at_position, prepare_observer, observer_result},
+    {T::ObserverGrid, "observer_grid", read_observer_grid, check_observer_grid, kRequireUgr,
+     "an observer grid has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
+     observer_grid_anchor, prepare_observer_grid, observer_grid_result},
+}};
+
+}  // namespace
+
+std::span<const TargetType> target_types() { return kTypes; }
+
+const TargetType& target_type(Target::Type type) {
+  for (const auto& row : kTypes) {
+    if (row.type == type) return row;
+  }
+  throw std::logic_error("target type without a row in target_types.cpp");
+}
+
+const TargetType* find_target_type(std::string_view name) {
+  for (const auto& row : kTypes) {
+    if (name == row.name) return &row;
+  }
+  return nullptr;
+}
+
+std::string target_type_names() {
+  std::string s;
+  for (std::size_t i = 0; i < kTypes.size(); ++i) {
+    if (i > 0) s += i + 1 == kTypes.size() ? " or " : ", ";
+    s += kTypes[i].name;
+  }
+  return s;
+}
+
+std::vector<glm::dvec3> observer_grid_positions(const Target& t) {
+  if (!t.positions.empty()) return t.positions;
+  std::vector<glm::dvec3> eyes;
+  for (std::uint32_t iv = 0; iv < t.nv; ++iv) {
+    for (std::uint32_t iu = 0; iu < t.nu; ++iu) {
+      eyes.push_back(t.corner + (iu + 0.5) / t.nu * t.edge1 + (iv + 0.5) / t.nv * t.edge2);
+    }
+  }
+  return eyes;
+}
+
+std::vector<glm::dvec3> observer_grid_directions(const Target& t) {
+  if (!t.view_step_deg) return t.view_directions;
+  const glm::dvec3 up = glm::normalize(t.up);
+  glm::dvec3 start = glm::dvec3(1, 0, 0) - up.x * up;  // +x in the plane across up
+  if (glm::length(start) < 1e-6) start = glm::dvec3(0, 1, 0) - up.y * up;
+  start = glm::normalize(start);
+  const glm::dvec3 left = glm::cross(up, start);  // counter-clockwise seen from above
+  const auto count = static_cast<std::size_t>(std::round(360.0 / *t.view_step_deg));
+  std::vector<glm::dvec3> views;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double a = k * *t.view_step_deg * std::numbers::pi / 180.0;
+    views.push_back(std::cos(a) * start + std::sin(a) * left);
+  }
+  return views;
+}
+
+}  // namespace lightsolver::detail

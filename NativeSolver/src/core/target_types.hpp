@@ -1,0 +1,115 @@
+#pragma once
+// One row per target type: how the scene file spells it, how it is read, checked, laid out as
+// tallies and turned into results. The reader (scene_json.cpp), the validator (scene.cpp),
+// prepare() (prepared_scene.cpp), the results (simulation.cpp, results_io.cpp) and study.cpp
+// look the type up here instead of switching over Target::Type. Backends have no per-type
+// code: a type tallies into a mesh's bin or into grid rows (PreparedGrid, with the
+// indirect-only flag), which Embree (path_deposits.hpp) and Vulkan (GpuGrid rows) already
+// count. docs/solver.md, "Adding a target type".
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/backend.hpp"
+#include "core/prepared_scene.hpp"
+#include "lightsolver/scene.hpp"
+#include "lightsolver/solver.hpp"
+
+namespace lightsolver::detail {
+
+class JsonNode;
+
+/// What a type's check may ask of the scene validator. `key` names a field of the target being
+/// checked (the validator turns it into "targets[i].key"); failures throw InputError.
+class TargetChecks {
+ public:
+  virtual ~TargetChecks() = default;
+  [[noreturn]] virtual void fail(const std::string& key, const std::string& what) const = 0;
+  /// Finite and within 10^9 m of the origin.
+  virtual void coordinates(const std::string& key, const glm::dvec3& v) const = 0;
+  /// Finite, non-zero and normalisable (the caller normalises).
+  virtual void direction(const std::string& key, const glm::dvec3& v) const = 0;
+  /// corner, edge1, edge2: finite, non-zero, not parallel (`what` ends the parallel message).
+  virtual void parallelogram(const Target& t, const char* what) const = 0;
+  /// The scene's mesh `index` (fails "mesh" when there is none), or nullptr when that mesh had
+  /// an error of its own (a target on it is not checked again).
+  virtual const Mesh* mesh(int index) const = 0;
+  /// Adds grid cells to the scene's total (at most 10^7 together).
+  virtual void add_grid_cells(std::uint64_t cells) const = 0;
+};
+
+/// How a type is tallied by every backend.
+enum class TallyKind {
+  MeshBin,  ///< the bin of its mesh (Target::mesh): photons absorbed or reflected there
+  GridRows  ///< PreparedGrid rows: virtual rectangles crossed (indirect_only: reflected light)
+};
+
+/// Requirement keys, as bits of TargetType::requirements.
+enum RequirementKey : unsigned {
+  kRequireEm = 1u << 0,
+  kRequireU0 = 1u << 1,
+  kRequireEmin = 1u << 2,
+  kRequireUd = 1u << 3,
+  kRequireUgr = 1u << 4,
+};
+
+/// A target's tallies at the end (or a checkpoint) of a run, for its result hook.
+struct TargetTallies {
+  const Scene& scene;
+  const Target& target;
+  const PreparedScene& prepared;
+  const TallyBlock& tallies;
+  std::uint32_t bin;  ///< the target's first bin (PreparedScene::target_bin)
+  std::uint64_t photons;
+  double confidence;
+  bool judged;  ///< the run judges requirements (grids then need their intervals)
+
+  /// Bin `b`'s illuminance (lux) at the run's confidence, or at the critical value `z`.
+  Estimate estimate(std::uint32_t b) const;
+  Estimate estimate_z(std::uint32_t b, double z) const;
+};
+
+/// One target type. Every hook is required.
+struct TargetType {
+  Target::Type type;
+  const char* name;  ///< "type" in the scene file
+  /// Reads the type's keys, rejecting unknown ones ("name" is already read; "requirements"
+  /// and "task" are read after it, and must be allowed).
+  void (*read)(const JsonNode& n, const Scene& scene, Target& t);
+  /// Checks value ranges and normalises directions, in the order the messages should come.
+  void (*check)(const TargetChecks& c, Target& t);
+  /// The requirements it takes (RequirementKey bits): a task row's others are dropped, and
+  /// explicit others are errors with `other_requirements` as the message.
+  unsigned requirements;
+  const char* other_requirements;
+  TallyKind tally;
+  /// Its bins after the first are nu x nv cells (results' `cells`; per-cell accuracy goals).
+  bool cells;
+  /// A point of the target for the scene's centre, when it has coordinates of its own.
+  std::optional<glm::dvec3> (*anchor)(const Target& t);
+  /// Adds its bins (and grid rows) to `out`, its first bin to out.target_bin and the bins an
+  /// accuracy goal judges to out.goal_bins (one entry per target). `mesh_area_m2`: per mesh.
+  void (*prepare)(const Target& t, const std::vector<double>& mesh_area_m2, PreparedScene& out);
+  /// Fills the type's part of `r` (name, type, requirements, area and estimate are set).
+  void (*result)(const TargetTallies& tallies, TargetResult& r);
+};
+
+/// All types, one row each.
+std::span<const TargetType> target_types();
+/// The row of `type`.
+const TargetType& target_type(Target::Type type);
+/// The row whose scene-file name is `name`, or nullptr.
+const TargetType* find_target_type(std::string_view name);
+/// "surface, grid, observer or observer_grid", for messages.
+std::string target_type_names();
+
+/// An observer grid's eyes (listed, or the rectangle's cell centres, row by row) and lines of
+/// sight (listed, or every view_step_deg about `up` from +x; +y when up is along x).
+std::vector<glm::dvec3> observer_grid_positions(const Target& t);
+std::vector<glm::dvec3> observer_grid_directions(const Target& t);
+
+}  // namespace lightsolver::detail
