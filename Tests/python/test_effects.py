@@ -34,6 +34,7 @@ def test_results_list_every_effect_once_and_the_cli_prints_what_was_skipped(cli,
     assert {"interreflection", "diffuse_reflection", "grid_crossing"} <= set(effects["simulated"])
     assert skipped["refraction"] == "no glass"
     assert "no glass: refraction not simulated" in stdout
+    assert "simulated: interreflection, diffuse reflection, " in stdout
     assert "no observer: observer crossing not simulated" in stdout
 
 

@@ -12,12 +12,23 @@ nlohmann::json effects_json(const EffectsReport& effects) {
   return {{"simulated", effects.simulated}, {"skipped", std::move(skipped)}};
 }
 
+namespace {
+
+std::string words(std::string name) {
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+
+}  // namespace
+
 std::string effects_lines(const EffectsReport& effects) {
-  std::string out;
+  std::string out = "simulated:";
+  for (std::size_t i = 0; i < effects.simulated.size(); ++i) {
+    out += (i == 0 ? " " : ", ") + words(effects.simulated[i]);
+  }
+  out += effects.simulated.empty() ? " nothing\n" : "\n";
   for (const SkippedEffect& s : effects.skipped) {
-    std::string words = s.effect;
-    std::replace(words.begin(), words.end(), '_', ' ');
-    out += s.reason + ": " + words + " not simulated\n";
+    out += s.reason + ": " + words(s.effect) + " not simulated\n";
   }
   return out;
 }

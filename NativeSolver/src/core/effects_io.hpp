@@ -10,7 +10,8 @@ namespace lightsolver::detail {
 /// {"simulated": [names], "skipped": [{"effect": name, "reason": why}]}.
 nlohmann::json effects_json(const EffectsReport& effects);
 
-/// One line per skipped effect, "no glass: refraction not simulated".
+/// "simulated: interreflection, diffuse reflection, ...", then one line per skipped effect,
+/// "no glass: refraction not simulated".
 std::string effects_lines(const EffectsReport& effects);
 
 }  // namespace lightsolver::detail

@@ -7,6 +7,7 @@
 #include "core/prepared_scene.hpp"
 #include "core/scene_effects.hpp"
 #include "core/target_reach.hpp"
+#include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_check.hpp"
 #include "scene_builders.hpp"
 
@@ -127,6 +128,31 @@ TEST(DarkTargets, SurfaceTargetNeedsEveryTriangleTurnedAway) {
   const std::vector<std::size_t> d = dark(s);
   EXPECT_EQ(d, (std::vector<std::size_t>{1}));
   expect_run_agrees(s, d);
+}
+
+// The downlight file has light up to gamma = 77.5 deg (zero from 80 deg): its cone, to the cell
+// edge at 80 deg, cannot reach anything that faces down above it, although it sits in front.
+TEST(DarkTargets, PhotometricLuminaireLightsItsDistributionOnly) {
+  Scene s = black_room();
+  Luminaire l;
+  l.name = "downlight";
+  l.type = Luminaire::Type::Photometric;
+  l.position = {2, 2, 2.5};
+  l.aim = kDown;
+  l.file = "downlight.ies";
+  load_photometric(l, std::string(LIGHTSOLVER_SOURCE_DIR) + "/Resources/luminaires/downlight.ies",
+                   std::nullopt, "flux_lm");
+  s.luminaires.push_back(l);
+  add_grids_at(s, 2.8);  // above: "up" is behind the lamp, "down" outside its cone
+  add_grids_at(s, 0.8);  // below: "up" is lit, "down" is behind
+  // Beside it, facing it: the cone reaches the wall's plane lower down, so not claimed.
+  s.targets.push_back(grid("wall", {3.5, 1, 2.3}, {0, 0, 0.4}, {0, 2, 0}, 1, 1));
+  validate(s);
+  const std::vector<std::size_t> d = dark(s);
+  EXPECT_EQ(d, (std::vector<std::size_t>{0, 1, 3}));
+  const Results r = run_on_backend("embree", s, 40'000, 3);
+  for (std::size_t i : d) EXPECT_EQ(r.targets[i].estimate.hits, 0u) << r.targets[i].name;
+  EXPECT_GT(r.targets[2].estimate.hits, 0u);
 }
 
 TEST(DarkTargets, ObserversSeeNothingWithoutReflection) {
