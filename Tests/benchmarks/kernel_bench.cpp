@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "bench_scenes.hpp"
 #include "bench_util.hpp"
 #include "core/prepared_scene.hpp"
 #include "embree/embree_backend.hpp"
@@ -16,16 +17,23 @@ namespace lightsolver::bench {
 namespace {
 
 // 0: an all-diffuse office (conference room); 1: a Cornell box with a glass lens and a mirror;
-// 2: the office with every reflectance 0 (direct light only).
+// 2: the office with every reflectance 0 (direct light only); 3: the 1M-triangle hall of
+// solver_bench with every reflectance 0 (direct light only, a grid target: no hit reads its
+// triangle).
+Scene black(Scene s) {
+  for (Material& m : s.materials) m.reflectance = 0.0;
+  return s;
+}
+
 const Scene& scene_by_index(int i) {
   static const std::string root = LIGHTSOLVER_SOURCE_DIR "/Examples/optimization/";
   static const Scene office = load_scene(root + "conference/conference.json");
   static const Scene cornell = load_scene(root + "cornell/cornell.json");
-  static const Scene black_office = [] {
-    Scene s = office;
-    for (Material& m : s.materials) m.reflectance = 0.0;
-    return s;
-  }();
+  static const Scene black_office = black(office);
+  if (i == 3) {
+    static const Scene black_hall = black(million_triangles());
+    return black_hall;
+  }
   return i == 0 ? office : i == 1 ? cornell : black_office;
 }
 
@@ -49,6 +57,8 @@ BENCHMARK(BM_PathKernel)
     ->Args({1, 1, 1'000'000})
     ->Args({2, 0, 2'000'000})
     ->Args({2, 1, 2'000'000})
+    ->Args({3, 0, 2'000'000})
+    ->Args({3, 1, 2'000'000})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->MinTime(2.0);

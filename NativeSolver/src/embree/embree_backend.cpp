@@ -130,6 +130,10 @@ class EmbreeBackend final : public Backend {
     if (lane.rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     bool instanced = false;
     const unsigned mesh = embree_.mesh_of(lane.rh.hit, instanced);
+    // Direct light only: the path ends here, and only a target's hit reads its triangle.
+    if constexpr (!F.reflects) {
+      if (s_.meshes[mesh].bin < 0) return;
+    }
     _mm_prefetch(reinterpret_cast<const char*>(&triangles_.at(mesh, lane.rh.hit.primID)),
                  _MM_HINT_T0);
   }
@@ -142,6 +146,9 @@ class EmbreeBackend final : public Backend {
     bool instanced = false;
     const unsigned mesh = embree_.mesh_of(h, instanced);
     const PreparedMesh& m = s_.meshes[mesh];
+    if constexpr (!F.reflects) {
+      if (m.bin < 0) return false;  // absorbed where nothing is tallied: no triangle to read
+    }
     const HitTriangle& tri = triangles_.at(mesh, h.primID);
     EmittedRay& ray = lane.ray;
     vec3 n = tri.n;
