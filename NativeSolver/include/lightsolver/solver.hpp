@@ -171,6 +171,20 @@ struct TargetResult {
   VerdictKind verdict = VerdictKind::Undecided;  ///< overall; meaningful with verdicts only
 };
 
+/// An effect the tracer left out because the scene does not need it, and why ("no glass").
+struct SkippedEffect {
+  std::string effect;
+  std::string reason;
+};
+
+/// What the run simulated (docs/scene-format.md, "effects"): the effect names a scene needs,
+/// and those skipped with the reason. The same analysis picks the Embree path kernel and the
+/// Vulkan specialisation.
+struct EffectsReport {
+  std::vector<std::string> simulated;
+  std::vector<SkippedEffect> skipped;
+};
+
 struct Results {
   std::vector<TargetResult> targets;
   std::uint64_t photons = 0;               ///< traced (== requested when stop_reason is "photons")
@@ -192,6 +206,7 @@ struct Results {
   std::uint64_t cut_paths = 0;
   double total_flux_lm = 0.0;
   Warnings warnings;
+  EffectsReport effects;  ///< effects simulated and skipped (scene analysis before tracing)
   /// Some target has requirements: verdicts, grid intervals and `decide` are reported.
   bool judged = false;
   bool decide = false;  ///< the run traced until decided (SolveOptions::decide)

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/effects_io.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -207,6 +208,7 @@ std::string results_to_json(const Results& r) {
                       {"total_flux_lm", r.total_flux_lm},
                       {"warnings", r.warnings}};
   if (r.max_seconds) j["max_seconds"] = *r.max_seconds;
+  j["effects"] = detail::effects_json(r.effects);
   if (r.target_accuracy) {
     j["target_accuracy"] = *r.target_accuracy;
     j["accuracy_met"] = r.accuracy_met;
@@ -304,6 +306,7 @@ std::string results_table(const Results& r) {
         << "): " << to_string(r.verdict) << "\n";
     verdict_lines(r, out);
   }
+  out << detail::effects_lines(r.effects);
   for (const auto& w : r.warnings) out << "warning: " << w << "\n";
   return out.str();
 }

@@ -45,36 +45,37 @@ inline vec3 sample_ggx_normal(float alpha, PathRng& rng) {
   return vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t);
 }
 
-// Updates `dir` for the photon leaving the surface; returns false when it is absorbed.
-// `n` is the unit normal of the triangle's front (counter-clockwise) side.
-inline bool scatter(const Material& m, const vec3& n, vec3& dir, PathRng& rng) {
-  const float cos_in = glm::dot(dir, n);
-  const vec3 facing = cos_in < 0.0f ? n : -n;  // the side the photon arrived from
-  switch (m.type) {
-    case Material::Type::Diffuse:
-      if (rng.uniform() >= m.reflectance) return false;
-      dir = sample_cosine(facing, rng);
-      return true;
-    case Material::Type::Mirror:
-      if (rng.uniform() >= m.reflectance) return false;
-      dir = reflect(dir, facing);
-      return true;
-    case Material::Type::Glossy: {
-      const float u = rng.uniform();
-      if (u < m.reflectance) {
-        dir = sample_cosine(facing, rng);
-        return true;
-      }
-      if (u >= m.reflectance + m.specular) return false;
-      const float alpha = static_cast<float>(m.roughness * m.roughness);
-      const vec3 micro = alpha > 0.0f ? to_world(sample_ggx_normal(alpha, rng), facing) : facing;
-      if (glm::dot(dir, micro) >= 0.0f) return false;  // facet turned away from the photon
-      dir = reflect(dir, micro);
-      return glm::dot(dir, facing) > 0.0f;  // below the surface: absorbed (shadowed facet)
-    }
-    case Material::Type::Glass:
-      break;
+// One function per material kind; `facing` is the normal on the side the photon arrived from.
+// Each keeps the photon's power and returns false when it is absorbed.
+inline bool scatter_diffuse(const Material& m, const vec3& facing, vec3& dir, PathRng& rng) {
+  if (rng.uniform() >= m.reflectance) return false;
+  dir = sample_cosine(facing, rng);
+  return true;
+}
+
+inline bool scatter_mirror(const Material& m, const vec3& facing, vec3& dir, PathRng& rng) {
+  if (rng.uniform() >= m.reflectance) return false;
+  dir = reflect(dir, facing);
+  return true;
+}
+
+inline bool scatter_glossy(const Material& m, const vec3& facing, vec3& dir, PathRng& rng) {
+  const float u = rng.uniform();
+  if (u < m.reflectance) {
+    dir = sample_cosine(facing, rng);
+    return true;
   }
+  if (u >= m.reflectance + m.specular) return false;
+  const float alpha = static_cast<float>(m.roughness * m.roughness);
+  const vec3 micro = alpha > 0.0f ? to_world(sample_ggx_normal(alpha, rng), facing) : facing;
+  if (glm::dot(dir, micro) >= 0.0f) return false;  // facet turned away from the photon
+  dir = reflect(dir, micro);
+  return glm::dot(dir, facing) > 0.0f;  // below the surface: absorbed (shadowed facet)
+}
+
+// `cos_in`: dot(dir, n) with the front normal n (its sign says whether the photon enters).
+inline bool scatter_glass(const Material& m, float cos_in, const vec3& facing, vec3& dir,
+                          PathRng& rng) {
   const float cos_i = std::abs(cos_in);
   const bool entering = cos_in < 0.0f;
   const float ior = static_cast<float>(m.ior), tau = static_cast<float>(m.transmittance);
@@ -101,6 +102,25 @@ inline bool scatter(const Material& m, const vec3& n, vec3& dir, PathRng& rng) {
   // Refraction (Snell), then the body's internal transmittance decides survival on entry.
   dir = glm::normalize(eta * dir + (eta * cos_i - cos_t) * facing);
   return !entering || rng.uniform() < tau;
+}
+
+// Updates `dir` for the photon leaving the surface; returns false when it is absorbed.
+// `n` is the unit normal of the triangle's front (counter-clockwise) side. Every material kind
+// (the Embree backend's general kernel; embree/path_kernel.hpp leaves out unused kinds).
+inline bool scatter(const Material& m, const vec3& n, vec3& dir, PathRng& rng) {
+  const float cos_in = glm::dot(dir, n);
+  const vec3 facing = cos_in < 0.0f ? n : -n;  // the side the photon arrived from
+  switch (m.type) {
+    case Material::Type::Diffuse:
+      return scatter_diffuse(m, facing, dir, rng);
+    case Material::Type::Mirror:
+      return scatter_mirror(m, facing, dir, rng);
+    case Material::Type::Glossy:
+      return scatter_glossy(m, facing, dir, rng);
+    case Material::Type::Glass:
+      break;
+  }
+  return scatter_glass(m, cos_in, facing, dir, rng);
 }
 
 }  // namespace lightsolver::detail

@@ -10,6 +10,7 @@
 #include "core/coincident.hpp"
 #include "core/prepared_scene.hpp"
 #include "core/scene_document.hpp"
+#include "core/target_reach.hpp"
 #include "lightsolver/scene_io.hpp"
 
 namespace lightsolver {
@@ -60,6 +61,11 @@ void add_run_warnings(const Scene& scene, SceneCheck& out) {
     for (const std::string& w : detail::coincidence_warnings(scene, {c})) {
       warn(at("meshes", c.a), w);
     }
+  }
+  // Targets no light can reach (no surface reflects and they face away from every luminaire).
+  for (const detail::DarkTarget& d :
+       detail::dark_targets(scene, prepared, detail::analyse_effects(prepared))) {
+    warn(at("targets", d.target), d.message);
   }
 }
 

@@ -17,6 +17,7 @@
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
 #include "core/decide.hpp"
+#include "core/target_reach.hpp"
 #include "core/target_types.hpp"
 
 namespace lightsolver {
@@ -444,6 +445,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   add_warnings(scene, r);
   add_stop_warnings(r);
+  detail::report_effects(scene, prepared, r);  // effects simulated/skipped, dark targets
   r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);

@@ -10,23 +10,34 @@
 #include <xmmintrin.h>
 
 #include <array>
+#include <cstdlib>
 #include <glm/mat3x3.hpp>
 #include <limits>
+#include <stdexcept>
+#include <string_view>
 
 #include "core/emitters.hpp"
 #include "core/path_deposits.hpp"
 #include "core/scatter.hpp"
 #include "embree/embree_scene.hpp"
 #include "embree/hit_triangles.hpp"
+#include "embree/path_kernel.hpp"
 
 namespace lightsolver::detail {
 namespace {
 
 class EmbreeBackend final : public Backend {
  public:
-  explicit EmbreeBackend(const PreparedScene& s) : s_(s), embree_(s), triangles_(s) {}
+  EmbreeBackend(const PreparedScene& s, EmbreeKernel kernel)
+      : s_(s),
+        embree_(s),
+        triangles_(s),
+        kernel_(kernel == EmbreeKernel::General ? kGeneralKernel : kernel_for(analyse_effects(s))) {
+  }
 
   std::string name() const override { return "embree"; }
+
+  KernelFeatures kernel() const { return kernel_; }
 
   void set_mesh_transform(std::size_t mesh, const glm::mat4& transform) override {
     embree_.set_transform(mesh, transform);
@@ -43,7 +54,9 @@ class EmbreeBackend final : public Backend {
                         const unsigned daz = _MM_GET_DENORMALS_ZERO_MODE();
                         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
                         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-                        trace_range(r.begin(), r.end(), seed, local.local());
+                        with_kernel(kernel_, [&]<KernelFeatures F>() {
+                          trace_range<F>(r.begin(), r.end(), seed, local.local());
+                        });
                         _MM_SET_FLUSH_ZERO_MODE(ftz);
                         _MM_SET_DENORMALS_ZERO_MODE(daz);
                       });
@@ -68,6 +81,7 @@ class EmbreeBackend final : public Backend {
     bool active = false;
   };
 
+  template <KernelFeatures F>
   void trace_range(std::uint64_t next, std::uint64_t end, std::uint64_t seed, TallyBlock& t) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -77,13 +91,13 @@ class EmbreeBackend final : public Backend {
     for (Lane& lane : lanes) {
       if (next == end) break;
       start_path(lane, next++, seed);
-      intersect(lane, context, t);
+      intersect<F>(lane, context, t);
       ++active;
     }
     while (active > 0) {
       for (Lane& lane : lanes) {
         if (!lane.active) continue;
-        if (!continue_path(lane, t)) {
+        if (!continue_path<F>(lane, t)) {
           lane.deposits.flush(t.bins);
           if (next == end) {
             lane.active = false;
@@ -92,7 +106,7 @@ class EmbreeBackend final : public Backend {
           }
           start_path(lane, next++, seed);
         }
-        intersect(lane, context, t);
+        intersect<F>(lane, context, t);
       }
     }
   }
@@ -106,34 +120,42 @@ class EmbreeBackend final : public Backend {
 
   // Traces the lane's next segment, counts the grids it crosses and starts fetching the record
   // of the triangle it hit.
+  template <KernelFeatures F>
   void intersect(Lane& lane, RTCIntersectContext& context, TallyBlock& t) const {
     lane.rh = make_ray(lane.ray);
     rtcIntersect1(embree_.handle(), &context, &lane.rh);
     ++t.ray_segments;
-    if (!s_.grids.empty()) {
-      cross_grids(s_.grids, lane.ray.origin, lane.ray.direction, lane.rh.ray.tfar, lane.bounce,
-                  lane.deposits);
-    }
+    cross_grids_with<F>(s_.grids, lane.ray.origin, lane.ray.direction, lane.rh.ray.tfar,
+                        lane.bounce, lane.deposits);
     if (lane.rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     bool instanced = false;
     const unsigned mesh = embree_.mesh_of(lane.rh.hit, instanced);
+    // Direct light only: the path ends here, and only a target's hit reads its triangle.
+    if constexpr (!F.reflects) {
+      if (s_.meshes[mesh].bin < 0) return;
+    }
     _mm_prefetch(reinterpret_cast<const char*>(&triangles_.at(mesh, lane.rh.hit.primID)),
                  _MM_HINT_T0);
   }
 
   // Deposits on and scatters at the lane's last hit; false when the path has ended.
+  template <KernelFeatures F>
   bool continue_path(Lane& lane, TallyBlock& t) const {
     const RTCHit& h = lane.rh.hit;
     if (h.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     bool instanced = false;
     const unsigned mesh = embree_.mesh_of(h, instanced);
     const PreparedMesh& m = s_.meshes[mesh];
+    if constexpr (!F.reflects) {
+      if (m.bin < 0) return false;  // absorbed where nothing is tallied: no triangle to read
+    }
     const HitTriangle& tri = triangles_.at(mesh, h.primID);
     EmittedRay& ray = lane.ray;
     vec3 n = tri.n;
     if (instanced) n = glm::normalize(glm::mat3(m.transform) * n);  // rigid: no inverse needed
     if (m.bin >= 0 && glm::dot(ray.direction, n) < 0.0f) lane.deposits.add(m.bin);
-    if (!scatter(s_.materials[m.material], n, ray.direction, lane.rng)) return false;
+    if constexpr (!F.reflects) return false;  // no surface returns light: absorbed
+    if (!scatter_with<F>(s_.materials[m.material], n, ray.direction, lane.rng)) return false;
     if (lane.bounce++ >= s_.max_bounces) {
       ++t.capped_paths;  // still alive: stopping here loses its energy (reported)
       return false;
@@ -167,12 +189,29 @@ class EmbreeBackend final : public Backend {
   const PreparedScene& s_;
   EmbreeScene embree_;
   HitTriangles triangles_;
+  KernelFeatures kernel_;  // the compiled path kernel this scene runs (path_kernel.hpp)
 };
+
+// LIGHTSOLVER_EMBREE_KERNEL=general forces the general kernel (comparisons, benchmarks).
+EmbreeKernel kernel_from_environment() {
+  const char* v = std::getenv("LIGHTSOLVER_EMBREE_KERNEL");
+  return v && std::string_view(v) == "general" ? EmbreeKernel::General : EmbreeKernel::Specialised;
+}
 
 }  // namespace
 
 std::unique_ptr<Backend> make_embree_backend(const PreparedScene& scene) {
-  return std::make_unique<EmbreeBackend>(scene);
+  return make_embree_backend(scene, kernel_from_environment());
+}
+
+std::unique_ptr<Backend> make_embree_backend(const PreparedScene& scene, EmbreeKernel kernel) {
+  return std::make_unique<EmbreeBackend>(scene, kernel);
+}
+
+KernelFeatures embree_kernel(const Backend& backend) {
+  const auto* embree = dynamic_cast<const EmbreeBackend*>(&backend);
+  if (!embree) throw std::logic_error("embree_kernel: the backend is " + backend.name());
+  return embree->kernel();
 }
 
 }  // namespace lightsolver::detail

@@ -40,11 +40,11 @@ using M = Material::Type;
 // its branch of emit.glsl. One row per type of core's table (luminaire_types.cpp), checked by
 // gpu_luminaire_type() and vulkan_tests' GpuLuminaireTypes.
 const GpuLuminaireType kGpuLuminaireTypes[] = {
-    {L::Point, LS_LUMINAIRE_POINT, gpu::kHasPoint},
-    {L::Spot, LS_LUMINAIRE_SPOT, gpu::kHasSpot},
-    {L::Area, LS_LUMINAIRE_AREA, gpu::kHasArea},
-    {L::Directional, LS_LUMINAIRE_DIRECTIONAL, gpu::kHasDirectional},
-    {L::Photometric, LS_LUMINAIRE_PHOTOMETRIC, gpu::kHasPhotometric},
+    {L::Point, LS_LUMINAIRE_POINT, gpu::kHasPoint, Effect::PointEmission},
+    {L::Spot, LS_LUMINAIRE_SPOT, gpu::kHasSpot, Effect::SpotEmission},
+    {L::Area, LS_LUMINAIRE_AREA, gpu::kHasArea, Effect::AreaEmission},
+    {L::Directional, LS_LUMINAIRE_DIRECTIONAL, gpu::kHasDirectional, Effect::DirectionalEmission},
+    {L::Photometric, LS_LUMINAIRE_PHOTOMETRIC, gpu::kHasPhotometric, Effect::PhotometricEmission},
 };
 
 // Materials are packed by their enum value; the shader's codes come from trace_bindings.h.
@@ -80,34 +80,25 @@ gpu::Grid pack_grid(const PreparedGrid& p) {
   return g;
 }
 
+// The switches are core's scene analysis (core/scene_effects.hpp), the one the Embree kernels
+// and the results' effect list use. A material kind whose every surface absorbs is switched off:
+// scatter.glsl then absorbs the photon, as its own branch would.
 std::vector<vkw::SpecConstant> features(const PreparedScene& s) {
-  auto uses_material = [&](Material::Type t) {
-    return std::any_of(s.meshes.begin(), s.meshes.end(), [&](const PreparedMesh& m) {
-      return !m.indices.empty() && s.materials[m.material].type == t;
-    });
-  };
-  auto uses_luminaire = [&](Luminaire::Type t) {
-    return std::any_of(s.luminaires.begin(), s.luminaires.end(),
-                       [&](const PreparedLuminaire& l) { return l.type == t; });
-  };
-  const bool surface_bins = std::any_of(s.meshes.begin(), s.meshes.end(),
-                                        [](const PreparedMesh& m) { return m.bin >= 0; });
-  const bool movable = std::any_of(s.meshes.begin(), s.meshes.end(),
-                                   [](const PreparedMesh& m) { return m.movable; });
+  const SceneEffects e = analyse_effects(s);
+  using E = Effect;
   // By id, not by position: the ids come from Shaders/trace_bindings.h.
-  const std::pair<gpu::SpecId, bool> on[] = {{gpu::kHasDiffuse, uses_material(M::Diffuse)},
-                                             {gpu::kHasMirror, uses_material(M::Mirror)},
-                                             {gpu::kHasGlass, uses_material(M::Glass)},
-                                             {gpu::kHasGlossy, uses_material(M::Glossy)},
-                                             {gpu::kHasGrids, !s.grids.empty()},
-                                             {gpu::kHasSurfaceBins, surface_bins},
-                                             {gpu::kManyLuminaires, s.luminaires.size() > 1},
-                                             {gpu::kHasInstances, movable}};
+  const std::pair<gpu::SpecId, bool> on[] = {
+      {gpu::kHasDiffuse, e.has(E::DiffuseReflection)},
+      {gpu::kHasMirror, e.has(E::MirrorReflection)},
+      {gpu::kHasGlass, e.has(E::Refraction)},
+      {gpu::kHasGlossy, e.has(E::GlossyReflection)},
+      {gpu::kHasGrids, e.has(E::GridCrossing) || e.has(E::ObserverCrossing)},
+      {gpu::kHasSurfaceBins, e.has(E::SurfaceTargets)},
+      {gpu::kManyLuminaires, e.has(E::LuminaireChoice)},
+      {gpu::kHasInstances, e.has(E::Instancing)}};
   std::vector<vkw::SpecConstant> out;
   for (const auto& [id, value] : on) out.push_back({id, value ? 1u : 0u});
-  for (const auto& row : kGpuLuminaireTypes) {
-    out.push_back({row.feature, uses_luminaire(row.type) ? 1u : 0u});
-  }
+  for (const auto& row : kGpuLuminaireTypes) out.push_back({row.feature, e.has(row.effect)});
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/prepared_scene.hpp"
+#include "core/scene_effects.hpp"
 #include "vulkan/algorithm.hpp"
 #include "vulkan/gpu_bvh.hpp"
 #include "vulkan/gpu_layout.hpp"
@@ -33,6 +34,7 @@ struct GpuLuminaireType {
   Luminaire::Type type;
   std::uint32_t code;
   gpu::SpecId feature;
+  Effect effect;  ///< the scene analysis's effect that switches it on
 };
 
 /// The row of `type`; throws std::logic_error when the type has none.

@@ -15,6 +15,7 @@
 
 #include "core/luminaire_types.hpp"
 #include "core/prepared_scene.hpp"
+#include "lightsolver/scene.hpp"
 #include "native/core/scene_builders.hpp"
 #include "vulkan/gpu_layout.hpp"
 #include "vulkan/gpu_scene.hpp"
@@ -234,6 +235,29 @@ TEST(Bindings, FeaturesSetEverySwitchOnce) {
     if (row.id != detail::gpu::kWorkgroupSize) expected.insert(row.id);
   }
   EXPECT_EQ(ids, expected);
+}
+
+// The switches are core's scene analysis: a mirror that absorbs everything needs no mirror
+// code (scatter.glsl absorbs it), one luminaire no CDF search, no observer or movable mesh.
+TEST(Bindings, FeaturesAreTheSceneAnalysis) {
+  Scene s = room_with_block(dvec3(0.0));
+  add_material(s, "black mirror", Material::Type::Mirror, 0.0);
+  s.meshes[1].material = static_cast<int>(s.materials.size() - 1);
+  validate(s);
+  const detail::PreparedScene prepared = detail::prepare(s);
+  std::map<std::uint32_t, std::uint32_t> on;
+  for (const vkw::SpecConstant& c : detail::pack_scene(prepared).features) on[c.id] = c.value;
+  namespace g = detail::gpu;
+  EXPECT_EQ(on[g::kHasDiffuse], 1u);
+  EXPECT_EQ(on[g::kHasMirror], 0u);
+  EXPECT_EQ(on[g::kHasGlass], 0u);
+  EXPECT_EQ(on[g::kHasGlossy], 0u);
+  EXPECT_EQ(on[g::kHasGrids], 1u);
+  EXPECT_EQ(on[g::kHasSurfaceBins], 1u);
+  EXPECT_EQ(on[g::kManyLuminaires], 0u);
+  EXPECT_EQ(on[g::kHasInstances], 0u);
+  EXPECT_EQ(on[g::kHasSpot], 1u);
+  EXPECT_EQ(on[g::kHasPoint], 0u);
 }
 
 }  // namespace

@@ -1,0 +1,173 @@
+#include "core/target_reach.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <limits>
+#include <numbers>
+
+#include "lightsolver/photometry.hpp"
+
+namespace lightsolver::detail {
+namespace {
+
+using glm::dvec3;
+constexpr double kPi = std::numbers::pi;
+// Angles closer than this to a cone's edge are not trusted (float directions in the tracer).
+constexpr double kAngleMargin_rad = 1e-3;
+// Target triangles x luminaires beyond which a target is not judged (the check must stay cheap).
+constexpr std::size_t kMaxPairs = 4'000'000;
+
+// Where a luminaire emits from (within `radius` of the convex hull of `points`) and in which
+// directions (within `half_angle_rad` of `axis`; pi: every direction).
+struct EmissionSupport {
+  std::vector<dvec3> points;
+  double radius = 0.0;
+  dvec3 axis{0.0, 0.0, 1.0};
+  double half_angle_rad = kPi;
+};
+
+// Largest gamma a type C file emits at: the cell past its last non-zero row still has light
+// (intensity is interpolated across a cell). Other types: every direction.
+double photometric_half_angle(const PhotometricData& d) {
+  if (d.type != PhotometricType::C || d.vertical_angles_deg.empty()) return kPi;
+  const std::size_t nv = d.vertical_angles_deg.size();
+  std::size_t last = nv;  // none yet
+  for (std::size_t h = 0; h < d.horizontal_angles_deg.size(); ++h) {
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (d.candela_at(h, v) > 0.0 && (last == nv || v > last)) last = v;
+    }
+  }
+  if (last == nv) return 0.0;  // emits nothing (0 lm: no support claim needed either way)
+  const std::size_t edge = std::min(last + 1, nv - 1);
+  return d.vertical_angles_deg[edge] * kPi / 180.0;
+}
+
+EmissionSupport support_of(const PreparedLuminaire& l) {
+  EmissionSupport s;
+  s.axis = glm::normalize(dvec3(l.axis));
+  const dvec3 corner(l.corner), e1(l.edge1), e2(l.edge2);
+  switch (l.type) {
+    case Luminaire::Type::Point:
+      s.points = {dvec3(l.position)};
+      break;
+    case Luminaire::Type::Spot:
+      s.points = {dvec3(l.position)};
+      s.half_angle_rad = l.half_field_rad;
+      break;
+    case Luminaire::Type::Area:
+      s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
+      s.half_angle_rad = 0.5 * kPi;
+      break;
+    case Luminaire::Type::Directional:
+      s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
+      s.half_angle_rad = 0.0;
+      break;
+    case Luminaire::Type::Photometric: {
+      s.points = {dvec3(l.position)};
+      const PhotometricData* d = l.source ? l.source->photometry.get() : nullptr;
+      if (!d) break;  // no file data: every direction, a generous opening
+      s.radius = 0.5 * std::hypot(d->opening_length_m, d->opening_width_m, d->opening_height_m);
+      s.half_angle_rad = photometric_half_angle(*d);
+      break;
+    }
+  }
+  return s;
+}
+
+// True when no photon of `s` can cross the plane through `c` with unit normal `n` from its
+// front: every origin is behind the plane, or every direction leaves it. `margin_m` absorbs
+// the tracer's origin offsets and float coordinates.
+bool cannot_reach(const EmissionSupport& s, const dvec3& c, const dvec3& n, double margin_m) {
+  double front = -std::numeric_limits<double>::infinity();
+  for (const dvec3& p : s.points) front = std::max(front, glm::dot(p - c, n));
+  if (front + s.radius < -margin_m) return true;
+  // Smallest d.n over the cone: the axis's angle from n plus the cone's half angle.
+  const double from_n = std::acos(std::clamp(glm::dot(s.axis, n), -1.0, 1.0));
+  return from_n + s.half_angle_rad + kAngleMargin_rad < 0.5 * kPi;
+}
+
+bool dark_for_all(const std::vector<EmissionSupport>& supports, const dvec3& c, const dvec3& n,
+                  double margin_m) {
+  return std::all_of(supports.begin(), supports.end(),
+                     [&](const EmissionSupport& s) { return cannot_reach(s, c, n, margin_m); });
+}
+
+// Every triangle of a surface target faces away from every luminaire.
+bool mesh_is_dark(const PreparedMesh& m, const std::vector<EmissionSupport>& supports,
+                  double margin_m) {
+  for (std::size_t t = 0; t < m.normals.size(); ++t) {
+    const dvec3 n(m.normals[t]);
+    if (!(std::abs(glm::length(n) - 1.0) < 1e-3)) return false;  // degenerate: do not judge
+    const std::uint32_t i = m.indices[3 * t];
+    const dvec3 v(m.vertices[3 * i], m.vertices[3 * i + 1], m.vertices[3 * i + 2]);
+    if (!dark_for_all(supports, v, n, margin_m)) return false;
+  }
+  return true;
+}
+
+// Float error of the tracer's local coordinates and origin offsets (256 ulps at most) grows
+// with the distance from the scene's centre.
+double margin_for(const PreparedScene& s) {
+  double far_m = 0.0;
+  for (const PreparedLuminaire& l : s.luminaires) {
+    far_m = std::max(
+        {far_m, glm::length(dvec3(l.position)),
+         glm::length(dvec3(l.corner)) + glm::length(dvec3(l.edge1)) + glm::length(dvec3(l.edge2))});
+  }
+  for (const PreparedGrid& g : s.grids) far_m = std::max(far_m, glm::length(dvec3(g.corner)));
+  return 1e-3 + 1e-4 * far_m;
+}
+
+std::string label(const Scene& scene, std::size_t i) {
+  return "targets[" + std::to_string(i) + "] (\"" + scene.targets[i].name + "\")";
+}
+
+}  // namespace
+
+std::vector<DarkTarget> dark_targets(const Scene& scene, const PreparedScene& prepared,
+                                     const SceneEffects& effects) {
+  std::vector<DarkTarget> out;
+  if (effects.has(Effect::Interreflection) || prepared.total_flux_lm <= 0.0) return out;
+  std::vector<EmissionSupport> supports;
+  for (std::size_t i = 0; i < prepared.luminaires.size(); ++i) {
+    if (scene.luminaires[i].flux_lm > 0.0) supports.push_back(support_of(prepared.luminaires[i]));
+  }
+  const double margin_m = margin_for(prepared);
+  std::size_t grid = 0;
+  for (std::size_t i = 0; i < scene.targets.size(); ++i) {
+    const Target& t = scene.targets[i];
+    if (t.type == Target::Type::Observer) {
+      ++grid;
+      out.push_back({i, label(scene, i) +
+                            ": an observer counts reflected light only and no surface reflects "
+                            "(every reflectance is 0): its background luminance will be 0"});
+      continue;
+    }
+    bool dark = false;
+    if (t.type == Target::Type::Grid) {
+      const PreparedGrid& g = prepared.grids[grid++];
+      dark = dark_for_all(supports, dvec3(g.corner), glm::normalize(dvec3(g.normal)), margin_m);
+    } else {
+      const PreparedMesh& m = prepared.meshes[static_cast<std::size_t>(t.mesh)];
+      dark = !m.movable && !m.normals.empty() && m.normals.size() * supports.size() <= kMaxPairs &&
+             mesh_is_dark(m, supports, margin_m);
+    }
+    if (dark) {
+      out.push_back({i, label(scene, i) +
+                            ": faces away from every luminaire and no surface reflects (every "
+                            "reflectance is 0): it cannot receive light, its result will be 0 lx"});
+    }
+  }
+  return out;
+}
+
+void report_effects(const Scene& scene, const PreparedScene& prepared, Results& results) {
+  const SceneEffects effects = analyse_effects(prepared);
+  results.effects = effects_report(effects);
+  for (DarkTarget& d : dark_targets(scene, prepared, effects)) {
+    results.warnings.push_back(std::move(d.message));
+  }
+}
+
+}  // namespace lightsolver::detail
