@@ -169,8 +169,7 @@ class LiveSession:
         return {"seed": int(a.Seed), "confidence": float(a.Confidence),
                 "accuracy": accuracy if accuracy > 0.0 else None,
                 "decide": accuracy <= 0.0 and analysis_mod.decides(a),
-                "photons": int(a.MaxPhotons) if accuracy > 0.0 or analysis_mod.decides(a)
-                else int(a.Photons),
+                "photons": int(a.MaxPhotons) if accuracy > 0.0 else int(a.Photons),
                 "threads": threads, "backend": str(a.Backend)}
 
     def _scene_luminaires(self) -> List[Dict[str, Any]]:
@@ -257,6 +256,28 @@ class LiveSession:
                 self.latest = frame
                 return frame
         return None
+
+    def take_frame(self) -> Optional[LiveFrame]:
+        """Non-blocking (the GUI's timer): acts on document changes, then returns the newest
+        frame of the current revision waiting, or None."""
+        self.poll()
+        newest = None
+        while True:
+            try:
+                frame = self._frames.get_nowait()
+            except queue.Empty:
+                break
+            if frame.revision == self.revision:
+                newest = frame
+        if newest is not None:
+            newest.result = results_mod.AnalysisResult.from_data(newest.data)
+            self.latest = newest
+        return newest
+
+    @property
+    def fingerprint(self) -> Dict[str, str]:
+        """The fingerprint of the model the current revision traces (export/fingerprint.py)."""
+        return dict(self._fingerprint)
 
     def frames(self, timeout: Optional[float] = None) -> Iterator[LiveFrame]:
         """Successive frames until ``timeout`` seconds pass without one, or stop()."""
