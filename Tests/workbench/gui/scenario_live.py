@@ -44,6 +44,8 @@ def body() -> None:
     FreeCADGui.activateWorkbench("LightingWorkbench")
     doc = FreeCAD.openDocument(path)
     pump(1.0)
+    # The user looks into the room through the ceiling (made transparent, as the example does).
+    doc.getObjectsByLabel("Ceiling")[0].ViewObject.Transparency = 80
     FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
     FreeCADGui.SendMsgToActiveView("ViewFit")
     analysis = doc.getObject("LightingAnalysis")

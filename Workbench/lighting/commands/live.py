@@ -105,7 +105,7 @@ def stop_document(doc_name: str) -> None:
 
 
 class CommandLive(BaseCommand):
-    NAME, ICON = "Lighting_Live", "Lighting_Run"
+    NAME, ICON = "Lighting_Live", "Lighting_Live"
     MENU = "Live results"
     TIP = ("Refine the results in the background while you edit: luminaire moves update at "
            "once, other edits re-export (toggles the analysis' Live property)")
