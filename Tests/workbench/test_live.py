@@ -96,3 +96,18 @@ class Live(DocTestCase):
             live.stop()
         revisions = [f.revision for f in self.seen]
         self.assertEqual(revisions, sorted(revisions))
+
+    @needs_solver
+    def test_no_frame_from_before_a_change_made_while_refining(self):
+        self.doc.getObject("LightingAnalysis").Photons = 1 << 24  # refines for a while
+        live = lighting.LiveSession(self.doc, first_photons=1 << 15, threads=0)
+        try:
+            self.assertEqual(live.next_frame(timeout=120).revision, 0)
+            lum = self.doc.getObject("Luminaire02")
+            lum.FluxLumen = 0.5 * lum.FluxLumen  # batches of revision 0 are in flight
+            for _ in range(3):
+                frame = live.next_frame(timeout=120)
+                self.assertEqual((frame.revision, frame.path), (1, "luminaires"))
+            self.assertEqual(frame.photons, 1 << 17)  # started again at photon 0
+        finally:
+            live.stop()

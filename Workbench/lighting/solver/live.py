@@ -15,8 +15,8 @@ verdicts when it decides, else its Photons); then it idles. A change to the docu
 The worker never reads the document: everything it needs is read on the main thread by
 :meth:`LiveSession.poll` (called by :meth:`next_frame` while it waits, or by the GUI's timer).
 Every frame carries the model revision it was traced for; a frame of an older revision than
-the session's is dropped where it is made and again where it is delivered, so a stale batch is
-never shown. Dimming and light scenes are luminaire updates for now: the place where they will
+the session's is dropped where it is made and again where it is delivered, and nothing is
+delivered while a change waits for its debounce, so a stale batch is never shown. Dimming and light scenes are luminaire updates for now: the place where they will
 become a rescale without tracing is :meth:`LiveSession._luminaire_updates`."""
 from __future__ import annotations
 
@@ -245,6 +245,9 @@ class LiveSession:
             self.poll()
             if self.error is not None and not isinstance(self.error, CheckError):
                 raise self.error
+            if self._dirty_at is not None:  # a change not acted on yet: frames may be stale
+                time.sleep(0.02)
+                continue
             try:
                 frame = self._frames.get(timeout=0.02)
             except queue.Empty:
@@ -261,6 +264,8 @@ class LiveSession:
         """Non-blocking (the GUI's timer): acts on document changes, then returns the newest
         frame of the current revision waiting, or None."""
         self.poll()
+        if self._dirty_at is not None:
+            return None  # a change not acted on yet: what is queued may be stale
         newest = None
         while True:
             try:
