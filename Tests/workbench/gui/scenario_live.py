@@ -72,6 +72,14 @@ def body() -> None:
     expect("worst cell +-" in legend and "photons" in legend,
            f"the legend does not show the live state: {legend!r}")
     before = grid_cells(doc)
+    # The results panel follows the live frames.
+    from lighting.taskpanels import analysis_panel
+
+    FreeCADGui.runCommand("Lighting_Results")
+    pump(0.5)
+    panel = analysis_panel.last_panel()
+    expect(panel is not None and "live:" in panel.status.text(),
+           f"the panel does not show the live state: {panel.status.text() if panel else None}")
     grab_window("live_first")
 
     # 2. Move a luminaire: the cells follow within a bounded number of frames.
@@ -97,6 +105,9 @@ def body() -> None:
            ctrl.session.latest.path == "luminaires",
            f"frame revision/path after the move: {ctrl.session.latest}")
     wait_until(lambda: analysis.Status.endswith("(done)"), 120)
+    pump(0.3)
+    expect(panel.status.text() == f"Status: {analysis.Status}",
+           f"the panel lags the live frames: {panel.status.text()!r} vs {analysis.Status!r}")
     grab_window("live_moved", docs_name="live-moved.png")
     expect(doc.UndoCount == undo_start + 1,
            f"live frames added undo steps: {doc.UndoNames[:4]}")
@@ -109,6 +120,10 @@ def body() -> None:
     expect(ok, "after Undo the live numbers are not the first ones again")
     worst = ctrl.session.latest.worst_cell_relative
     expect(math.isfinite(worst) and worst > 0, f"worst cell +-: {worst}")
+
+    stale = [pair for pair in ctrl.shown_revisions if pair[0] != pair[1]]
+    STATUS["frames_shown"] = len(ctrl.shown_revisions)
+    expect(not stale, f"frames of an older model revision were shown: {stale}")
 
     # 4. Live off: the session ends, the status settles.
     FreeCADGui.runCommand("Lighting_Live")

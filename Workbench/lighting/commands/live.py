@@ -45,6 +45,8 @@ class LiveController:
 
         self.analysis = analysis
         self.frames_shown = 0
+        #: (frame revision, session revision) of every frame shown: equal, or a stale frame
+        self.shown_revisions: list = []
         self.session = LiveSession(analysis.Document, analysis)
         self.timer = QtCore.QTimer()
         self.timer.setInterval(POLL_MS)
@@ -69,10 +71,27 @@ class LiveController:
             return
         store.write_live(self.analysis, frame.data, self.session.fingerprint, status_text(frame))
         self.frames_shown += 1
+        self.shown_revisions.append((frame.revision, self.session.revision))
+        _update_panel(self.analysis)
 
     def stop(self) -> None:
         self.timer.stop()
         self.session.stop()
+
+
+def _update_panel(analysis: Any) -> None:
+    """The open analysis panel, if it shows this analysis, follows the frame."""
+    from lighting.taskpanels import analysis_panel
+
+    panel = analysis_panel.last_panel()
+    try:
+        mine = panel is not None and hasattr(panel, "show_live") and \
+            (panel.analysis.Document.Name, panel.analysis.Name) == \
+            (analysis.Document.Name, analysis.Name)
+    except Exception:  # noqa: BLE001 - the panel's analysis was deleted
+        mine = False
+    if mine:
+        panel.show_live()
 
 
 def controller(analysis: Any) -> Optional[LiveController]:
