@@ -6,7 +6,9 @@ import FreeCAD
 
 import lighting
 from lighting.objects import target as target_mod
-from wbtest import DocTestCase, build_office, needs_solver
+import os
+
+from wbtest import DocTestCase, build_office, needs_solver, work_dir
 
 V = FreeCAD.Vector
 PHOTONS = 1 << 18  # the goal: 32k, 64k, 128k, 256k photons, then idle
@@ -111,3 +113,12 @@ class Live(DocTestCase):
             self.assertEqual(frame.photons, 1 << 17)  # started again at photon 0
         finally:
             live.stop()
+
+    def test_live_is_not_saved(self):
+        """Live is a GUI state: a reopened file starts with it off."""
+        self.doc.getObject("LightingAnalysis").Live = True
+        path = os.path.join(work_dir("live-save"), "office.FCStd")
+        self.doc.saveAs(path)
+        FreeCAD.closeDocument(self.doc.Name)
+        self.doc = FreeCAD.openDocument(path)
+        self.assertFalse(self.doc.getObject("LightingAnalysis").Live)

@@ -110,6 +110,9 @@ class Analysis(BaseProxy):
         for name in BOOKKEEPING:
             if "NoModify" not in obj.getPropertyStatus(name):
                 obj.setPropertyStatus(name, "NoModify")
+        # A live session is a GUI state, not part of the file: reopened, Live is off.
+        if "Transient" not in obj.getPropertyStatus("Live"):
+            obj.setPropertyStatus("Live", "Transient")
 
     def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
         """Files of older versions could be saved in the middle of a stage ("checking"):

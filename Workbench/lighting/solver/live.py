@@ -16,8 +16,9 @@ The worker never reads the document: everything it needs is read on the main thr
 :meth:`LiveSession.poll` (called by :meth:`next_frame` while it waits, or by the GUI's timer).
 Every frame carries the model revision it was traced for; a frame of an older revision than
 the session's is dropped where it is made and again where it is delivered, and nothing is
-delivered while a change waits for its debounce, so a stale batch is never shown. Dimming and light scenes are luminaire updates for now: the place where they will
-become a rescale without tracing is :meth:`LiveSession._luminaire_updates`."""
+delivered while a change waits for its debounce, so a stale batch is never shown. Dimming and
+light scenes are luminaire updates for now: the place where they will become a rescale without
+tracing is :meth:`LiveSession._luminaire_updates`."""
 from __future__ import annotations
 
 import math
