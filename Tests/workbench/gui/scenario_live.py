@@ -13,7 +13,7 @@ import time
 from guilib import (build_example_file, STATUS, expect, grab_window, log, pump, scenario,
                     wait_until)
 
-PHOTONS = 1 << 19
+PHOTONS = 1 << 21  # a few seconds of refining: the heartbeat sees the whole of it
 
 
 def grid_cells(doc):
@@ -53,7 +53,15 @@ def body() -> None:
     grid = target_mod.grid_rectangle(doc.getObject("Workplane"))
     undo_start = doc.UndoCount
 
-    # 1. Live on: the first numbers come quickly, then refine to the goal.
+    # 1. Live on: the first numbers come quickly, then refine to the goal; a heartbeat timer
+    # measures how long the event loop ever waits meanwhile (the GUI thread only paints).
+    from PySide import QtCore
+
+    beats = []
+    heartbeat = QtCore.QTimer()
+    heartbeat.setInterval(20)
+    heartbeat.timeout.connect(lambda: beats.append(time.monotonic()))
+    heartbeat.start()
     started = time.monotonic()
     FreeCADGui.runCommand("Lighting_Live")
     expect(analysis.Live, "the Live command did not turn Live on")
@@ -65,8 +73,14 @@ def body() -> None:
     expect(ok, "no live numbers within 60 s")
     ok = wait_until(lambda: analysis.Status.endswith("(done)"), 120)
     STATUS["status_done"] = analysis.Status
+    heartbeat.stop()
     expect(ok and f"{PHOTONS:,}".replace(",", " ") in analysis.Status,
            f"live did not refine to its goal: {analysis.Status!r}")
+    gaps = [b - a for a, b in zip(beats, beats[1:])]
+    STATUS["heartbeats"] = len(beats)
+    STATUS["max_gap_s"] = round(max(gaps), 3) if gaps else None
+    expect(len(beats) > 20 and max(gaps) < 1.0,
+           f"the event loop stalled while live: {STATUS['max_gap_s']} s")
     legend = analysis.ViewObject.Proxy.legend_title()
     STATUS["legend_title"] = legend
     expect("worst cell +-" in legend and "photons" in legend,
