@@ -114,6 +114,35 @@ class Live(DocTestCase):
         finally:
             live.stop()
 
+    @needs_solver
+    def test_furniture_moved_as_an_instance_agrees_with_a_fresh_export(self):
+        """The cabinet (a mesh no target refers to) moves as an instance, no re-export; the
+        numbers agree with a session that exports the moved model (cells within 5 sigma: an
+        instance transform rounds in float, baked vertices in double)."""
+        live = lighting.LiveSession(self.doc, first_photons=1 << 15, threads=0)
+        try:
+            before = self.finished_frame(live, 0)
+            cabinet = self.doc.getObject("Cabinet")
+            xy = (2000.0, 1500.0)
+            cabinet.Placement.Base = V(xy[0], xy[1], cabinet.Placement.Base.z)
+            moved = self.finished_frame(live, 1)
+            self.assertEqual(moved.path, "instances")
+        finally:
+            live.stop()
+        fresh_live = lighting.LiveSession(self.doc, first_photons=1 << 15, threads=0)
+        try:
+            fresh = self.finished_frame(fresh_live, 0)
+            self.assertEqual(fresh.path, "export")
+        finally:
+            fresh_live.stop()
+        name = self.grid_obj.Name
+        a, b, old = cells(moved, name), cells(fresh, name), cells(before, name)
+        for (ma, la, ha), (mb, lb, hb) in zip(a, b):
+            sigma = ((ha - la) ** 2 + (hb - lb) ** 2) ** 0.5 / (2 * 1.96)
+            self.assertLessEqual(abs(ma - mb), 5 * sigma + 1e-9)
+        under = cell_under(self.grid, *xy)
+        self.assertLess(a[under][2], old[under][1], "the cabinet does not shade its new place")
+
     def test_live_is_not_saved(self):
         """Live is a GUI state: a reopened file starts with it off."""
         self.doc.getObject("LightingAnalysis").Live = True

@@ -65,7 +65,19 @@ class _Command:
     goal: Dict[str, Any]
     changed_at: float
     scene_text: str = ""
+    movable_meshes: List[str] = field(default_factory=list)
     updates: List[Tuple[int, Dict[str, Any]]] = field(default_factory=list)
+    moves: List[Tuple[int, List[List[float]]]] = field(default_factory=list)
+
+
+@dataclass
+class _Furniture:
+    """An exported object the session can move as an instance: its meshes, its global
+    placement when exported and its placement-free entry (export/fingerprint.py)."""
+
+    meshes: List[int]
+    placement: Any
+    local: str
 
 
 def worst_cell_relative(data: Dict[str, Any]) -> float:
@@ -92,6 +104,29 @@ def worst_cell_relative(data: Dict[str, Any]) -> float:
 def undecided_count(data: Dict[str, Any]) -> int:
     """Targets whose requirements the solver could not yet judge pass or fail."""
     return sum(1 for t in data.get("targets", []) if t.get("verdict") == "undecided")
+
+
+def _furniture(analysis: Any, export: Any) -> Dict[str, _Furniture]:
+    """Exported objects that may move as instances: meshes (Mesh::Feature) and plain Part
+    objects, not Arch elements (walls, slabs, windows: building, not furniture) and not objects
+    a target refers to (a target's faces or cells would have to move with them)."""
+    from lighting.export import collect
+    from lighting.geometry import global_placement
+    from lighting.objects import analysis as analysis_mod
+
+    names = [m["name"] for m in export.scene["meshes"]]
+    referred = {o.Name for tgt in analysis_mod.targets(analysis) for o in tgt.OutList}
+    out: Dict[str, _Furniture] = {}
+    for obj_name, meshes in export.object_meshes.items():
+        obj = analysis.Document.getObject(obj_name)
+        if obj is None or obj_name in referred or "IfcType" in obj.PropertiesList or \
+                "IfcRole" in obj.PropertiesList:
+            continue
+        if not (collect.is_mesh(obj) or obj.isDerivedFrom("Part::Feature")):
+            continue
+        out[obj_name] = _Furniture([names.index(m) for m in meshes], global_placement(obj),
+                                   fingerprint_mod.local_entry(obj))
+    return out
 
 
 class _Observer:
@@ -143,6 +178,7 @@ class LiveSession:
         self._sim: Any = None
         self._module = run.load_module()
         self._luminaires: List[Dict[str, Any]] = []
+        self._furniture: Dict[str, _Furniture] = {}
         self._fingerprint: Dict[str, str] = {}
         self._submit(self._export_command(time.monotonic()))
         self._observer = _Observer(self)
@@ -183,8 +219,31 @@ class LiveSession:
             raise CheckError(export.report)
         self._luminaires = list(export.scene["luminaires"])
         self._fingerprint = fingerprint_mod.of_analysis(self.analysis)
+        self._furniture = _furniture(self.analysis, export)
+        movable = [export.scene["meshes"][i]["name"] for f in self._furniture.values()
+                   for i in f.meshes]
         return _Command(self.revision, "export", self._goal(), changed_at,
-                        scene_text=scene_mod.dumps_scene(export.scene))
+                        scene_text=scene_mod.dumps_scene(export.scene), movable_meshes=movable)
+
+    def _instance_moves(self, changed: List[str]) -> Optional[List[Tuple[int, List[List[float]]]]]:
+        """The set_mesh_transform calls that bring the kept scene up to date when only
+        furniture moved (placements changed, shapes and materials not), or None."""
+        from lighting.geometry import global_placement
+
+        if not changed or any(not key.startswith("object:") for key in changed):
+            return None
+        moves = []
+        for key in changed:
+            found = self._furniture.get(key.partition(":")[2])
+            obj = self.doc.getObject(key.partition(":")[2])
+            if found is None or obj is None or fingerprint_mod.local_entry(obj) != found.local:
+                return None
+            moved = global_placement(obj).multiply(found.placement.inverse()).toMatrix()
+            rows = [[moved.A[4 * r + c] for c in range(4)] for r in range(4)]
+            for r in range(3):
+                rows[r][3] /= 1000.0  # mm -> m (the rotation part has no unit)
+            moves.extend((mesh, rows) for mesh in found.meshes)
+        return moves
 
     def _luminaire_updates(self, changed: List[str]) -> Optional[List[Tuple[int, Dict[str, Any]]]]:
         """The set_luminaire calls that bring the kept scene up to date when only luminaires
@@ -215,10 +274,15 @@ class LiveSession:
             return False
         self.revision += 1
         updates = self._luminaire_updates(changed)
+        moves = self._instance_moves(changed) if updates is None else None
         if updates is not None:
             self._fingerprint = current
             command = _Command(self.revision, "luminaires", self._goal(), changed_at,
                                updates=updates)
+        elif moves is not None:
+            self._fingerprint = current
+            command = _Command(self.revision, "instances", self._goal(), changed_at,
+                               moves=moves)
         else:
             try:
                 command = self._export_command(changed_at)
@@ -323,7 +387,11 @@ class LiveSession:
                                                  os.path.dirname(self.doc.FileName or "") or ".")
             goal = command.goal
             backend = goal["backend"] if goal["backend"] else "auto"
-            self._sim = self._module.Simulation(scene, backend=backend, threads=goal["threads"])
+            self._sim = self._module.Simulation(scene, backend=backend, threads=goal["threads"],
+                                                movable_meshes=command.movable_meshes)
+        elif command.path == "instances":
+            for index, matrix in command.moves:
+                self._sim.set_mesh_transform(index, matrix)
         else:
             for index, entry in command.updates:
                 self._sim.set_luminaire(index, entry)
