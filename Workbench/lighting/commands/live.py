@@ -126,8 +126,8 @@ def stop_document(doc_name: str) -> None:
 class CommandLive(BaseCommand):
     NAME, ICON = "Lighting_Live", "Lighting_Live"
     MENU = "Live results"
-    TIP = ("Refine the results in the background while you edit: luminaire moves update at "
-           "once, other edits re-export (toggles the analysis' Live property)")
+    TIP = ("Refine the results in the background while you edit: luminaire and furniture "
+           "moves update at once, other edits re-export (toggles the analysis' Live property)")
 
     def IsActive(self) -> bool:  # noqa: N802
         return FreeCAD.ActiveDocument is not None

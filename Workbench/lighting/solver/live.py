@@ -9,6 +9,8 @@ verdicts when it decides, else its Photons); then it idles. A change to the docu
 
 - only luminaires changed (moved, aimed, re-fluxed, another photometric file), the same ones
   in the same order: ``Simulation.set_luminaire`` for each changed one, no re-export;
+- only furniture moved (placements; see :func:`_furniture`): ``Simulation.set_mesh_transform``
+  of its meshes (instances), no re-export;
 - anything else (geometry, materials, targets, settings, a luminaire added or removed):
   re-export and a new Simulation.
 
