@@ -129,12 +129,9 @@ class Live(DocTestCase):
             self.assertEqual(moved.path, "instances")
         finally:
             live.stop()
-        fresh_live = lighting.LiveSession(self.doc, first_photons=1 << 15, threads=0)
-        try:
-            fresh = self.finished_frame(fresh_live, 0)
-            self.assertEqual(fresh.path, "export")
-        finally:
-            fresh_live.stop()
+        with lighting.LiveSession(self.doc, first_photons=1 << 15, threads=0) as fresh_live:
+            fresh = next(f for f in fresh_live if f.finished)  # iterating: frames until then
+            self.assertEqual((fresh.revision, fresh.path), (0, "export"))
         name = self.grid_obj.Name
         a, b, old = cells(moved, name), cells(fresh, name), cells(before, name)
         for (ma, la, ha), (mb, lb, hb) in zip(a, b):

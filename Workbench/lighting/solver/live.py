@@ -150,12 +150,11 @@ class _Observer:
 class LiveSession:
     """A live solve of one analysis (see the module doc). Use from the main thread::
 
-        live = lighting.LiveSession(doc)
-        for frame in live.frames(timeout=5.0):   # stops after 5 s without a new frame
-            print(frame.photons, frame.worst_cell_relative)
-            if frame.finished:
-                break
-        live.stop()
+        with lighting.LiveSession(doc) as live:      # stop() at the end
+            for frame in live.frames(timeout=5.0):   # ends after 5 s without a new frame
+                print(frame.photons, frame.worst_cell_relative)
+                if frame.finished:
+                    break
     """
 
     def __init__(self, doc: Any, analysis: Any = None, first_photons: int = FIRST_PHOTONS,
@@ -358,6 +357,16 @@ class LiveSession:
             if frame is None:
                 return
             yield frame
+
+    def __iter__(self) -> Iterator[LiveFrame]:
+        """``for frame in live``: frames until stop() (no timeout)."""
+        return self.frames()
+
+    def __enter__(self) -> "LiveSession":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.stop()
 
     def stop(self) -> None:
         """End the session: the worker stops after its batch; the observer is removed."""
