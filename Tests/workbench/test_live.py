@@ -140,6 +140,24 @@ class Live(DocTestCase):
         under = cell_under(self.grid, *xy)
         self.assertLess(a[under][2], old[under][1], "the cabinet does not shade its new place")
 
+    @needs_solver
+    def test_dragging_restarts_once_when_it_stops(self):
+        """Ten moves 50 ms apart (a drag) with the GUI's polling in between: no restart while
+        they come, one once they have been quiet for the debounce."""
+        import time
+
+        with lighting.LiveSession(self.doc, first_photons=1 << 15, threads=0) as live:
+            self.finished_frame(live, 0)
+            lum = self.doc.getObject("Luminaire04")
+            for _ in range(10):
+                lum.Placement.Base = lum.Placement.Base + V(-100.0, 0.0, 0.0)
+                self.assertFalse(live.poll())
+                self.assertIsNone(live.take_frame())
+                time.sleep(0.05)
+            self.assertEqual(live.revision, 0)
+            frame = live.next_frame(timeout=120)
+            self.assertEqual((live.revision, frame.revision, frame.path), (1, 1, "luminaires"))
+
     def test_live_is_not_saved(self):
         """Live is a GUI state: a reopened file starts with it off."""
         self.doc.getObject("LightingAnalysis").Live = True
