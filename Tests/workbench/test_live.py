@@ -158,6 +158,20 @@ class Live(DocTestCase):
             frame = live.next_frame(timeout=120)
             self.assertEqual((live.revision, frame.revision, frame.path), (1, 1, "luminaires"))
 
+    @needs_solver
+    def test_a_model_that_does_not_export_pauses_until_it_does(self):
+        with lighting.LiveSession(self.doc, first_photons=1 << 15, threads=0) as live:
+            first = self.finished_frame(live, 0)
+            lum = self.doc.getObject("Luminaire03")
+            lum.LuminaireType = "Photometric"  # without a file: the export fails
+            self.assertIsNone(live.next_frame(timeout=1.0))
+            self.assertIsInstance(live.error, lighting.CheckError)
+            self.assertEqual(live.revision, 1)
+            lum.LuminaireType = "Area"  # back to the kept scene: it traces again
+            again = self.finished_frame(live, 2)
+            self.assertIsNone(live.error)
+            self.assertEqual(cells(again, self.grid_obj.Name), cells(first, self.grid_obj.Name))
+
     def test_live_is_not_saved(self):
         """Live is a GUI state: a reopened file starts with it off."""
         self.doc.getObject("LightingAnalysis").Live = True

@@ -47,6 +47,7 @@ class LiveController:
         self.frames_shown = 0
         #: (frame revision, session revision) of every frame shown: equal, or a stale frame
         self.shown_revisions: list = []
+        self._reported: Optional[BaseException] = None
         self.session = LiveSession(analysis.Document, analysis)
         self.timer = QtCore.QTimer()
         self.timer.setInterval(POLL_MS)
@@ -67,6 +68,10 @@ class LiveController:
         except Exception as exc:  # noqa: BLE001 - reported, live mode stays on, waiting
             FreeCAD.Console.PrintWarning(f"Lighting live: {exc}\n")
             return
+        error = self.session.error
+        if error is not None and error is not self._reported:
+            self._reported = error  # once per error: the session waits for the next change
+            FreeCAD.Console.PrintWarning(f"Lighting live: {str(error).splitlines()[0]}\n")
         if frame is None:
             return
         store.write_live(self.analysis, frame.data, self.session.fingerprint, status_text(frame))

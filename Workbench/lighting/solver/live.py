@@ -181,6 +181,7 @@ class LiveSession:
         self._luminaires: List[Dict[str, Any]] = []
         self._furniture: Dict[str, _Furniture] = {}
         self._fingerprint: Dict[str, str] = {}
+        self._paused = False  # the model stopped exporting: nothing traced until it does
         self._submit(self._export_command(time.monotonic()))
         self._observer = _Observer(self)
         FreeCAD.addDocumentObserver(self._observer)
@@ -271,11 +272,12 @@ class LiveSession:
         current = fingerprint_mod.of_analysis(self.analysis)
         changed = [k for k in set(current) | set(self._fingerprint)
                    if current.get(k) != self._fingerprint.get(k)]
-        if not changed:
+        if not changed and not self._paused:
             return False
         self.revision += 1
-        updates = self._luminaire_updates(changed)
-        moves = self._instance_moves(changed) if updates is None else None
+        kept = self._sim is not None  # else (a rejected scene) only an export will do
+        updates = self._luminaire_updates(changed) if kept else None
+        moves = self._instance_moves(changed) if kept and updates is None else None
         if updates is not None:
             self._fingerprint = current
             command = _Command(self.revision, "luminaires", self._goal(), changed_at,
@@ -287,14 +289,18 @@ class LiveSession:
         else:
             try:
                 command = self._export_command(changed_at)
-            except CheckError as exc:  # the model is being edited into shape: wait for more
-                self.error = exc
-                self._fingerprint = current
+            except CheckError as exc:
+                # The model is being edited into shape: trace nothing until a change exports
+                # again; the fingerprint stays the one of the kept scene, so that change is
+                # compared with what the Simulation holds.
+                self._submit(_Command(self.revision, "paused", self._goal(), changed_at))
+                self.error, self._paused = exc, True
                 return False
         self._submit(command)
         return True
 
     def _submit(self, command: _Command) -> None:
+        self._paused = False  # (set again by poll() after a "paused" command)
         with self._cond:
             self._command = command
             self.error = None
@@ -418,10 +424,19 @@ class LiveSession:
                 if self._stopped:
                     return
                 fresh, self._command = self._command, None
+            if fresh is not None and fresh.path == "paused":
+                finished = True  # the model does not export: wait for the next change
+                continue
             if fresh is not None:  # built outside the lock: a BVH takes a while
                 command, total, finished = fresh, 0, False
                 try:
                     self._apply(command)
+                except self._module.InputError as exc:  # an edit the solver rejects: wait
+                    report = Report()
+                    report.add("error", f"The solver rejected the model: {exc}")
+                    self.error = CheckError(report)
+                    finished = True
+                    continue
                 except Exception as exc:  # noqa: BLE001 - reported on the main thread
                     self.error = SolverError(f"Live solve: {exc}")
                     finished = True
