@@ -19,6 +19,7 @@
 #include "lightsolver/solver.hpp"
 #include "lightsolver/study.hpp"
 #include "optimize_bindings.hpp"
+#include "simulation_bindings.hpp"
 
 namespace py = pybind11;
 using namespace lightsolver;
@@ -101,6 +102,8 @@ py::dict photometry_summary_dict(const std::string& path) {
   d["text"] = photometry_summary(data);
   return d;
 }
+
+}  // namespace
 
 // A Python value as JSON, without going through text: NaN stays NaN, so the scene reader's
 // own checks name the field ("expected a finite number") as they do for scene files.
@@ -195,6 +198,8 @@ py::dict results_dict(const Results& r) {
   }
   return d;
 }
+
+namespace {
 
 py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
@@ -556,5 +561,6 @@ PYBIND11_MODULE(lightsolver, m) {
       "relative error), fit, goals (photons and seconds per per-cell accuracy, 'extrapolated' "
       "beyond the last row), warnings; plus 'csv' (the CSV text) and 'results' (the run's). "
       "NativeSolver/python/tools/plot_study.py draws it.");
-  bind_optimizer(m);  // lightsolver.optimize
+  bind_optimizer(m);   // lightsolver.optimize
+  bind_simulation(m);  // lightsolver.Simulation
 }

@@ -41,6 +41,8 @@ _EXPORTS = {
     "luminaire_library_entries": "lighting.api",
     "assign_photometry": "lighting.api",
     "AnalysisResult": "lighting.solver.results",
+    "LiveFrame": "lighting.solver.live",
+    "LiveSession": "lighting.solver.live",
     "TargetResult": "lighting.solver.results",
     "make_analysis": "lighting.objects.factory",
     "make_luminaire": "lighting.objects.factory",

@@ -6,7 +6,6 @@
 /// rebuild.
 
 #include <glm/mat4x4.hpp>
-
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,13 +44,25 @@ class Simulation {
   /// not declared movable.
   void set_mesh_transform(std::size_t mesh, const glm::dmat4& world_transform);
 
-  /// Traces photons (settings and overrides as in solve()).
+  /// Traces photons (settings and overrides as in solve()). The run's tallies are kept for
+  /// refine().
   Results run(const SolveOptions& options = {}, const ProgressFn& progress = {});
+
+  /// Continues the previous run up to `options.photons` photons in all (photon i is photon i:
+  /// equal, bit for bit, to one run() of that many photons with the same seed). Starts at photon
+  /// 0 when nothing is kept: no run yet, a change since (set_luminaire, set_mesh_transform),
+  /// another seed, or a kept run that already has more photons. Throws InputError without
+  /// `options.photons` or with decide (its looks are counted from photon 0).
+  Results refine(const SolveOptions& options, const ProgressFn& progress = {});
+
+  /// Photons of the kept tallies refine() continues from (0 when nothing is kept).
+  std::uint64_t kept_photons() const;
 
   /// Seconds spent applying changes since the previous run (reported, then reset, by run()).
   double pending_update_seconds() const;
 
  private:
+  Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);
   std::unique_ptr<detail::SimulationState> state_;
 };
 

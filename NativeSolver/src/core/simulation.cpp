@@ -13,6 +13,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <limits>
+#include <optional>
 
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
@@ -30,6 +31,9 @@ struct SimulationState {
   int threads = 0;
   double pending_update_seconds = 0.0;
   Warnings backend_notes;  // e.g. why "auto" fell back to the CPU
+  // The last run's tallies, for refine(); dropped by any change to the scene.
+  std::optional<TallyBlock> kept;
+  std::uint64_t kept_photons = 0, kept_seed = 0;
 };
 
 }  // namespace detail
@@ -316,6 +320,7 @@ void Simulation::set_luminaire(std::size_t index, const Luminaire& luminaire) {
   }
   detail::prepare_luminaires(s, state_->prepared);
   state_->backend->luminaires_changed();
+  state_->kept.reset();
   state_->pending_update_seconds += seconds_since(start);
 }
 
@@ -336,10 +341,25 @@ void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
   local[3] = glm::dvec4(glm::dvec3(world * glm::dvec4(p.origin, 1.0)) - p.origin, 1.0);
   p.meshes[mesh].transform = glm::mat4(local);
   state_->backend->set_mesh_transform(mesh, p.meshes[mesh].transform);
+  state_->kept.reset();
   state_->pending_update_seconds += seconds_since(start);
 }
 
+std::uint64_t Simulation::kept_photons() const { return state_->kept ? state_->kept_photons : 0; }
+
+Results Simulation::refine(const SolveOptions& options, const ProgressFn& progress) {
+  if (!options.photons) throw InputError("", "photons", "refine() needs the photons in all");
+  if (options.decide.value_or(false)) throw InputError("", "decide", "not with refine()");
+  SolveOptions o = options;
+  o.decide = false;  // the scene's own decide setting neither: verdicts are judged as in a run
+  return run_from(o, progress, true);
+}
+
 Results Simulation::run(const SolveOptions& options, const ProgressFn& progress) {
+  return run_from(options, progress, false);
+}
+
+Results Simulation::run_from(const SolveOptions& options, const ProgressFn& progress, bool resume) {
   const auto start = Clock::now();
   const Scene& scene = state_->scene;
   const detail::PreparedScene& prepared = state_->prepared;
@@ -365,6 +385,12 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   detail::TallyBlock tallies(prepared.bins.size());
+  if (resume && state_->kept && state_->kept_seed == r.seed &&
+      state_->kept_photons <= r.photons_requested) {
+    tallies = *state_->kept;  // photons [0, kept_photons) are already traced
+    r.photons = state_->kept_photons;
+  }
+  const std::uint64_t first_photon = r.photons;
   auto targets_at = [&](std::uint64_t photons, double confidence) {
     std::vector<TargetResult> targets;
     for (std::size_t i = 0; i < scene.targets.size(); ++i) {
@@ -388,7 +414,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
         break;
       }
       const double elapsed = seconds_since(tracing_start);
-      const double rate = elapsed > 0.0 ? double(r.photons) / elapsed : 0.0;
+      const double rate = elapsed > 0.0 ? double(r.photons - first_photon) / elapsed : 0.0;
       if (r.max_seconds && r.photons > 0 && elapsed >= *r.max_seconds) {
         r.stop_reason = kStopTime;
         break;
@@ -441,6 +467,9 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
   r.targets = targets_at(r.photons, r.confidence);
+  state_->kept = std::move(tallies);  // what refine() continues from
+  state_->kept_photons = r.photons;
+  state_->kept_seed = r.seed;
   detail::add_verdicts(r);
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   add_warnings(scene, r);

@@ -56,6 +56,35 @@ TEST(Simulation, MovedLuminaireIsBitIdenticalToAFreshScene) {
   EXPECT_EQ(results_to_json(a), results_to_json(b));
 }
 
+// Photon i is photon i: refining a kept run continues it, equal to one run of all the photons.
+TEST(Simulation, RefineContinuesTheKeptPhotonsBitForBit) {
+  Simulation sim(room_with_block(dvec3(0)));
+  SolveOptions o;
+  o.photons = 100'000;
+  sim.run(o);
+  EXPECT_EQ(sim.kept_photons(), 100'000u);
+  o.photons = 250'000;
+  std::uint64_t first_report = 0;
+  Results resumed = sim.refine(o, [&](std::uint64_t done, std::uint64_t) {
+    if (first_report == 0) first_report = done;
+    return true;
+  });
+  EXPECT_GT(first_report, 100'000u);  // the first batch started where the kept photons end
+  Results one = solve(room_with_block(dvec3(0)), o);
+  resumed.seconds = one.seconds = 0;
+  EXPECT_EQ(results_to_json(resumed), results_to_json(one));
+  // A change discards the kept photons: refine starts again at photon 0.
+  Luminaire brighter = sim.scene().luminaires[0];
+  brighter.flux_lm *= 2;
+  sim.set_luminaire(0, brighter);
+  EXPECT_EQ(sim.kept_photons(), 0u);
+  Results again = sim.refine(o), fresh = sim.run(o);
+  again.seconds = fresh.seconds = 0;
+  EXPECT_EQ(results_to_json(again), results_to_json(fresh));
+  o.photons.reset();
+  EXPECT_THROW(sim.refine(o), InputError);  // the total is required
+}
+
 TEST(Simulation, RejectsBadChangesAndKeepsItsState) {
   Simulation::Options opt;
   opt.movable_meshes = {"block"};

@@ -338,7 +338,8 @@ ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPla
 MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_ChooseLuminaire",
                   "Lighting_LuminaireLayout", "Lighting_Target", "Lighting_Grid",
                   "Lighting_Observer", "Lighting_ObserverGrid", "Lighting_PlacementDomain"]
-RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Optimize",
+RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Live",
+                "Lighting_Optimize",
                 "Lighting_Results", "Lighting_Report", "Lighting_ClearResults"]
 
 
@@ -349,11 +350,11 @@ EXCLUSION_COMMANDS = exclusion.NAMES
 
 def register() -> None:
     """Add every command to FreeCAD (once)."""
-    from lighting.commands import chooser, glare, report
+    from lighting.commands import chooser, glare, live, report
     from lighting.commands.layout import CommandLuminaireLayout
 
     more = (CommandLuminaireLayout, chooser.CommandChooseLuminaire, report.CommandReport)
-    for cls in ALL + exclusion.ALL + more + glare.ALL:
+    for cls in ALL + exclusion.ALL + more + glare.ALL + live.ALL:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)

@@ -198,6 +198,23 @@ def _geometry_entry(obj: Any) -> str:
                     _material(obj)])
 
 
+def local_entry(obj: Any) -> str:
+    """An exported object's entry without its placement: type, the signature of its shape or
+    mesh in its own coordinates, material inputs. Equal before and after an edit when the edit
+    only moved the object (solver/live.py then moves its instance instead of exporting)."""
+    from lighting.geometry import global_placement, global_shape
+
+    if collect.is_mesh(obj):
+        mesh = obj.Mesh.copy()
+        mesh.Placement = FreeCAD.Placement()
+        signature = mesh_signature(mesh)
+    else:
+        shape = global_shape(obj)
+        shape.Placement = global_placement(obj).inverse().multiply(shape.Placement)
+        signature = shape_signature(shape)
+    return _digest([obj.TypeId, signature, _material(obj)])
+
+
 def _luminaire_entry(lum: Any) -> str:
     from lighting.geometry import global_placement
 

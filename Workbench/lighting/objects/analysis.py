@@ -54,6 +54,9 @@ class Analysis(BaseProxy):
                         "usable, else the CPU) or one this solver build has", "auto",
                         items=FALLBACK_BACKENDS),
         "Threads": Prop("App::PropertyInteger", "Solver", "Worker threads (0 = all cores)", 0),
+        "Live": Prop("App::PropertyBool", "Solver",
+                     "GUI: refine the results in the background while the model is edited "
+                     "(docs/live.md); scripts use lighting.LiveSession", False),
         "Decide": Prop("App::PropertyBool", "Solver",
                        "When targets have requirements (and TargetAccuracy is 0): trace until "
                        "every requirement is decided pass or fail from its interval, with Photons "
@@ -107,6 +110,9 @@ class Analysis(BaseProxy):
         for name in BOOKKEEPING:
             if "NoModify" not in obj.getPropertyStatus(name):
                 obj.setPropertyStatus(name, "NoModify")
+        # A live session is a GUI state, not part of the file: reopened, Live is off.
+        if "Transient" not in obj.getPropertyStatus("Live"):
+            obj.setPropertyStatus("Live", "Transient")
 
     def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
         """Files of older versions could be saved in the middle of a stage ("checking"):

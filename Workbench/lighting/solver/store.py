@@ -208,6 +208,41 @@ def apply_to_document(analysis: Any, data: Dict[str, Any], scene_file: str = "",
     return load_from_document(analysis)
 
 
+@contextmanager
+def _unrecorded(obj: Any, names: Tuple[str, ...]) -> Iterator[None]:
+    """Writes to ``names`` of ``obj`` that neither land in an undo transaction nor mark the
+    document modified (NoModify while they happen, as the analysis' bookkeeping properties)."""
+    added = [n for n in names if n in obj.PropertiesList
+             and "NoModify" not in obj.getPropertyStatus(n)]
+    for name in added:
+        obj.setPropertyStatus(name, "NoModify")
+    try:
+        yield
+    finally:
+        for name in added:
+            obj.setPropertyStatus(name, "-NoModify")
+
+
+def write_live(analysis: Any, data: Dict[str, Any], fingerprint: Dict[str, str],
+               status: str) -> None:
+    """Show a live frame (solver/live.py) through the results object, with no undo step: the
+    frames of a live session are views of the model, not edits (the results object itself is
+    created, unrecorded too, if the analysis has none)."""
+    existing = results_obj.of_analysis(analysis)
+    doc = analysis.Document
+    if existing is None:
+        if getattr(doc, "HasPendingTransaction", False):
+            return  # the user is in the middle of an edit: the next frame creates it
+        existing = _make_results(analysis)
+    from lighting.objects.results import DERIVED
+
+    names = ("ResultsJson", "InputsFingerprint", "SceneFile", "ResultsFile", *DERIVED)
+    set_status(analysis, status)  # first: the legend repainted for the JSON reads it
+    with _unrecorded(existing, names):
+        _set(existing, "InputsFingerprint", fingerprint_mod.dumps(fingerprint))
+        _set(existing, "ResultsJson", json.dumps(data, separators=(",", ":")))
+
+
 def load_from_document(analysis: Any) -> Optional[AnalysisResult]:
     """The results of the analysis' results object, or None if it has none."""
     obj = results_object(analysis)

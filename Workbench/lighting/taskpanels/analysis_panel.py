@@ -311,6 +311,14 @@ class AnalysisTaskPanel(ModelessPanel):
                              TargetAccuracy=self.accuracy.value() / 100.0,
                              Decide=self.decide.isChecked())
 
+    def show_live(self) -> None:
+        """A live frame was stored (commands/live.py): the table and Status follow it."""
+        try:
+            self._set_status(self.analysis.Status)
+            self._show_stored_results()
+        except Exception:  # noqa: BLE001 - the panel was closed or the analysis deleted
+            pass
+
     def show_state(self, state: Optional[Any] = None) -> None:
         """Show whether the stored results are current or stale (red, with what changed)."""
         try:

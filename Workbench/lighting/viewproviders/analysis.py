@@ -185,6 +185,10 @@ class ViewProviderAnalysis(ViewProviderBase):
 
     def updateData(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
         """Results or display settings changed (by the task panel, a script, undo...)."""
+        if prop == "Live" and not getattr(obj.Document, "Restoring", False):
+            from lighting.commands import live
+
+            live.sync(obj)  # start or stop the live session (commands/live.py)
         if prop in REPAINT_ON and getattr(self, "legend_root", None) is not None:
             from lighting.viewproviders import coloring
 
@@ -213,7 +217,9 @@ class ViewProviderAnalysis(ViewProviderBase):
             stored = {}
         word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
             stored.get("verdict", ""))
-        return "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
+        title = "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
+        status = str(getattr(self.Object, "Status", ""))
+        return f"{title} - {status}" if status.startswith("live:") else title
 
     def verdict_lines(self) -> List[Tuple[str, str]]:
         """(label, pass/FAIL/undecided) of every target the solver judged, for the markers
