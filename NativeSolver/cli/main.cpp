@@ -338,7 +338,9 @@ int run_command_line(int argc, char** argv) {
 // waiting for it.
 int main(int argc, char** argv) {
   std::optional<lightsolver::mpi::Session> session;
-  if (lightsolver::mpi::launched()) {
+  // `report` execs Python, which joins the job through mpi4py (lightsolver_report.mpi_comm).
+  const bool execs_python = argc > 1 && std::string(argv[1]) == "report";
+  if (lightsolver::mpi::launched() && !execs_python) {
     try {
       session.emplace(&argc, &argv);
     } catch (const std::exception& e) {

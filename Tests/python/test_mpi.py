@@ -102,6 +102,22 @@ def test_optimizer_is_bit_identical(cli, tmp_path):
     assert strip(json.loads(shared.read_text())) == strip(json.loads(alone.read_text()))
 
 
+def test_report_traces_with_every_rank(cli, room_scene, tmp_path):
+    pytest.importorskip("mpi4py")
+    pytest.importorskip("jinja2")
+    args = ["report", str(room_scene), "--photons", "100001", "--date", "2026-01-01"]
+    alone, shared = tmp_path / "alone", tmp_path / "shared"
+    alone.mkdir(), shared.mkdir()
+    subprocess.run([cli, *args, "--out", str(alone / "r.html"), "--save-results",
+                    str(alone / "r.json")], check=True, capture_output=True, timeout=300)
+    done = mpirun(2, cli, *args, "--out", str(shared / "r.html"), "--save-results",
+                  str(shared / "r.json"))
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.count("report written") == 1
+    assert results(shared / "r.json") == results(alone / "r.json")
+    assert sorted(p.name for p in shared.iterdir()) == ["r.html", "r.json"]
+
+
 def test_python_solve_with_a_communicator_is_bit_identical(room_scene, tmp_path):
     script = tmp_path / "solve.py"
     script.write_text(
