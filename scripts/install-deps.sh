@@ -16,6 +16,7 @@ PKGS=(
   freecad xvfb xauth python3-matplotlib
   python3-jinja2 weasyprint poppler-utils fonts-dejavu-core
   libstb-dev
+  openmpi-bin libopenmpi-dev python3-mpi4py
 )
 missing=()
 for p in "${PKGS[@]}"; do

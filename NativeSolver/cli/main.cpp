@@ -15,12 +15,14 @@
 #include "backend_option.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/glare.hpp"
+#include "lightsolver/mpi.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_command.hpp"
+#include "processes.hpp"
 #include "study_command.hpp"
 #include "report_command.hpp"
 
@@ -94,6 +96,7 @@ lightsolver::SolveOptions options_from(const RunArgs& a) {
   opt.max_seconds = a.max_seconds;
   if (a.decide) opt.decide = true;
   opt.cancel = &g_interrupted;
+  opt.processes = lightsolver::cli::processes();
   return opt;
 }
 
@@ -243,7 +246,7 @@ int photometry(const std::string& file, const std::string& plot, bool ugr_table)
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run_command_line(int argc, char** argv) {
   CLI::App app{"lightsolver: photon-tracing illuminance solver (lux with confidence intervals)"};
   app.set_version_flag("--version", std::string("lightsolver ") + lightsolver::version());
   app.require_subcommand(1);
@@ -328,4 +331,30 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+// Under mpirun (docs/cluster.md) every process runs the same command: each traces a slice of
+// every batch, rank 0 prints and writes. A failing process ends the whole job, so none is left
+// waiting for it.
+int main(int argc, char** argv) {
+  std::optional<lightsolver::mpi::Session> session;
+  // `report` execs Python, which joins the job through mpi4py (lightsolver_report.mpi_comm).
+  const bool execs_python = argc > 1 && std::string(argv[1]) == "report";
+  if (lightsolver::mpi::launched() && !execs_python) {
+    try {
+      session.emplace(&argc, &argv);
+    } catch (const std::exception& e) {
+      std::cerr << "error: started by an MPI launcher, but " << e.what()
+                << ": every process would run the whole job alone\n";
+      return 1;
+    }
+    lightsolver::cli::processes() = session->world();
+    if (!lightsolver::cli::reports()) {
+      lightsolver::skip_file_writes(true);
+      if (std::freopen("/dev/null", "w", stdout) == nullptr) std::fclose(stdout);
+    }
+  }
+  const int rc = run_command_line(argc, argv);
+  if (session && rc == 1) session->abort("ending every process after the error above", rc);
+  return rc;
 }

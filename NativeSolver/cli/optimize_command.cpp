@@ -12,6 +12,7 @@
 #include "backend_option.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "lightsolver/output_file.hpp"
+#include "processes.hpp"
 
 namespace lightsolver::cli {
 namespace {
@@ -72,6 +73,7 @@ int run_optimize(OptimizeArgs& a) {
   if (!a.out.empty()) check_writable(a.out, "results file");  // before any search
   const opt::SceneProblem problem = opt::load_problem(a.scene);
   if (a.static_n) a.overrides.screening_photons = 0;
+  a.overrides.processes = processes();
   opt::Control control;
   control.cancel = &g_stop;
   if (!a.quiet)

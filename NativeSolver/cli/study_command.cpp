@@ -18,6 +18,7 @@
 
 #include "backend_option.hpp"
 #include "lightsolver/output_file.hpp"
+#include "processes.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/study.hpp"
 
@@ -152,6 +153,7 @@ int run_study_command(const StudyArgs& a) {
   o.solve.threads = a.threads;
   o.solve.backend = a.backend;
   o.solve.cancel = &g_stop;
+  o.solve.processes = processes();
   o.max_photons = a.max_photons;
   o.reference_file = a.reference;
   const bool reference = !a.reference.empty();
@@ -168,7 +170,7 @@ int run_study_command(const StudyArgs& a) {
   if (!a.csv.empty()) write_file_atomically(a.csv, study_to_csv(st));
   if (!a.json.empty()) write_file_atomically(a.json, json);
   if (!a.out.empty()) write_file_atomically(a.out, results_to_json(st.results));
-  if (!a.plot.empty()) {
+  if (!a.plot.empty() && reports()) {
     // The script reads the study JSON: the one asked for, else a temporary copy.
     std::string path = a.json;
     if (path.empty()) {

@@ -15,6 +15,7 @@
 #include "lightsolver/glare.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_check.hpp"
+#include "lightsolver/mpi.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "lightsolver/study.hpp"
@@ -206,7 +207,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   const std::string& backend, py::object progress,
                   std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
                   std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell,
-                  std::optional<bool> decide) {
+                  std::optional<bool> decide, py::object comm) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
   // solve() validates the copy (and reports dropped triangles among the warnings).
   const Scene snapshot = scene;
@@ -220,6 +221,10 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   opt.max_seconds = max_seconds;
   opt.accuracy_per_cell = accuracy_per_cell;
   opt.decide = decide;
+  // An mpi4py communicator: every process calls solve() alike and gets the same results.
+  if (!comm.is_none()) {
+    opt.processes = mpi::group_of_fortran_handle(comm.attr("py2f")().cast<std::int64_t>());
+  }
   CancelToken token = cancel.value_or(CancelToken{});
   opt.cancel = token.flag.get();
   std::exception_ptr callback_error;
@@ -396,7 +401,7 @@ PYBIND11_MODULE(lightsolver, m) {
         py::arg("backend") = kAutoBackend, py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
         py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
-        py::arg("decide") = py::none(),
+        py::arg("decide") = py::none(), py::arg("comm") = py::none(),
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
         "progress(done, total) may return False to stop; the result is then marked partial. "
         "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean "
@@ -407,7 +412,10 @@ PYBIND11_MODULE(lightsolver, m) {
         "stop_reason says which limit ended the run: photons, accuracy, time, cancelled or "
         "decided. decide=True traces until every requirement's verdict is pass or fail "
         "(default: the scene's settings.decide); targets with requirements carry verdicts "
-        "either way.");
+        "either way. comm: an mpi4py communicator (e.g. MPI.COMM_WORLD under mpirun): every "
+        "process calls solve() with the same arguments, each traces a slice of every batch and "
+        "all get the results a single process would give, bit for bit (docs/cluster.md).");
+  m.def("mpi_built", &mpi::built, "True when this build can share runs among MPI processes");
   m.def(
       "check_scene", [](const Scene& s) { return check_dict(check_scene(s)); }, py::arg("scene"),
       "Check a Scene as a run would (validate, then the warnings a run gives before tracing) "

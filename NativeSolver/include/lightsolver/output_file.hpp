@@ -31,4 +31,9 @@ void check_writable(const std::string& path, const std::string& what);
 /// a replaced file keeps its permissions.
 void write_file_atomically(const std::string& path, std::string_view bytes);
 
+/// Makes write_file_atomically() write nothing (true) or write again (false). Under mpirun only
+/// rank 0 writes the files of a run that every process computed (docs/cluster.md); the others'
+/// check_writable() still checks, so a bad path fails on every process before any work.
+void skip_file_writes(bool skip);
+
 }  // namespace lightsolver

@@ -6,12 +6,14 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "lightsolver/compliance.hpp"
 #include "lightsolver/glare.hpp"
+#include "lightsolver/process_group.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/statistics.hpp"
 
@@ -102,6 +104,11 @@ struct SolveOptions {
   /// photon counts without tracing any photon twice (`lightsolver cost`).
   std::vector<std::uint64_t> checkpoints;
   std::function<void(const Checkpoint&)> checkpoint;
+  /// Processes sharing the run (MPI ranks; null: this process alone). Every process calls
+  /// solve() with the same scene and options; each traces a slice of every batch, the tallies
+  /// are summed exactly, so every process gets the results a lone process would, bit for bit.
+  /// Batch sizes, time limits and cancel are rank 0's (its callbacks and flag count).
+  std::shared_ptr<ProcessGroup> processes;
 };
 
 /// Called between batches with photons traced so far and the total; return false to cancel.

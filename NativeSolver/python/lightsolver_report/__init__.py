@@ -96,16 +96,46 @@ def _settle_numpy_limits() -> None:
         numpy.finfo(kind)
 
 
+#: Environment variables an MPI launcher (mpirun, srun) sets in every process it starts.
+MPI_LAUNCHER_VARIABLES = ("OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE")
+
+
+def mpi_comm() -> Any:
+    """MPI.COMM_WORLD when this process was started by an MPI launcher (``mpirun -np K
+    lightsolver report``: every rank traces its share, docs/cluster.md), else None. Under a
+    launcher without mpi4py or with a solver built without MPI: ReportError, since every rank
+    would trace the whole scene and race to write the same report."""
+    if not any(name in os.environ for name in MPI_LAUNCHER_VARIABLES):
+        return None
+    solver = _require("lightsolver")
+    if not solver.mpi_built():
+        raise ReportError("started by an MPI launcher, but this lightsolver was built without MPI")
+    try:
+        from mpi4py import MPI
+    except ImportError as exc:
+        raise ReportError("started by an MPI launcher, but mpi4py is missing (Debian: "
+                          "python3-mpi4py)") from exc
+    return MPI.COMM_WORLD
+
+
+def reports_here() -> bool:
+    """False on MPI ranks other than 0: they trace, rank 0 writes."""
+    comm = mpi_comm()
+    return comm is None or comm.Get_rank() == 0
+
+
 def trace(scene_path: PathLike, photons: Optional[int] = None, seed: Optional[int] = None,
           confidence: Optional[float] = None, backend: str = "auto") -> Dict[str, Any]:
     """Trace a scene file through the ``lightsolver`` module with the scene's settings (the
-    arguments override them); returns the results document without numpy arrays."""
+    arguments override them); returns the results document without numpy arrays. Under an
+    MPI launcher every rank traces its share of the same run (mpi_comm())."""
     solver = _require("lightsolver")
     _settle_numpy_limits()
+    comm = mpi_comm()
     try:
         scene = solver.load_scene(str(scene_path))
         results = solver.solve(scene, photons=photons, seed=seed, confidence=confidence,
-                               backend=backend)
+                               backend=backend, comm=comm)
     except ValueError as exc:  # lightsolver.InputError
         raise ReportError(str(exc)) from exc
     for target in results.get("targets", []):

@@ -8,7 +8,7 @@ import json
 import sys
 from typing import List, Optional
 
-from lightsolver_report import ReportError, render, trace
+from lightsolver_report import ReportError, render, reports_here, trace
 
 
 def parser() -> argparse.ArgumentParser:
@@ -38,6 +38,8 @@ def main(argv: Optional[List[str]] = None) -> int:
         if results is None:
             results = trace(args.scene, photons=args.photons, seed=args.seed,
                             backend=args.backend)
+            if not reports_here():
+                return 0  # an MPI rank other than 0: it traced its share; rank 0 writes
             if args.save_results:
                 with open(args.save_results, "w", encoding="utf-8") as handle:
                     json.dump(results, handle, indent=1)

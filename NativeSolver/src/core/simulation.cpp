@@ -18,6 +18,7 @@
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
 #include "core/decide.hpp"
+#include "core/shared_tracing.hpp"
 #include "core/target_reach.hpp"
 #include "core/target_types.hpp"
 
@@ -408,21 +409,31 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     const auto tracing_start = Clock::now();
     bool forecast_due = static_cast<bool>(options.forecast);
     CheckpointTracer tracer(options, scene, prepared, tracing_start);
+    detail::SharedTracing shared(options.processes.get(), prepared.bins.size());
+    bool progress_stop = false;  // the progress callback asked to stop (rank 0's counts)
     while (r.photons < r.photons_requested) {
-      if (options.cancel && options.cancel->load()) {
-        r.stop_reason = kStopCancelled;
-        break;
-      }
+      using detail::LoopStop;
+      LoopStop stop = LoopStop::kNone;
       const double elapsed = seconds_since(tracing_start);
       const double rate = elapsed > 0.0 ? double(r.photons - first_photon) / elapsed : 0.0;
-      if (r.max_seconds && r.photons > 0 && elapsed >= *r.max_seconds) {
-        r.stop_reason = kStopTime;
-        break;
+      if (progress_stop || (options.cancel && options.cancel->load())) {
+        stop = LoopStop::kCancelled;
+      } else if (r.max_seconds && r.photons > 0 && elapsed >= *r.max_seconds) {
+        stop = LoopStop::kTime;
       }
       std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
       if (r.max_seconds) n = fit_time_limit(n, rate, *r.max_seconds - elapsed);
+      shared.agree(n, stop);  // rank 0's clock and user decide for every process
+      if (stop != LoopStop::kNone) {
+        r.stop_reason = stop == LoopStop::kTime ? kStopTime : kStopCancelled;
+        break;
+      }
       tracer.trace(r.photons, n, r, tallies, [&](std::uint64_t first, std::uint64_t count) {
-        arena.execute([&] { state_->backend->trace(first, count, r.seed, tallies); });
+        shared.trace(first, count, tallies,
+                     [&](std::uint64_t from, std::uint64_t photons, detail::TallyBlock& into) {
+                       arena.execute(
+                           [&] { state_->backend->trace(from, photons, r.seed, into); });
+                     });
       });
       r.photons += n;
       if (accuracy_mode && accuracy_reached(scene, prepared, tallies, r)) {
@@ -453,10 +464,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
         }
         options.forecast(f);
       }
-      if (progress && !progress(r.photons, r.photons_requested)) {
-        if (r.photons < r.photons_requested) r.stop_reason = kStopCancelled;
-        break;
-      }
+      // Acted on before the next batch, together with the other processes.
+      if (progress && !progress(r.photons, r.photons_requested)) progress_stop = true;
     }
     tracing_s = seconds_since(tracing_start);
   } else {

@@ -185,10 +185,12 @@ Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std
   return u;
 }
 
-SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const std::string& backend)
+SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const std::string& backend,
+                               std::shared_ptr<ProcessGroup> processes)
     : problem_(problem),
       simulation_(problem.scene, Simulation::Options{backend, threads, problem.movable_meshes()}),
-      confidence_(problem.search.confidence) {}
+      confidence_(problem.search.confidence),
+      processes_(std::move(processes)) {}
 
 void SceneEvaluator::apply(const std::vector<double>& values) {
   const SceneChanges c = changes_for(problem_, values);
@@ -223,6 +225,7 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
   opt.seed = r.seed;
   opt.confidence = confidence_;
   opt.decide = false;  // the search's own n/N photons, whatever the scene's settings say
+  opt.processes = processes_;
   const auto trace_start = Clock::now();
   last_ = simulation_.run(opt);
   e.trace_seconds = seconds_since(trace_start);
@@ -239,7 +242,7 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
   if (o.seed) opt.seed = *o.seed;
   if (o.screening_photons) opt.screening_photons = *o.screening_photons;
   if (o.confirmation_photons) opt.confirmation_photons = *o.confirmation_photons;
-  SceneEvaluator evaluator(problem, o.threads, o.backend);
+  SceneEvaluator evaluator(problem, o.threads, o.backend, o.processes);
   return optimize(problem.domain, problem.intention, evaluator, opt, control);
 }
 

@@ -118,8 +118,11 @@ class SceneEvaluator final : public Evaluator {
  public:
   /// `threads` 0: all cores; `backend`: a name from lightsolver::backends(). Throws InputError
   /// as Simulation does.
+  /// `processes`: MPI ranks sharing every trace (null: alone); the search itself runs the
+  /// same on every rank (its randomness and the traced numbers are identical there).
   SceneEvaluator(const SceneProblem& problem, int threads = 0,
-                 const std::string& backend = kAutoBackend);
+                 const std::string& backend = kAutoBackend,
+                 std::shared_ptr<ProcessGroup> processes = nullptr);
   Evaluation evaluate(const EvaluationRequest& request) override;
   /// The simulation's scene with the last request applied.
   const Scene& scene() const { return simulation_.scene(); }
@@ -133,6 +136,7 @@ class SceneEvaluator final : public Evaluator {
   const SceneProblem& problem_;
   Simulation simulation_;
   double confidence_;
+  std::shared_ptr<ProcessGroup> processes_;
   Results last_;
 };
 
@@ -141,6 +145,7 @@ struct RunOverrides {
   std::optional<std::uint64_t> iterations, seed, screening_photons, confirmation_photons;
   int threads = 0;
   std::string backend = kAutoBackend;  ///< a name from lightsolver::backends()
+  std::shared_ptr<ProcessGroup> processes;  ///< MPI ranks sharing every trace (null: alone)
 };
 
 /// Builds a SceneEvaluator and runs optimize() with the problem's search settings.
