@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -14,6 +15,7 @@
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/glare.hpp"
 #include "lightsolver/photometry.hpp"
+#include "lightsolver/rescale.hpp"
 #include "lightsolver/scene_check.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
@@ -201,7 +203,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   const std::string& backend, py::object progress,
                   std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
                   std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell,
-                  std::optional<bool> decide) {
+                  std::optional<bool> decide, std::optional<bool> contributions) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
   // solve() validates the copy (and reports dropped triangles among the warnings).
   const Scene snapshot = scene;
@@ -215,6 +217,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   opt.max_seconds = max_seconds;
   opt.accuracy_per_cell = accuracy_per_cell;
   opt.decide = decide;
+  opt.contributions = contributions;
   CancelToken token = cancel.value_or(CancelToken{});
   opt.cancel = token.flag.get();
   std::exception_ptr callback_error;
@@ -341,6 +344,10 @@ PYBIND11_MODULE(lightsolver, m) {
           },
           "Time limit of the tracing in seconds, or None")
       .def_property(
+          "contributions", [](const Scene& s) { return s.settings.contributions; },
+          [](Scene& s, bool v) { s.settings.contributions = v; },
+          "Report each luminaire group's contribution per target (settings.contributions)")
+      .def_property(
           "decide", [](const Scene& s) { return s.settings.decide; },
           [](Scene& s, bool v) { s.settings.decide = v; },
           "Trace until every requirement's verdict is decided (settings.decide)")
@@ -391,7 +398,7 @@ PYBIND11_MODULE(lightsolver, m) {
         py::arg("backend") = kAutoBackend, py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
         py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
-        py::arg("decide") = py::none(),
+        py::arg("decide") = py::none(), py::arg("contributions") = py::none(),
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
         "progress(done, total) may return False to stop; the result is then marked partial. "
         "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean "
@@ -402,7 +409,25 @@ PYBIND11_MODULE(lightsolver, m) {
         "stop_reason says which limit ended the run: photons, accuracy, time, cancelled or "
         "decided. decide=True traces until every requirement's verdict is pass or fail "
         "(default: the scene's settings.decide); targets with requirements carry verdicts "
-        "either way.");
+        "either way. contributions=True adds each luminaire group's part per target and cell "
+        "(default: the scene's settings.contributions), which rescale() needs.");
+  m.def(
+      "rescale",
+      [](const py::dict& results, const std::map<std::string, double>& factors) {
+        // Cell arrays (numpy) become lists; the reader ignores them and rebuilds everything.
+        const py::module_ json = py::module_::import("json");
+        const py::object to_list =
+            py::module_::import("builtins")
+                .attr("eval")("lambda o: o.tolist() if hasattr(o, 'tolist') else str(o)");
+        const std::string text = py::str(json.attr("dumps")(results, py::arg("default") = to_list));
+        return results_dict(rescale_results(text, GroupFactors(factors.begin(), factors.end())));
+      },
+      py::arg("results"), py::arg("factors"),
+      "Results of a run traced with contributions=True with each named luminaire group's flux "
+      "multiplied by its factor ({'hall': 0.5}; 0 switches a group off): estimates, intervals, "
+      "grid statistics and verdicts recomputed from the per-group tallies, no tracing; "
+      "'rescaled' records the factors. ValueError (InputError) for an unknown group, a negative "
+      "or non-finite factor, or results without contributions.");
   m.def(
       "check_scene", [](const Scene& s) { return check_dict(check_scene(s)); }, py::arg("scene"),
       "Check a Scene as a run would (validate, then the warnings a run gives before tracing) "

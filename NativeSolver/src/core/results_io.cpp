@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "core/groups_io.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -112,6 +113,7 @@ nlohmann::json target_json(const TargetResult& t) {
   j.update(estimate_fields(t.estimate));
   if (t.glare) add_glare(*t.glare, j);
   add_compliance(t, j);
+  detail::add_contributions_json(t, j);
   if (!t.is_grid) return j;
   j["cells_uv"] = {t.nu, t.nv};
   j["min_lux"] = t.min_lux;
@@ -176,6 +178,7 @@ std::string results_to_json(const Results& r) {
   nlohmann::json targets = nlohmann::json::array();
   for (const auto& t : r.targets) targets.push_back(target_json(t));
   j["targets"] = std::move(targets);
+  detail::add_groups_json(r, j);
   return j.dump(2) + "\n";
 }
 

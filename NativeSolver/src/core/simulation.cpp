@@ -17,6 +17,8 @@
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
 #include "core/decide.hpp"
+#include "core/groups.hpp"
+#include "core/target_results.hpp"
 #include "glare/observer_target.hpp"
 
 namespace lightsolver {
@@ -64,8 +66,9 @@ std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_
 double worst_relative_half_width(const detail::PreparedScene& s, const detail::TallyBlock& t,
                                  std::uint64_t photons, double confidence) {
   double worst = 0.0;
+  const detail::GroupedTallies tallies = detail::grouped_tallies(s, t.bins, photons);
   for (const std::uint32_t bin : s.target_bin) {
-    const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
+    const Estimate e = tallies.estimate(bin, s.bins[bin].area_m2, confidence);
     if (e.hits == 0 || !(e.mean > 0.0)) return std::numeric_limits<double>::infinity();
     worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
   }
@@ -136,50 +139,35 @@ std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double 
   return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
 }
 
-// Cell and grid estimates at any alpha, for the simultaneous intervals of grid_intervals();
-// z is computed once per alpha (the cells share it).
-GridSampler grid_sampler(const Target& t, const detail::PreparedScene& s,
-                         const detail::TallyBlock& tallies, std::uint32_t bin,
-                         std::uint64_t photons) {
-  auto estimate = [&s, &tallies, bin, photons, alpha = -1.0, z = 0.0](std::uint32_t b,
-                                                                      double a) mutable {
-    if (a != alpha) z = z_for_alpha(alpha = a);
-    return make_estimate_z(tallies.bins[bin + b], photons,
-                           s.total_flux_lm / s.bins[bin + b].area_m2, z);
-  };
-  return {t.nu * t.nv, [estimate](double a) mutable { return estimate(0, a); },
-          [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
-}
-
-TargetResult make_target(const Scene& scene, const Target& t, const detail::PreparedScene& s,
-                         const detail::TallyBlock& tallies, std::uint32_t bin,
-                         std::uint64_t photons, double confidence, bool judged) {
-  TargetResult r;
-  r.name = t.name;
-  r.requirements = t.requirements;
-  r.is_grid = t.type == Target::Type::Grid;
-  r.is_observer = t.type == Target::Type::Observer;
-  r.area_m2 = s.bins[bin].area_m2;
-  auto estimate = [&](std::uint32_t b) {
-    return make_estimate(tallies.bins[b], photons, s.total_flux_lm / s.bins[b].area_m2, confidence);
-  };
-  r.estimate = estimate(bin);
-  if (r.is_observer) r.glare = detail::observer_glare(t, scene.luminaires, r.estimate);
-  if (!r.is_grid) return r;
-  r.nu = t.nu;
-  r.nv = t.nv;
-  r.cells.reserve(std::size_t(t.nu) * t.nv);
-  for (std::uint32_t c = 0; c < t.nu * t.nv; ++c) r.cells.push_back(estimate(bin + 1 + c));
-  const auto [lo, hi] = std::minmax_element(r.cells.begin(), r.cells.end(),
-                                            [](auto& a, auto& b) { return a.mean < b.mean; });
-  r.min_lux = lo->mean;
-  r.max_lux = hi->mean;
-  r.uniformity = r.estimate.mean > 0.0 ? r.min_lux / r.estimate.mean : 0.0;
-  if (judged) {
-    r.intervals = grid_intervals(grid_sampler(t, s, tallies, bin, photons), confidence, r.min_lux,
-                                 r.max_lux, r.estimate.mean);
+// Target `i` of the scene after the run's first `photons` photons: estimates from the grouped
+// tallies (target_results.cpp), an observer's glare, and each group's part when asked for.
+TargetResult target_at(const Scene& scene, std::size_t i, const detail::PreparedScene& s,
+                       const detail::TallyBlock& t, std::uint64_t photons, double confidence,
+                       bool judged, bool contributions) {
+  const detail::GroupedTallies tallies = detail::grouped_tallies(s, t.bins, photons);
+  const Target& target = scene.targets[i];
+  const std::uint32_t bin = s.target_bin[i];
+  TargetResult r = detail::make_target(target, s.bins, tallies, bin, confidence, judged);
+  if (r.is_observer) r.glare = detail::observer_glare(target, scene.luminaires, r.estimate);
+  if (contributions) {
+    std::vector<std::string> names;
+    for (const auto& g : s.groups) names.push_back(g.name);
+    detail::add_contributions(r, s.bins, tallies, bin, confidence, names);
   }
   return r;
+}
+
+// Every group: its name, flux, photons traced and luminaires.
+std::vector<GroupResult> group_results(const Scene& scene, const detail::PreparedScene& s,
+                                       std::uint64_t photons) {
+  std::vector<GroupResult> out;
+  const std::vector<std::uint64_t> traced = detail::group_photons(s.groups, photons);
+  for (const detail::PreparedGroup& g : s.groups) {
+    GroupResult r{g.name, g.flux_lm, traced[out.size()], {}};
+    for (const std::uint32_t l : g.luminaires) r.luminaires.push_back(scene.luminaires[l].name);
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 void add_warnings(const Scene& scene, Results& r) {
@@ -255,8 +243,8 @@ class CheckpointTracer {
         c.seconds = seconds_since(start_);
         c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
         for (std::size_t i = 0; i < scene_.targets.size(); ++i) {
-          c.targets.push_back(make_target(scene_, scene_.targets[i], s_, tallies, s_.target_bin[i],
-                                          at, r.confidence, r.judged));
+          c.targets.push_back(
+              target_at(scene_, i, s_, tallies, at, r.confidence, r.judged, r.contributions));
         }
         o_.checkpoint(c);
       }
@@ -391,12 +379,15 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   state_->pending_update_seconds = 0.0;
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
-  detail::TallyBlock tallies(prepared.bins.size());
+  r.contributions = options.contributions.value_or(scene.settings.contributions);
+  // Each group has its own tallies (groups x bins), so their estimates are independent.
+  detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
+  detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size());
   auto targets_at = [&](std::uint64_t photons, double confidence) {
     std::vector<TargetResult> targets;
     for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-      targets.push_back(make_target(scene, scene.targets[i], prepared, tallies,
-                                    prepared.target_bin[i], photons, confidence, r.judged));
+      targets.push_back(
+          target_at(scene, i, prepared, tallies, photons, confidence, r.judged, r.contributions));
     }
     return targets;
   };
@@ -423,7 +414,9 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
       std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
       if (r.max_seconds) n = fit_time_limit(n, rate, *r.max_seconds - elapsed);
       tracer.trace(r.photons, n, r, tallies, [&](std::uint64_t first, std::uint64_t count) {
-        arena.execute([&] { state_->backend->trace(first, count, r.seed, tallies); });
+        // The run's photons [first, first + count) are each group's share of them.
+        const auto ranges = detail::group_ranges(prepared.groups, first, count);
+        arena.execute([&] { state_->backend->trace(ranges, r.seed, tallies); });
       });
       r.photons += n;
       if (accuracy_mode && accuracy_reached(scene, prepared, tallies, r)) {
@@ -468,6 +461,13 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
   r.targets = targets_at(r.photons, r.confidence);
+  r.groups = group_results(scene, prepared, prepared.total_flux_lm > 0.0 ? r.photons : 0);
+  for (const GroupResult& g : r.groups) {
+    if (g.flux_lm > 0.0 && g.photons == 0 && r.photons > 0) {
+      r.warnings.push_back("luminaire group \"" + g.name +
+                           "\" got no photon (fewer photons than groups): its light is missing");
+    }
+  }
   detail::add_verdicts(r);
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   add_warnings(scene, r);

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <array>
 #include <glm/mat3x3.hpp>
 #include <limits>
@@ -32,10 +33,13 @@ class EmbreeBackend final : public Backend {
     embree_.set_transform(mesh, transform);
   }
 
-  void trace(std::uint64_t first, std::uint64_t count, std::uint64_t seed,
-             TallyBlock& out) override {
+  void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed, TallyBlock& out) override {
+    // The ranges end to end: index k of [0, total) is photon k - starts[r] of range r.
+    std::vector<std::uint64_t> starts{0};
+    for (const GroupRange& r : ranges) starts.push_back(starts.back() + r.count);
+    const Photons photons{ranges, starts, seed};
     tbb::enumerable_thread_specific<TallyBlock> local([&] { return TallyBlock(out.bins.size()); });
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(first, first + count, 256),
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, starts.back(), 256),
                       [&](const tbb::blocked_range<std::uint64_t>& r) {
                         // Embree wants denormals flushed in every tracing thread. TBB also runs
                         // chunks on the caller's thread (Python's, say): its modes come back.
@@ -43,7 +47,7 @@ class EmbreeBackend final : public Backend {
                         const unsigned daz = _MM_GET_DENORMALS_ZERO_MODE();
                         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
                         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-                        trace_range(r.begin(), r.end(), seed, local.local());
+                        trace_range(r.begin(), r.end(), photons, local.local());
                         _MM_SET_FLUSH_ZERO_MODE(ftz);
                         _MM_SET_DENORMALS_ZERO_MODE(daz);
                       });
@@ -59,8 +63,16 @@ class EmbreeBackend final : public Backend {
   // 1M-triangle benchmark (+10 % over one lane; two and eight were no better).
   static constexpr int kLanes = 4;
 
+  // Which photon of which group index k of a trace() call is.
+  struct Photons {
+    const std::vector<GroupRange>& ranges;
+    const std::vector<std::uint64_t>& starts;  // starts[r]: index of range r's first photon
+    std::uint64_t seed;
+  };
+
   struct Lane {
     PathRng rng{0, 0};
+    std::size_t tally_offset = 0;  // the path's group's first tally
     EmittedRay ray;
     std::uint32_t bounce = 0;
     RTCRayHit rh;
@@ -68,7 +80,8 @@ class EmbreeBackend final : public Backend {
     bool active = false;
   };
 
-  void trace_range(std::uint64_t next, std::uint64_t end, std::uint64_t seed, TallyBlock& t) const {
+  void trace_range(std::uint64_t next, std::uint64_t end, const Photons& seed,
+                   TallyBlock& t) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -84,7 +97,7 @@ class EmbreeBackend final : public Backend {
       for (Lane& lane : lanes) {
         if (!lane.active) continue;
         if (!continue_path(lane, t)) {
-          lane.deposits.flush(t.bins);
+          lane.deposits.flush(t.bins, lane.tally_offset);
           if (next == end) {
             lane.active = false;
             --active;
@@ -97,9 +110,13 @@ class EmbreeBackend final : public Backend {
     }
   }
 
-  void start_path(Lane& lane, std::uint64_t id, std::uint64_t seed) const {
-    lane.rng = PathRng(seed, id);
-    lane.ray = emit(s_.luminaires[pick_luminaire(s_, lane.rng)], lane.rng);
+  void start_path(Lane& lane, std::uint64_t k, const Photons& p) const {
+    const std::size_t r =
+        std::upper_bound(p.starts.begin(), p.starts.end(), k) - p.starts.begin() - 1;
+    const GroupRange& range = p.ranges[r];
+    lane.rng = PathRng(p.seed, range.first + (k - p.starts[r]), range.group);
+    lane.tally_offset = std::size_t(range.group) * s_.bins.size();
+    lane.ray = emit(s_.luminaires[pick_luminaire(s_.groups[range.group], lane.rng)], lane.rng);
     lane.bounce = 0;
     lane.active = true;
   }
