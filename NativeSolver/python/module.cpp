@@ -198,6 +198,24 @@ py::dict results_dict(const Results& r) {
   return d;
 }
 
+// A results dict as JSON text: the layout without the numpy cell arrays results_dict() adds
+// beside it (rescale rebuilds them).
+std::string results_text(const py::dict& results) {
+  py::dict doc = results.attr("copy")();
+  if (doc.contains("targets")) {
+    py::list targets;
+    for (const py::handle t : doc["targets"]) {
+      py::dict target = t.attr("copy")();
+      for (const char* key : {"cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits"}) {
+        if (target.contains(key)) PyDict_DelItemString(target.ptr(), key);
+      }
+      targets.append(target);
+    }
+    doc["targets"] = targets;
+  }
+  return py::str(py::module_::import("json").attr("dumps")(doc));
+}
+
 py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
                   const std::string& backend, py::object progress,
@@ -414,13 +432,8 @@ PYBIND11_MODULE(lightsolver, m) {
   m.def(
       "rescale",
       [](const py::dict& results, const std::map<std::string, double>& factors) {
-        // Cell arrays (numpy) become lists; the reader ignores them and rebuilds everything.
-        const py::module_ json = py::module_::import("json");
-        const py::object to_list =
-            py::module_::import("builtins")
-                .attr("eval")("lambda o: o.tolist() if hasattr(o, 'tolist') else str(o)");
-        const std::string text = py::str(json.attr("dumps")(results, py::arg("default") = to_list));
-        return results_dict(rescale_results(text, GroupFactors(factors.begin(), factors.end())));
+        return results_dict(
+            rescale_results(results_text(results), GroupFactors(factors.begin(), factors.end())));
       },
       py::arg("results"), py::arg("factors"),
       "Results of a run traced with contributions=True with each named luminaire group's flux "

@@ -278,6 +278,23 @@ TEST(Groups, AccuracyGoalIsMetOnTheCombinedEstimate) {
   }
 }
 
+// Decide runs judge the combined estimate: a requirement 20 % below the traced value passes
+// and stops the run early.
+TEST(Groups, DecideRunsJudgeTheCombinedEstimate) {
+  Scene s = grouped_room();
+  const double em = run(s, 100'000, 1, 0, false).targets[1].estimate.mean;
+  s.targets[1].requirements.em_lux = 0.8 * em;
+  SolveOptions o;
+  o.decide = true;
+  o.photons = 4'000'000;
+  o.seed = 2;
+  o.backend = "embree";
+  const Results r = solve(s, o);
+  EXPECT_EQ(r.stop_reason, kStopDecided);
+  EXPECT_EQ(r.verdict, VerdictKind::Pass);
+  EXPECT_LT(r.photons, o.photons.value());
+}
+
 TEST(GroupErrors, RescaleRefusesBadInput) {
   const std::string json = results_to_json(run(grouped_room(), 20'000, 1));
   auto message = [&](const GroupFactors& f, const std::string& text = "") {
