@@ -462,16 +462,16 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   r.cut_paths = tallies.cut_paths;
   r.targets = targets_at(r.photons, r.confidence);
   r.groups = group_results(scene, prepared, prepared.total_flux_lm > 0.0 ? r.photons : 0);
+  detail::add_verdicts(r);
+  detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
+  add_warnings(scene, r);
+  add_stop_warnings(r);
   for (const GroupResult& g : r.groups) {
     if (g.flux_lm > 0.0 && g.photons == 0 && r.photons > 0) {
       r.warnings.push_back("luminaire group \"" + g.name +
                            "\" got no photon (fewer photons than groups): its light is missing");
     }
   }
-  detail::add_verdicts(r);
-  detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
-  add_warnings(scene, r);
-  add_stop_warnings(r);
   r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);

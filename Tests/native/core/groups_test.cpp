@@ -278,6 +278,17 @@ TEST(Groups, AccuracyGoalIsMetOnTheCombinedEstimate) {
   }
 }
 
+// Fewer photons than groups: a lit group without photons is missing light, and says so.
+TEST(Groups, AGroupWithoutPhotonsIsWarned) {
+  const Results r = run(grouped_room(), 1, 1);
+  ASSERT_EQ(r.groups[0].photons + r.groups[1].photons, 1u);
+  const std::string missing = r.groups[0].photons == 0 ? "left" : "right";
+  bool warned = false;
+  for (const std::string& w : r.warnings)
+    warned |= w.find("\"" + missing + "\" got no photon") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 // Decide runs judge the combined estimate: a requirement 20 % below the traced value passes
 // and stops the run early.
 TEST(Groups, DecideRunsJudgeTheCombinedEstimate) {
