@@ -134,3 +134,14 @@ def test_groups_from_the_scene_and_observer_glare_rescaled(room_scene):
     assert dimmed["ugr"] == pytest.approx(eye["ugr"] + 8 * math.log10(k), abs=1e-9)
     assert dimmed["background_luminance_cd_m2"] == pytest.approx(
         k * eye["background_luminance_cd_m2"], rel=1e-12)
+
+
+def test_contributions_from_the_scene_settings(room_scene):
+    doc = json.loads(room_scene.read_text())
+    doc.setdefault("settings", {})["contributions"] = True
+    scene = lightsolver.scene_from_json(json.dumps(doc), str(room_scene.parent))
+    assert scene.contributions
+    traced = lightsolver.solve(scene, photons=20000)
+    assert all("contributions" in t for t in traced["targets"])
+    scene.contributions = False
+    assert all("contributions" not in t for t in lightsolver.solve(scene, photons=20000)["targets"])
