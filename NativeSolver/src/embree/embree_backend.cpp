@@ -34,10 +34,38 @@ class EmbreeBackend final : public Backend {
   }
 
   void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed, TallyBlock& out) override {
+    const std::size_t bins = s_.bins.size();
+    if (out.bins.size() <= kSharedBlockTallies) {
+      trace_ranges(ranges, seed, true, out);
+      return;
+    }
+    // Many groups over many bins: each worker's block would hold every group's tallies (up to
+    // 1 GiB each); one group at a time, it holds that group's only. Same counts either way.
+    for (const GroupRange& r : ranges) {
+      TallyBlock part(bins);
+      trace_ranges({r}, seed, false, part);
+      for (std::size_t b = 0; b < bins; ++b) {
+        out.bins[r.group * bins + b].sum += part.bins[b].sum;
+        out.bins[r.group * bins + b].sum_sq += part.bins[b].sum_sq;
+      }
+      out.ray_segments += part.ray_segments;
+      out.capped_paths += part.capped_paths;
+      out.cut_paths += part.cut_paths;
+      out.retried_paths += part.retried_paths;
+    }
+  }
+
+ private:
+  // Above this many groups x bins (16 MiB a worker), groups are traced one at a time.
+  static constexpr std::size_t kSharedBlockTallies = std::size_t(1) << 20;
+
+  // Traces `ranges` into `out`: at group * bins + bin when `by_group`, else at bin.
+  void trace_ranges(const std::vector<GroupRange>& ranges, std::uint64_t seed, bool by_group,
+                    TallyBlock& out) const {
     // The ranges end to end: index k of [0, total) is photon k - starts[r] of range r.
     std::vector<std::uint64_t> starts{0};
     for (const GroupRange& r : ranges) starts.push_back(starts.back() + r.count);
-    const Photons photons{ranges, starts, seed};
+    const Photons photons{ranges, starts, seed, by_group};
     tbb::enumerable_thread_specific<TallyBlock> local([&] { return TallyBlock(out.bins.size()); });
     tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, starts.back(), 256),
                       [&](const tbb::blocked_range<std::uint64_t>& r) {
@@ -54,7 +82,6 @@ class EmbreeBackend final : public Backend {
     for (const TallyBlock& t : local) out.add(t);
   }
 
- private:
   // Paths in flight per worker. A hit's triangle record is, on large models, a DRAM miss that a
   // raw ray never pays; with several paths interleaved, the record is prefetched right after
   // the intersection and used only after the other lanes' rays have been traced, by when it has
@@ -68,6 +95,7 @@ class EmbreeBackend final : public Backend {
     const std::vector<GroupRange>& ranges;
     const std::vector<std::uint64_t>& starts;  // starts[r]: index of range r's first photon
     std::uint64_t seed;
+    bool by_group;  // tallies at group * bins + bin (else at bin: one group's block)
   };
 
   struct Lane {
@@ -115,7 +143,7 @@ class EmbreeBackend final : public Backend {
         std::upper_bound(p.starts.begin(), p.starts.end(), k) - p.starts.begin() - 1;
     const GroupRange& range = p.ranges[r];
     lane.rng = PathRng(p.seed, range.first + (k - p.starts[r]), range.group);
-    lane.tally_offset = std::size_t(range.group) * s_.bins.size();
+    lane.tally_offset = p.by_group ? std::size_t(range.group) * s_.bins.size() : 0;
     lane.ray = emit(s_.luminaires[pick_luminaire(s_.groups[range.group], lane.rng)], lane.rng);
     lane.bounce = 0;
     lane.active = true;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include "lightsolver/rescale.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -246,6 +247,33 @@ TEST(Groups, ResultsDoNotDependOnTheThreadCount) {
   const auto one = numbers(1);
   EXPECT_EQ(numbers(2), one);
   EXPECT_EQ(numbers(3), one);
+}
+
+// 20 groups over a 250 x 250 grid (1.25M tallies): Embree traces one group at a time, so each
+// worker holds one group's bins. Each group's cells add up to its grid exactly, and a group's
+// part is, bit for bit, that group traced as the only lit one for its own photon count.
+TEST(Groups, ManyGroupsOverManyBinsTraceOneGroupAtATime) {
+  Scene s;
+  for (int i = 0; i < 20; ++i) {
+    s.luminaires.push_back(
+        named(point_light({0.1 + 0.04 * i, 0.5, 1.0}, 100.0 + i), "l" + std::to_string(i), ""));
+  }
+  s.targets.push_back(grid("plane", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 250, 250));
+  const Results r = run(s, 100'000, 3);
+  for (std::size_t g = 0; g < r.groups.size(); ++g) {
+    const Contribution& c = r.targets[0].contributions[g];
+    std::uint64_t cells = 0;
+    for (const Tally& t : std::span(c.tallies).subspan(1)) cells += t.sum;
+    EXPECT_EQ(cells, c.tallies[0].sum) << r.groups[g].name;
+  }
+  Scene alone = s;
+  for (std::size_t i = 0; i < alone.luminaires.size(); ++i) {
+    if (i != 7) alone.luminaires[i].flux_lm = 0.0;  // group 7 keeps its index and stream
+  }
+  const Results a = run(alone, r.groups[7].photons, 3);
+  EXPECT_EQ(a.targets[0].estimate.hits, r.targets[0].contributions[7].estimate.hits);
+  EXPECT_EQ(a.targets[0].estimate.mean, r.targets[0].contributions[7].estimate.mean);
+  EXPECT_EQ(a.targets[0].cells[31'000].hits, r.targets[0].contributions[7].cells[31'000].hits);
 }
 
 // A scene whose luminaires share one group traces exactly as before groups: photon i of group 0
