@@ -53,7 +53,7 @@ uint deposits_flush() {
   uint largest = 0u;
   [[unroll]] for (uint i = 0u; i < kMaxDeposits; ++i) {
     if (i < dep_size) {
-      const uint bin = dep_key[i] - 1u;
+      const uint bin = pc.tally_offset + dep_key[i] - 1u;  // this group's tallies
       const uint64_t c = uint64_t(dep_count[i]);
       atomicAdd(tallies[2u * bin], c);
       atomicAdd(tallies[2u * bin + 1u], c * c);

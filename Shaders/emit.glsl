@@ -4,16 +4,18 @@
 
 #include "photometric.glsl"
 
-// upper_bound over the cumulative flux, on integers so the pick equals the CPU's double compare.
+// upper_bound over the group's cumulative flux, on integers so the pick equals the CPU's double
+// compare. The group's luminaires are luminaires[first .. first + count) (packed group by group).
 uint pick_luminaire() {
   const uint64_t u = rng_u53();  // always drawn: keeps the random stream aligned with the CPU
   if (!MANY_LUMINAIRES) return 0u;
-  uint lo = 0u, hi = pc.luminaire_count;
+  const uint end = pc.luminaire_first + pc.luminaire_count;
+  uint lo = pc.luminaire_first, hi = end;
   while (lo < hi) {
     const uint mid = (lo + hi) / 2u;
     if (u < cdf53[mid]) hi = mid; else lo = mid + 1u;
   }
-  return min(lo, pc.luminaire_count - 1u);
+  return min(lo, end - 1u);
 }
 
 float spot_profile(float theta, float half_beam, float half_field) {

@@ -32,9 +32,10 @@ uvec4 rng_ctr;
 uvec4 rng_block;
 uint rng_index;
 
-void rng_init(uint64_t seed, uint64_t path_id) {
+// `stream`: the luminaire group (counter word 3), PathRng's third argument.
+void rng_init(uint64_t seed, uint64_t path_id, uint stream) {
   rng_key = unpackUint2x32(seed);
-  rng_ctr = uvec4(unpackUint2x32(path_id), 0u, 0u);
+  rng_ctr = uvec4(unpackUint2x32(path_id), 0u, stream);
   rng_index = 4u;
 }
 

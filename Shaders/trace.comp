@@ -32,7 +32,7 @@ uint64_t g_capped = 0ul;
 
 // One pass over the path. Statistics are counted on the first pass only.
 void trace_path(uint64_t id, bool first_pass) {
-  rng_init(pc.seed, id);
+  rng_init(pc.seed, id, pc.group);
   vec3 o, d;
   emit(luminaires[pick_luminaire()], o, d);
   for (uint bounce = 0u;; ++bounce) {

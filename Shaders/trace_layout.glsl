@@ -130,6 +130,9 @@ layout(push_constant) uniform Push {
   uint retry;             // 1: trace the paths listed in Retry, one per workgroup
   uint probe_iterations;  // loop_limit_reached(): iterations of the probe loop ...
   uint probe_hash;        // ... and the hash they give when every one of them ran
+  uint group;             // the luminaire group: its photon stream (rng_init) ...
+  uint luminaire_first;   // ... its luminaires: [first, first + luminaire_count) ...
+  uint tally_offset;      // ... and its tallies: group * bins
   uint pad;
 } pc;
 

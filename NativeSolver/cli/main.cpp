@@ -23,8 +23,9 @@
 #include "lightsolver/solver.hpp"
 #include "optimize_command.hpp"
 #include "processes.hpp"
-#include "study_command.hpp"
 #include "report_command.hpp"
+#include "rescale_command.hpp"
+#include "study_command.hpp"
 
 namespace {
 
@@ -80,8 +81,9 @@ struct RunArgs {
   std::optional<double> confidence, accuracy, max_seconds;
   int threads = 0;
   bool quiet = false;
-  bool per_cell = false;  // --accuracy judged per grid cell
-  bool decide = false;  // --decide (false: the scene's settings.decide)
+  bool per_cell = false;       // --accuracy judged per grid cell
+  bool decide = false;         // --decide (false: the scene's settings.decide)
+  bool contributions = false;  // --contributions (false: the scene's settings.contributions)
 };
 
 lightsolver::SolveOptions options_from(const RunArgs& a) {
@@ -95,6 +97,7 @@ lightsolver::SolveOptions options_from(const RunArgs& a) {
   if (a.per_cell) opt.accuracy_per_cell = true;  // else the scene's settings.accuracy_per_cell
   opt.max_seconds = a.max_seconds;
   if (a.decide) opt.decide = true;
+  if (a.contributions) opt.contributions = true;
   opt.cancel = &g_interrupted;
   opt.processes = lightsolver::cli::processes();
   return opt;
@@ -283,6 +286,9 @@ int run_command_line(int argc, char** argv) {
                     "Trace until every requirement's verdict is pass or fail, within --photons "
                     "(else up to 1e10 photons) and --max-seconds (default 300); undecided ones "
                     "say what deciding them would cost");
+  run_cmd->add_flag("--contributions", ra.contributions,
+                    "Report each luminaire group's contribution per target and cell (what "
+                    "`lightsolver rescale` needs)");
   run_cmd->add_flag("--quiet,-q", ra.quiet, "Do not print the table");
 
   RunArgs ca;
@@ -316,6 +322,7 @@ int run_command_line(int argc, char** argv) {
 
   lightsolver::cli::add_optimize_command(app);  // runs from its own callback
   lightsolver::cli::add_study_command(app);     // runs from its own callback
+  lightsolver::cli::add_rescale_command(app);   // runs from its own callback
   lightsolver::cli::add_report_command(app);    // execs python3 -m lightsolver_report
   CLI11_PARSE(app, argc, argv);
   try {

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -14,6 +15,7 @@
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/glare.hpp"
 #include "lightsolver/photometry.hpp"
+#include "lightsolver/rescale.hpp"
 #include "lightsolver/scene_check.hpp"
 #include "lightsolver/mpi.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -202,12 +204,31 @@ py::dict results_dict(const Results& r) {
 
 namespace {
 
+// A results dict as JSON text: the layout without the numpy cell arrays results_dict() adds
+// beside it (rescale rebuilds them).
+std::string results_text(const py::dict& results) {
+  py::dict doc = results.attr("copy")();
+  if (doc.contains("targets")) {
+    py::list targets;
+    for (const py::handle t : doc["targets"]) {
+      py::dict target = t.attr("copy")();
+      for (const char* key : {"cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits"}) {
+        if (target.contains(key)) PyDict_DelItemString(target.ptr(), key);
+      }
+      targets.append(target);
+    }
+    doc["targets"] = targets;
+  }
+  return py::str(py::module_::import("json").attr("dumps")(doc));
+}
+
 py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
                   std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
                   const std::string& backend, py::object progress,
                   std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
                   std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell,
-                  std::optional<bool> decide, py::object comm) {
+                  std::optional<bool> decide, std::optional<bool> contributions,
+                  py::object comm) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
   // solve() validates the copy (and reports dropped triangles among the warnings).
   const Scene snapshot = scene;
@@ -221,6 +242,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   opt.max_seconds = max_seconds;
   opt.accuracy_per_cell = accuracy_per_cell;
   opt.decide = decide;
+  opt.contributions = contributions;
   // An mpi4py communicator: every process calls solve() alike and gets the same results.
   if (!comm.is_none()) {
     opt.processes = mpi::group_of_fortran_handle(comm.attr("py2f")().cast<std::int64_t>());
@@ -351,6 +373,10 @@ PYBIND11_MODULE(lightsolver, m) {
           },
           "Time limit of the tracing in seconds, or None")
       .def_property(
+          "contributions", [](const Scene& s) { return s.settings.contributions; },
+          [](Scene& s, bool v) { s.settings.contributions = v; },
+          "Report each luminaire group's contribution per target (settings.contributions)")
+      .def_property(
           "decide", [](const Scene& s) { return s.settings.decide; },
           [](Scene& s, bool v) { s.settings.decide = v; },
           "Trace until every requirement's verdict is decided (settings.decide)")
@@ -401,7 +427,8 @@ PYBIND11_MODULE(lightsolver, m) {
         py::arg("backend") = kAutoBackend, py::arg("progress") = py::none(),
         py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
         py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
-        py::arg("decide") = py::none(), py::arg("comm") = py::none(),
+        py::arg("decide") = py::none(), py::arg("contributions") = py::none(),
+        py::arg("comm") = py::none(),
         "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
         "progress(done, total) may return False to stop; the result is then marked partial. "
         "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean "
@@ -412,10 +439,24 @@ PYBIND11_MODULE(lightsolver, m) {
         "stop_reason says which limit ended the run: photons, accuracy, time, cancelled or "
         "decided. decide=True traces until every requirement's verdict is pass or fail "
         "(default: the scene's settings.decide); targets with requirements carry verdicts "
-        "either way. comm: an mpi4py communicator (e.g. MPI.COMM_WORLD under mpirun): every "
-        "process calls solve() with the same arguments, each traces a slice of every batch and "
-        "all get the results a single process would give, bit for bit (docs/cluster.md).");
+        "either way. contributions=True adds each luminaire group's part per target and cell "
+        "(default: the scene's settings.contributions), which rescale() needs. comm: an mpi4py "
+        "communicator (e.g. MPI.COMM_WORLD under mpirun): every process calls solve() with the "
+        "same arguments, each traces a slice of every batch and all get the results a single "
+        "process would give, bit for bit (docs/cluster.md).");
   m.def("mpi_built", &mpi::built, "True when this build can share runs among MPI processes");
+  m.def(
+      "rescale",
+      [](const py::dict& results, const std::map<std::string, double>& factors) {
+        return results_dict(
+            rescale_results(results_text(results), GroupFactors(factors.begin(), factors.end())));
+      },
+      py::arg("results"), py::arg("factors"),
+      "Results of a run traced with contributions=True with each named luminaire group's flux "
+      "multiplied by its factor ({'hall': 0.5}; 0 switches a group off): estimates, intervals, "
+      "grid statistics and verdicts recomputed from the per-group tallies, no tracing; "
+      "'rescaled' records the factors. ValueError (InputError) for an unknown group, a negative "
+      "or non-finite factor, or results without contributions.");
   m.def(
       "check_scene", [](const Scene& s) { return check_dict(check_scene(s)); }, py::arg("scene"),
       "Check a Scene as a run would (validate, then the warnings a run gives before tracing) "

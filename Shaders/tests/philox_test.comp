@@ -20,7 +20,7 @@ layout(push_constant) uniform Push {
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.path_count) return;
-  rng_init(pc.seed, pc.first_path + uint64_t(i));
+  rng_init(pc.seed, pc.first_path + uint64_t(i), 0u);
   const uint base = i * (pc.words_per_path + 4u);
   for (uint k = 0u; k < pc.words_per_path; ++k) words[base + k] = rng_u32();
   words[base + pc.words_per_path] = floatBitsToUint(rng_uniform());

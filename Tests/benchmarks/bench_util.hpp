@@ -16,7 +16,7 @@ inline void measure_tracing(benchmark::State& state, detail::Backend& backend, s
   std::uint64_t photons = 0, segments = 0, seed = 1;
   for (auto _ : state) {
     detail::TallyBlock tallies(bins);
-    backend.trace(0, n, seed++, tallies);
+    backend.trace({{0, 0, n}}, seed++, tallies);  // the first group's photons
     photons += n;
     segments += tallies.ray_segments;
   }

@@ -110,7 +110,7 @@ std::vector<RTCRay> record_photon_segments(const detail::PreparedScene& s,
   rtcInitIntersectContext(&ctx);
   for (std::uint64_t id = 0; id < n; ++id) {
     PathRng rng(5, id);
-    detail::EmittedRay ray = detail::emit(s.luminaires[detail::pick_luminaire(s, rng)], rng);
+    detail::EmittedRay ray = detail::emit(s.luminaires[detail::pick_luminaire(s.groups[0], rng)], rng);
     for (std::uint32_t bounce = 0;; ++bounce) {
       RTCRayHit rh{};
       rh.ray.org_x = ray.origin.x, rh.ray.org_y = ray.origin.y, rh.ray.org_z = ray.origin.z;

@@ -15,11 +15,13 @@ namespace lightsolver {
 class PathRng {
  public:
   /// \param seed     scene/run seed (64 bit)
-  /// \param path_id  photon index in [0, N)
-  PathRng(std::uint64_t seed, std::uint64_t path_id) {
+  /// \param path_id  photon index in [0, N) within its stream
+  /// \param stream   luminaire group: each group has its own photon stream (counter word 3);
+  ///                 stream 0 is the stream of a scene with one group
+  PathRng(std::uint64_t seed, std::uint64_t path_id, std::uint32_t stream = 0) {
     key_ = {{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)}};
     ctr_ = {{static_cast<std::uint32_t>(path_id), static_cast<std::uint32_t>(path_id >> 32), 0u,
-             0u}};
+             stream}};
   }
 
   /// Next uniform float in [0, 1): 24 random bits, never 1.0f.

@@ -83,6 +83,12 @@ struct Luminaire {
   /// Electrical power (W), any type: read and range-checked, ignored by tracing (the report's
   /// luminaire schedule and W/m2 use it). Empty when not given.
   std::optional<double> power_w;
+  /// Control group (scene key `group`): luminaires of one group are dimmed together and their
+  /// light is tallied apart from the other groups' (docs/statistics.md, "Groups"). Empty: the
+  /// luminaire's own name, so each luminaire is its own group.
+  std::string group;
+  /// The group this luminaire belongs to: `group`, or its own name when that is empty.
+  const std::string& group_name() const { return group.empty() ? name : group; }
 };
 
 /// Where illuminance is reported. An observer is an eye (docs/glare.md): the tracer tallies the
@@ -123,6 +129,9 @@ struct Settings {
   bool accuracy_per_cell = false;
   /// Trace until every requirement's verdict is decided (SolveOptions::decide).
   bool decide = false;
+  /// Results carry each luminaire group's contribution per target and cell (`contributions`),
+  /// which `rescale` needs (SolveOptions::contributions).
+  bool contributions = false;
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

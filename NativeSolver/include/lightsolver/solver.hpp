@@ -94,6 +94,9 @@ struct SolveOptions {
   /// (`photons`, else kAccuracyPhotonBudget within the time limit). Needs a target with
   /// requirements; not together with `target_accuracy`.
   std::optional<bool> decide;
+  /// Report each luminaire group's contribution per target and cell (TargetResult::
+  /// contributions, with the tallies `rescale` needs). Default: scene.settings.contributions.
+  std::optional<bool> contributions;
   const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current batch
   /// Called once, when the first batches give a tracing rate: what the run is expected to
   /// cost (the CLI prints it for runs longer than a minute).
@@ -155,6 +158,15 @@ struct ObserverGridGlare {
 
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
 /// grid / its area) and `cells` holds every cell, row by row (index = iv * nu + iu).
+/// One luminaire group's part of a target (lux at its own flux, times its dimming factor in a
+/// rescaled result), with the integer tallies a rescale recomputes every interval from.
+struct Contribution {
+  std::string group;
+  Estimate estimate;
+  std::vector<Estimate> cells;  ///< grids: per cell
+  std::vector<Tally> tallies;   ///< the target's bins: whole target, then its cells
+};
+
 struct TargetResult {
   std::string name;
   std::string type;  ///< the scene file's target type ("surface", "grid", "observer", ...)
@@ -176,6 +188,16 @@ struct TargetResult {
   std::optional<GridIntervals> intervals;
   std::vector<Verdict> verdicts;  ///< one per requirement, in the order em, u0, emin, ud, ugr
   VerdictKind verdict = VerdictKind::Undecided;  ///< overall; meaningful with verdicts only
+  /// Per luminaire group, in the order of Results::groups, when contributions were asked for.
+  std::vector<Contribution> contributions;
+};
+
+/// A luminaire group: its own photon stream, traced apart (docs/statistics.md, "Groups").
+struct GroupResult {
+  std::string name;
+  double flux_lm = 0.0;       ///< the group's flux (times its dimming factor in a rescaled result)
+  std::uint64_t photons = 0;  ///< photons traced from this group
+  std::vector<std::string> luminaires;
 };
 
 /// An effect the tracer left out because the scene does not need it, and why ("no glass").
@@ -218,6 +240,10 @@ struct Results {
   bool judged = false;
   bool decide = false;  ///< the run traced until decided (SolveOptions::decide)
   VerdictKind verdict = VerdictKind::Undecided;  ///< overall over the judged targets
+  std::vector<GroupResult> groups;  ///< every luminaire group, in the order of first appearance
+  bool contributions = false;       ///< targets carry their per-group contributions
+  /// A result of `rescale`: the dimming factor of every group (1 where none was given).
+  std::vector<std::pair<std::string, double>> rescaled;
 };
 
 /// Runs the photon tracer. Deterministic: same scene, seed and photons give bit-identical

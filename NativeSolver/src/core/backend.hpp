@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/groups.hpp"
 #include "core/prepared_scene.hpp"
 #include "lightsolver/statistics.hpp"
 
@@ -37,9 +38,11 @@ class Backend {
  public:
   virtual ~Backend() = default;
   virtual std::string name() const = 0;
-  /// Traces photon paths [first, first + count) with `seed`, adding into `out`
-  /// (out.bins.size() == scene bins). Runs in the caller's TBB arena.
-  virtual void trace(std::uint64_t first, std::uint64_t count, std::uint64_t seed,
+  /// Traces, for each range, photons [first, first + count) of its group's stream with
+  /// `seed` (PathRng(seed, i, group)), emitted from that group's luminaires, adding into
+  /// `out`: group g's bin b at g * scene bins + b (out.bins.size() == groups x scene bins).
+  /// Runs in the caller's TBB arena.
+  virtual void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed,
                      TallyBlock& out) = 0;
   /// PreparedScene::luminaires changed (backends holding copies re-upload them).
   virtual void luminaires_changed() {}

@@ -72,10 +72,11 @@ double worst_cell_relative_half_width(const Scene& scene, const PreparedScene& s
                                       const TallyBlock& t, std::uint64_t photons,
                                       double confidence) {
   double worst = 0.0;
+  const GroupedTallies tallies = grouped_tallies(s, t.bins, photons);
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
     const std::uint32_t bin = s.target_bin[i];
     const auto estimate = [&](std::uint32_t b) {
-      return make_estimate(t.bins[b], photons, s.total_flux_lm / s.bins[b].area_m2, confidence);
+      return tallies.estimate(b, s.bins[b].area_m2, confidence);
     };
     const Estimate whole = estimate(bin);
     if (whole.hits == 0 || !(whole.mean > 0.0)) return kInf;

@@ -4,10 +4,10 @@
 
 namespace lightsolver::detail {
 
-std::size_t pick_luminaire(const PreparedScene& s, PathRng& rng) {
+std::size_t pick_luminaire(const PreparedGroup& g, PathRng& rng) {
   const double u = rng.uniform_double();
-  const auto it = std::upper_bound(s.luminaire_cdf.begin(), s.luminaire_cdf.end(), u);
-  return std::min<std::size_t>(it - s.luminaire_cdf.begin(), s.luminaire_cdf.size() - 1);
+  const auto it = std::upper_bound(g.cdf.begin(), g.cdf.end(), u);
+  return g.luminaires[std::min<std::size_t>(it - g.cdf.begin(), g.cdf.size() - 1)];
 }
 
 }  // namespace lightsolver::detail

@@ -7,8 +7,9 @@
 
 namespace lightsolver::detail {
 
-// Picks a luminaire with probability proportional to its flux.
-std::size_t pick_luminaire(const PreparedScene& s, PathRng& rng);
+// Picks one of the group's luminaires with probability proportional to its flux (one draw,
+// whatever the group's size, so a group's stream does not depend on how many it holds).
+std::size_t pick_luminaire(const PreparedGroup& g, PathRng& rng);
 
 inline EmittedRay emit(const PreparedLuminaire& l, PathRng& rng) { return l.emit(l, rng); }
 

@@ -23,6 +23,7 @@ class JsonNode {
   const std::string& path() const { return path_; }
   const std::string& file() const { return file_; }
   bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
+  bool is_null() const { return j_.is_null(); }
   JsonNode at(const char* key) const;                    // required member
   JsonNode operator[](std::size_t i) const;              // array element
   std::size_t array_size() const;                        // fails unless an array

@@ -269,10 +269,15 @@ const std::array<LuminaireType, 5> kTypes = {{
 
 void read_luminaire_keys(const LuminaireType& row, const JsonNode& n, Luminaire& l,
                          const std::string& base_dir) {
-  if (!n.has("power_w")) return row.read(n, l, base_dir);
-  l.power_w = n.at("power_w").number();  // range: validate()
+  if (!n.has("power_w") && !n.has("group")) return row.read(n, l, base_dir);
+  if (n.has("power_w")) l.power_w = n.at("power_w").number();  // range: validate()
+  if (n.has("group")) {
+    l.group = n.at("group").string();
+    if (l.group.empty()) n.at("group").fail("must be a non-empty name (leave it out: own group)");
+  }
   nlohmann::json own = n.object();
   own.erase("power_w");
+  own.erase("group");
   row.read(JsonNode(own, n.path(), n.file()), l, base_dir);
 }
 

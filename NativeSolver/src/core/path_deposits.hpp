@@ -22,10 +22,11 @@ class PathDeposits {
     entries_.push_back({bin, 1});  // paths touch few bins: a linear scan beats a hash map
   }
 
-  void flush(std::vector<Tally>& bins) {
+  // `offset`: the path's group's first tally (group * scene bins).
+  void flush(std::vector<Tally>& bins, std::size_t offset = 0) {
     for (const auto& e : entries_) {
-      bins[e.bin].sum += e.count;
-      bins[e.bin].sum_sq += std::uint64_t(e.count) * e.count;
+      bins[offset + e.bin].sum += e.count;
+      bins[offset + e.bin].sum_sq += std::uint64_t(e.count) * e.count;
     }
     entries_.clear();
   }

@@ -4,7 +4,9 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <limits>
+#include <unordered_map>
 
+#include "core/groups.hpp"
 #include "core/luminaire_types.hpp"
 #include "core/target_types.hpp"
 
@@ -106,18 +108,29 @@ PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movabl
 
 void prepare_luminaires(const Scene& scene, PreparedScene& out) {
   out.luminaires.clear();
-  out.luminaire_cdf.clear();
-  double cumulative = 0.0;
-  for (const auto& l : scene.luminaires) {
+  out.groups.clear();
+  double total = 0.0;
+  std::unordered_map<std::string, std::size_t> group_of;  // name -> index in out.groups
+  for (std::size_t i = 0; i < scene.luminaires.size(); ++i) {
+    const Luminaire& l = scene.luminaires[i];
     out.luminaires.push_back(prepare_luminaire(l, out.origin));
-    cumulative += l.flux_lm * photometric_tilt_factor(l);  // a lamp's output at its tilt
-    out.luminaire_cdf.push_back(cumulative);
+    const double flux = l.flux_lm * photometric_tilt_factor(l);  // a lamp's output at its tilt
+    total += flux;
+    const auto [at, added] = group_of.try_emplace(l.group_name(), out.groups.size());
+    if (added) out.groups.emplace_back().name = l.group_name();
+    PreparedGroup* g = &out.groups[at->second];
+    g->flux_lm += flux;
+    g->luminaires.push_back(static_cast<std::uint32_t>(i));
+    g->cdf.push_back(g->flux_lm);
   }
-  out.total_flux_lm = cumulative;
-  if (cumulative > 0.0) {
-    for (auto& c : out.luminaire_cdf) c /= cumulative;
-    out.luminaire_cdf.back() = 1.0;
+  out.total_flux_lm = total;
+  for (PreparedGroup& g : out.groups) {
+    if (g.flux_lm > 0.0) {
+      for (auto& c : g.cdf) c /= g.flux_lm;
+      g.cdf.back() = 1.0;
+    }
   }
+  set_photon_shares(out.groups);
 }
 
 }  // namespace lightsolver::detail

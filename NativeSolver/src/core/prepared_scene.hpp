@@ -56,6 +56,15 @@ struct PreparedLuminaire {
   vec3 c0{1, 0, 0};                   // photometric frame: gamma=0 along axis, C0 along c0
 };
 
+// A luminaire group (Luminaire::group_name()): its own photon stream and its own tallies.
+struct PreparedGroup {
+  std::string name;
+  double flux_lm = 0.0;                   // the group's emitted flux
+  std::vector<std::uint32_t> luminaires;  // indices into PreparedScene::luminaires, scene order
+  std::vector<double> cdf;                // cumulative flux fractions within the group, last = 1
+  double share = 0.0;  // fraction of a run's photons traced from it (groups.hpp, photon_shares)
+};
+
 struct BinInfo {
   double area_m2 = 0.0;
 };
@@ -66,7 +75,7 @@ struct PreparedScene {
   std::vector<PreparedMesh> meshes;
   std::vector<PreparedGrid> grids;
   std::vector<PreparedLuminaire> luminaires;
-  std::vector<double> luminaire_cdf;  // cumulative flux fractions, last = 1
+  std::vector<PreparedGroup> groups;  // in the order of first appearance in the scene
   std::vector<BinInfo> bins;
   std::vector<std::uint32_t> target_bin;  // first bin of each Scene target
   // Per Scene target, the bins an accuracy goal judges: its whole bin (each eye's for an
@@ -85,7 +94,8 @@ struct PreparedScene {
 // and the hidden one moved behind the target (coincident.hpp); movable meshes are not checked.
 PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movable = {});
 
-// Re-derives the luminaires and their flux CDF after Scene::luminaires changed.
+// Re-derives the luminaires, their groups and each group's flux CDF after Scene::luminaires
+// changed.
 void prepare_luminaires(const Scene& scene, PreparedScene& out);
 
 }  // namespace lightsolver::detail

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/effects_io.hpp"
+#include "core/groups_io.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -156,6 +157,7 @@ nlohmann::json target_json(const TargetResult& t) {
   if (t.glare) add_glare(*t.glare, j);
   if (t.observer_grid) j["observer_grid"] = observer_grid_json(*t.observer_grid);
   add_compliance(t, j);
+  detail::add_contributions_json(t, j);
   if (!t.is_grid) return j;
   j["cells_uv"] = {t.nu, t.nv};
   j["min_lux"] = t.min_lux;
@@ -221,6 +223,7 @@ std::string results_to_json(const Results& r) {
   nlohmann::json targets = nlohmann::json::array();
   for (const auto& t : r.targets) targets.push_back(target_json(t));
   j["targets"] = std::move(targets);
+  detail::add_groups_json(r, j);
   return j.dump(2) + "\n";
 }
 

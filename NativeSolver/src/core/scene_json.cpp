@@ -169,7 +169,7 @@ Target read_target(const JsonNode& n, const Scene& scene, const std::string& bas
 
 Settings read_settings(const JsonNode& n) {
   n.require_object({"photons", "max_bounces", "seed", "confidence", "max_seconds",
-                    "accuracy_per_cell", "decide"});
+                    "accuracy_per_cell", "decide", "contributions"});
   Settings s;
   if (n.has("photons")) s.photons = n.at("photons").unsigned_integer();
   if (n.has("max_bounces")) {
@@ -185,6 +185,7 @@ Settings read_settings(const JsonNode& n) {
     if (!(*s.max_seconds > 0.0)) n.at("max_seconds").fail("must be > 0 (seconds)");
   }
   s.accuracy_per_cell = n.boolean_or("accuracy_per_cell", s.accuracy_per_cell);
+  s.contributions = n.boolean_or("contributions", s.contributions);
   return s;
 }
 

@@ -18,8 +18,10 @@
 #include "core/backend.hpp"
 #include "core/cell_accuracy.hpp"
 #include "core/decide.hpp"
+#include "core/groups.hpp"
 #include "core/shared_tracing.hpp"
 #include "core/target_reach.hpp"
+#include "core/target_results.hpp"
 #include "core/target_types.hpp"
 
 namespace lightsolver {
@@ -70,9 +72,10 @@ std::uint64_t next_batch(std::uint64_t done, std::uint64_t total, bool accuracy_
 double worst_relative_half_width(const detail::PreparedScene& s, const detail::TallyBlock& t,
                                  std::uint64_t photons, double confidence) {
   double worst = 0.0;
+  const detail::GroupedTallies tallies = detail::grouped_tallies(s, t.bins, photons);
   for (const auto& bins : s.goal_bins) {
     for (const std::uint32_t bin : bins) {
-      const Estimate e = make_estimate(t.bins[bin], photons, 1.0, confidence);
+      const Estimate e = tallies.estimate(bin, s.bins[bin].area_m2, confidence);
       if (e.hits == 0 || !(e.mean > 0.0)) return std::numeric_limits<double>::infinity();
       worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);
     }
@@ -144,20 +147,36 @@ std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double 
   return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
 }
 
-// A target's result: the common fields here, the type's own in its row (target_types.cpp).
-TargetResult make_target(const Scene& scene, const Target& t, const detail::PreparedScene& s,
-                         const detail::TallyBlock& tallies, std::uint32_t bin,
-                         std::uint64_t photons, double confidence, bool judged) {
-  const detail::TargetType& row = detail::target_type(t.type);
-  const detail::TargetTallies at{scene, t, s, tallies, bin, photons, confidence, judged};
-  TargetResult r;
-  r.name = t.name;
-  r.type = row.name;
-  r.requirements = t.requirements;
-  r.area_m2 = s.bins[bin].area_m2;
-  r.estimate = at.estimate(bin);
-  row.result(at, r);
+// Target `i` of the scene after the run's first `photons` photons: estimates from the grouped
+// tallies, the type's own part from its row (target_results.cpp, target_types.cpp), and each
+// group's part when asked for (not for observer grids: their points are not one estimate).
+TargetResult target_at(const Scene& scene, std::size_t i, const detail::PreparedScene& s,
+                       const detail::TallyBlock& t, std::uint64_t photons, double confidence,
+                       bool judged, bool contributions) {
+  const detail::GroupedTallies tallies = detail::grouped_tallies(s, t.bins, photons);
+  const Target& target = scene.targets[i];
+  const std::uint32_t bin = s.target_bin[i];
+  TargetResult r =
+      detail::make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
+  if (contributions && target.type != Target::Type::ObserverGrid) {
+    std::vector<std::string> names;
+    for (const auto& g : s.groups) names.push_back(g.name);
+    detail::add_contributions(r, s.bins, tallies, bin, confidence, names);
+  }
   return r;
+}
+
+// Every group: its name, flux, photons traced and luminaires.
+std::vector<GroupResult> group_results(const Scene& scene, const detail::PreparedScene& s,
+                                       std::uint64_t photons) {
+  std::vector<GroupResult> out;
+  const std::vector<std::uint64_t> traced = detail::group_photons(s.groups, photons);
+  for (const detail::PreparedGroup& g : s.groups) {
+    GroupResult r{g.name, g.flux_lm, traced[out.size()], {}};
+    for (const std::uint32_t l : g.luminaires) r.luminaires.push_back(scene.luminaires[l].name);
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 void add_warnings(const Scene& scene, Results& r) {
@@ -233,8 +252,8 @@ class CheckpointTracer {
         c.seconds = seconds_since(start_);
         c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
         for (std::size_t i = 0; i < scene_.targets.size(); ++i) {
-          c.targets.push_back(make_target(scene_, scene_.targets[i], s_, tallies, s_.target_bin[i],
-                                          at, r.confidence, r.judged));
+          c.targets.push_back(
+              target_at(scene_, i, s_, tallies, at, r.confidence, r.judged, r.contributions));
         }
         o_.checkpoint(c);
       }
@@ -385,9 +404,13 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   state_->pending_update_seconds = 0.0;
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
-  detail::TallyBlock tallies(prepared.bins.size());
+  r.contributions = options.contributions.value_or(scene.settings.contributions);
+  // Each group has its own tallies (groups x bins), so their estimates are independent.
+  detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
+  detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size());
   if (resume && state_->kept && state_->kept_seed == r.seed &&
-      state_->kept_photons <= r.photons_requested) {
+      state_->kept_photons <= r.photons_requested &&
+      state_->kept->bins.size() == tallies.bins.size()) {
     tallies = *state_->kept;  // photons [0, kept_photons) are already traced
     r.photons = state_->kept_photons;
   }
@@ -395,8 +418,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   auto targets_at = [&](std::uint64_t photons, double confidence) {
     std::vector<TargetResult> targets;
     for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-      targets.push_back(make_target(scene, scene.targets[i], prepared, tallies,
-                                    prepared.target_bin[i], photons, confidence, r.judged));
+      targets.push_back(
+          target_at(scene, i, prepared, tallies, photons, confidence, r.judged, r.contributions));
     }
     return targets;
   };
@@ -409,7 +432,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     const auto tracing_start = Clock::now();
     bool forecast_due = static_cast<bool>(options.forecast);
     CheckpointTracer tracer(options, scene, prepared, tracing_start);
-    detail::SharedTracing shared(options.processes.get(), prepared.bins.size());
+    detail::SharedTracing shared(options.processes.get(), tallies.bins.size());
     bool progress_stop = false;  // the progress callback asked to stop (rank 0's counts)
     while (r.photons < r.photons_requested) {
       using detail::LoopStop;
@@ -431,8 +454,9 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
       tracer.trace(r.photons, n, r, tallies, [&](std::uint64_t first, std::uint64_t count) {
         shared.trace(first, count, tallies,
                      [&](std::uint64_t from, std::uint64_t photons, detail::TallyBlock& into) {
-                       arena.execute(
-                           [&] { state_->backend->trace(from, photons, r.seed, into); });
+                       // Photons [from, from + photons) of the run are each group's share.
+                       const auto ranges = detail::group_ranges(prepared.groups, from, photons);
+                       arena.execute([&] { state_->backend->trace(ranges, r.seed, into); });
                      });
       });
       r.photons += n;
@@ -476,6 +500,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
   r.targets = targets_at(r.photons, r.confidence);
+  r.groups = group_results(scene, prepared, prepared.total_flux_lm > 0.0 ? r.photons : 0);
   state_->kept = std::move(tallies);  // what refine() continues from
   state_->kept_photons = r.photons;
   state_->kept_seed = r.seed;
@@ -484,6 +509,12 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   add_warnings(scene, r);
   add_stop_warnings(r);
   detail::report_effects(scene, prepared, r);  // effects simulated/skipped, dark targets
+  for (const GroupResult& g : r.groups) {
+    if (g.flux_lm > 0.0 && g.photons == 0 && r.photons > 0) {
+      r.warnings.push_back("luminaire group \"" + g.name +
+                           "\" got no photon (fewer photons than groups): its light is missing");
+    }
+  }
   r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);

@@ -18,13 +18,11 @@
 namespace lightsolver::detail {
 
 Estimate TargetTallies::estimate(std::uint32_t b) const {
-  return make_estimate(tallies.bins[b], photons, prepared.total_flux_lm / prepared.bins[b].area_m2,
-                       confidence);
+  return tallies.estimate(b, bins[b].area_m2, confidence);
 }
 
 Estimate TargetTallies::estimate_z(std::uint32_t b, double z) const {
-  return make_estimate_z(tallies.bins[b], photons,
-                         prepared.total_flux_lm / prepared.bins[b].area_m2, z);
+  return tallies.estimate_z(b, bins[b].area_m2, z);
 }
 
 namespace {
@@ -252,7 +250,7 @@ void prepare_observer(const Target& t, const std::vector<double>&, PreparedScene
 
 void observer_result(const TargetTallies& tt, TargetResult& r) {
   r.is_observer = true;
-  r.glare = observer_glare(tt.target, tt.scene.luminaires, r.estimate);
+  if (tt.luminaires != nullptr) r.glare = observer_glare(tt.target, *tt.luminaires, r.estimate);
 }
 
 // --- observer grid: eyes x lines of sight, and the largest UGR ------------------------------
@@ -370,8 +368,10 @@ void observer_grid_result(const TargetTallies& tt, TargetResult& r) {
   const ObserverGridTallies points{
       [&tt](std::size_t k) { return tt.estimate(tt.bin + 2 * std::uint32_t(k)); },
       [&tt](std::size_t k, double z) { return tt.estimate_z(tt.bin + 2 * std::uint32_t(k), z); }};
-  ObserverGridOutcome o =
-      observer_grid_glare(tt.target, tt.scene.luminaires, tt.confidence, points);
+  if (tt.luminaires == nullptr) {
+    throw std::logic_error("an observer grid's result needs the scene's luminaires");
+  }
+  ObserverGridOutcome o = observer_grid_glare(tt.target, *tt.luminaires, tt.confidence, points);
   r.estimate = points.estimate(o.estimate_point);
   r.glare = std::move(o.max);
   r.observer_grid = std::move(o.grid);

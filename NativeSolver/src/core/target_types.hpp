@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/backend.hpp"
+#include "core/groups.hpp"
 #include "core/prepared_scene.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/solver.hpp"
@@ -59,14 +60,15 @@ enum RequirementKey : unsigned {
 
 /// A target's tallies at the end (or a checkpoint) of a run, for its result hook.
 struct TargetTallies {
-  const Scene& scene;
   const Target& target;
-  const PreparedScene& prepared;
-  const TallyBlock& tallies;
-  std::uint32_t bin;  ///< the target's first bin (PreparedScene::target_bin)
-  std::uint64_t photons;
+  const std::vector<BinInfo>& bins;  ///< every bin's area
+  const GroupedTallies& tallies;     ///< the run's tallies, its groups combined (groups.hpp)
+  std::uint32_t bin;                 ///< the target's first bin (PreparedScene::target_bin)
   double confidence;
   bool judged;  ///< the run judges requirements (grids then need their intervals)
+  /// The scene's luminaires, for glare; null when results are rebuilt without the scene
+  /// (rescale.cpp rescales an observer's glare itself and refuses observer grids).
+  const std::vector<Luminaire>* luminaires;
 
   /// Bin `b`'s illuminance (lux) at the run's confidence, or at the critical value `z`.
   Estimate estimate(std::uint32_t b) const;

@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <glm/mat3x3.hpp>
@@ -43,10 +44,41 @@ class EmbreeBackend final : public Backend {
     embree_.set_transform(mesh, transform);
   }
 
-  void trace(std::uint64_t first, std::uint64_t count, std::uint64_t seed,
-             TallyBlock& out) override {
+  void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed, TallyBlock& out) override {
+    const std::size_t bins = s_.bins.size();
+    if (out.bins.size() <= kSharedBlockTallies) {
+      trace_ranges(ranges, seed, true, out);
+      return;
+    }
+    // Many groups over many bins: each worker's block would hold every group's tallies (up to
+    // 1 GiB each); one group at a time, it holds that group's only. Same counts either way.
+    for (const GroupRange& r : ranges) {
+      TallyBlock part(bins);
+      trace_ranges({r}, seed, false, part);
+      for (std::size_t b = 0; b < bins; ++b) {
+        out.bins[r.group * bins + b].sum += part.bins[b].sum;
+        out.bins[r.group * bins + b].sum_sq += part.bins[b].sum_sq;
+      }
+      out.ray_segments += part.ray_segments;
+      out.capped_paths += part.capped_paths;
+      out.cut_paths += part.cut_paths;
+      out.retried_paths += part.retried_paths;
+    }
+  }
+
+ private:
+  // Above this many groups x bins (16 MiB a worker), groups are traced one at a time.
+  static constexpr std::size_t kSharedBlockTallies = std::size_t(1) << 20;
+
+  // Traces `ranges` into `out`: at group * bins + bin when `by_group`, else at bin.
+  void trace_ranges(const std::vector<GroupRange>& ranges, std::uint64_t seed, bool by_group,
+                    TallyBlock& out) const {
+    // The ranges end to end: index k of [0, total) is photon k - starts[r] of range r.
+    std::vector<std::uint64_t> starts{0};
+    for (const GroupRange& r : ranges) starts.push_back(starts.back() + r.count);
+    const Photons photons{ranges, starts, seed, by_group};
     tbb::enumerable_thread_specific<TallyBlock> local([&] { return TallyBlock(out.bins.size()); });
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(first, first + count, 256),
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, starts.back(), 256),
                       [&](const tbb::blocked_range<std::uint64_t>& r) {
                         // Embree wants denormals flushed in every tracing thread. TBB also runs
                         // chunks on the caller's thread (Python's, say): its modes come back.
@@ -55,7 +87,7 @@ class EmbreeBackend final : public Backend {
                         _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
                         _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
                         with_kernel(kernel_, [&]<KernelFeatures F>() {
-                          trace_range<F>(r.begin(), r.end(), seed, local.local());
+                          trace_range<F>(r.begin(), r.end(), photons, local.local());
                         });
                         _MM_SET_FLUSH_ZERO_MODE(ftz);
                         _MM_SET_DENORMALS_ZERO_MODE(daz);
@@ -63,7 +95,6 @@ class EmbreeBackend final : public Backend {
     for (const TallyBlock& t : local) out.add(t);
   }
 
- private:
   // Paths in flight per worker. A hit's triangle record is, on large models, a DRAM miss that a
   // raw ray never pays; with several paths interleaved, the record is prefetched right after
   // the intersection and used only after the other lanes' rays have been traced, by when it has
@@ -72,8 +103,17 @@ class EmbreeBackend final : public Backend {
   // 1M-triangle benchmark (+10 % over one lane; two and eight were no better).
   static constexpr int kLanes = 4;
 
+  // Which photon of which group index k of a trace() call is.
+  struct Photons {
+    const std::vector<GroupRange>& ranges;
+    const std::vector<std::uint64_t>& starts;  // starts[r]: index of range r's first photon
+    std::uint64_t seed;
+    bool by_group;  // tallies at group * bins + bin (else at bin: one group's block)
+  };
+
   struct Lane {
     PathRng rng{0, 0};
+    std::size_t tally_offset = 0;  // the path's group's first tally
     EmittedRay ray;
     std::uint32_t bounce = 0;
     RTCRayHit rh;
@@ -82,7 +122,8 @@ class EmbreeBackend final : public Backend {
   };
 
   template <KernelFeatures F>
-  void trace_range(std::uint64_t next, std::uint64_t end, std::uint64_t seed, TallyBlock& t) const {
+  void trace_range(std::uint64_t next, std::uint64_t end, const Photons& seed,
+                   TallyBlock& t) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -98,7 +139,7 @@ class EmbreeBackend final : public Backend {
       for (Lane& lane : lanes) {
         if (!lane.active) continue;
         if (!continue_path<F>(lane, t)) {
-          lane.deposits.flush(t.bins);
+          lane.deposits.flush(t.bins, lane.tally_offset);
           if (next == end) {
             lane.active = false;
             --active;
@@ -111,9 +152,13 @@ class EmbreeBackend final : public Backend {
     }
   }
 
-  void start_path(Lane& lane, std::uint64_t id, std::uint64_t seed) const {
-    lane.rng = PathRng(seed, id);
-    lane.ray = emit(s_.luminaires[pick_luminaire(s_, lane.rng)], lane.rng);
+  void start_path(Lane& lane, std::uint64_t k, const Photons& p) const {
+    const std::size_t r =
+        std::upper_bound(p.starts.begin(), p.starts.end(), k) - p.starts.begin() - 1;
+    const GroupRange& range = p.ranges[r];
+    lane.rng = PathRng(p.seed, range.first + (k - p.starts[r]), range.group);
+    lane.tally_offset = p.by_group ? std::size_t(range.group) * s_.bins.size() : 0;
+    lane.ray = emit(s_.luminaires[pick_luminaire(s_.groups[range.group], lane.rng)], lane.rng);
     lane.bounce = 0;
     lane.active = true;
   }

@@ -106,13 +106,16 @@ struct TracePush {
   std::uint32_t retry;             // 1: trace the paths queued in the retry list, one per group
   std::uint32_t probe_iterations;  // lavapipe's loop limit probe (trace.comp)
   std::uint32_t probe_hash;
+  std::uint32_t group;            // luminaire group: photon stream, luminaires, tallies
+  std::uint32_t luminaire_first;  // the group's luminaires: [first, first + luminaire_count)
+  std::uint32_t tally_offset;     // group * bins
   std::uint32_t pad;
 };
 
 static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
 static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
-static_assert(sizeof(TracePush) == 56);
+static_assert(sizeof(TracePush) == 64);
 
 /// Specialisation constant ids of trace.comp; the numbers come from Shaders/trace_bindings.h.
 enum SpecId : std::uint32_t {

@@ -229,18 +229,25 @@ void pack_luminaires(const PreparedScene& s, GpuSceneData& d) {
   d.photometrics.clear();
   d.photo_floats.clear();
   d.photo_cdf53.clear();
+  d.group_luminaires.clear();
   PhotometricPacker photometric(d);
-  for (const auto& l : s.luminaires) {
-    d.luminaires.push_back(pack_luminaire(l));
-    if (l.type == Luminaire::Type::Photometric) {
-      d.luminaires.back().photometric = static_cast<std::uint32_t>(d.photometrics.size());
-      d.photometrics.push_back(photometric.pack(l));
+  // Group by group, each group's cumulative flux after it: pick_luminaire() searches its own.
+  for (const PreparedGroup& g : s.groups) {
+    d.group_luminaires.push_back({static_cast<std::uint32_t>(d.luminaires.size()),
+                                  static_cast<std::uint32_t>(g.luminaires.size())});
+    for (std::size_t k = 0; k < g.luminaires.size(); ++k) {
+      const PreparedLuminaire& l = s.luminaires[g.luminaires[k]];
+      d.luminaires.push_back(pack_luminaire(l));
+      d.cdf53.push_back(cdf_threshold(g.cdf[k]));
+      if (l.type == Luminaire::Type::Photometric) {
+        d.luminaires.back().photometric = static_cast<std::uint32_t>(d.photometrics.size());
+        d.photometrics.push_back(photometric.pack(l));
+      }
     }
   }
   if (d.photo_floats.size() > std::numeric_limits<std::uint32_t>::max()) {
     throw std::runtime_error("Vulkan backend: photometric tables too large");
   }
-  for (double c : s.luminaire_cdf) d.cdf53.push_back(cdf_threshold(c));
   d.features = features(s);
 }
 

@@ -18,7 +18,9 @@ struct GpuSceneData {
   std::vector<gpu::MeshInfo> meshes;
   std::vector<gpu::Material> materials;
   std::vector<gpu::Luminaire> luminaires;
-  std::vector<std::uint64_t> cdf53;
+  std::vector<std::uint64_t> cdf53;  // each group's cumulative flux, group by group
+  /// Per luminaire group: its first luminaire in `luminaires` and how many it has.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> group_luminaires;
   std::vector<gpu::Grid> grids;
   std::vector<gpu::Photometric> photometrics;   // one per photometric luminaire
   std::vector<float> photo_floats;              // their sampler tables (shared per file)

@@ -68,8 +68,7 @@ class VulkanBackend final : public Backend {
       buffers_.push_back(make_buffer(info.binding, c.bytes));
       upload(info.binding, c);
     }
-    readback_.emplace(ctx_, tally_bytes() + kCounters * sizeof(std::uint64_t),
-                      vkw::MemoryKind::Readback, "tally readback");
+    make_readback();
     data_.geometry = {};  // on the device now
     build_pipeline();
   }
@@ -82,8 +81,15 @@ class VulkanBackend final : public Backend {
     for (std::size_t i = 0; i < std::size(kLuminaireBindings); ++i) {
       old_bytes[i] = contents(kLuminaireBindings[i]).bytes;
     }
+    const std::size_t old_tally_bytes = tally_bytes_;
     pack_luminaires(s_, data_);
     bool resized = false;
+    if (tally_bytes() != old_tally_bytes) {  // the groups changed: tallies and their readback
+      trace_.reset();
+      buffers_[gpu::kTallies] = make_buffer(gpu::kTallies, tally_bytes());
+      make_readback();
+      resized = true;
+    }
     for (std::size_t i = 0; i < std::size(kLuminaireBindings); ++i) {
       const gpu::Binding b = kLuminaireBindings[i];
       const Contents c = contents(b);
@@ -114,34 +120,44 @@ class VulkanBackend final : public Backend {
 
   // Tallies reach `out` only after the whole range succeeded, so a caller may retry the same
   // range on another backend after an exception.
-  void trace(std::uint64_t first, std::uint64_t count, std::uint64_t seed,
-             TallyBlock& out) override {
-    for (std::uint64_t done = 0; done < count;) {
-      const std::uint64_t n = std::min(kPathsPerSubmit, count - done);
-      VkCommandBuffer cmd = seq_.begin();
-      if (done == 0) {
-        vkCmdFillBuffer(cmd, buffers_[gpu::kTallies].handle(), 0, VK_WHOLE_SIZE, 0);
-        vkCmdFillBuffer(cmd, buffers_[gpu::kCounters].handle(), 0, VK_WHOLE_SIZE, 0);
+  // Each group's range is its own dispatches: its stream, luminaires and tallies are push
+  // constants.
+  void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed, TallyBlock& out) override {
+    bool cleared = false;
+    for (std::size_t r = 0; r < ranges.size(); ++r) {
+      const GroupRange& range = ranges[r];
+      const auto [lum_first, lum_count] = data_.group_luminaires.at(range.group);
+      for (std::uint64_t done = 0; done < range.count;) {
+        const std::uint64_t n = std::min(kPathsPerSubmit, range.count - done);
+        VkCommandBuffer cmd = seq_.begin();
+        if (!cleared) {
+          vkCmdFillBuffer(cmd, buffers_[gpu::kTallies].handle(), 0, VK_WHOLE_SIZE, 0);
+          vkCmdFillBuffer(cmd, buffers_[gpu::kCounters].handle(), 0, VK_WHOLE_SIZE, 0);
+          cleared = true;
+        }
+        vkw::memory_barrier(cmd);  // clears or the previous batch's atomics come first
+        gpu::TracePush push{range.first + done,
+                            seed,
+                            static_cast<std::uint32_t>(n),
+                            s_.max_bounces,
+                            lum_count,
+                            static_cast<std::uint32_t>(data_.grids.size()),
+                            static_cast<std::uint32_t>(data_.instances.size()),
+                            0,
+                            kProbeIterations,
+                            probe_hash(),
+                            range.group,
+                            lum_first,
+                            static_cast<std::uint32_t>(range.group * s_.bins.size()),
+                            0};
+        trace_->record(cmd, groups(n), &push);
+        record_retries(cmd, push);
+        done += n;
+        if (done == range.count && r + 1 == ranges.size()) record_readback(cmd);
+        seq_.submit_and_wait("tracing photons");
       }
-      vkw::memory_barrier(cmd);  // clears or the previous batch's atomics come first
-      gpu::TracePush push{first + done,
-                          seed,
-                          static_cast<std::uint32_t>(n),
-                          s_.max_bounces,
-                          static_cast<std::uint32_t>(data_.luminaires.size()),
-                          static_cast<std::uint32_t>(data_.grids.size()),
-                          static_cast<std::uint32_t>(data_.instances.size()),
-                          0,
-                          kProbeIterations,
-                          probe_hash(),
-                          0};
-      trace_->record(cmd, groups(n), &push);
-      record_retries(cmd, push);
-      done += n;
-      if (done == count) record_readback(cmd);
-      seq_.submit_and_wait("tracing photons");
     }
-    add_readback(out);
+    if (cleared) add_readback(out);
   }
 
  private:
@@ -187,7 +203,10 @@ class VulkanBackend final : public Backend {
     throw std::logic_error("Vulkan backend: no contents for binding " + std::to_string(binding));
   }
 
-  std::size_t tally_bytes() const { return 2 * sizeof(std::uint64_t) * s_.bins.size(); }
+  // Every group's tallies (core/groups.hpp: at most 2^26 of them, checked before tracing).
+  std::size_t tally_bytes() const {
+    return 2 * sizeof(std::uint64_t) * s_.groups.size() * s_.bins.size();
+  }
 
   // Empty arrays still need a valid binding: 16 bytes of zeros.
   vkw::Buffer make_buffer(gpu::Binding binding, std::size_t bytes) const {
@@ -246,6 +265,13 @@ class VulkanBackend final : public Backend {
     vkCmdFillBuffer(cmd, buffers_[gpu::kRetry].handle(), 0, sizeof(std::uint32_t), 0);
   }
 
+  void make_readback() {
+    tally_bytes_ = tally_bytes();
+    readback_.reset();
+    readback_.emplace(ctx_, tally_bytes_ + kCounters * sizeof(std::uint64_t),
+                      vkw::MemoryKind::Readback, "tally readback");
+  }
+
   void record_readback(VkCommandBuffer cmd) {
     vkw::memory_barrier(cmd);
     const vkw::Buffer& tallies = buffers_[gpu::kTallies];
@@ -274,6 +300,7 @@ class VulkanBackend final : public Backend {
   vkw::Context ctx_;                  // destroyed after everything created from it
   std::vector<vkw::Buffer> buffers_;  // indexed by gpu::Binding, one per row of gpu::kBuffers
   std::optional<vkw::Buffer> readback_;
+  std::size_t tally_bytes_ = 0;  // the tallies the buffers were made for
   std::optional<vkw::Algorithm> trace_;
   vkw::Sequence seq_;
 };

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/backend.hpp"
+#include "core/groups.hpp"
 #include "core/prepared_scene.hpp"
 #include "core/scene_effects.hpp"
 #include "embree/embree_backend.hpp"
@@ -135,8 +136,8 @@ detail::TallyBlock trace(const detail::PreparedScene& p, detail::EmbreeKernel ke
     backend->set_mesh_transform(m, glm::translate(glm::mat4(1.0f), glm::vec3(0.3f, 0.2f, 0.0f)));
   }
   if (ran) *ran = detail::embree_kernel(*backend);
-  detail::TallyBlock t(p.bins.size());
-  backend->trace(0, kPhotons, kSeed, t);
+  detail::TallyBlock t(p.groups.size() * p.bins.size());
+  backend->trace(detail::group_ranges(p.groups, 0, kPhotons), kSeed, t);
   return t;
 }
 

@@ -65,7 +65,7 @@ TEST_F(LoopLimitTest, CutPathsAreTracedAgainAloneAndTheRestCounted) {
   const auto backend = detail::make_vulkan_backend(prepared);
   constexpr std::uint64_t kPhotons = 40'000;
   detail::TallyBlock t(prepared.bins.size());
-  backend->trace(0, kPhotons, 7, t);
+  backend->trace({{0, 0, kPhotons}}, 7, t);
   // Every path that ends ends on the black room, exactly once: the paths not counted there are
   // exactly the capped and the cut ones.
   EXPECT_EQ(t.bins[0].sum + t.capped_paths + t.cut_paths, kPhotons);

@@ -1,0 +1,260 @@
+// rescale: a results document with per-group tallies, re-read and rebuilt at other dimming
+// factors by the code a traced run uses (target_results.cpp, decide.cpp, results_io.cpp).
+#include "lightsolver/rescale.hpp"
+
+#include <cmath>
+#include <map>
+
+#include "core/decide.hpp"
+#include "core/json_reader.hpp"
+#include "core/target_results.hpp"
+#include "core/target_types.hpp"
+#include "lightsolver/defaults.hpp"
+#include "lightsolver/error.hpp"
+
+namespace lightsolver {
+namespace {
+
+using detail::JsonNode;
+
+std::optional<double> optional_number(const JsonNode& n, const char* key) {
+  if (!n.has(key) || n.at(key).is_null()) return std::nullopt;
+  return n.at(key).number();
+}
+
+std::vector<std::string> strings(const JsonNode& n) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < n.array_size(); ++i) out.push_back(n[i].string());
+  return out;
+}
+
+Requirements read_requirements(const JsonNode& n) {
+  Requirements q;
+  q.em_lux = optional_number(n, "em_lux");
+  q.u0 = optional_number(n, "u0");
+  q.emin_lux = optional_number(n, "emin_lux");
+  q.ud = optional_number(n, "ud");
+  q.ugr_max = optional_number(n, "ugr_max");
+  if (n.has("task")) q.task = n.at("task").string();
+  if (n.has("source")) q.source = n.at("source").string();
+  return q;
+}
+
+// The factor of each group, in the results' group order; InputError for bad ones.
+std::vector<double> group_factors(const JsonNode& groups, const GroupFactors& factors) {
+  std::vector<double> out(groups.array_size(), 1.0);
+  std::map<std::string, std::size_t> index;
+  for (std::size_t g = 0; g < out.size(); ++g) index[groups[g].at("name").string()] = g;
+  std::vector<bool> given(out.size(), false);
+  for (const auto& [name, factor] : factors) {
+    const auto it = index.find(name);
+    if (it == index.end()) {
+      std::string known;
+      for (const auto& [n, _] : index) known += (known.empty() ? "\"" : ", \"") + n + "\"";
+      throw InputError(
+          groups.file(), "--dim " + name,
+          "no luminaire group \"" + name + "\" in these results (groups: " + known + ")");
+    }
+    if (!(std::isfinite(factor) && factor >= 0.0)) {
+      throw InputError(groups.file(), "--dim " + name,
+                       "the factor must be a finite number >= 0 (0: off, 1: as traced)");
+    }
+    if (given[it->second]) {
+      throw InputError(groups.file(), "--dim " + name, "the group is dimmed twice");
+    }
+    given[it->second] = true;
+    out[it->second] = factor;
+  }
+  return out;
+}
+
+// A target of the results: what make_target needs (type, cells, requirements).
+Target read_target(const JsonNode& n) {
+  Target t;
+  t.name = n.at("name").string();
+  const std::string type = n.at("type").string();
+  const detail::TargetType* row = detail::find_target_type(type);
+  if (row == nullptr) n.at("type").fail("unknown target type \"" + type + "\"");
+  // Each eye of a grid has its own luminaire sums and L_b: not rebuilt from the results yet.
+  if (row->type == Target::Type::ObserverGrid) {
+    n.at("type").fail("observer grids cannot be rescaled yet: trace the dimmed scene instead");
+  }
+  t.type = row->type;
+  if (t.type == Target::Type::Grid) {
+    t.nu = static_cast<std::uint32_t>(n.at("cells_uv")[0].unsigned_integer());
+    t.nv = static_cast<std::uint32_t>(n.at("cells_uv")[1].unsigned_integer());
+  }
+  if (n.has("requirements")) t.requirements = read_requirements(n.at("requirements"));
+  return t;
+}
+
+Tally read_tally(const JsonNode& n) {
+  return {n.at("sum").unsigned_integer(), n.at("sum_sq").unsigned_integer()};
+}
+
+// The glare of an observer with its luminaires' luminances dimmed (L ~ flux) at its new
+// background luminance: UGR = 8 log10(0.25 / L_b * sum L^2 omega / p^2) (docs/glare.md).
+ObserverGlare rescale_glare(const JsonNode& n, const Estimate& indirect,
+                            const std::map<std::string, double>& luminaire_factor) {
+  ObserverGlare g;
+  const double inv_pi = 1.0 / 3.14159265358979323846;
+  g.background_luminance_cd_m2 = indirect.mean * inv_pi;
+  g.background_ci_low_cd_m2 = indirect.ci_low * inv_pi;
+  g.background_ci_high_cd_m2 = indirect.ci_high * inv_pi;
+  const auto ugr = [](double sum, double lb) -> std::optional<double> {
+    if (!(lb > 0.0) || !(sum > 0.0)) return std::nullopt;
+    return 8.0 * std::log10(0.25 * sum / lb);
+  };
+  double sum = 0.0;
+  const JsonNode parts = n.at("luminaires");
+  for (std::size_t i = 0; i < parts.array_size(); ++i) {
+    const JsonNode p = parts[i];
+    GlareContribution c;
+    c.name = p.at("name").string();
+    c.counted = p.at("counted").boolean();
+    if (!c.counted) {
+      c.why_not = p.at("why_not").string();
+    } else {
+      const auto f = luminaire_factor.find(c.name);
+      c.luminance_cd_m2 =
+          p.at("luminance_cd_m2").number() * (f == luminaire_factor.end() ? 1.0 : f->second);
+      c.solid_angle_sr = p.at("solid_angle_sr").number();
+      c.position_index = p.at("position_index").number();
+      const double part = c.luminance_cd_m2 * c.luminance_cd_m2 * c.solid_angle_sr /
+                          (c.position_index * c.position_index);
+      c.ugr_alone = ugr(part, g.background_luminance_cd_m2);
+      sum += part;
+    }
+    g.contributions.push_back(std::move(c));
+  }
+  g.luminaire_sum = sum;
+  g.warnings = strings(n.at("warnings"));
+  if (sum > 0.0) {
+    g.ugr = ugr(sum, g.background_luminance_cd_m2);
+    g.ugr_ci_low = ugr(sum, g.background_ci_high_cd_m2);
+    g.ugr_ci_high = ugr(sum, g.background_ci_low_cd_m2);
+  }
+  return g;
+}
+
+// The run's own fields, as traced.
+void read_run(const JsonNode& root, Results& r) {
+  r.photons = root.at("photons").unsigned_integer();
+  r.photons_requested = root.at("photons_requested").unsigned_integer();
+  r.partial = root.at("partial").boolean();
+  r.stop_reason = root.at("stop_reason").string();
+  r.seconds = root.at("seconds").number();
+  r.backend = root.at("backend").string();
+  r.confidence = root.at("confidence").number();
+  r.seed = root.at("seed").unsigned_integer();
+  r.ray_segments = root.at("ray_segments").unsigned_integer();
+  r.capped_paths = root.at("capped_paths").unsigned_integer();
+  r.cut_paths = root.at("cut_paths").unsigned_integer();
+  r.warnings = strings(root.at("warnings"));
+  r.max_seconds = optional_number(root, "max_seconds");
+  r.target_accuracy = optional_number(root, "target_accuracy");
+  if (r.target_accuracy) {
+    r.accuracy_met = root.at("accuracy_met").boolean();
+    r.accuracy_per_cell = root.at("accuracy_per_cell").boolean();
+  }
+  r.judged = root.has("verdict");
+  if (r.judged) r.decide = root.at("decide").boolean();
+}
+
+}  // namespace
+
+Results rescale_results(const std::string& results_json, const GroupFactors& factors,
+                        const std::string& source) {
+  const nlohmann::json doc = detail::parse_json_text(results_json, source);
+  const JsonNode root(doc, "", source);
+  if (root.at("format").string() != kResultsFormat) {
+    root.at("format").fail(std::string("expected \"") + kResultsFormat + "\"");
+  }
+  if (!root.has("groups")) root.fail("results without luminaire groups: trace them again");
+  const JsonNode groups = root.at("groups"), targets = root.at("targets");
+  for (std::size_t i = 0; i < targets.array_size(); ++i) {
+    if (!targets[i].has("contributions")) {
+      targets[i].fail(
+          "results without contributions: trace with --contributions (scene: "
+          "settings.contributions) to rescale them");
+    }
+  }
+  const std::vector<double> factor = group_factors(groups, factors);
+  Results r;
+  read_run(root, r);
+  r.contributions = true;
+  std::map<std::string, double> previous, luminaire_factor;
+  if (root.has("rescaled")) {
+    for (const auto& [name, f] : root.at("rescaled").object().items())
+      previous[name] = f.get<double>();
+  }
+  detail::GroupedTallies tallies;
+  std::vector<std::string> names;
+  for (std::size_t g = 0; g < factor.size(); ++g) {
+    const JsonNode n = groups[g];
+    GroupResult gr;
+    gr.name = n.at("name").string();
+    gr.flux_lm = n.at("flux_lm").number() * factor[g];
+    gr.photons = n.at("photons").unsigned_integer();
+    for (std::size_t l = 0; l < n.at("luminaires").array_size(); ++l) {
+      gr.luminaires.push_back(n.at("luminaires")[l].string());
+      luminaire_factor[gr.luminaires.back()] = factor[g];
+    }
+    const auto p = previous.find(gr.name);
+    r.rescaled.emplace_back(gr.name, factor[g] * (p == previous.end() ? 1.0 : p->second));
+    r.total_flux_lm += gr.flux_lm;
+    tallies.photons.push_back(gr.photons);
+    tallies.flux_lm.push_back(gr.flux_lm);
+    names.push_back(gr.name);
+    r.groups.push_back(std::move(gr));
+  }
+  // Every target's bins (whole target, then cells) end to end, with their areas.
+  std::vector<Target> scene_targets;
+  std::vector<std::uint32_t> first_bin;
+  std::vector<detail::BinInfo> bins;
+  for (std::size_t i = 0; i < targets.array_size(); ++i) {
+    scene_targets.push_back(read_target(targets[i]));
+    const Target& t = scene_targets.back();
+    const double area = targets[i].at("area_m2").number();
+    first_bin.push_back(static_cast<std::uint32_t>(bins.size()));
+    bins.push_back({area});
+    // As prepare() lays them out: equal cells; an observer's second bin is unused here.
+    if (t.type == Target::Type::Grid) {
+      bins.resize(bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
+    }
+  }
+  tallies.bin_count = bins.size();
+  std::vector<Tally> counts(names.size() * bins.size());
+  tallies.bins = &counts;
+  for (std::size_t i = 0; i < targets.array_size(); ++i) {
+    const JsonNode parts = targets[i].at("contributions");
+    const std::uint32_t cells =
+        scene_targets[i].type == Target::Type::Grid ? scene_targets[i].nu * scene_targets[i].nv : 0;
+    for (std::size_t g = 0; g < names.size(); ++g) {
+      const JsonNode c = parts.at(names[g].c_str());
+      counts[g * bins.size() + first_bin[i]] = read_tally(c);
+      if (cells > 0 && c.at("cells").array_size() != cells) c.at("cells").fail("wrong cell count");
+      for (std::uint32_t k = 0; k < cells; ++k) {
+        counts[g * bins.size() + first_bin[i] + 1 + k] = read_tally(c.at("cells")[k]);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < scene_targets.size(); ++i) {
+    TargetResult t =
+        detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
+                            nullptr);
+    if (t.is_observer) t.glare = rescale_glare(targets[i], t.estimate, luminaire_factor);
+    detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
+    r.targets.push_back(std::move(t));
+  }
+  detail::add_verdicts(r);
+  detail::add_to_decide(r, r.seconds > 0.0 ? double(r.photons) / r.seconds : 0.0);
+  return r;
+}
+
+std::string rescale_results_json(const std::string& results_json, const GroupFactors& factors,
+                                 const std::string& source) {
+  return results_to_json(rescale_results(results_json, factors, source));
+}
+
+}  // namespace lightsolver
