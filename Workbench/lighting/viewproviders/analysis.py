@@ -208,12 +208,17 @@ class ViewProviderAnalysis(ViewProviderBase):
         try:
             from lighting.objects import results as results_obj
 
-            stored = results_obj.data(results_obj.of_analysis(self.Object)) or {}
+            found = results_obj.of_analysis(self.Object)
+            stored = results_obj.data(found) or {}
+            scene = str(getattr(found, "LightScene", "") or "") if found is not None else ""
         except Exception:  # noqa: BLE001 - never break the legend
-            stored = {}
+            stored, scene = {}, ""
         word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
             stored.get("verdict", ""))
-        return "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
+        title = "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
+        # The light scene shown (rescaled), so a screenshot says which one it is.
+        return f"{title} - {scene.split(':')[0]}" if scene and "not shown" not in scene \
+            else title
 
     def verdict_lines(self) -> List[Tuple[str, str]]:
         """(label, pass/FAIL/undecided) of every target the solver judged, for the markers
