@@ -12,6 +12,7 @@ from PySide import QtGui
 
 from lighting import standards
 from lighting.objects import analysis as analysis_mod
+from lighting.objects import light_scene as light_scene_mod
 from lighting.objects.base import proxy_type
 from lighting.viewproviders.base import icon_path
 
@@ -337,7 +338,8 @@ ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPla
 # report, exclusion) are registered by register() below.
 MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_ChooseLuminaire",
                   "Lighting_LuminaireLayout", "Lighting_Target", "Lighting_Grid",
-                  "Lighting_Observer", "Lighting_ObserverGrid", "Lighting_PlacementDomain"]
+                  "Lighting_Observer", "Lighting_ObserverGrid", "Lighting_LightScene",
+                  "Lighting_PlacementDomain"]
 RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Live",
                 "Lighting_Optimize",
                 "Lighting_Results", "Lighting_Report", "Lighting_ClearResults"]
@@ -350,11 +352,12 @@ EXCLUSION_COMMANDS = exclusion.NAMES
 
 def register() -> None:
     """Add every command to FreeCAD (once)."""
-    from lighting.commands import chooser, glare, live, report
+    from lighting.commands import chooser, glare, light_scene, live, report
     from lighting.commands.layout import CommandLuminaireLayout
 
     more = (CommandLuminaireLayout, chooser.CommandChooseLuminaire, report.CommandReport)
-    for cls in ALL + exclusion.ALL + more + glare.ALL + live.ALL:
+    for cls in ALL + exclusion.ALL + more + glare.ALL + light_scene.ALL
+                + live.ALL:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)

@@ -33,7 +33,7 @@ from lighting.export import collect
 
 #: Analysis properties that change the exported scene or the solver's numbers.
 SETTINGS = ("Photons", "Seed", "Confidence", "MaxBounces", "TargetAccuracy", "MaxPhotons",
-            "LinearDeflection", "AngularDeflection", "Backend")
+            "LinearDeflection", "AngularDeflection", "Backend", "Contributions")
 #: Properties never part of a Lighting object's fingerprint.
 SKIPPED_PROPERTIES = {"Label", "Label2", "Visibility", "ExpressionEngine", "Proxy", "Shape",
                       "AimDirection", "SpacingUsed", "CellsU", "CellsV"}

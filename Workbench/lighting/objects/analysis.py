@@ -62,6 +62,10 @@ class Analysis(BaseProxy):
                        "every requirement is decided pass or fail from its interval, with Photons "
                        "as the budget (undecided ones say what deciding would cost); off: trace "
                        "exactly Photons", True),
+        "Contributions": Prop("App::PropertyBool", "Solver",
+                              "Trace each control group's contribution separately (luminaires' "
+                              "ControlGroup), so light scenes and dimming are shown by rescaling "
+                              "one trace; on when the analysis has a light scene", False),
         # Export
         "LinearDeflection": Prop("App::PropertyLength", "Export",
                                  "Tessellation: largest distance between a curved surface and "
@@ -87,6 +91,9 @@ class Analysis(BaseProxy):
                             "scale, lx (Fixed)", 1000.0),
         "ShowLegend": Prop("App::PropertyBool", "Display", "Draw the colour legend in the 3D view",
                            True),
+        "ActiveLightScene": Prop("App::PropertyLink", "Display",
+                                 "The light scene the results show (rescaled, no tracing); "
+                                 "empty: as traced, every control group at full flux"),
         # Results (read only)
         "Status": Prop("App::PropertyString", "Results",
                        "Outcome of the last run or check: not run, done, partial results "
@@ -113,6 +120,13 @@ class Analysis(BaseProxy):
         # A live session is a GUI state, not part of the file: reopened, Live is off.
         if "Transient" not in obj.getPropertyStatus("Live"):
             obj.setPropertyStatus("Live", "Transient")
+
+    def onChanged(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
+        """Switching the light scene re-derives what the results object shows."""
+        if prop == "ActiveLightScene" and not getattr(obj.Document, "Restoring", False):
+            from lighting.objects import light_scene
+
+            light_scene.refresh(obj)
 
     def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
         """Files of older versions could be saved in the middle of a stage ("checking"):
@@ -186,7 +200,17 @@ def settings(analysis: Any) -> Dict[str, Any]:
            "seed": int(analysis.Seed), "confidence": float(analysis.Confidence)}
     if decides(analysis):
         out["decide"] = True
+    if bool(getattr(analysis, "Contributions", False)):
+        out["contributions"] = True
     return out
+
+
+def control_groups(analysis: Any) -> List[str]:
+    """The control groups of the luminaires an analysis places, in first-seen order."""
+    from lighting.objects import luminaire_layout
+
+    return list(dict.fromkeys(luminaire.control_group(lum)
+                              for lum in luminaire_layout.placed_luminaires(analysis)))
 
 
 def decides(analysis: Any) -> bool:

@@ -6,7 +6,7 @@ the new objects their view providers. Lengths in the Python API are metres (``he
 flux in lumens (``flux_lm``)."""
 from __future__ import annotations
 
-from typing import Any, Iterable, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterable, Optional, Sequence, Tuple, Union
 
 import FreeCAD
 
@@ -161,6 +161,34 @@ def make_observer(doc: Any, position_m: Vec = (0.0, 0.0, 1.2), view: Vec = (1.0,
     obj.Posture = posture
     _add_to_analysis(obj, analysis)
     return obj
+
+
+def make_light_scene(analysis: Any, name: str = "Light scene",
+                     levels: Optional[Dict[str, float]] = None) -> Any:
+    """Create a light scene in ``analysis``: every control group of its luminaires at level 1
+    (full flux), then ``levels`` ({group: level}, 0 = off). It turns the analysis'
+    Contributions on (the next run traces each group separately) and is shown from then on;
+    switching scenes or changing levels rescales that run, no tracing
+    (objects/light_scene.py)."""
+    from lighting.objects import light_scene
+
+    return light_scene.make(analysis, name, levels)
+
+
+def show_light_scene(analysis: Any, scene: Optional[Any] = None) -> None:
+    """Show ``scene`` (a light scene of the analysis, or its Label) in the analysis' results,
+    or the results as traced when None."""
+    from lighting.objects import light_scene
+
+    if isinstance(scene, str):
+        found = [s for s in light_scene.scenes(analysis) if scene in (s.Name, s.Label)]
+        if not found:
+            raise ValueError(f"analysis '{analysis.Label}' has no light scene {scene!r}")
+        scene = found[0]
+    if scene is not None and light_scene.analysis_of(scene) is not analysis:
+        raise ValueError(f"light scene '{scene.Label}' is not in analysis '{analysis.Label}'")
+    if analysis.ActiveLightScene is not scene:
+        analysis.ActiveLightScene = scene
 
 
 def make_placement_domain(doc: Any, base: Any, face: str, resolution_m: float = 0.6,

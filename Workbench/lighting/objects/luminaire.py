@@ -67,7 +67,18 @@ def scene_entry(obj: Any) -> Dict[str, Any]:
     if flux is not None:
         entry["flux_lm"] = flux
     entry.update(kind.keys(obj, obj.getGlobalPlacement(), aim_direction(obj)))
+    entry["group"] = control_group(obj)
     return entry
+
+
+def control_group(obj: Any) -> str:
+    """The luminaire's control group: its ControlGroup; empty, a layout member's is the
+    layout's Name (the layout is switched and dimmed as one) and a luminaire's its own Name."""
+    named = str(getattr(obj, "ControlGroup", "") or "").strip()
+    if named:
+        return named
+    layout = getattr(obj, "layout", None)
+    return str(layout.Name) if layout is not None else str(obj.Name)
 
 
 def check(obj: Any) -> List[tuple]:
@@ -235,6 +246,10 @@ class Luminaire(BaseProxy):
         "MaintenanceFactor": Prop("App::PropertyFloat", "Luminaire",
                                   "Maintenance factor MF = LLMF*LSF*LMF*RSMF (0..1]; the solver "
                                   "gets FluxLumen*MF, so results are maintained values", 0.8),
+        "ControlGroup": Prop("App::PropertyString", "Luminaire",
+                             "Control group (light scene channel): luminaires with the same "
+                             "group are switched and dimmed together by light scenes; empty = "
+                             "the layout's group for a layout's luminaires, else its own", ""),
         "BeamAngle": Prop("App::PropertyAngle", "Spot",
                           "Spot: full angle where the intensity falls to 50 % of the peak", 40.0),
         "FieldAngle": Prop("App::PropertyAngle", "Spot",

@@ -15,7 +15,7 @@ GUI alike)."""
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY, proxy_type
 
@@ -43,6 +43,9 @@ def _derived() -> Dict[str, Prop]:
                         _RO),
         "Backend": Prop("App::PropertyString", "Results", "Tracing backend used", "", _RO),
         "Warnings": Prop("App::PropertyStringList", "Results", "Solver warnings", None, _RO),
+        "LightScene": Prop("App::PropertyString", "Results",
+                           "The light scene shown (rescaled from the trace), empty = as traced, "
+                           "or why the active one cannot be shown", "", _RO),
     }
     for name, key in PER_TARGET.items():
         props[name] = Prop("App::PropertyFloatList", "Results",
@@ -96,8 +99,9 @@ class Results(BaseProxy):
         derive(obj)
 
 
-def data(obj: Any) -> Optional[Dict[str, Any]]:
-    """The results document of a results object, or None when empty or unreadable."""
+def traced(obj: Any) -> Optional[Dict[str, Any]]:
+    """The results document as traced (every control group at full flux), or None when empty
+    or unreadable."""
     if obj is None or not obj.ResultsJson:
         return None
     try:
@@ -105,6 +109,51 @@ def data(obj: Any) -> Optional[Dict[str, Any]]:
     except ValueError:
         return None
     return parsed if isinstance(parsed, dict) else None
+
+
+def data(obj: Any) -> Optional[Dict[str, Any]]:
+    """The results document shown: the analysis' active light scene rescaled from the traced
+    one (objects/light_scene.py), else the traced one; None when there are none."""
+    found = traced(obj)
+    if found is None:
+        return None
+    shown, _ = _shown(obj, found)
+    return shown
+
+
+def light_scene_note(obj: Any) -> str:
+    """What the results object shows: "" (as traced), the light scene and its levels, or why
+    the active light scene cannot be shown. It changes with every level, so the view
+    providers repaint on it (set last by derive())."""
+    found = traced(obj)
+    return "" if found is None else _shown(obj, found)[1]
+
+
+_rescaled: Dict[Tuple[str, str], Dict[str, Any]] = {}
+
+
+def _shown(obj: Any, found: Dict[str, Any]) -> Tuple[Dict[str, Any], str]:
+    from lighting.objects import light_scene
+
+    analysis = analysis_of(obj)
+    scene = light_scene.active(analysis) if analysis is not None else None
+    if scene is None:
+        return found, ""
+    if not found.get("groups") or not any("contributions" in t for t in found.get("targets", [])
+                                          if isinstance(t, dict)):
+        return found, (f"'{scene.Label}' not shown: these results were traced without "
+                       "contributions; run again")
+    try:
+        levels = light_scene.levels(scene)
+        key = (obj.ResultsJson, json.dumps(sorted(levels.items())))
+        if key not in _rescaled:
+            import lightsolver
+
+            _rescaled.clear()  # one scene at a time is shown: keep one
+            _rescaled[key] = lightsolver.rescale(found, levels)
+        return _rescaled[key], light_scene.describe(scene, levels)
+    except (ValueError, RuntimeError, ImportError) as exc:
+        return found, f"'{scene.Label}' not shown: {exc}"
 
 
 def _set(obj: Any, name: str, value: Any) -> None:
@@ -135,6 +184,7 @@ def derive(obj: Any) -> None:
     _set(obj, "Partial", bool(doc.get("partial", False)))
     _set(obj, "Backend", str(doc.get("backend", "")))
     _set(obj, "Warnings", [str(w) for w in doc.get("warnings", [])])
+    _set(obj, "LightScene", light_scene_note(obj))
 
 
 def index_of(obj: Any, target_name: str) -> Optional[int]:

@@ -24,6 +24,7 @@ from lighting.messages import LightingError, Report, SolverUnavailableError
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import luminaire as luminaire_mod
 from lighting.objects import luminaire_layout as layout_mod
+from lighting.objects import light_scene as light_scene_mod
 from lighting.objects import observer as observer_mod
 from lighting.objects import placement_domain as domain_mod
 from lighting.objects import target as target_mod
@@ -241,6 +242,9 @@ def check_and_export(analysis: Any, need_solver: bool = True,
         report.extend(observer_mod.check(eye), eye.Name)
     for domain in analysis_mod.placement_domains(analysis):
         report.extend(domain_mod.check(domain), domain.Name)
+    groups = analysis_mod.control_groups(analysis)
+    for scene in light_scene_mod.scenes(analysis):
+        report.extend(light_scene_mod.check(scene, groups), scene.Name)
     if exported is None:
         exported = collect.exported_objects(analysis.Document)
     # What the model leaves out and why (hidden objects stay in: visibility is a view choice).

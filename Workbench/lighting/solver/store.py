@@ -194,7 +194,7 @@ def apply_to_document(analysis: Any, data: Dict[str, Any], scene_file: str = "",
     status = "partial results (cancelled)" if data.get("partial") else "done"
     existing = results_obj.of_analysis(analysis)
     if existing is not None and existing.InputsFingerprint == prints and \
-            existing.SceneFile == scene_file and _same_results(results_obj.data(existing), data):
+            existing.SceneFile == scene_file and _same_results(results_obj.traced(existing), data):
         set_status(analysis, status)
         return load_from_document(analysis)
     with undo_step(doc, "Lighting results"):

@@ -18,7 +18,7 @@ from PySide import QtCore, QtGui
 from lighting.messages import CheckError, LightingError
 from lighting.objects.analysis import COLOR_MAPS, SCALE_MODES
 from lighting.solver import machine, results as results_mod, store
-from lighting.taskpanels import plan_view, study_view
+from lighting.taskpanels import light_scene_view, plan_view, study_view
 from lighting.taskpanels.legend_widget import LegendWidget
 from lighting.taskpanels.modeless import ModelessPanel
 from lighting.viewproviders import coloring
@@ -119,6 +119,11 @@ class AnalysisTaskPanel(ModelessPanel):
         outer.addWidget(self.scroll, 1)
         self.add_section("settings", "Run settings", self._build_settings())
         self.add_section("results", "Results (maintained illuminance)", self._build_results())
+        self.scene_view = light_scene_view.LightSceneView(self.analysis,
+                                                          self._show_stored_results)
+        scenes = QtGui.QVBoxLayout()
+        scenes.addWidget(self.scene_view)
+        self.add_section("scenes", "Light scenes", scenes)
         self.add_section("display", "False colours", self._build_display())
         # Below the table and the legend: the image grows when it is drawn (after a delay),
         # which must not push what is above it out of view.
@@ -345,6 +350,7 @@ class AnalysisTaskPanel(ModelessPanel):
     def _show_stored_results(self) -> None:
         result = store.load_from_document(self.analysis)
         self.plan_view.refresh()
+        self.scene_view.refresh()
         fixed = self.analysis.ScaleMode == "Fixed"
         self.scale_min.setEnabled(fixed)
         self.scale_max.setEnabled(fixed)

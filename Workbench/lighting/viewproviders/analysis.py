@@ -212,12 +212,17 @@ class ViewProviderAnalysis(ViewProviderBase):
         try:
             from lighting.objects import results as results_obj
 
-            stored = results_obj.data(results_obj.of_analysis(self.Object)) or {}
+            found = results_obj.of_analysis(self.Object)
+            stored = results_obj.data(found) or {}
+            scene = str(getattr(found, "LightScene", "") or "") if found is not None else ""
         except Exception:  # noqa: BLE001 - never break the legend
-            stored = {}
+            stored, scene = {}, ""
         word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
             stored.get("verdict", ""))
         title = "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
+        # The light scene shown (rescaled), so a screenshot says which one it is.
+        if scene and "not shown" not in scene:
+            title += f" - {scene.split(':')[0]}"
         status = str(getattr(self.Object, "Status", ""))
         return f"{title} - {status}" if status.startswith("live:") else title
 

@@ -32,6 +32,7 @@ VIEW_PROVIDERS: Dict[str, Tuple[str, str]] = {
     "Lighting::Results": ("results", "ViewProviderResults"),
     "Lighting::LuminaireLayout": ("luminaire_layout", "ViewProviderLuminaireLayout"),
     "Lighting::Observer": ("eye", "ViewProviderObserver"),
+    "Lighting::LightScene": ("light_scene", "ViewProviderLightScene"),
 }
 
 _observer: Optional["LightingObserver"] = None

@@ -16,7 +16,7 @@ import FreeCAD
 from lighting.viewproviders.base import ViewProviderBase
 
 #: App properties of the results object whose change repaints.
-REPAINT_ON = ("ResultsJson", "InputsFingerprint")
+REPAINT_ON = ("ResultsJson", "InputsFingerprint", "LightScene")
 #: Wait this long after the last change before computing the state again.
 STATE_DELAY_MS = 250
 

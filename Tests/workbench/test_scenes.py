@@ -1,0 +1,178 @@
+"""Light scenes: control groups on luminaires, light scene objects, and results shown by
+rescaling one run traced with contributions (no tracing when switching or dimming)."""
+import math
+import unittest
+
+import lighting
+from lighting.objects import analysis as analysis_mod
+from lighting.objects import light_scene
+from lighting.objects import luminaire as luminaire_mod
+from lighting.objects import results as results_obj
+from lighting.solver import store
+from wbtest import DocTestCase, build_office, needs_solver, work_dir
+
+WINDOW_ROW = ("Luminaire01", "Luminaire02")
+#: k sigma for comparing two independent estimates (k >= 4: not flaky, not vacuous).
+K_SIGMA = 4.0
+Z95 = 1.959963984540054
+
+
+def _group_office(photons: int = 100_000):
+    """The office with its luminaires in two control groups: the window row and the rest."""
+    doc = build_office(photons=photons)
+    for name in WINDOW_ROW:
+        doc.getObject(name).ControlGroup = "Window row"
+    for name in ("Luminaire03", "Luminaire04"):
+        doc.getObject(name).ControlGroup = "Back row"
+    analysis = doc.getObject("LightingAnalysis")
+    analysis.Decide = False  # exactly the photons asked for: comparable runs
+    doc.recompute()
+    return doc, analysis
+
+
+def _entry(data, name):
+    return next(t for t in data["targets"] if t["name"] == name)
+
+
+class ControlGroups(DocTestCase):
+    def test_groups_default_to_the_luminaire_and_are_exported(self):
+        doc = build_office()
+        analysis = doc.getObject("LightingAnalysis")
+        self.assertEqual(analysis_mod.control_groups(analysis),
+                         ["Luminaire01", "Luminaire02", "Luminaire03", "Luminaire04"])
+        lum = doc.getObject("Luminaire01")
+        self.assertEqual(luminaire_mod.scene_entry(lum)["group"], "Luminaire01")
+        lum.ControlGroup = "  Window row "
+        self.assertEqual(luminaire_mod.scene_entry(lum)["group"], "Window row")
+
+    def test_layout_members_share_the_layout_group(self):
+        doc = build_office()
+        analysis = doc.getObject("LightingAnalysis")
+        layout = lighting.add_luminaire_layout(doc, template=doc.getObject("Luminaire04"),
+                                               rows=2, columns=2, area_m=(2.0, 2.0),
+                                               analysis=analysis)
+        doc.recompute()
+        groups = analysis_mod.control_groups(analysis)
+        self.assertIn(layout.Name, groups)
+        self.assertNotIn("Luminaire04", groups)  # a template is not placed
+
+    def test_contributions_are_exported_and_fingerprinted(self):
+        doc, analysis = _group_office()
+        self.assertNotIn("contributions", analysis_mod.settings(analysis))
+        lighting.make_light_scene(analysis, "Evening")
+        self.assertTrue(analysis.Contributions)
+        self.assertTrue(analysis_mod.settings(analysis)["contributions"])
+
+
+class LightScenes(DocTestCase):
+    def test_a_new_scene_has_every_group_at_full_and_is_shown(self):
+        doc, analysis = _group_office()
+        scene = lighting.make_light_scene(analysis, "Evening", {"Back row": 0.5})
+        self.assertIs(analysis.ActiveLightScene, scene)
+        self.assertEqual(light_scene.levels(scene), {"Window row": 1.0, "Back row": 0.5})
+        self.assertEqual(light_scene.describe(scene, light_scene.levels(scene)),
+                         "Evening: Back row 50 %")
+        lighting.show_light_scene(analysis, None)
+        self.assertIsNone(analysis.ActiveLightScene)
+        lighting.show_light_scene(analysis, "Evening")
+        self.assertIs(analysis.ActiveLightScene, scene)
+        with self.assertRaisesRegex(ValueError, "no light scene 'Night'"):
+            lighting.show_light_scene(analysis, "Night")
+
+    def test_bad_levels_are_named(self):
+        doc, analysis = _group_office()
+        scene = lighting.make_light_scene(analysis, "Broken")
+        scene.Levels = [1.0]
+        problems = light_scene.check(scene, analysis_mod.control_groups(analysis))
+        self.assertEqual(problems[0][0], "error")
+        self.assertIn("2 groups but 1 levels", problems[0][1])
+        scene.Levels = [1.0, -0.5]
+        self.assertIn("level of group 'Back row' must be a number >= 0",
+                      light_scene.check(scene, ["Window row", "Back row"])[0][1])
+        scene.Levels = [1.0, float("nan")]
+        self.assertEqual(light_scene.check(scene, ["Window row", "Back row"])[0][0], "error")
+        scene.Groups = ["Window row", "Corridor"]
+        scene.Levels = [1.0, 0.0]
+        problems = light_scene.check(scene, ["Window row", "Back row"])
+        self.assertEqual(problems, [("warning", "Light scene 'Broken': no luminaire is in "
+                                                "group(s) Corridor")])
+        report = lighting.check(doc, analysis, need_solver=False)
+        self.assertTrue(any("Corridor" in m.text for m in report.messages))
+
+
+@needs_solver
+class RescaledResults(DocTestCase):
+    def test_switching_and_dimming_rescale_one_run(self):
+        import lightsolver
+
+        doc, analysis = _group_office()
+        scene = lighting.make_light_scene(analysis, "Evening",
+                                          {"Window row": 0.5, "Back row": 0.0})
+        lighting.show_light_scene(analysis, None)
+        result = lighting.analyze(doc, output_dir=work_dir("scenes"))
+        obj = results_obj.of_analysis(analysis)
+        traced = results_obj.traced(obj)
+        self.assertEqual([g["name"] for g in traced["groups"]], ["Window row", "Back row"])
+        stored_json, photons = obj.ResultsJson, obj.Photons
+        as_traced = _entry(traced, "Workplane")["mean_lux"]
+        self.assertAlmostEqual(result["Workplane"].mean_lux, as_traced, 9)
+
+        lighting.show_light_scene(analysis, scene)  # no tracing: the stored run is kept
+        self.assertEqual(obj.ResultsJson, stored_json)
+        self.assertEqual(obj.Photons, photons)
+        self.assertEqual(obj.LightScene, "Evening: Window row 50 %, Back row off")
+        shown = results_obj.data(obj)
+        expected = lightsolver.rescale(traced, {"Window row": 0.5, "Back row": 0.0})
+        self.assertEqual(_entry(shown, "Workplane")["mean_lux"],
+                         _entry(expected, "Workplane")["mean_lux"])
+        contributions = _entry(traced, "Workplane")["contributions"]
+        self.assertAlmostEqual(_entry(shown, "Workplane")["mean_lux"],
+                               0.5 * contributions["Window row"]["illuminance_lux"], 6)
+        self.assertAlmostEqual(results_obj.mean_lux(obj, "Workplane"),
+                               _entry(shown, "Workplane")["mean_lux"], 9)
+        loaded = store.load_from_document(analysis)
+        self.assertAlmostEqual(loaded["Workplane"].mean_lux,
+                               _entry(shown, "Workplane")["mean_lux"], 9)
+        self.assertEqual(store.results_state(analysis).state, "current")
+
+        # A level change re-derives at once, as one undo step.
+        doc.openTransaction("Light scene level")
+        scene.Levels = [1.0, 1.0]
+        doc.commitTransaction()
+        self.assertAlmostEqual(results_obj.mean_lux(obj, "Workplane"), as_traced,
+                               delta=1e-9 * as_traced)
+        doc.undo()
+        self.assertEqual(list(scene.Levels), [0.5, 0.0])
+        self.assertAlmostEqual(results_obj.mean_lux(obj, "Workplane"),
+                               _entry(shown, "Workplane")["mean_lux"], 9)
+
+    def test_a_dimmed_scene_agrees_with_a_run_traced_dimmed(self):
+        doc, analysis = _group_office(photons=200_000)
+        lighting.make_light_scene(analysis, "Dimmed", {"Window row": 0.25})
+        lighting.analyze(doc, output_dir=work_dir("scenes_rescaled"))
+        shown = _entry(results_obj.data(results_obj.of_analysis(analysis)), "Workplane")
+        # The same dimming traced: the window row's flux times 0.25, another seed.
+        for name in WINDOW_ROW:
+            doc.getObject(name).FluxLumen = 0.25 * float(doc.getObject(name).FluxLumen)
+        analysis.Seed = 7
+        lighting.show_light_scene(analysis, None)
+        traced = lighting.analyze(doc, output_dir=work_dir("scenes_traced"))["Workplane"]
+        sigma = math.hypot((shown["ci_high_lux"] - shown["ci_low_lux"]) / (2 * Z95),
+                           (traced.ci_high_lux - traced.ci_low_lux) / (2 * Z95))
+        self.assertGreater(sigma, 0.0)
+        self.assertLess(abs(shown["mean_lux"] - traced.mean_lux), K_SIGMA * sigma)
+        self.assertLess(shown["ci_low_lux"], shown["mean_lux"])
+
+    def test_a_scene_needs_a_run_with_contributions(self):
+        doc, analysis = _group_office(photons=20_000)
+        lighting.analyze(doc, output_dir=work_dir("scenes_plain"))
+        obj = results_obj.of_analysis(analysis)
+        before = results_obj.mean_lux(obj, "Workplane")
+        lighting.make_light_scene(analysis, "Late", {"Back row": 0.0})
+        self.assertIn("traced without contributions; run again", obj.LightScene)
+        self.assertEqual(results_obj.mean_lux(obj, "Workplane"), before)
+        self.assertEqual(store.results_state(analysis).state, "stale")  # Contributions on
+
+
+if __name__ == "__main__":
+    unittest.main()
