@@ -355,9 +355,9 @@ def register() -> None:
     from lighting.commands import chooser, glare, light_scene, live, report
     from lighting.commands.layout import CommandLuminaireLayout
 
-    more = (CommandLuminaireLayout, chooser.CommandChooseLuminaire, report.CommandReport)
-    for cls in ALL + exclusion.ALL + more + glare.ALL + light_scene.ALL
-                + live.ALL:
+    more = (CommandLuminaireLayout, chooser.CommandChooseLuminaire, report.CommandReport,
+            *glare.ALL, *light_scene.ALL, *live.ALL)
+    for cls in ALL + exclusion.ALL + more:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())
             COMMANDS.append(cls.NAME)
