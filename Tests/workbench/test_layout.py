@@ -162,14 +162,16 @@ class LayoutExport(DocTestCase):
 
     @needs_solver
     def test_run_matches_separate_luminaires(self):
-        """Em of the layout = Em of six luminaire objects with the same data and positions
-        (same seed and photons: identical scenes but for names, identical results)."""
+        """Em of the layout = Em of six luminaire objects with the same data and positions in
+        one control group (a layout is one group: same seed and photons, identical scenes but
+        for names, identical results)."""
         analysis = self.doc.getObject("LightingAnalysis")
         layout = _layout(self.doc, self.ceiling, self.face, margin_x_m=1.0, margin_y_m=1.0)
         with_layout = lighting.analyze(self.doc, photons=50000, seed=5,
                                        output_dir=work_dir("layout-run"))
         placements = [p for _, _, p in layout_mod.layout_placements(layout)]
         template = layout.Template.Name
+        group = layout.Name  # its members' control group (objects/luminaire.py control_group)
         self.doc.removeObject(layout.Name)
         self.doc.removeObject(template)
         for i, where in enumerate(placements):
@@ -177,6 +179,7 @@ class LayoutExport(DocTestCase):
                                              maintenance_factor=0.8, name=f"Single{i}",
                                              analysis=analysis)
             single.Placement = where
+            single.ControlGroup = group
         self.doc.recompute()
         separate = lighting.analyze(self.doc, photons=50000, seed=5,
                                     output_dir=work_dir("single-run"))

@@ -106,18 +106,44 @@ PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movabl
   return out;
 }
 
+namespace {
+
+const std::string kSharedGroupName = "(luminaires without a group)";
+
+// Each luminaire is its own group by default. Where that many groups' tallies would not fit
+// (kMaxGroupTallies: thousands of luminaires over fine grids), the luminaires without an
+// explicit `group` share one instead of the run being refused; said once among the warnings.
+bool default_groups_shared(const Scene& scene, PreparedScene& out) {
+  const double tallies = double(scene.luminaires.size()) * double(out.bins.size());
+  if (tallies <= double(kMaxGroupTallies)) return false;
+  const std::string note =
+      std::to_string(scene.luminaires.size()) + " luminaires x " +
+      std::to_string(out.bins.size()) +
+      " target bins exceed the 2^26 tallies of one group per luminaire: the luminaires without "
+      "a `group` share the group \"" + kSharedGroupName +
+      "\" (give luminaires `group` keys to trace groups apart)";
+  if (std::find(out.warnings.begin(), out.warnings.end(), note) == out.warnings.end()) {
+    out.warnings.push_back(note);
+  }
+  return true;
+}
+
+}  // namespace
+
 void prepare_luminaires(const Scene& scene, PreparedScene& out) {
   out.luminaires.clear();
   out.groups.clear();
   double total = 0.0;
   std::unordered_map<std::string, std::size_t> group_of;  // name -> index in out.groups
+  const bool shared = default_groups_shared(scene, out);
   for (std::size_t i = 0; i < scene.luminaires.size(); ++i) {
     const Luminaire& l = scene.luminaires[i];
     out.luminaires.push_back(prepare_luminaire(l, out.origin));
     const double flux = l.flux_lm * photometric_tilt_factor(l);  // a lamp's output at its tilt
     total += flux;
-    const auto [at, added] = group_of.try_emplace(l.group_name(), out.groups.size());
-    if (added) out.groups.emplace_back().name = l.group_name();
+    const std::string& name = shared && l.group.empty() ? kSharedGroupName : l.group_name();
+    const auto [at, added] = group_of.try_emplace(name, out.groups.size());
+    if (added) out.groups.emplace_back().name = name;
     PreparedGroup* g = &out.groups[at->second];
     g->flux_lm += flux;
     g->luminaires.push_back(static_cast<std::uint32_t>(i));

@@ -364,10 +364,11 @@ TEST(GroupErrors, EmptyGroupNameAndTooManyTalliesAreInputErrors) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("luminaires[0].group"), std::string::npos) << e.what();
   }
-  // 3000 groups x (1 + 150 x 150) bins > 2^26 tallies.
+  // 3000 groups x (1 + 150 x 150) bins > 2^26 tallies, asked for explicitly.
   Scene s;
   for (int i = 0; i < 3000; ++i) {
-    s.luminaires.push_back(named(point_light({0.5, 0.5, 1}, 1), "l" + std::to_string(i), ""));
+    const std::string name = "l" + std::to_string(i);
+    s.luminaires.push_back(named(point_light({0.5, 0.5, 1}, 1), name, name));
   }
   s.targets.push_back(grid("g", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 150, 150));
   try {
@@ -376,6 +377,26 @@ TEST(GroupErrors, EmptyGroupNameAndTooManyTalliesAreInputErrors) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("luminaires[].group"), std::string::npos) << e.what();
   }
+}
+
+// The same luminaires without group keys (each its own group by default) share one group
+// instead of being refused, and the results say so.
+TEST(Groups, TooManyDefaultGroupsShareOneAndSaySo) {
+  Scene s;
+  for (int i = 0; i < 3000; ++i) {
+    s.luminaires.push_back(named(point_light({0.5, 0.5, 1}, 1), "l" + std::to_string(i), ""));
+  }
+  s.luminaires.push_back(named(point_light({0.2, 0.2, 1}, 5), "own", "own"));
+  s.targets.push_back(grid("g", {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 150, 150));
+  const Results r = run(s, 20'000, 1, 0, false);
+  ASSERT_EQ(r.groups.size(), 2u);
+  EXPECT_EQ(r.groups[0].name, "(luminaires without a group)");
+  EXPECT_EQ(r.groups[0].luminaires.size(), 3000u);
+  EXPECT_EQ(r.groups[1].name, "own");
+  int said = 0;
+  for (const std::string& w : r.warnings) said += w.find("share the group") != std::string::npos;
+  EXPECT_EQ(said, 1);
+  EXPECT_GT(r.targets[0].estimate.hits, 0u);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ import time
 from guilib import (build_example_file, STATUS, expect, grab_window, log, pump, scenario,
                     wait_until)
 
-PHOTONS = 1 << 21  # a few seconds of refining: the heartbeat sees the whole of it
+PHOTONS = 1 << 24  # seconds of refining (about 6e6 photons/s here): the heartbeat sees it all
 
 
 def grid_cells(doc):
