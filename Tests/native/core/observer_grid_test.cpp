@@ -214,24 +214,10 @@ TEST(ObserverGridDirections, AStepOf90IsTheAxialPairBothWays) {
 
 // --- scene file ------------------------------------------------------------------------------
 
-std::string scene_with(const std::string& target) {
-  return R"({"format": "lightsolver.scene/1",
-  "materials": {"white": {"type": "diffuse", "reflectance": 0.7}},
-  "meshes": [{"name": "floor", "material": "white",
-              "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "triangles": [[0,1,2],[0,2,3]]}],
-  "luminaires": [{"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]}],
-  "targets": [{"name": "floor", "type": "surface", "mesh": "floor"}, )" +
-         target + "]}";
-}
-
-std::string error_of(const std::string& target) {
-  try {
-    scene_from_json(scene_with(target), "scene.json", kData);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "<no error>";
-}
+// A one-floor scene file with `target` (JSON) as its second target, and the InputError it
+// gives ("<no error>" when it loads): scene_builders.hpp.
+std::string scene_with(const std::string& target) { return scene_file_with_target(target); }
+std::string error_of(const std::string& target) { return target_error(target, kData); }
 
 TEST(ObserverGridScene, ReadsARectangleWithAStepAndATaskRow) {
   const Scene s =

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "lightsolver/backends.hpp"
+#include "lightsolver/error.hpp"
 #include "lightsolver/scene.hpp"
+#include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 
 namespace lightsolver::test {
@@ -306,6 +308,28 @@ inline std::vector<std::string> backends() {
     if (b.name != kAutoBackend) names.push_back(b.name);
   }
   return names;
+}
+
+/// A scene file (JSON text): a white floor lit by a point lamp, a surface target on the floor,
+/// then `target` (a JSON object) as the second target. For tests of target readers.
+inline std::string scene_file_with_target(const std::string& target) {
+  return R"({"format": "lightsolver.scene/1",
+  "materials": {"white": {"type": "diffuse", "reflectance": 0.7}},
+  "meshes": [{"name": "floor", "material": "white",
+              "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "triangles": [[0,1,2],[0,2,3]]}],
+  "luminaires": [{"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]}],
+  "targets": [{"name": "floor", "type": "surface", "mesh": "floor"}, )" +
+         target + "]}";
+}
+
+/// The InputError message that scene_file_with_target(target) gives, "<no error>" if none.
+inline std::string target_error(const std::string& target, const std::string& base_dir) {
+  try {
+    scene_from_json(scene_file_with_target(target), "scene.json", base_dir);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "<no error>";
 }
 
 }  // namespace lightsolver::test

@@ -88,14 +88,8 @@ def _update_panel(analysis: Any) -> None:
     """The open analysis panel, if it shows this analysis, follows the frame."""
     from lighting.taskpanels import analysis_panel
 
-    panel = analysis_panel.last_panel()
-    try:
-        mine = panel is not None and hasattr(panel, "show_live") and \
-            (panel.analysis.Document.Name, panel.analysis.Name) == \
-            (analysis.Document.Name, analysis.Name)
-    except Exception:  # noqa: BLE001 - the panel's analysis was deleted
-        mine = False
-    if mine:
+    panel = analysis_panel.panel_of(analysis)
+    if panel is not None:
         panel.show_live()
 
 

@@ -44,6 +44,19 @@ def last_panel() -> Optional["AnalysisTaskPanel"]:
     return _last_panel
 
 
+def panel_of(analysis: Any) -> Optional["AnalysisTaskPanel"]:
+    """The open analysis panel when it shows ``analysis``, else None (also when the panel's
+    own analysis has been deleted)."""
+    panel = _last_panel
+    try:
+        if panel is not None and (panel.analysis.Document.Name, panel.analysis.Name) == \
+                (analysis.Document.Name, analysis.Name):
+            return panel
+    except Exception:  # noqa: BLE001 - the panel's analysis was deleted
+        pass
+    return None
+
+
 #: Text colours of the verdict column: pass green, FAIL red, undecided amber.
 VERDICT_COLOURS = {"pass": (0, 130, 0), "FAIL": (200, 0, 0), "undecided": (190, 110, 0)}
 

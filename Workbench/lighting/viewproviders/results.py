@@ -102,12 +102,6 @@ def refresh_state(doc_name: str) -> None:
 def _show_in_panel(analysis: Any, state: Any) -> None:
     from lighting.taskpanels import analysis_panel
 
-    panel = analysis_panel.last_panel()
-    try:
-        mine = panel is not None and hasattr(panel, "show_state") and \
-            (panel.analysis.Document.Name, panel.analysis.Name) == \
-            (analysis.Document.Name, analysis.Name)
-    except Exception:  # noqa: BLE001 - the panel's analysis was deleted
-        mine = False
-    if mine:
+    panel = analysis_panel.panel_of(analysis)
+    if panel is not None:
         panel.show_state(state)
