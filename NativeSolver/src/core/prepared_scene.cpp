@@ -117,11 +117,10 @@ bool default_groups_shared(const Scene& scene, PreparedScene& out) {
   const double tallies = double(scene.luminaires.size()) * double(out.bins.size());
   if (tallies <= double(kMaxGroupTallies)) return false;
   const std::string note =
-      std::to_string(scene.luminaires.size()) + " luminaires x " +
-      std::to_string(out.bins.size()) +
+      std::to_string(scene.luminaires.size()) + " luminaires x " + std::to_string(out.bins.size()) +
       " target bins exceed the 2^26 tallies of one group per luminaire: the luminaires without "
-      "a `group` share the group \"" + kSharedGroupName +
-      "\" (give luminaires `group` keys to trace groups apart)";
+      "a `group` share the group \"" +
+      kSharedGroupName + "\" (give luminaires `group` keys to trace groups apart)";
   if (std::find(out.warnings.begin(), out.warnings.end(), note) == out.warnings.end()) {
     out.warnings.push_back(note);
   }

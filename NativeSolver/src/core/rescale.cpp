@@ -240,9 +240,8 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     }
   }
   for (std::size_t i = 0; i < scene_targets.size(); ++i) {
-    TargetResult t =
-        detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
-                            nullptr);
+    TargetResult t = detail::make_target(scene_targets[i], bins, tallies, first_bin[i],
+                                         r.confidence, r.judged, nullptr);
     if (t.is_observer) t.glare = rescale_glare(targets[i], t.estimate, luminaire_factor);
     detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
     r.targets.push_back(std::move(t));
