@@ -202,6 +202,21 @@ py::dict results_dict(const Results& r) {
   return d;
 }
 
+ProgressFn python_progress(const py::object& progress, std::exception_ptr& error) {
+  if (progress.is_none()) return {};
+  // By reference: the callable outlives the run, and copying it would need the GIL.
+  return [&progress, &error](std::uint64_t done, std::uint64_t total) {
+    py::gil_scoped_acquire gil;
+    try {
+      py::object keep = progress(done, total);
+      return keep.is_none() || keep.cast<bool>();
+    } catch (...) {
+      error = std::current_exception();  // re-raised once tracing has stopped
+      return false;
+    }
+  };
+}
+
 namespace {
 
 // A results dict as JSON text: the layout without the numpy cell arrays results_dict() adds
@@ -250,19 +265,7 @@ py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
   CancelToken token = cancel.value_or(CancelToken{});
   opt.cancel = token.flag.get();
   std::exception_ptr callback_error;
-  ProgressFn fn;
-  if (!progress.is_none()) {
-    fn = [&](std::uint64_t done, std::uint64_t total) {
-      py::gil_scoped_acquire gil;
-      try {
-        py::object keep = progress(done, total);
-        return keep.is_none() || keep.cast<bool>();
-      } catch (...) {
-        callback_error = std::current_exception();  // re-raised once tracing has stopped
-        return false;
-      }
-    };
-  }
+  const ProgressFn fn = python_progress(progress, callback_error);
   Results r;
   {
     py::gil_scoped_release nogil;

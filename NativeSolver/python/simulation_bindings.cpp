@@ -86,19 +86,7 @@ class PySimulation {
     o.decide = args.decide;
     o.cancel = &cancel_;
     std::exception_ptr callback_error;
-    ProgressFn fn;
-    if (!args.progress.is_none()) {
-      fn = [&](std::uint64_t done, std::uint64_t total) {
-        py::gil_scoped_acquire gil;
-        try {
-          py::object keep = args.progress(done, total);
-          return keep.is_none() || keep.cast<bool>();
-        } catch (...) {
-          callback_error = std::current_exception();  // re-raised once tracing has stopped
-          return false;
-        }
-      };
-    }
+    const ProgressFn fn = python_progress(args.progress, callback_error);
     Results r;
     {
       std::lock_guard lock(locked(mutex_), std::adopt_lock);

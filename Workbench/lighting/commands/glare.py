@@ -41,9 +41,6 @@ class CommandObserver(commands.BaseCommand):
     TIP = ("An eye for discomfort glare (UGR, CIE 117): seated at 1.2 m over the selected floor "
            "face or point, else in the middle of the room, looking level along +X")
 
-    def IsActive(self) -> bool:  # noqa: N802
-        return FreeCAD.ActiveDocument is not None
-
     def Activated(self) -> None:  # noqa: N802
         position, where = _eye_spot()
         commands._run_transaction("Create observer", [
@@ -78,9 +75,6 @@ class CommandObserverGrid(commands.BaseCommand):
     TIP = ("Seated eyes (1.2 m) over the selected floor face, else the model, 0.5 m off its "
            "edges, 2 x 2 positions each looking every 90 degrees (CIE's axial directions): the "
            "maximum UGR with its interval, and where it is")
-
-    def IsActive(self) -> bool:  # noqa: N802
-        return FreeCAD.ActiveDocument is not None
 
     def Activated(self) -> None:  # noqa: N802
         from lighting.objects.observer import EYE_HEIGHT_M

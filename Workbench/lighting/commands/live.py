@@ -128,9 +128,6 @@ class CommandLive(BaseCommand):
     TIP = ("Refine the results in the background while you edit: luminaire and furniture "
            "moves update at once, other edits re-export (toggles the analysis' Live property)")
 
-    def IsActive(self) -> bool:  # noqa: N802
-        return FreeCAD.ActiveDocument is not None
-
     def Activated(self) -> None:  # noqa: N802
         analysis = active_analysis(create=True)
         analysis.Live = not bool(analysis.Live)
