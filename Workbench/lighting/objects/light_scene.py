@@ -15,6 +15,8 @@ import math
 from typing import Any, Dict, List, Optional
 
 from lighting.objects.base import BaseProxy, Prop, proxy_type
+# The analysis whose group holds an object (a light scene here): one lookup for both.
+from lighting.objects.results import analysis_of  # noqa: F401 - also used by callers
 
 TYPE = "Lighting::LightScene"
 
@@ -74,14 +76,6 @@ def check(obj: Any, known_groups: List[str]) -> List[tuple]:
 def scenes(analysis: Any) -> List[Any]:
     """The light scenes in an analysis' group."""
     return [o for o in getattr(analysis, "Group", []) if proxy_type(o) == TYPE]
-
-
-def analysis_of(obj: Any) -> Optional[Any]:
-    """The analysis whose group holds a light scene, or None."""
-    for parent in obj.InList:
-        if proxy_type(parent) == "Lighting::Analysis":
-            return parent
-    return None
 
 
 def active(analysis: Any) -> Optional[Any]:

@@ -114,27 +114,21 @@ def traced(obj: Any) -> Optional[Dict[str, Any]]:
 def data(obj: Any) -> Optional[Dict[str, Any]]:
     """The results document shown: the analysis' active light scene rescaled from the traced
     one (objects/light_scene.py), else the traced one; None when there are none."""
-    found = traced(obj)
-    if found is None:
-        return None
-    shown, _ = _shown(obj, found)
-    return shown
-
-
-def light_scene_note(obj: Any) -> str:
-    """What the results object shows: "" (as traced), the light scene and its levels, or why
-    the active light scene cannot be shown. It changes with every level, so the view
-    providers repaint on it (set last by derive())."""
-    found = traced(obj)
-    return "" if found is None else _shown(obj, found)[1]
+    return shown(obj)[0]
 
 
 _rescaled: Dict[Tuple[str, str], Dict[str, Any]] = {}
 
 
-def _shown(obj: Any, found: Dict[str, Any]) -> Tuple[Dict[str, Any], str]:
+def shown(obj: Any) -> Tuple[Optional[Dict[str, Any]], str]:
+    """(the results document shown, what it is): the note is "" (as traced), the light scene
+    and its levels, or why the active light scene cannot be shown. The note changes with
+    every level, so the view providers repaint on it (set last by derive())."""
     from lighting.objects import light_scene
 
+    found = traced(obj)
+    if found is None:
+        return None, ""
     analysis = analysis_of(obj)
     scene = light_scene.active(analysis) if analysis is not None else None
     if scene is None:
@@ -170,7 +164,8 @@ def _num(value: Any) -> float:
 
 def derive(obj: Any) -> None:
     """Set the derived properties from ResultsJson (all empty when there is none)."""
-    doc = data(obj) or {}
+    found, note = shown(obj)
+    doc = found or {}
     entries = [e for e in doc.get("targets", []) if isinstance(e, dict)]
     _set(obj, "TargetNames", [str(e.get("name", "")) for e in entries])
     for name, key in PER_TARGET.items():
@@ -184,7 +179,7 @@ def derive(obj: Any) -> None:
     _set(obj, "Partial", bool(doc.get("partial", False)))
     _set(obj, "Backend", str(doc.get("backend", "")))
     _set(obj, "Warnings", [str(w) for w in doc.get("warnings", [])])
-    _set(obj, "LightScene", light_scene_note(obj))
+    _set(obj, "LightScene", note)
 
 
 def index_of(obj: Any, target_name: str) -> Optional[int]:
