@@ -448,6 +448,8 @@ PYBIND11_MODULE(lightsolver, m) {
         "same arguments, each traces a slice of every batch and all get the results a single "
         "process would give, bit for bit (docs/cluster.md).");
   m.def("mpi_built", &mpi::built, "True when this build can share runs among MPI processes");
+  m.def("mpi_launched", &mpi::launched,
+        "True when an MPI launcher (mpirun, srun) started this process: its environment says so");
   m.def(
       "rescale",
       [](const py::dict& results, const std::map<std::string, double>& factors) {

@@ -96,18 +96,14 @@ def _settle_numpy_limits() -> None:
         numpy.finfo(kind)
 
 
-#: Environment variables an MPI launcher (mpirun, srun) sets in every process it starts.
-MPI_LAUNCHER_VARIABLES = ("OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE")
-
-
 def mpi_comm() -> Any:
     """MPI.COMM_WORLD when this process was started by an MPI launcher (``mpirun -np K
     lightsolver report``: every rank traces its share, docs/cluster.md), else None. Under a
     launcher without mpi4py or with a solver built without MPI: ReportError, since every rank
     would trace the whole scene and race to write the same report."""
-    if not any(name in os.environ for name in MPI_LAUNCHER_VARIABLES):
-        return None
     solver = _require("lightsolver")
+    if not solver.mpi_launched():
+        return None
     if not solver.mpi_built():
         raise ReportError("started by an MPI launcher, but this lightsolver was built without MPI")
     try:

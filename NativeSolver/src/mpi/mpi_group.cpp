@@ -73,13 +73,6 @@ class MpiGroup final : public ProcessGroup {
 
 bool built() { return true; }
 
-bool launched() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"}) {
-    if (std::getenv(name) != nullptr) return true;
-  }
-  return false;
-}
-
 double timeout_seconds() {
   const char* text = std::getenv("LIGHTSOLVER_MPI_TIMEOUT_S");
   if (text == nullptr) return 600.0;

@@ -13,13 +13,6 @@ const char* kNoMpi =
 
 bool built() { return false; }
 
-bool launched() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"}) {
-    if (std::getenv(name) != nullptr) return true;
-  }
-  return false;
-}
-
 double timeout_seconds() { return 600.0; }
 
 Session::Session(int*, char***) { throw std::runtime_error(kNoMpi); }
