@@ -147,23 +147,28 @@ std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double 
   return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
 }
 
-// Target `i` of the scene after the run's first `photons` photons: estimates from the grouped
-// tallies, the type's own part from its row (target_results.cpp, target_types.cpp), and each
-// group's part when asked for (not for observer grids: their points are not one estimate).
-TargetResult target_at(const Scene& scene, std::size_t i, const detail::PreparedScene& s,
-                       const detail::TallyBlock& t, std::uint64_t photons, double confidence,
-                       bool judged, bool contributions) {
+// Every target of the scene after the run's first `photons` photons: estimates from the
+// grouped tallies (grouped once), the type's own part from its row (target_results.cpp,
+// target_types.cpp), and each group's part when asked for (not for observer grids: their
+// points are not one estimate).
+std::vector<TargetResult> all_targets(const Scene& scene, const detail::PreparedScene& s,
+                                      const detail::TallyBlock& t, std::uint64_t photons,
+                                      double confidence, bool judged, bool contributions) {
   const detail::GroupedTallies tallies = detail::grouped_tallies(s, t.bins, photons);
-  const Target& target = scene.targets[i];
-  const std::uint32_t bin = s.target_bin[i];
-  TargetResult r =
-      detail::make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
-  if (contributions && target.type != Target::Type::ObserverGrid) {
-    std::vector<std::string> names;
-    for (const auto& g : s.groups) names.push_back(g.name);
-    detail::add_contributions(r, s.bins, tallies, bin, confidence, names);
+  std::vector<std::string> names;
+  for (const auto& g : s.groups) names.push_back(g.name);
+  std::vector<TargetResult> out;
+  for (std::size_t i = 0; i < scene.targets.size(); ++i) {
+    const Target& target = scene.targets[i];
+    const std::uint32_t bin = s.target_bin[i];
+    TargetResult r =
+        detail::make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
+    if (contributions && target.type != Target::Type::ObserverGrid) {
+      detail::add_contributions(r, s.bins, tallies, bin, confidence, names);
+    }
+    out.push_back(std::move(r));
   }
-  return r;
+  return out;
 }
 
 // Every group: its name, flux, photons traced and luminaires.
@@ -251,10 +256,7 @@ class CheckpointTracer {
         c.photons = at;
         c.seconds = seconds_since(start_);
         c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
-        for (std::size_t i = 0; i < scene_.targets.size(); ++i) {
-          c.targets.push_back(
-              target_at(scene_, i, s_, tallies, at, r.confidence, r.judged, r.contributions));
-        }
+        c.targets = all_targets(scene_, s_, tallies, at, r.confidence, r.judged, r.contributions);
         o_.checkpoint(c);
       }
     }
@@ -416,12 +418,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   }
   const std::uint64_t first_photon = r.photons;
   auto targets_at = [&](std::uint64_t photons, double confidence) {
-    std::vector<TargetResult> targets;
-    for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-      targets.push_back(
-          target_at(scene, i, prepared, tallies, photons, confidence, r.judged, r.contributions));
-    }
-    return targets;
+    return all_targets(scene, prepared, tallies, photons, confidence, r.judged, r.contributions);
   };
   double tracing_s = 0.0;
   int looks = 0;  // decide: verdicts judged so far (each at its own spent confidence)
