@@ -25,7 +25,7 @@ void on_sigint(int) { g_stop.store(true); }
 struct OptimizeArgs {
   std::string scene, out;
   opt::RunOverrides overrides;
-  bool static_n = false, quiet = false;
+  bool static_n = false, quiet = false, no_reuse = false;
 };
 
 void print_iteration(const opt::IterationStats& s) {
@@ -44,9 +44,11 @@ void print_iteration(const opt::IterationStats& s) {
 void print_summary(const opt::SceneProblem& p, const opt::OptimizationResult& r) {
   const opt::Counters& c = r.counters;
   const double it = c.iterations ? double(c.iterations) : 1.0;
-  std::printf("\nstop: %s after %llu iterations, %llu traces, %.4g photons, %.2f s\n",
+  std::printf("\nstop: %s after %llu iterations, %llu evaluations, %.4g photons (%.4g traced), "
+              "%.2f s\n",
               opt::to_string(r.stop), static_cast<unsigned long long>(c.iterations),
-              static_cast<unsigned long long>(c.evaluations), double(c.photons), c.total_seconds);
+              static_cast<unsigned long long>(c.evaluations), double(c.photons),
+              double(c.photons_traced), c.total_seconds);
   std::printf("per iteration: update %.2f ms, tracing %.2f ms, rest %.2f ms, total %.2f ms\n",
               1e3 * c.update_seconds / it, 1e3 * c.trace_seconds / it, 1e3 * c.other_seconds / it,
               1e3 * c.total_seconds / it);
@@ -73,6 +75,7 @@ int run_optimize(OptimizeArgs& a) {
   if (!a.out.empty()) check_writable(a.out, "results file");  // before any search
   const opt::SceneProblem problem = opt::load_problem(a.scene);
   if (a.static_n) a.overrides.screening_photons = 0;
+  if (a.no_reuse) a.overrides.reuse_traces = false;
   a.overrides.processes = processes();
   opt::Control control;
   control.cancel = &g_stop;
@@ -112,6 +115,8 @@ void add_optimize_command(CLI::App& app) {
   cmd->add_option("--confirmation-photons", args->overrides.confirmation_photons,
                   "N: photons of precise traces");
   cmd->add_flag("--static", args->static_n, "Always trace with N photons (no screening)");
+  cmd->add_flag("--no-reuse", args->no_reuse,
+                "Trace every luminaire group for every evaluation (search.reuse_traces = false)");
   cmd->add_flag("--quiet,-q", args->quiet, "No per-iteration lines");
   cmd->callback([args] {
     int rc = 1;

@@ -93,9 +93,11 @@ py::dict optimize_py(py::object scene, py::object optimization,
                      std::optional<std::uint64_t> iterations, std::optional<std::uint64_t> seed,
                      std::optional<std::uint64_t> screening_photons,
                      std::optional<std::uint64_t> confirmation_photons, int threads,
-                     py::object progress, py::object cancel, const std::string& backend) {
+                     py::object progress, py::object cancel, const std::string& backend,
+                     std::optional<bool> reuse_traces) {
   const opt::SceneProblem problem = problem_from(scene, optimization);
   opt::RunOverrides o{iterations, seed, screening_photons, confirmation_photons, threads, backend};
+  o.reuse_traces = reuse_traces;
   std::atomic<bool> stop{false};
   opt::Control control;
   control.cancel = &stop;
@@ -139,7 +141,7 @@ void bind_optimizer(py::module_& m) {
         py::arg("iterations") = py::none(), py::arg("seed") = py::none(),
         py::arg("screening_photons") = py::none(), py::arg("confirmation_photons") = py::none(),
         py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("cancel") = py::none(),
-        py::arg("backend") = lightsolver::kAutoBackend,
+        py::arg("backend") = lightsolver::kAutoBackend, py::arg("reuse_traces") = py::none(),
         R"(Search a scene's optimization block for the best configurations.
 
 scene: a scene file path (its "optimization" block is used unless `optimization` is given) or a
@@ -151,6 +153,8 @@ progress: called with a dict after every iteration (event="iteration") and after
     update_seconds, trace_seconds, other_seconds; return False to stop.
 cancel: a CancelToken; cancel() from another thread stops the search within one trace.
 backend: a name from backends() ("auto": a real GPU when one is usable, else Embree).
+reuse_traces: overrides search.reuse_traces (default true: each luminaire group traced apart and
+    its trace kept for configurations that do not change it; a flux level traces nothing).
 Returns the result as a dict (format lightsolver.optimization/1): isoc members with cells,
 values, objective and constraint estimates and "scene" (world positions), siisoc, counters,
 history. The GIL is released while searching.)");

@@ -18,6 +18,25 @@ namespace detail {
 struct SimulationState;
 }
 
+/// A luminaire group as the simulation holds it (the scene's `group` keys, docs/statistics.md
+/// "Groups"): its own photon stream and tallies.
+struct LuminaireGroup {
+  std::string name;
+  std::vector<std::size_t> luminaires;  ///< indices into scene().luminaires
+  double flux_lm = 0.0;                 ///< emitted as the scene stands (photometric tilt included)
+};
+
+/// One group's tallies, traced alone by Simulation::trace_group and summed into results by
+/// Simulation::combine: the optimizer re-traces only the groups a configuration changes.
+struct GroupTrace {
+  std::size_t group = 0;
+  std::uint64_t run_photons = 0;  ///< the run whose share of photons this group traced
+  std::uint64_t photons = 0;      ///< this group's share of them
+  std::uint64_t seed = 0;
+  std::vector<Tally> bins;  ///< one per tally bin of the scene (layout internal)
+  std::uint64_t ray_segments = 0, capped_paths = 0, cut_paths = 0;
+};
+
 class Simulation {
  public:
   struct Options {
@@ -60,6 +79,30 @@ class Simulation {
 
   /// Seconds spent applying changes since the previous run (reported, then reset, by run()).
   double pending_update_seconds() const;
+
+  /// The luminaire groups, in the order of their first luminaire in the scene.
+  std::vector<LuminaireGroup> groups() const;
+
+  /// Shares a run's photons among the groups by these weights (one per group, >= 0, e.g. each
+  /// group's largest flux over a search) instead of by their fluxes now: a group's photons then
+  /// stay the same when another group's flux changes, so its trace can be reused. Empty: by flux
+  /// again. Throws InputError for a wrong count or a negative or non-finite weight.
+  void fix_photon_shares(const std::vector<double>& weights);
+
+  /// Traces group `group` alone, as the scene stands: its share of a run of `run_photons`
+  /// photons with `seed`. Equal, bit for bit, to that group's tallies in run() with the same
+  /// photons and seed. `processes`: MPI ranks sharing the trace (null: alone). Throws InputError
+  /// for an unknown group or one without flux.
+  GroupTrace trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
+                         const std::shared_ptr<ProcessGroup>& processes = nullptr);
+
+  /// Results from groups traced apart: `traces[g]` for group g (null: the group is dark) and
+  /// `flux_lm[g]` the flux each group emits now (its traced tallies are scaled to it: light is
+  /// linear in a group's flux). Combining the traces of every group made with one seed equals
+  /// run() with it, bit for bit, in every estimate. Throws std::invalid_argument when the
+  /// traces do not fit the scene.
+  Results combine(const std::vector<const GroupTrace*>& traces,
+                  const std::vector<double>& flux_lm, double confidence) const;
 
  private:
   Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);

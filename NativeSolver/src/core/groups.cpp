@@ -8,22 +8,23 @@
 
 namespace lightsolver::detail {
 
-void set_photon_shares(std::vector<PreparedGroup>& groups) {
-  double lit = 0.0, total_flux = 0.0;
-  for (const PreparedGroup& g : groups) {
-    if (g.flux_lm > 0.0) {
+void set_photon_shares(std::vector<PreparedGroup>& groups, const std::vector<double>& weights) {
+  auto weight = [&](std::size_t g) { return weights.empty() ? groups[g].flux_lm : weights[g]; };
+  double lit = 0.0, total = 0.0;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (weight(g) > 0.0) {
       lit += 1.0;
-      total_flux += g.flux_lm;
+      total += weight(g);
     }
   }
   double sum = 0.0;
-  for (PreparedGroup& g : groups) {
-    g.share = g.flux_lm > 0.0 ? std::max(g.flux_lm / total_flux, kGroupFloor / lit) : 0.0;
-    sum += g.share;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    groups[g].share = weight(g) > 0.0 ? std::max(weight(g) / total, kGroupFloor / lit) : 0.0;
+    sum += groups[g].share;
   }
-  for (PreparedGroup& g : groups) {
+  for (std::size_t g = 0; g < groups.size(); ++g) {
     // One lit group: exactly 1, so its photons are the run's (ungrouped results unchanged).
-    g.share = lit == 1.0 ? (g.flux_lm > 0.0 ? 1.0 : 0.0) : g.share / sum;
+    groups[g].share = lit == 1.0 ? (weight(g) > 0.0 ? 1.0 : 0.0) : groups[g].share / sum;
   }
 }
 

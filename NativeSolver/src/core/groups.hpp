@@ -20,9 +20,11 @@ inline constexpr double kGroupFloor = 0.1;
 /// Largest groups x bins of one run: 2^26 tallies, 1 GiB (16 bytes each) per copy.
 inline constexpr std::uint64_t kMaxGroupTallies = std::uint64_t(1) << 26;
 
-/// Sets every group's photon share: max(flux fraction, kGroupFloor / lit groups), normalised;
-/// 0 for a group without flux. A single lit group gets exactly 1.
-void set_photon_shares(std::vector<PreparedGroup>& groups);
+/// Sets every group's photon share: max(weight fraction, kGroupFloor / weighted groups),
+/// normalised; 0 for a group of weight 0. A single weighted group gets exactly 1. The weights are
+/// the groups' fluxes, or `weights` (one per group) where given: fixed shares that do not move
+/// when a flux does (Simulation::fix_photon_shares, the optimizer's reused traces).
+void set_photon_shares(std::vector<PreparedGroup>& groups, const std::vector<double>& weights = {});
 
 /// The photons of every group among a run's first `n`: they add up to exactly n, each is
 /// non-decreasing in n (so consecutive batches are consecutive ranges of each group's stream)

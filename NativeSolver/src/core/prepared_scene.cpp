@@ -155,7 +155,9 @@ void prepare_luminaires(const Scene& scene, PreparedScene& out) {
       g.cdf.back() = 1.0;
     }
   }
-  set_photon_shares(out.groups);
+  // Fixed weights hold while the groups stay the same ones (the optimizer changes no group).
+  if (out.share_weights.size() != out.groups.size()) out.share_weights.clear();
+  set_photon_shares(out.groups, out.share_weights);
 }
 
 }  // namespace lightsolver::detail

@@ -76,6 +76,8 @@ struct PreparedScene {
   std::vector<PreparedGrid> grids;
   std::vector<PreparedLuminaire> luminaires;
   std::vector<PreparedGroup> groups;  // in the order of first appearance in the scene
+  // Fixed photon-share weights, one per group (Simulation::fix_photon_shares); empty: by flux.
+  std::vector<double> share_weights;
   std::vector<BinInfo> bins;
   std::vector<std::uint32_t> target_bin;  // first bin of each Scene target
   // Per Scene target, the bins an accuracy goal judges: its whole bin (each eye's for an

@@ -19,27 +19,14 @@
 #include "core/cell_accuracy.hpp"
 #include "core/decide.hpp"
 #include "core/groups.hpp"
+#include "core/run_results.hpp"
 #include "core/shared_tracing.hpp"
+#include "core/simulation_state.hpp"
 #include "core/target_reach.hpp"
 #include "core/target_results.hpp"
 #include "core/target_types.hpp"
 
 namespace lightsolver {
-namespace detail {
-
-struct SimulationState {
-  Scene scene;
-  PreparedScene prepared;
-  std::unique_ptr<Backend> backend;
-  int threads = 0;
-  double pending_update_seconds = 0.0;
-  Warnings backend_notes;  // e.g. why "auto" fell back to the CPU
-  // The last run's tallies, for refine(); dropped by any change to the scene.
-  std::optional<TallyBlock> kept;
-  std::uint64_t kept_photons = 0, kept_seed = 0;
-};
-
-}  // namespace detail
 
 namespace {
 
@@ -147,76 +134,6 @@ std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double 
   return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
 }
 
-// Every target of the scene after the run's first `photons` photons: estimates from the
-// grouped tallies (grouped once), the type's own part from its row (target_results.cpp,
-// target_types.cpp), and each group's part when asked for (not for observer grids: their
-// points are not one estimate).
-std::vector<TargetResult> all_targets(const Scene& scene, const detail::PreparedScene& s,
-                                      const detail::TallyBlock& t, std::uint64_t photons,
-                                      double confidence, bool judged, bool contributions) {
-  const detail::GroupedTallies tallies = detail::grouped_tallies(s, t.bins, photons);
-  std::vector<std::string> names;
-  for (const auto& g : s.groups) names.push_back(g.name);
-  std::vector<TargetResult> out;
-  for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-    const Target& target = scene.targets[i];
-    const std::uint32_t bin = s.target_bin[i];
-    TargetResult r =
-        detail::make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
-    if (contributions && target.type != Target::Type::ObserverGrid) {
-      detail::add_contributions(r, s.bins, tallies, bin, confidence, names);
-    }
-    out.push_back(std::move(r));
-  }
-  return out;
-}
-
-// Every group: its name, flux, photons traced and luminaires.
-std::vector<GroupResult> group_results(const Scene& scene, const detail::PreparedScene& s,
-                                       std::uint64_t photons) {
-  std::vector<GroupResult> out;
-  const std::vector<std::uint64_t> traced = detail::group_photons(s.groups, photons);
-  for (const detail::PreparedGroup& g : s.groups) {
-    GroupResult r{g.name, g.flux_lm, traced[out.size()], {}};
-    for (const std::uint32_t l : g.luminaires) r.luminaires.push_back(scene.luminaires[l].name);
-    out.push_back(std::move(r));
-  }
-  return out;
-}
-
-void add_warnings(const Scene& scene, Results& r) {
-  r.warnings = scene.warnings;
-  for (const Luminaire& l : scene.luminaires) {
-    const Warnings w = photometric_warnings(l);
-    r.warnings.insert(r.warnings.end(), w.begin(), w.end());
-  }
-  if (r.total_flux_lm <= 0.0) r.warnings.push_back("all luminaires have zero flux");
-  if (r.capped_paths > 0) {
-    r.warnings.push_back(std::to_string(r.capped_paths) +
-                         " photon path(s) were still alive at max_bounces = " +
-                         std::to_string(scene.settings.max_bounces) +
-                         "; their remaining light is lost, so results are biased low");
-  }
-  if (r.cut_paths > 0) {
-    r.warnings.push_back(std::to_string(r.cut_paths) + " photon path(s) on the " + r.backend +
-                         " backend were longer than its device can run (Mesa lavapipe stops a "
-                         "shader after 65535 loop iterations, even for a path traced alone); "
-                         "their light is lost, so results are biased low: use the embree backend "
-                         "for this scene");
-  }
-  if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
-  if (r.decide && r.verdict == VerdictKind::Undecided) {
-    r.warnings.push_back(
-        "the run ended before every verdict was decided; each undecided one says what "
-        "deciding it would cost (to_decide)");
-  }
-  if (r.target_accuracy && !r.accuracy_met && r.stop_reason == kStopPhotons) {
-    r.warnings.push_back(std::string("the photon budget ran out before every ") +
-                         (r.accuracy_per_cell ? "cell" : "target") +
-                         " reached the requested accuracy");
-  }
-}
-
 // A time limit makes the stopping point depend on the machine: say so, and what it cost.
 void add_stop_warnings(Results& r) {
   if (r.stop_reason != kStopTime) return;
@@ -256,7 +173,8 @@ class CheckpointTracer {
         c.photons = at;
         c.seconds = seconds_since(start_);
         c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
-        c.targets = all_targets(scene_, s_, tallies, at, r.confidence, r.judged, r.contributions);
+        c.targets = detail::all_targets(scene_, s_, tallies, at, r.confidence, r.judged,
+                                        r.contributions);
         o_.checkpoint(c);
       }
     }
@@ -418,7 +336,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   }
   const std::uint64_t first_photon = r.photons;
   auto targets_at = [&](std::uint64_t photons, double confidence) {
-    return all_targets(scene, prepared, tallies, photons, confidence, r.judged, r.contributions);
+    return detail::all_targets(scene, prepared, tallies, photons, confidence, r.judged,
+                               r.contributions);
   };
   double tracing_s = 0.0;
   int looks = 0;  // decide: verdicts judged so far (each at its own spent confidence)
@@ -497,13 +416,15 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
   r.targets = targets_at(r.photons, r.confidence);
-  r.groups = group_results(scene, prepared, prepared.total_flux_lm > 0.0 ? r.photons : 0);
+  r.groups = detail::group_results(
+      scene, prepared,
+      detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));
   state_->kept = std::move(tallies);  // what refine() continues from
   state_->kept_photons = r.photons;
   state_->kept_seed = r.seed;
   detail::add_verdicts(r);
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
-  add_warnings(scene, r);
+  detail::add_warnings(scene, r);
   add_stop_warnings(r);
   detail::report_effects(scene, prepared, r);  // effects simulated/skipped, dark targets
   for (const GroupResult& g : r.groups) {

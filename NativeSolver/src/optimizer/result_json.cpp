@@ -43,6 +43,7 @@ json counters_json(const Counters& c) {
     cases[std::string(paper_case(static_cast<UpdateCase>(i)))] = c.cases[i];
   return {{"iterations", c.iterations},         {"evaluations", c.evaluations},
           {"cache_hits", c.cache_hits},         {"photons", c.photons},
+          {"photons_traced", c.photons_traced},
           {"screened_out", c.screened_out},     {"confirmations", c.confirmations},
           {"infeasible", c.infeasible},         {"refined", c.refined},
           {"inadmissible", c.inadmissible},     {"cases", std::move(cases)},

@@ -10,6 +10,7 @@
 
 #include "core/luminaire_types.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
+#include "optimizer/group_traces.hpp"
 
 namespace lightsolver::optimizer {
 namespace {
@@ -21,6 +22,9 @@ double seconds_since(Clock::time_point t) {
 }
 
 constexpr double kDeg = M_PI / 180.0;
+
+// Memory for kept group traces (least recently used dropped beyond it; results unchanged).
+constexpr std::size_t kTraceCacheBytes = std::size_t(256) << 20;
 
 // The field an aim variable turns (read_aim admits only types that have one).
 glm::dvec3& aim_field(Luminaire& l) { return *detail::luminaire_type(l.type).aim(l); }
@@ -45,15 +49,6 @@ void place(Luminaire& l, const glm::dvec3& anchor) {
 
 glm::dvec3 on_rectangle(const SceneVariable& v, const std::vector<double>& values) {
   return v.corner + values.at(v.first) * v.edge1 + values.at(v.first + 1) * v.edge2;
-}
-
-// One interval of a simultaneous family at critical value `z_wide`. Symmetric estimates
-// (mean ± zσ, multi-hit tallies) widen by σ; binomial ones get their Wilson interval at z_wide,
-// which stays sound at zero hits.
-Interval widened(const Estimate& e, double scale, std::uint64_t n, double z_wide) {
-  if (!e.binomial) return {std::max(0.0, e.mean - z_wide * e.sigma), e.mean + z_wide * e.sigma};
-  const auto [low, high] = wilson_interval(e.hits, n, z_wide);
-  return {scale * low, scale * high};
 }
 
 const TargetResult& find_result(const Results& r, const std::string& name) {
@@ -155,42 +150,71 @@ std::map<std::string, std::vector<double>> describe_values(const SceneProblem& p
   return out;
 }
 
-Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std::uint64_t photons,
+double uniformity_confidence(std::size_t cells, double confidence) {
+  return 1.0 - (1.0 - confidence) / (double(cells) + 1.0);
+}
+
+Estimate uniformity_estimate(const TargetResult& grid, const TargetResult& wide,
                              double confidence) {
   Estimate u;
-  if (grid.cells.empty() || photons == 0) return u;
-  const double cells = static_cast<double>(grid.cells.size());
-  const double z_run = z_for_confidence(confidence);
-  // m cells + the mean: each interval at 1 - (1 - confidence) / (m + 1), so all hold at once
-  // with probability >= confidence and the min over cells is covered by [min low, min high].
-  const double z_wide = z_for_confidence(1.0 - (1.0 - confidence) / (cells + 1.0));
-  const double cell_scale = total_flux_lm / (grid.area_m2 / cells);
+  if (grid.cells.empty() || grid.cells.size() != wide.cells.size()) return u;
+  // m cells + the mean, each interval at uniformity_confidence(m): all hold at once with
+  // probability >= confidence, so the min over cells is covered by [min low, min high].
   double min_low = INFINITY, min_high = INFINITY, min_mean = INFINITY;
   std::uint64_t min_hits = 0;
-  for (const Estimate& c : grid.cells) {
-    const Interval i = widened(c, cell_scale, photons, z_wide);
-    min_low = std::min(min_low, i.low);
-    min_high = std::min(min_high, i.high);
+  for (std::size_t j = 0; j < grid.cells.size(); ++j) {
+    min_low = std::min(min_low, wide.cells[j].ci_low);
+    min_high = std::min(min_high, wide.cells[j].ci_high);
+    const Estimate& c = grid.cells[j];
     if (c.mean < min_mean) min_mean = c.mean, min_hits = c.hits;
   }
-  const Interval em = widened(grid.estimate, total_flux_lm / grid.area_m2, photons, z_wide);
+  const Estimate& em = wide.estimate;
   u.mean = grid.estimate.mean > 0.0 ? min_mean / grid.estimate.mean : 0.0;
-  u.ci_low = em.high > 0.0 ? min_low / em.high : 0.0;
-  u.ci_high = em.low > 0.0 ? std::min(1.0, min_high / em.low) : 1.0;  // min <= mean always
+  u.ci_low = em.ci_high > 0.0 ? min_low / em.ci_high : 0.0;
+  u.ci_high = em.ci_low > 0.0 ? std::min(1.0, min_high / em.ci_low) : 1.0;  // min <= mean always
   u.ci_low = std::min(u.ci_low, u.mean);
   u.ci_high = std::max(u.ci_high, u.mean);
   // compare() works on sigma: the half-width of this interval at the run's critical value.
-  u.sigma = (u.ci_high - u.ci_low) / (2.0 * z_run);
+  u.sigma = (u.ci_high - u.ci_low) / (2.0 * z_for_confidence(confidence));
   u.hits = min_hits;
   return u;
 }
 
+struct SceneEvaluator::Reuse {
+  reuse::TracePlan plan;
+  reuse::TraceCache cache;
+  // The last evaluation's traces and fluxes: metrics that need another confidence level
+  // (U0's simultaneous intervals) combine them again.
+  std::vector<std::shared_ptr<const GroupTrace>> traces;
+  std::vector<double> flux_lm;
+  double installed_lm = 0.0;
+};
+
 SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const std::string& backend,
-                               std::shared_ptr<ProcessGroup> processes)
+                               std::shared_ptr<ProcessGroup> processes,
+                               std::optional<bool> reuse_traces)
     : problem_(problem),
       simulation_(problem.scene, Simulation::Options{backend, threads, problem.movable_meshes()}),
       confidence_(problem.search.confidence),
-      processes_(std::move(processes)) {}
+      processes_(std::move(processes)) {
+  const bool reuse = reuse_traces.value_or(problem.reuse_traces);
+  reuse_ = std::make_unique<Reuse>(Reuse{reuse::plan_traces(problem, simulation_.groups(), reuse),
+                                         reuse::TraceCache(reuse ? kTraceCacheBytes : 0),
+                                         {},
+                                         {},
+                                         0.0});
+  if (reuse) {
+    // Photons shared by each group's flux at the largest levels, fixed for the search: a
+    // group's photons (and so its trace) must not move when another group's flux does.
+    apply(reuse::trace_values(problem, reuse_->plan, problem.domain.values(
+                                                          Configuration(problem.domain.dimensions(), 0))));
+    std::vector<double> weights;
+    for (const LuminaireGroup& g : simulation_.groups()) weights.push_back(g.flux_lm);
+    simulation_.fix_photon_shares(weights);
+  }
+}
+
+SceneEvaluator::~SceneEvaluator() = default;
 
 void SceneEvaluator::apply(const std::vector<double>& values) {
   const SceneChanges c = changes_for(problem_, values);
@@ -202,11 +226,16 @@ Estimate SceneEvaluator::metric(const Metric& m) const {
   switch (m.kind) {
     case MetricKind::kMeanIlluminance:
       return find_result(last_, m.target).estimate;
-    case MetricKind::kUniformity:
-      return uniformity_estimate(find_result(last_, m.target), last_.total_flux_lm, last_.photons,
-                                 confidence_);
+    case MetricKind::kUniformity: {
+      const TargetResult& grid = find_result(last_, m.target);
+      std::vector<const GroupTrace*> traces;
+      for (const auto& t : reuse_->traces) traces.push_back(t.get());
+      const Results wide = simulation_.combine(
+          traces, reuse_->flux_lm, uniformity_confidence(grid.cells.size(), confidence_));
+      return uniformity_estimate(grid, find_result(wide, m.target), confidence_);
+    }
     case MetricKind::kInstalledFlux: {
-      const double f = simulation_.scene().total_flux_lm();
+      const double f = reuse_->installed_lm;
       return Estimate{f, 0.0, f, f, 0};
     }
     case MetricKind::kCustom:
@@ -218,17 +247,35 @@ Estimate SceneEvaluator::metric(const Metric& m) const {
 Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
   Evaluation e;
   const auto start = Clock::now();
-  apply(r.values);
+  apply(reuse::trace_values(problem_, reuse_->plan, r.values));
   e.update_seconds = seconds_since(start);
-  SolveOptions opt;
-  opt.photons = r.photons;
-  opt.seed = r.seed;
-  opt.confidence = confidence_;
-  opt.decide = false;  // the search's own n/N photons, whatever the scene's settings say
-  opt.processes = processes_;
   const auto trace_start = Clock::now();
-  last_ = simulation_.run(opt);
+  const std::vector<LuminaireGroup> groups = simulation_.groups();
+  Reuse& k = *reuse_;
+  k.traces.assign(groups.size(), nullptr);
+  k.flux_lm.assign(groups.size(), 0.0);
+  std::uint64_t traced = 0;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    k.flux_lm[g] = groups[g].flux_lm * reuse::flux_factor(problem_, k.plan, g, r.values);
+    if (!(k.flux_lm[g] > 0.0)) continue;  // dark: its part is exactly zero, nothing to trace
+    const std::uint64_t sub = reuse::sub_configuration(problem_.domain, k.plan, g, r.cells);
+    const reuse::TraceCache::Key key{g, sub, r.photons};
+    k.traces[g] = k.cache.find(key);
+    if (k.traces[g]) continue;
+    // A group that depends on the whole configuration gets the request's own seed.
+    const std::uint64_t seed =
+        sub == r.cell_index ? r.seed : evaluation_seed(r.run_seed, sub, r.photons);
+    k.traces[g] = std::make_shared<const GroupTrace>(
+        simulation_.trace_group(g, r.photons, seed, processes_));
+    traced += k.traces[g]->photons;
+    k.cache.insert(key, k.traces[g]);
+  }
+  std::vector<const GroupTrace*> traces;
+  for (const auto& t : k.traces) traces.push_back(t.get());
+  last_ = simulation_.combine(traces, k.flux_lm, confidence_);
+  k.installed_lm = reuse::installed_flux_lm(problem_, k.plan, simulation_.scene(), r.values);
   e.trace_seconds = seconds_since(trace_start);
+  e.photons_traced = traced;
   e.objective = metric(problem_.intention.objective);
   for (const Constraint& c : problem_.intention.constraints)
     e.constraints.push_back(metric(c.metric));
@@ -242,7 +289,7 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
   if (o.seed) opt.seed = *o.seed;
   if (o.screening_photons) opt.screening_photons = *o.screening_photons;
   if (o.confirmation_photons) opt.confirmation_photons = *o.confirmation_photons;
-  SceneEvaluator evaluator(problem, o.threads, o.backend, o.processes);
+  SceneEvaluator evaluator(problem, o.threads, o.backend, o.processes, o.reuse_traces);
   return optimize(problem.domain, problem.intention, evaluator, opt, control);
 }
 

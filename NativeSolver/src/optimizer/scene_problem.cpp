@@ -350,7 +350,7 @@ std::vector<Configuration> read_initial(const JsonNode& n, const Domain& d) {
 VnsOptions read_search(const JsonNode& n, const SceneProblem& p) {
   n.require_object({"seed", "confidence", "screening_photons", "confirmation_photons", "strategy",
                     "uncertain", "max_iterations", "max_evaluations", "starts", "kmax",
-                    "local_search", "neighbourhood", "initial", "min_spacing_m"});
+                    "local_search", "neighbourhood", "initial", "min_spacing_m", "reuse_traces"});
   VnsOptions o;
   o.confidence = p.scene.settings.confidence;
   if (n.has("seed")) o.seed = n.at("seed").unsigned_integer();
@@ -412,6 +412,7 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
   } else {
     p.search.confidence = p.scene.settings.confidence;
   }
+  if (root.has("search")) p.reuse_traces = root.at("search").boolean_or("reuse_traces", true);
   if (root.has("search") && root.at("search").has("min_spacing_m")) {
     const JsonNode spacing = root.at("search").at("min_spacing_m");
     p.min_spacing_m = spacing.number();

@@ -116,7 +116,8 @@ const Evaluation* Search::evaluate(std::uint64_t cell, const Configuration& c,
   }
   if (check_stop(ignore_limit)) return nullptr;
   const std::vector<double> values = d_.values(c);
-  const EvaluationRequest req{c, values, cell, photons, evaluation_seed(opt_.seed, cell, photons)};
+  const EvaluationRequest req{c,       values, cell, photons, evaluation_seed(opt_.seed, cell, photons),
+                              opt_.seed};
   Evaluation e = ev_.evaluate(req);
   if (e.constraints.size() != in_.constraints.size())
     throw std::invalid_argument(
@@ -124,6 +125,7 @@ const Evaluation* Search::evaluate(std::uint64_t cell, const Configuration& c,
         " constraint estimates, the intention has " + std::to_string(in_.constraints.size()));
   ++counters_.evaluations;
   counters_.photons += photons;
+  counters_.photons_traced += e.photons_traced.value_or(photons);
   counters_.update_seconds += e.update_seconds;
   counters_.trace_seconds += e.trace_seconds;
   if (photons == N_) ++counters_.confirmations;

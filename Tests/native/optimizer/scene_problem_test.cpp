@@ -337,7 +337,7 @@ TEST(SceneProblem, ValuesMoveAimAndDimTheScene) {
 
 TEST(SceneEvaluator, SameRequestSameEstimatesAndMovedGeometryMatchesARebuiltScene) {
   const SceneProblem p = parse(base_scene());
-  SceneEvaluator ev(p, 2);
+  SceneEvaluator ev(p, 2, kAutoBackend, nullptr, /*reuse_traces=*/false);  // one run, one seed
   const Configuration cells{1, 2, 2, 0, 1, 2};
   const std::vector<double> values = p.domain.values(cells);
   const EvaluationRequest req{cells, values, p.domain.index(cells), 20000, 42};
@@ -398,7 +398,7 @@ TEST(SceneEvaluator, RotatedGeometryMatchesARebuiltScene) {
   scene["optimization"]["variables"].push_back(cube_rotation());
   var(scene["optimization"], 4)["max_deg"] = 75;  // -30, 0, 30, 60: no symmetry helps
   const SceneProblem p = parse(scene);
-  SceneEvaluator ev(p, 2);
+  SceneEvaluator ev(p, 2, kAutoBackend, nullptr, /*reuse_traces=*/false);  // one run, one seed
   const Configuration cells{1, 2, 1, 1, 1, 2, 2};  // the cube turned 30 degrees
   const std::vector<double> values = p.domain.values(cells);
   ASSERT_DOUBLE_EQ(values[6], 30.0);
@@ -511,8 +511,11 @@ TEST(Uniformity, IntervalCoversTheTruth) {
   for (int i = 0; i < 100; ++i) {
     o.photons = 10000;
     o.seed = 1000 + i;
+    o.confidence = 0.95;
     const Results r = sim.run(o);
-    const Estimate u = uniformity_estimate(r.targets[1], r.total_flux_lm, r.photons, 0.95);
+    o.confidence = uniformity_confidence(r.targets[1].cells.size(), 0.95);
+    const Results wide = sim.run(o);  // the same photons, the family's level
+    const Estimate u = uniformity_estimate(r.targets[1], wide.targets[1], 0.95);
     EXPECT_LE(u.ci_low, u.mean);
     EXPECT_GE(u.ci_high, u.mean);
     EXPECT_LE(u.ci_high, 1.0);

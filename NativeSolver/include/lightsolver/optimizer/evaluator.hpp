@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct EvaluationRequest {
   std::uint64_t cell_index;           ///< Domain::index(cells)
   std::uint64_t photons;              ///< photon paths to trace
   std::uint64_t seed;                 ///< evaluation_seed(run seed, cell_index, photons)
+  /// The run's seed: an evaluator that traces parts of a configuration apart (SceneEvaluator's
+  /// reused group traces) seeds each part with evaluation_seed(run_seed, part's index, photons).
+  std::uint64_t run_seed = 0;
 };
 
 /// What the evaluator returns. Estimates use the run's confidence level for their CIs.
@@ -31,6 +35,9 @@ struct Evaluation {
   std::vector<Estimate> constraints;  ///< one per Intention::constraints, same order
   double update_seconds = 0.0;        ///< time spent applying the configuration to the scene
   double trace_seconds = 0.0;         ///< time spent tracing photons
+  /// Photons actually traced, where an evaluator reused traces (fewer than requested); unset:
+  /// the request's photons.
+  std::optional<std::uint64_t> photons_traced;
 };
 
 /// Interface the scene integration implements. evaluate() is called from one thread at a

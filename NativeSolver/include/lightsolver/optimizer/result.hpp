@@ -34,7 +34,10 @@ struct Counters {
   std::uint64_t iterations = 0;     ///< VNS iterations done (a start's first descent is one)
   std::uint64_t evaluations = 0;    ///< evaluator calls (each a photon trace)
   std::uint64_t cache_hits = 0;     ///< look-ups answered by the tabu cache
-  std::uint64_t photons = 0;        ///< photons traced in all evaluations
+  std::uint64_t photons = 0;        ///< photons requested by all evaluations
+  /// photons actually traced: fewer where the evaluator reused traces (a flux change, one
+  /// luminaire moved among several)
+  std::uint64_t photons_traced = 0;
   std::uint64_t screened_out = 0;   ///< strategy A: dominated at n, never traced with N
   std::uint64_t confirmations = 0;  ///< evaluations with N photons (precise)
   std::uint64_t infeasible = 0;     ///< candidates kept out of the ISOC by their constraints

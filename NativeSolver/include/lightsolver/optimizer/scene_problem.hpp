@@ -15,6 +15,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -69,6 +70,10 @@ struct SceneProblem {
   Domain domain;
   std::vector<SceneVariable> variables;
   VnsOptions search;
+  /// `search.reuse_traces` (default true): trace each luminaire group apart and keep its
+  /// trace for the configurations that do not change it; a flux variable then costs no tracing
+  /// (docs/optimization.md, "Reused traces"). False: every evaluation traces every group.
+  bool reuse_traces = true;
   /// `search.min_spacing_m`: no two luminaires closer than this (anchor to anchor) in any
   /// configuration searched; positions are always distinct (docs/optimization.md §10).
   double min_spacing_m = 0.0;
@@ -107,10 +112,15 @@ Scene apply_values(const SceneProblem& problem, const std::vector<double>& value
 std::map<std::string, std::vector<double>> describe_values(const SceneProblem& problem,
                                                            const std::vector<double>& values);
 
+/// The level of each interval in U0's simultaneous family over a grid of `cells` cells and its
+/// mean: 1 − (1 − confidence) / (cells + 1).
+double uniformity_confidence(std::size_t cells, double confidence);
+
 /// U0 = Emin / Em of a grid with a conservative interval (docs/optimization.md §9): the cells
 /// and the mean are one family of simultaneous intervals (Bonferroni), so the interval covers
-/// min_j E_j / Em whichever cell is the minimum. `total_flux_lm` and `photons` are the run's.
-Estimate uniformity_estimate(const TargetResult& grid, double total_flux_lm, std::uint64_t photons,
+/// min_j E_j / Em whichever cell is the minimum. `grid`: the grid's results at `confidence`;
+/// `wide`: the same tallies' results at uniformity_confidence(cells, confidence).
+Estimate uniformity_estimate(const TargetResult& grid, const TargetResult& wide,
                              double confidence);
 
 /// Evaluator over a Simulation that owns a copy of the problem's scene.
@@ -120,9 +130,15 @@ class SceneEvaluator final : public Evaluator {
   /// as Simulation does.
   /// `processes`: MPI ranks sharing every trace (null: alone); the search itself runs the
   /// same on every rank (its randomness and the traced numbers are identical there).
+  /// `reuse_traces`: as SceneProblem::reuse_traces, which it overrides when given.
   SceneEvaluator(const SceneProblem& problem, int threads = 0,
                  const std::string& backend = kAutoBackend,
-                 std::shared_ptr<ProcessGroup> processes = nullptr);
+                 std::shared_ptr<ProcessGroup> processes = nullptr,
+                 std::optional<bool> reuse_traces = std::nullopt);
+  ~SceneEvaluator() override;
+  /// Applies the request's configuration, traces the groups it changed (all of them without
+  /// reuse) with seeds derived from the run seed and the group's part of the configuration,
+  /// and sums the groups' traces scaled to their fluxes. Depends only on the request.
   Evaluation evaluate(const EvaluationRequest& request) override;
   /// The simulation's scene with the last request applied.
   const Scene& scene() const { return simulation_.scene(); }
@@ -130,6 +146,8 @@ class SceneEvaluator final : public Evaluator {
   const Results& last_results() const { return last_; }
 
  private:
+  struct Reuse;  // the trace plan and the kept group traces (group_traces.hpp)
+
   void apply(const std::vector<double>& values);
   Estimate metric(const Metric& m) const;
 
@@ -137,6 +155,7 @@ class SceneEvaluator final : public Evaluator {
   Simulation simulation_;
   double confidence_;
   std::shared_ptr<ProcessGroup> processes_;
+  std::unique_ptr<Reuse> reuse_;
   Results last_;
 };
 
@@ -146,6 +165,7 @@ struct RunOverrides {
   int threads = 0;
   std::string backend = kAutoBackend;  ///< a name from lightsolver::backends()
   std::shared_ptr<ProcessGroup> processes;  ///< MPI ranks sharing every trace (null: alone)
+  std::optional<bool> reuse_traces;         ///< overrides SceneProblem::reuse_traces
 };
 
 /// Builds a SceneEvaluator and runs optimize() with the problem's search settings.

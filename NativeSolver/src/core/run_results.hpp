@@ -1,0 +1,34 @@
+#pragma once
+// A run's results from its grouped tallies: every target, every group, the warnings every run
+// carries. Shared by Simulation::run (one trace of all groups) and Simulation::combine (groups
+// traced apart, the optimizer's reuse).
+#include <cstdint>
+#include <vector>
+
+#include "core/backend.hpp"
+#include "core/groups.hpp"
+#include "lightsolver/solver.hpp"
+
+namespace lightsolver::detail {
+
+/// Every target of the scene from the grouped tallies (grouped once): the type's own part from
+/// its row (target_results.cpp, target_types.cpp), and each group's part when asked for (not for
+/// observer grids: their points are not one estimate).
+std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
+                                      const GroupedTallies& tallies, double confidence,
+                                      bool judged, bool contributions);
+
+/// The same after a run's first `photons` photons, shared out by the groups' photon shares.
+std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
+                                      const TallyBlock& t, std::uint64_t photons,
+                                      double confidence, bool judged, bool contributions);
+
+/// Every group: its name, flux, photons traced (`photons[g]`) and luminaires.
+std::vector<GroupResult> group_results(const Scene& scene, const PreparedScene& s,
+                                       const std::vector<std::uint64_t>& photons);
+
+/// The scene's and the photometric files' warnings, and those the run's counts call for (zero
+/// flux, capped or cut paths, partial, undecided, accuracy budget spent).
+void add_warnings(const Scene& scene, Results& r);
+
+}  // namespace lightsolver::detail
