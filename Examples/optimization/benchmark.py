@@ -6,7 +6,11 @@ search block) versus a static N (every candidate traced with N), and the speedup
 An "iteration" of the paper is one configuration applied and traced (Fig. 4), i.e. one
 evaluation here; per VNS iteration figures are printed too. Runs `lightsolver optimize` with
 --threads (default 2) and a wall-clock cap per run (SIGINT: the run stops and reports what it
-did). Usage: benchmark.py PATH/TO/lightsolver [--threads 2] [--cap 300]
+did). Usage: benchmark.py PATH/TO/lightsolver [--threads 2] [--cap 300] [--reuse]
+
+--reuse: instead, the adaptive runs with reused group traces (the default) against
+--no-reuse (every group traced for every evaluation), with the photons actually traced per
+evaluation; small_room (a flux variable) is added.
 """
 from __future__ import annotations
 
@@ -21,14 +25,18 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 # (scene, adaptive iterations, static iterations); the paper ran 1000 iterations.
 RUNS = [("cornell", 1000, 3), ("hangar", 1000, 3), ("conference", 1000, 1)]
+REUSE_SCENES = ["cornell", "hangar", "conference", "small_room"]
 
 
-def run(cli: str, scene: str, iterations: int, static: bool, threads: int, cap: float) -> dict:
-    """One optimize run; returns its counters."""
+def run(cli: str, scene: str, iterations: int | None, static: bool, threads: int, cap: float,
+        extra: tuple[str, ...] = ()) -> dict:
+    """One optimize run (iterations None: the scene's own); returns its counters."""
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "r.json"
         cmd = [cli, "optimize", str(HERE / scene / f"{scene}.json"), "--quiet", "--threads",
-               str(threads), "--iterations", str(iterations), "--out", str(out)]
+               str(threads), "--out", str(out), *extra]
+        if iterations is not None:
+            cmd += ["--iterations", str(iterations)]
         if static:
             cmd.append("--static")
         p = subprocess.Popen(cmd, stdout=subprocess.PIPE, text=True)
@@ -50,13 +58,49 @@ def per_eval(c: dict) -> dict[str, float]:
     return {k: 1e3 * c[f"{k}_seconds"] / n for k in ("update", "trace", "other", "total")}
 
 
+def reuse_table(a: argparse.Namespace) -> None:
+    """Adaptive n/N with and without reused group traces, one run each, one after the other."""
+    rows = {}
+    for scene in REUSE_SCENES:
+        iterations = None if scene == "small_room" else 1000
+        before = run(a.cli, scene, iterations, False, a.threads, a.cap, ("--no-reuse",))
+        after = run(a.cli, scene, iterations, False, a.threads, a.cap)
+        rows[scene] = (before, after)
+        print(scene, json.dumps({"no_reuse": before, "reuse": after}), flush=True)
+    print("\n| per evaluation | " + " | ".join(rows) + " |")
+    print("|---|" + "---|" * len(rows))
+
+    def line(label: str, f) -> None:
+        print(f"| {label} | " + " | ".join(f(b, r) for b, r in rows.values()) + " |")
+
+    line("evaluations (no reuse / reuse)", lambda b, r: f"{b['evaluations']} / {r['evaluations']}")
+    line("photons requested", lambda b, r: f"{b['photons'] / max(b['evaluations'], 1):.4g}")
+    line("photons traced, no reuse",
+         lambda b, r: f"{b['photons_traced'] / max(b['evaluations'], 1):.4g}")
+    line("photons traced, reuse",
+         lambda b, r: f"{r['photons_traced'] / max(r['evaluations'], 1):.4g}")
+    line("ms, no reuse (before)", lambda b, r: f"{per_eval(b)['total']:.2f}")
+    line("ms, reuse (after)", lambda b, r: f"{per_eval(r)['total']:.2f}")
+    line("speedup", lambda b, r: f"{per_eval(b)['total'] / max(per_eval(r)['total'], 1e-9):.2f}")
+    line("run seconds (no reuse / reuse)",
+         lambda b, r: f"{b['total_seconds']:.1f} / {r['total_seconds']:.1f}")
+    for scene, (b, r) in rows.items():
+        print(f"{scene}: ISOC no reuse {len(b['isoc'])} {b['isoc'][:3]}; "
+              f"reuse {len(r['isoc'])} {r['isoc'][:3]}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("cli")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--cap", type=float, default=300.0)
+    ap.add_argument("--reuse", action="store_true",
+                    help="reused group traces against --no-reuse (issue 15)")
     a = ap.parse_args()
     print(f"machine: {platform.processor() or platform.machine()}, {a.threads} threads")
+    if a.reuse:
+        reuse_table(a)
+        return
     rows = {}
     for scene, it_adaptive, it_static in RUNS:
         ad = run(a.cli, scene, it_adaptive, False, a.threads, a.cap)

@@ -158,3 +158,23 @@ def test_backend_choice_reaches_the_search(cli: str, tmp_path: Path) -> None:
         good = subprocess.run(args + ["auto"], capture_output=True, text=True, timeout=120,
                               env=env)
         assert good.returncode == 0, good.stderr
+
+
+def test_reused_traces_save_photons_and_can_be_turned_off(cli: str, tmp_path: Path) -> None:
+    """small_room's flux variable scales one trace per placement: fewer photons traced than
+    requested; reuse_traces=False (--no-reuse) traces every photon of every evaluation."""
+    on = lightsolver.optimize(SMALL_ROOM, iterations=3, seed=2, threads=2)
+    off = lightsolver.optimize(SMALL_ROOM, iterations=3, seed=2, threads=2, reuse_traces=False)
+    c_on, c_off = on["counters"], off["counters"]
+    assert c_on["photons_traced"] < c_on["photons"]
+    assert c_off["photons_traced"] == c_off["photons"]
+    assert on["isoc"] and off["isoc"]
+    out = tmp_path / "r.json"
+    p = subprocess.run([cli, "optimize", str(SMALL_ROOM), "--iterations", "3", "--seed", "2",
+                        "--threads", "2", "-q", "--no-reuse", "--out", str(out)],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert "traced)" in p.stdout
+    assert json.loads(out.read_text())["counters"] == {
+        **c_off, **{k: json.loads(out.read_text())["counters"][k] for k in
+                    ("update_seconds", "trace_seconds", "other_seconds", "total_seconds")}}

@@ -43,6 +43,14 @@ def last_panel() -> Optional["OptimizeTaskPanel"]:
     return _last_panel
 
 
+def traced_share(counters: Dict[str, Any]) -> str:
+    """", N % of their photons traced" where reused luminaire traces saved some, else ""."""
+    asked, traced = counters.get("photons", 0), counters.get("photons_traced", 0)
+    if not asked or traced >= asked:
+        return ""
+    return f", {100.0 * traced / asked:.0f} % of their photons traced"
+
+
 class SearchJob:
     """The worker thread's state, read by the GUI thread's timer."""
 
@@ -346,9 +354,10 @@ class OptimizeTaskPanel(ModelessPanel):
         if members:
             self.table.selectRow(0)
         raw = self.result.raw if self.result is not None else {}
+        counters = raw.get("counters", {})
         text = (f"{len(members)} layout(s) statistically indistinguishable from the best "
-                f"({raw.get('stop', '')}, {raw.get('counters', {}).get('evaluations', 0)} "
-                "evaluations)")
+                f"({raw.get('stop', '')}, {counters.get('evaluations', 0)} evaluations"
+                f"{traced_share(counters)})")
         text += "; select one and Apply." if members else \
             ": none meets the requirements - raise MaxLuminaires or the budget."
         self.status.setText(text)
