@@ -4,7 +4,6 @@
 // changes; a combined result scales linearly in a group's flux; bad input is refused clearly.
 #include <gtest/gtest.h>
 
-#include "lightsolver/backends.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/simulation.hpp"
 #include "scene_builders.hpp"
@@ -12,27 +11,10 @@
 namespace lightsolver::test {
 namespace {
 
-Luminaire named(Luminaire l, const std::string& name, const std::string& group) {
-  l.name = name;
-  l.group = group;
-  return l;
-}
-
-// A grey room, three groups ("left": two spots, "right": a point, "own": a point without a
-// group key), a desk and a workplane grid: reflections make per-path counts > 1.
+// grouped_room plus "own": a point without a group key, so three groups in all.
 Scene three_groups() {
-  Scene s;
-  add_material(s, "grey", Material::Type::Diffuse, 0.5);
-  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(6, 4, 3), 2));
-  s.meshes.push_back(quad_mesh("desk", 0, {1, 1, 0.75}, {1, 0, 0}, {0, 1, 0}));
-  s.luminaires.push_back(
-      named(spot_light({1.5, 1.5, 2.9}, {0, 0, -1}, 40, 70, 2000), "l1", "left"));
-  s.luminaires.push_back(
-      named(spot_light({1.5, 2.5, 2.9}, {0, 0, -1}, 40, 70, 1000), "l2", "left"));
-  s.luminaires.push_back(named(point_light({4.5, 2.0, 2.5}, 3000), "r1", "right"));
+  Scene s = grouped_room();
   s.luminaires.push_back(named(point_light({3.0, 2.0, 2.5}, 50), "own", ""));
-  s.targets.push_back(surface("desk", 1));
-  s.targets.push_back(grid("workplane", {0.5, 0.5, 0.8}, {5, 0, 0}, {0, 3, 0}, 5, 3));
   return s;
 }
 
@@ -88,13 +70,7 @@ TEST_P(GroupTraces, EveryGroupTracedApartAndCombinedIsTheRun) {
   EXPECT_EQ(apart.total_flux_lm, run.total_flux_lm);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, GroupTraces, ::testing::ValuesIn([] {
-                           std::vector<std::string> names;
-                           for (const BackendInfo& b : available_backends()) {
-                             if (b.name != kAutoBackend && *b.available) names.push_back(b.name);
-                           }
-                           return names;
-                         }()));
+INSTANTIATE_TEST_SUITE_P(Backends, GroupTraces, ::testing::ValuesIn(backends()));
 
 // With shares fixed, group "right"'s photons (and so its trace) do not depend on the flux of
 // "left"; by flux they do. A combined result is linear in a group's flux: "left" traced at 3000

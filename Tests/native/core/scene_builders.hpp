@@ -302,6 +302,31 @@ inline Scene glowing_cube(double rho) {
   return s;
 }
 
+/// A luminaire with a name and a `group` key ("" : its own group).
+inline Luminaire named(Luminaire l, const std::string& name, const std::string& group) {
+  l.name = name;
+  l.group = group;
+  return l;
+}
+
+/// A grey 6 x 4 x 3 m room with three luminaires in two groups ("left": two spots, "right": a
+/// point), a desk (surface target) and a 5 x 3 workplane grid: reflections make per-path counts
+/// > 1 (not binomial).
+inline Scene grouped_room() {
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(6, 4, 3), 2));
+  s.meshes.push_back(quad_mesh("desk", 0, {1, 1, 0.75}, {1, 0, 0}, {0, 1, 0}));
+  s.luminaires.push_back(
+      named(spot_light({1.5, 1.5, 2.9}, {0, 0, -1}, 40, 70, 2000), "l1", "left"));
+  s.luminaires.push_back(
+      named(spot_light({1.5, 2.5, 2.9}, {0, 0, -1}, 40, 70, 1000), "l2", "left"));
+  s.luminaires.push_back(named(point_light({4.5, 2.0, 2.5}, 3000), "r1", "right"));
+  s.targets.push_back(surface("desk", 1));
+  s.targets.push_back(grid("workplane", {0.5, 0.5, 0.8}, {5, 0, 0}, {0, 3, 0}, 5, 3));
+  return s;
+}
+
 inline std::vector<std::string> backends() {
   std::vector<std::string> names;
   for (const BackendInfo& b : lightsolver::backends()) {
