@@ -178,8 +178,8 @@ class OfficeOptimize(DocTestCase):
     """The office example as a designer meets it: four hand-placed panels, a workplane that
     requires Em 500 lx and U0 0.6, a ceiling domain for up to six panels."""
 
-    KW = dict(iterations=200, evaluations=30, seed=1, screening_photons=20000,
-              confirmation_photons=200000)
+    KW = dict(iterations=200, evaluations=60, seed=1, screening_photons=100000,
+              confirmation_photons=1000000)
 
     def setUp(self):
         from wbtest import build_office
@@ -208,6 +208,14 @@ class OfficeOptimize(DocTestCase):
                           "min_mean_lux": 500.0, "min_uniformity": 0.6})
         names = {lum["name"] for lum in scene["luminaires"]}
         self.assertFalse(names & {o.Name for o in others})  # left out of the search
+        # Each placed luminaire is its own group, so a step re-traces only the one it moves and
+        # switching an optional one on or off traces nothing.
+        placed_names = {p.name for p in result.placements}
+        for lum in scene["luminaires"]:
+            if lum["name"] in placed_names:
+                self.assertEqual(lum["group"], lum["name"])
+        counters = result.raw["counters"]
+        self.assertLess(counters["photons_traced"], counters["photons"])
         # Progress came per trace, long before the first iteration ended, with a time estimate.
         first = progress[0]
         self.assertEqual(first["event"], "evaluation")

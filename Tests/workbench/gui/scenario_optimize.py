@@ -92,7 +92,7 @@ def body() -> None:
            f"required levels not taken from the target: {panel.min_lux.value()}, "
            f"{panel.min_u0.value()}")
     # Small budgets, set in the panel's fields as a user would.
-    panel.evaluations.setValue(40)
+    panel.evaluations.setValue(300)
     panel.screening.setValue(20000)
     panel.confirmation.setValue(200000)
     for name, button in panel.buttons.items():

@@ -299,7 +299,10 @@ def spacing_of(domain: Any) -> float:
 def with_copies(scene: Dict[str, Any], placed: List[Placement],
                 left_out: List[Any]) -> Dict[str, Any]:
     """The scene with the templates' copies added to its luminaires (same entry, new name) and
-    the luminaires in ``left_out`` (those the layout replaces) removed."""
+    the luminaires in ``left_out`` (those the layout replaces) removed. Every placed luminaire
+    is its own group in the search: the solver then re-traces only the one a step moves, and a
+    flux level (an optional copy left out or installed) scales its trace instead of tracing
+    (docs/optimization.md, "Reused traces"). Light scenes do not enter the search."""
     scene = copy.deepcopy(scene)
     gone = {o.Name for o in left_out}
     scene["luminaires"] = [lum for lum in scene["luminaires"] if lum["name"] not in gone]
@@ -314,6 +317,8 @@ def with_copies(scene: Dict[str, Any], placed: List[Placement],
         entry = dict(by_name[p.template.Name], name=p.name)
         scene["luminaires"].append(entry)
         by_name[p.name] = entry
+    for p in placed:
+        by_name[p.name]["group"] = p.name
     return scene
 
 
