@@ -44,11 +44,12 @@ void print_iteration(const opt::IterationStats& s) {
 void print_summary(const opt::SceneProblem& p, const opt::OptimizationResult& r) {
   const opt::Counters& c = r.counters;
   const double it = c.iterations ? double(c.iterations) : 1.0;
-  std::printf("\nstop: %s after %llu iterations, %llu evaluations, %.4g photons (%.4g traced), "
-              "%.2f s\n",
-              opt::to_string(r.stop), static_cast<unsigned long long>(c.iterations),
-              static_cast<unsigned long long>(c.evaluations), double(c.photons),
-              double(c.photons_traced), c.total_seconds);
+  std::printf(
+      "\nstop: %s after %llu iterations, %llu evaluations, %.4g photons (%.4g traced), "
+      "%.2f s\n",
+      opt::to_string(r.stop), static_cast<unsigned long long>(c.iterations),
+      static_cast<unsigned long long>(c.evaluations), double(c.photons), double(c.photons_traced),
+      c.total_seconds);
   std::printf("per iteration: update %.2f ms, tracing %.2f ms, rest %.2f ms, total %.2f ms\n",
               1e3 * c.update_seconds / it, 1e3 * c.trace_seconds / it, 1e3 * c.other_seconds / it,
               1e3 * c.total_seconds / it);

@@ -101,8 +101,8 @@ class Simulation {
   /// linear in a group's flux). Combining the traces of every group made with one seed equals
   /// run() with it, bit for bit, in every estimate. Throws std::invalid_argument when the
   /// traces do not fit the scene.
-  Results combine(const std::vector<const GroupTrace*>& traces,
-                  const std::vector<double>& flux_lm, double confidence) const;
+  Results combine(const std::vector<const GroupTrace*>& traces, const std::vector<double>& flux_lm,
+                  double confidence) const;
 
  private:
   Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);

@@ -5,15 +5,16 @@
 namespace lightsolver::detail {
 
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
-                                      const GroupedTallies& tallies, double confidence,
-                                      bool judged, bool contributions) {
+                                      const GroupedTallies& tallies, double confidence, bool judged,
+                                      bool contributions) {
   std::vector<std::string> names;
   for (const auto& g : s.groups) names.push_back(g.name);
   std::vector<TargetResult> out;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
     const Target& target = scene.targets[i];
     const std::uint32_t bin = s.target_bin[i];
-    TargetResult r = make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
+    TargetResult r =
+        make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
     if (contributions && target.type != Target::Type::ObserverGrid) {
       add_contributions(r, s.bins, tallies, bin, confidence, names);
     }
@@ -23,8 +24,8 @@ std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s
 }
 
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
-                                      const TallyBlock& t, std::uint64_t photons,
-                                      double confidence, bool judged, bool contributions) {
+                                      const TallyBlock& t, std::uint64_t photons, double confidence,
+                                      bool judged, bool contributions) {
   return all_targets(scene, s, grouped_tallies(s, t.bins, photons), confidence, judged,
                      contributions);
 }

@@ -15,13 +15,13 @@ namespace lightsolver::detail {
 /// its row (target_results.cpp, target_types.cpp), and each group's part when asked for (not for
 /// observer grids: their points are not one estimate).
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
-                                      const GroupedTallies& tallies, double confidence,
-                                      bool judged, bool contributions);
+                                      const GroupedTallies& tallies, double confidence, bool judged,
+                                      bool contributions);
 
 /// The same after a run's first `photons` photons, shared out by the groups' photon shares.
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
-                                      const TallyBlock& t, std::uint64_t photons,
-                                      double confidence, bool judged, bool contributions);
+                                      const TallyBlock& t, std::uint64_t photons, double confidence,
+                                      bool judged, bool contributions);
 
 /// Every group: its name, flux, photons traced (`photons[g]`) and luminaires.
 std::vector<GroupResult> group_results(const Scene& scene, const PreparedScene& s,

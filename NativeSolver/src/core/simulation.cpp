@@ -173,8 +173,8 @@ class CheckpointTracer {
         c.photons = at;
         c.seconds = seconds_since(start_);
         c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
-        c.targets = detail::all_targets(scene_, s_, tallies, at, r.confidence, r.judged,
-                                        r.contributions);
+        c.targets =
+            detail::all_targets(scene_, s_, tallies, at, r.confidence, r.judged, r.contributions);
         o_.checkpoint(c);
       }
     }

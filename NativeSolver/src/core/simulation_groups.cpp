@@ -44,8 +44,7 @@ void Simulation::fix_photon_shares(const std::vector<double>& weights) {
   state_->kept.reset();  // photon i of a group is another photon of the run now
 }
 
-GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
-                                   std::uint64_t seed,
+GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
                                    const std::shared_ptr<ProcessGroup>& processes) {
   const detail::PreparedScene& p = state_->prepared;
   const Scene& scene = state_->scene;

@@ -9,8 +9,8 @@ namespace {
 
 // The domain dimensions a scene variable owns: a rectangle two (u, v), the others one.
 std::pair<std::size_t, std::size_t> dimensions_of(const SceneVariable& v) {
-  const bool two = v.type == SceneVariable::Type::kPosition ||
-                   v.type == SceneVariable::Type::kTranslation;
+  const bool two =
+      v.type == SceneVariable::Type::kPosition || v.type == SceneVariable::Type::kTranslation;
   return {v.first, v.first + (two ? 2 : 1)};
 }
 
@@ -48,11 +48,10 @@ TracePlan plan_traces(const SceneProblem& p, const std::vector<LuminaireGroup>& 
       std::set<std::size_t> touched;
       for (std::size_t l : v.luminaires) touched.insert(group_of[l]);
       const bool whole = std::all_of(touched.begin(), touched.end(), [&](std::size_t g) {
-        return std::all_of(groups[g].luminaires.begin(), groups[g].luminaires.end(),
-                           [&](std::size_t l) {
-                             return std::find(v.luminaires.begin(), v.luminaires.end(), l) !=
-                                    v.luminaires.end();
-                           });
+        return std::all_of(
+            groups[g].luminaires.begin(), groups[g].luminaires.end(), [&](std::size_t l) {
+              return std::find(v.luminaires.begin(), v.luminaires.end(), l) != v.luminaires.end();
+            });
       });
       for (std::size_t g : touched) {
         if (whole) {
@@ -121,7 +120,9 @@ std::shared_ptr<const GroupTrace> TraceCache::find(const Key& k) {
 }
 
 void TraceCache::insert(const Key& k, std::shared_ptr<const GroupTrace> t) {
-  const auto size = [](const GroupTrace& g) { return sizeof(GroupTrace) + g.bins.size() * sizeof(Tally); };
+  const auto size = [](const GroupTrace& g) {
+    return sizeof(GroupTrace) + g.bins.size() * sizeof(Tally);
+  };
   if (map_.count(k)) return;
   bytes_ += size(*t);
   order_.emplace_front(k, std::move(t));

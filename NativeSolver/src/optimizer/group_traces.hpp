@@ -27,8 +27,7 @@ struct TracePlan {
 
 /// `reuse` false: every group depends on every variable and nothing is scaled, so every
 /// evaluation traces every group with the request's seed (a plain run, bit for bit).
-TracePlan plan_traces(const SceneProblem& p, const std::vector<LuminaireGroup>& groups,
-                      bool reuse);
+TracePlan plan_traces(const SceneProblem& p, const std::vector<LuminaireGroup>& groups, bool reuse);
 
 /// The values a configuration's groups are traced at: scaling flux variables at their
 /// reference level.

@@ -41,14 +41,21 @@ json counters_json(const Counters& c) {
   json cases = json::object();
   for (std::size_t i = 0; i < c.cases.size(); ++i)
     cases[std::string(paper_case(static_cast<UpdateCase>(i)))] = c.cases[i];
-  return {{"iterations", c.iterations},         {"evaluations", c.evaluations},
-          {"cache_hits", c.cache_hits},         {"photons", c.photons},
+  return {{"iterations", c.iterations},
+          {"evaluations", c.evaluations},
+          {"cache_hits", c.cache_hits},
+          {"photons", c.photons},
           {"photons_traced", c.photons_traced},
-          {"screened_out", c.screened_out},     {"confirmations", c.confirmations},
-          {"infeasible", c.infeasible},         {"refined", c.refined},
-          {"inadmissible", c.inadmissible},     {"cases", std::move(cases)},
-          {"update_seconds", c.update_seconds}, {"trace_seconds", c.trace_seconds},
-          {"other_seconds", c.other_seconds},   {"total_seconds", c.total_seconds}};
+          {"screened_out", c.screened_out},
+          {"confirmations", c.confirmations},
+          {"infeasible", c.infeasible},
+          {"refined", c.refined},
+          {"inadmissible", c.inadmissible},
+          {"cases", std::move(cases)},
+          {"update_seconds", c.update_seconds},
+          {"trace_seconds", c.trace_seconds},
+          {"other_seconds", c.other_seconds},
+          {"total_seconds", c.total_seconds}};
 }
 
 json iteration_json(const IterationStats& s) {

@@ -206,8 +206,9 @@ SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const s
   if (reuse) {
     // Photons shared by each group's flux at the largest levels, fixed for the search: a
     // group's photons (and so its trace) must not move when another group's flux does.
-    apply(reuse::trace_values(problem, reuse_->plan, problem.domain.values(
-                                                          Configuration(problem.domain.dimensions(), 0))));
+    apply(
+        reuse::trace_values(problem, reuse_->plan,
+                            problem.domain.values(Configuration(problem.domain.dimensions(), 0))));
     std::vector<double> weights;
     for (const LuminaireGroup& g : simulation_.groups()) weights.push_back(g.flux_lm);
     simulation_.fix_photon_shares(weights);
@@ -265,8 +266,8 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
     // A group that depends on the whole configuration gets the request's own seed.
     const std::uint64_t seed =
         sub == r.cell_index ? r.seed : evaluation_seed(r.run_seed, sub, r.photons);
-    k.traces[g] = std::make_shared<const GroupTrace>(
-        simulation_.trace_group(g, r.photons, seed, processes_));
+    k.traces[g] =
+        std::make_shared<const GroupTrace>(simulation_.trace_group(g, r.photons, seed, processes_));
     traced += k.traces[g]->photons;
     k.cache.insert(key, k.traces[g]);
   }

@@ -116,8 +116,8 @@ const Evaluation* Search::evaluate(std::uint64_t cell, const Configuration& c,
   }
   if (check_stop(ignore_limit)) return nullptr;
   const std::vector<double> values = d_.values(c);
-  const EvaluationRequest req{c,       values, cell, photons, evaluation_seed(opt_.seed, cell, photons),
-                              opt_.seed};
+  const EvaluationRequest req{
+      c, values, cell, photons, evaluation_seed(opt_.seed, cell, photons), opt_.seed};
   Evaluation e = ev_.evaluate(req);
   if (e.constraints.size() != in_.constraints.size())
     throw std::invalid_argument(

@@ -119,8 +119,8 @@ TEST(GroupTraceErrors, BadGroupsWeightsAndTracesAreRefused) {
   EXPECT_THROW(sim.fix_photon_shares({1, -2, 3}), InputError);
   EXPECT_THROW(sim.fix_photon_shares({1, std::nan(""), 3}), InputError);
   const GroupTrace left = sim.trace_group(0, 1000, 1);
-  EXPECT_THROW(sim.combine({&left}, {1}, 0.95), std::invalid_argument);           // too few
-  EXPECT_THROW(sim.combine({&left, &left, nullptr}, {1, 1, 0}, 0.95),             // not group 1's
+  EXPECT_THROW(sim.combine({&left}, {1}, 0.95), std::invalid_argument);  // too few
+  EXPECT_THROW(sim.combine({&left, &left, nullptr}, {1, 1, 0}, 0.95),    // not group 1's
                std::invalid_argument);
   EXPECT_THROW(sim.combine({&left, nullptr, nullptr}, {-1, 0, 0}, 0.95), std::invalid_argument);
   EXPECT_THROW(sim.combine({&left, nullptr, nullptr}, {1, 0, 0}, 1.0), InputError);

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lightsolver/optimizer/scene_problem.hpp"
+#include "optimizer/group_traces.hpp"
 
 namespace lightsolver::optimizer {
 namespace {
@@ -70,7 +71,7 @@ TEST(ReusedTraces, AFluxLevelTracesNothingAndAMoveTracesTheMovedGroupOnly) {
   EXPECT_EQ(*brighter.photons_traced, 0u);
   EXPECT_NEAR(brighter.constraints[0].mean, 4.0 * first.constraints[0].mean,
               1e-9 * brighter.constraints[0].mean);  // Em: linear in the flux, one trace
-  EXPECT_EQ(brighter.objective.mean, 4000.0);       // installed flux, exact
+  EXPECT_EQ(brighter.objective.mean, 4000.0);        // installed flux, exact
   const Evaluation moved = evaluate(ev, p, {2, 1, 1});
   const std::uint64_t a_photons = ev.last_results().groups[0].photons;
   EXPECT_EQ(*moved.photons_traced, a_photons);  // "b" unchanged: its trace is reused
@@ -196,3 +197,38 @@ TEST(ReusedTraces, ReportedMembersStayFeasibleOver100Seeds) {
 
 }  // namespace
 }  // namespace lightsolver::optimizer
+
+namespace lightsolver::optimizer::reuse {
+namespace {
+
+std::shared_ptr<const GroupTrace> trace_of(std::size_t bins, std::uint64_t seed) {
+  auto t = std::make_shared<GroupTrace>();
+  t->bins.resize(bins);
+  t->seed = seed;
+  return t;
+}
+
+// Beyond its budget the cache drops the least recently used trace (a look-up counts as a use);
+// one trace is always kept, whatever its size.
+TEST(TraceCache, DropsTheLeastRecentlyUsedBeyondItsBudget) {
+  const std::size_t one = sizeof(GroupTrace) + 1000 * sizeof(Tally);
+  TraceCache cache(2 * one);
+  const TraceCache::Key a{0, 1, 100}, b{1, 1, 100}, c{0, 2, 100};
+  cache.insert(a, trace_of(1000, 1));
+  cache.insert(b, trace_of(1000, 2));
+  ASSERT_NE(cache.find(a), nullptr);  // a is now the most recent
+  cache.insert(c, trace_of(1000, 3));
+  EXPECT_EQ(cache.find(b), nullptr);
+  EXPECT_EQ(cache.find(a)->seed, 1u);
+  EXPECT_EQ(cache.find(c)->seed, 3u);
+  EXPECT_EQ(cache.bytes(), 2 * one);
+  TraceCache tiny(1);
+  tiny.insert(a, trace_of(1000, 1));
+  EXPECT_NE(tiny.find(a), nullptr);
+  tiny.insert(b, trace_of(1000, 2));
+  EXPECT_EQ(tiny.find(a), nullptr);
+  EXPECT_NE(tiny.find(b), nullptr);
+}
+
+}  // namespace
+}  // namespace lightsolver::optimizer::reuse

@@ -31,10 +31,10 @@ using CaseCounts = std::array<std::uint64_t, 6>;
 
 /// Totals over the run.
 struct Counters {
-  std::uint64_t iterations = 0;     ///< VNS iterations done (a start's first descent is one)
-  std::uint64_t evaluations = 0;    ///< evaluator calls (each a photon trace)
-  std::uint64_t cache_hits = 0;     ///< look-ups answered by the tabu cache
-  std::uint64_t photons = 0;        ///< photons requested by all evaluations
+  std::uint64_t iterations = 0;   ///< VNS iterations done (a start's first descent is one)
+  std::uint64_t evaluations = 0;  ///< evaluator calls
+  std::uint64_t cache_hits = 0;   ///< look-ups answered by the tabu cache
+  std::uint64_t photons = 0;      ///< photons requested by all evaluations
   /// photons actually traced: fewer where the evaluator reused traces (a flux change, one
   /// luminaire moved among several)
   std::uint64_t photons_traced = 0;
@@ -52,21 +52,21 @@ struct Counters {
 
 /// Statistics of one VNS iteration, handed to the progress callback.
 struct IterationStats {
-  std::uint64_t iteration = 0;      ///< 1-based over the whole run
-  std::uint32_t start = 0;          ///< 0-based multi-start index
-  std::uint32_t k = 0;              ///< shake radius used (0: the start's first descent)
-  double update_seconds = 0.0;      ///< this iteration's scene updates (evaluator-reported)
-  double trace_seconds = 0.0;       ///< this iteration's tracing (evaluator-reported)
-  double other_seconds = 0.0;       ///< this iteration's wall time minus the two above
-  std::uint64_t evaluations = 0;    ///< evaluator calls this iteration
-  std::uint64_t photons = 0;        ///< photons traced this iteration
-  std::uint64_t total_photons = 0;  ///< photons traced so far
+  std::uint64_t iteration = 0;          ///< 1-based over the whole run
+  std::uint32_t start = 0;              ///< 0-based multi-start index
+  std::uint32_t k = 0;                  ///< shake radius used (0: the start's first descent)
+  double update_seconds = 0.0;          ///< this iteration's scene updates (evaluator-reported)
+  double trace_seconds = 0.0;           ///< this iteration's tracing (evaluator-reported)
+  double other_seconds = 0.0;           ///< this iteration's wall time minus the two above
+  std::uint64_t evaluations = 0;        ///< evaluator calls this iteration
+  std::uint64_t photons = 0;            ///< photons requested this iteration
+  std::uint64_t total_photons = 0;      ///< photons requested so far
   std::uint64_t total_evaluations = 0;  ///< evaluator calls so far
   double elapsed_seconds = 0.0;         ///< wall time since the run began
-  std::size_t isoc_size = 0;        ///< after the iteration
-  Interval siisoc{};                ///< after the iteration (meaningless when isoc_size = 0)
-  bool has_best = false;            ///< false while the ISOC is empty
-  Estimate best{};                  ///< the ISOC member with the best mean
+  std::size_t isoc_size = 0;            ///< after the iteration
+  Interval siisoc{};                    ///< after the iteration (meaningless when isoc_size = 0)
+  bool has_best = false;                ///< false while the ISOC is empty
+  Estimate best{};                      ///< the ISOC member with the best mean
 };
 
 /// Why the run stopped.

@@ -120,8 +120,7 @@ double uniformity_confidence(std::size_t cells, double confidence);
 /// and the mean are one family of simultaneous intervals (Bonferroni), so the interval covers
 /// min_j E_j / Em whichever cell is the minimum. `grid`: the grid's results at `confidence`;
 /// `wide`: the same tallies' results at uniformity_confidence(cells, confidence).
-Estimate uniformity_estimate(const TargetResult& grid, const TargetResult& wide,
-                             double confidence);
+Estimate uniformity_estimate(const TargetResult& grid, const TargetResult& wide, double confidence);
 
 /// Evaluator over a Simulation that owns a copy of the problem's scene.
 class SceneEvaluator final : public Evaluator {
@@ -163,7 +162,7 @@ class SceneEvaluator final : public Evaluator {
 struct RunOverrides {
   std::optional<std::uint64_t> iterations, seed, screening_photons, confirmation_photons;
   int threads = 0;
-  std::string backend = kAutoBackend;  ///< a name from lightsolver::backends()
+  std::string backend = kAutoBackend;       ///< a name from lightsolver::backends()
   std::shared_ptr<ProcessGroup> processes;  ///< MPI ranks sharing every trace (null: alone)
   std::optional<bool> reuse_traces;         ///< overrides SceneProblem::reuse_traces
 };
