@@ -144,6 +144,22 @@ struct ObserverGlare {
   Warnings warnings;
 };
 
+/// Every luminaire's glare terms at every point of an observer grid, at the result's fluxes:
+/// what `rescale` rebuilds the points from, dimming L by the group's factor (docs/glare.md,
+/// "Rescaling an observer grid"). Written to the results only with contributions.
+struct GlareTerms {
+  std::vector<std::string> luminaires;  ///< the scene's, in scene order
+  /// Per luminaire: why it is no glare source at any eye ("" when it is one).
+  std::vector<std::string> not_rated;
+  /// Per point, one character per luminaire: 'c' counted, 'b' behind the eye, 'l' below the
+  /// line of sight, 'o' outside the field or hidden by brow, 'd' dark or edge-on toward the
+  /// eye, 'x' not rated (not_rated says why).
+  std::vector<std::string> status;
+  /// Per point: luminance (cd/m2), solid angle (sr) and position index of each counted
+  /// luminaire, three numbers each, in scene order.
+  std::vector<std::vector<double>> terms;
+};
+
 /// Glare over an observer grid (docs/glare.md, "Observer grids"): every (position, direction)
 /// with its UGR and interval. The maximum, with an interval that holds for all points at once,
 /// is the target's `glare`.
@@ -154,6 +170,7 @@ struct ObserverGridGlare {
   std::vector<ObserverGlare> points;
   /// The point of the largest UGR estimate; absent when no point has glare from a luminaire.
   std::optional<std::size_t> max_at;
+  GlareTerms terms;  ///< every point's luminaires (results JSON: with contributions only)
 };
 
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the

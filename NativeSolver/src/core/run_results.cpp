@@ -14,9 +14,7 @@ std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s
     const Target& target = scene.targets[i];
     const std::uint32_t bin = s.target_bin[i];
     TargetResult r = make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
-    if (contributions && target.type != Target::Type::ObserverGrid) {
-      add_contributions(r, s.bins, tallies, bin, confidence, names);
-    }
+    if (contributions) add_contributions(r, s.bins, tallies, bin, confidence, names);
     out.push_back(std::move(r));
   }
   return out;

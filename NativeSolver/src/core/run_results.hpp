@@ -12,8 +12,7 @@
 namespace lightsolver::detail {
 
 /// Every target of the scene from the grouped tallies (grouped once): the type's own part from
-/// its row (target_results.cpp, target_types.cpp), and each group's part when asked for (not for
-/// observer grids: their points are not one estimate).
+/// its row (target_results.cpp, target_types.cpp), and each group's part when asked for.
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
                                       const GroupedTallies& tallies, double confidence,
                                       bool judged, bool contributions);
