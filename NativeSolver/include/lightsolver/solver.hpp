@@ -181,7 +181,9 @@ struct Contribution {
   std::string group;
   Estimate estimate;
   std::vector<Estimate> cells;  ///< grids: per cell
-  std::vector<Tally> tallies;   ///< the target's bins: whole target, then its cells
+  /// The target's bins: whole target, then its cells; an observer grid's: every point's (its
+  /// estimate above is the maximum's point's).
+  std::vector<Tally> tallies;
 };
 
 struct TargetResult {
