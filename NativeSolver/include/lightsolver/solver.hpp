@@ -140,7 +140,9 @@ struct ObserverGlare {
   std::optional<double> ugr_ci_low, ugr_ci_high;
   /// Sum of L^2 omega / p^2 over the counted luminaires (0: none counts, no glare).
   double luminaire_sum = 0.0;
-  std::vector<GlareContribution> contributions;  ///< one per scene luminaire, in scene order
+  /// One per scene luminaire, in scene order: L, omega, p, term and ugr_alone (h_over_r,
+  /// t_over_r and distance_m stay 0: a rescale rebuilds the glare from L, omega and p alone).
+  std::vector<GlareContribution> contributions;
   Warnings warnings;
 };
 
