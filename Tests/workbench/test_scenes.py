@@ -166,6 +166,38 @@ class RescaledResults(DocTestCase):
         self.assertLess(shown["ci_low_lux"], shown["mean_lux"])
 
     @needs_solver
+    def test_an_analysis_with_an_observer_grid_shows_its_light_scenes(self):
+        """Observer grids are rescaled too (docs/glare.md, "Rescaling an observer grid"): the
+        scene is shown, with every eye's L_b and UGR those of lightsolver.rescale."""
+        import lightsolver
+
+        doc, analysis = _group_office(photons=50_000)
+        eye = lighting.make_observer(doc, (1.0, 1.0, 1.2), ugr_max=19.0, name="EyeGrid",
+                                     analysis=analysis)
+        eye.GridMode, eye.GridLength, eye.GridWidth = True, 3000.0, 2000.0
+        scene = lighting.make_light_scene(analysis, "Evening", {"Back row": 0.5})
+        lighting.show_light_scene(analysis, None)
+        lighting.analyze(doc, output_dir=work_dir("scenes_glare"))
+        obj = results_obj.of_analysis(analysis)
+        traced = _entry(results_obj.traced(obj), "EyeGrid")
+        self.assertIn("glare_terms", traced["observer_grid"])
+        lighting.show_light_scene(analysis, scene)
+        self.assertEqual(obj.LightScene, "Evening: Back row 50 %")
+        shown = _entry(results_obj.data(obj), "EyeGrid")
+        expected = _entry(lightsolver.rescale(results_obj.traced(obj),
+                                              {"Window row": 1.0, "Back row": 0.5}), "EyeGrid")
+        for key in ("ugr", "background_luminance_cd_m2"):
+            self.assertEqual(shown["observer_grid"][key], expected["observer_grid"][key])
+        # Dimming the back row lowers the eyes' background luminance: none rises, and some
+        # fall (an eye that no back-row photon reached at 5e4 photons keeps its value).
+        pairs = [(lb, traced_lb) for row, traced_row in
+                 zip(shown["observer_grid"]["background_luminance_cd_m2"],
+                     traced["observer_grid"]["background_luminance_cd_m2"])
+                 for lb, traced_lb in zip(row, traced_row)]
+        self.assertTrue(all(lb <= traced_lb for lb, traced_lb in pairs))
+        self.assertTrue(any(lb < traced_lb for lb, traced_lb in pairs))
+
+    @needs_solver
     def test_a_scene_needs_a_run_with_contributions(self):
         doc, analysis = _group_office(photons=20_000)
         lighting.analyze(doc, output_dir=work_dir("scenes_plain"))

@@ -140,8 +140,26 @@ struct ObserverGlare {
   std::optional<double> ugr_ci_low, ugr_ci_high;
   /// Sum of L^2 omega / p^2 over the counted luminaires (0: none counts, no glare).
   double luminaire_sum = 0.0;
-  std::vector<GlareContribution> contributions;  ///< one per scene luminaire, in scene order
+  /// One per scene luminaire, in scene order: L, omega, p, term and ugr_alone (h_over_r,
+  /// t_over_r and distance_m stay 0: a rescale rebuilds the glare from L, omega and p alone).
+  std::vector<GlareContribution> contributions;
   Warnings warnings;
+};
+
+/// Every luminaire's glare terms at every point of an observer grid, at the result's fluxes:
+/// what `rescale` rebuilds the points from, dimming L by the group's factor (docs/glare.md,
+/// "Rescaling an observer grid"). Written to the results only with contributions.
+struct GlareTerms {
+  std::vector<std::string> luminaires;  ///< the scene's, in scene order
+  /// Per luminaire: why it is no glare source at any eye ("" when it is one).
+  std::vector<std::string> not_rated;
+  /// Per point, one character per luminaire: 'c' counted, 'b' behind the eye, 'l' below the
+  /// line of sight, 'o' outside the field or hidden by brow, 'd' dark or edge-on toward the
+  /// eye, 'x' not rated (not_rated says why).
+  std::vector<std::string> status;
+  /// Per point: luminance (cd/m2), solid angle (sr) and position index of each counted
+  /// luminaire, three numbers each, in scene order.
+  std::vector<std::vector<double>> terms;
 };
 
 /// Glare over an observer grid (docs/glare.md, "Observer grids"): every (position, direction)
@@ -154,6 +172,7 @@ struct ObserverGridGlare {
   std::vector<ObserverGlare> points;
   /// The point of the largest UGR estimate; absent when no point has glare from a luminaire.
   std::optional<std::size_t> max_at;
+  GlareTerms terms;  ///< every point's luminaires (results JSON: with contributions only)
 };
 
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
@@ -164,7 +183,9 @@ struct Contribution {
   std::string group;
   Estimate estimate;
   std::vector<Estimate> cells;  ///< grids: per cell
-  std::vector<Tally> tallies;   ///< the target's bins: whole target, then its cells
+  /// The target's bins: whole target, then its cells; an observer grid's: every point's (its
+  /// estimate above is the maximum's point's).
+  std::vector<Tally> tallies;
 };
 
 struct TargetResult {

@@ -31,7 +31,14 @@ void add_contributions_json(const TargetResult& t, nlohmann::json& j) {
                           {"ci_low_lux", c.estimate.ci_low},
                           {"ci_high_lux", c.estimate.ci_high},
                           {"hits", c.estimate.hits}};
-    one.update(tally_fields(c.tallies.at(0)));
+    if (t.observer_grid) {  // the maximum's point, and every point's [sum, sum_sq]
+      one.update(tally_fields(c.tallies.at(t.observer_grid->max_at.value_or(0))));
+      nlohmann::json points = nlohmann::json::array();
+      for (const Tally& p : c.tallies) points.push_back({p.sum, p.sum_sq});
+      one["points"] = std::move(points);
+    } else {
+      one.update(tally_fields(c.tallies.at(0)));
+    }
     if (t.is_grid) {
       nlohmann::json cells = nlohmann::json::array();
       for (std::size_t k = 0; k < c.cells.size(); ++k) {

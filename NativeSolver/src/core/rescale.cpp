@@ -7,8 +7,10 @@
 
 #include "core/decide.hpp"
 #include "core/json_reader.hpp"
+#include "core/observer_grid_io.hpp"
 #include "core/target_results.hpp"
 #include "core/target_types.hpp"
+#include "glare/glare_terms.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
 
@@ -75,10 +77,6 @@ Target read_target(const JsonNode& n) {
   const std::string type = n.at("type").string();
   const detail::TargetType* row = detail::find_target_type(type);
   if (row == nullptr) n.at("type").fail("unknown target type \"" + type + "\"");
-  // Each eye of a grid has its own luminaire sums and L_b: not rebuilt from the results yet.
-  if (row->type == Target::Type::ObserverGrid) {
-    n.at("type").fail("observer grids cannot be rescaled yet: trace the dimmed scene instead");
-  }
   t.type = row->type;
   if (t.type == Target::Type::Grid) {
     t.nu = static_cast<std::uint32_t>(n.at("cells_uv")[0].unsigned_integer());
@@ -90,6 +88,21 @@ Target read_target(const JsonNode& n) {
 
 Tally read_tally(const JsonNode& n) {
   return {n.at("sum").unsigned_integer(), n.at("sum_sq").unsigned_integer()};
+}
+
+// An observer grid's per-point tallies ("points": [[sum, sum_sq], ...]) into bins 2k from
+// `first` (each point's whole square; its cell bin is not read by the results).
+void read_point_tallies(const JsonNode& c, std::size_t points, Tally* first) {
+  const JsonNode list = c.at("points");
+  if (list.array_size() != points) {
+    list.fail("has " + std::to_string(list.array_size()) + " entries, expected one per point (" +
+              std::to_string(points) + ")");
+  }
+  for (std::size_t k = 0; k < points; ++k) {
+    const JsonNode p = list[k];
+    if (p.array_size() != 2) p.fail("expected [sum, sum_sq]");
+    first[2 * k] = {p[0].unsigned_integer(), p[1].unsigned_integer()};
+  }
 }
 
 // The glare of an observer with its luminaires' luminances dimmed (L ~ flux) at its new
@@ -212,6 +225,8 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
   std::vector<Target> scene_targets;
   std::vector<std::uint32_t> first_bin;
   std::vector<detail::BinInfo> bins;
+  // Observer grids: their geometry, each luminance dimmed by its group's factor.
+  std::map<std::size_t, detail::ObserverGridGeometry> eyes;
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
     scene_targets.push_back(read_target(targets[i]));
     const Target& t = scene_targets.back();
@@ -221,6 +236,18 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     // As prepare() lays them out: equal cells; an observer's second bin is unused here.
     if (t.type == Target::Type::Grid) {
       bins.resize(bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
+    }
+    if (t.type == Target::Type::ObserverGrid) {
+      detail::ObserverGridGeometry g = detail::read_observer_grid_geometry(targets[i]);
+      std::vector<double> f;
+      for (const std::string& name : g.terms.luminaires) {
+        const auto it = luminaire_factor.find(name);
+        f.push_back(it == luminaire_factor.end() ? 1.0 : it->second);
+      }
+      g.terms = detail::dimmed(std::move(g.terms), f);
+      // Point k's two bins (whole square, its one cell) at bin + 2k, as prepare() lays them.
+      bins.resize(bins.size() - 1 + 2 * g.terms.status.size(), {area});
+      eyes[i] = std::move(g);
     }
   }
   tallies.bin_count = bins.size();
@@ -232,6 +259,11 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
         scene_targets[i].type == Target::Type::Grid ? scene_targets[i].nu * scene_targets[i].nv : 0;
     for (std::size_t g = 0; g < names.size(); ++g) {
       const JsonNode c = parts.at(names[g].c_str());
+      if (eyes.contains(i)) {
+        read_point_tallies(c, eyes.at(i).terms.status.size(),
+                           &counts[g * bins.size() + first_bin[i]]);
+        continue;
+      }
       counts[g * bins.size() + first_bin[i]] = read_tally(c);
       if (cells > 0 && c.at("cells").array_size() != cells) c.at("cells").fail("wrong cell count");
       for (std::uint32_t k = 0; k < cells; ++k) {
@@ -240,8 +272,10 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     }
   }
   for (std::size_t i = 0; i < scene_targets.size(); ++i) {
-    TargetResult t = detail::make_target(scene_targets[i], bins, tallies, first_bin[i],
-                                         r.confidence, r.judged, nullptr);
+    const auto grid = eyes.find(i);
+    TargetResult t =
+        detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
+                            nullptr, grid == eyes.end() ? nullptr : &grid->second);
     if (t.is_observer) t.glare = rescale_glare(targets[i], t.estimate, luminaire_factor);
     detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
     r.targets.push_back(std::move(t));

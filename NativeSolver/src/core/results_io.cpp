@@ -7,6 +7,7 @@
 
 #include "core/effects_io.hpp"
 #include "core/groups_io.hpp"
+#include "core/observer_grid_io.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -155,7 +156,13 @@ nlohmann::json target_json(const TargetResult& t) {
   nlohmann::json j = {{"name", t.name}, {"type", t.type}, {"area_m2", t.area_m2}};
   j.update(estimate_fields(t.estimate));
   if (t.glare) add_glare(*t.glare, j);
-  if (t.observer_grid) j["observer_grid"] = observer_grid_json(*t.observer_grid);
+  if (t.observer_grid) {
+    j["observer_grid"] = observer_grid_json(*t.observer_grid);
+    // What a rescale rebuilds the points from: only with the tallies it needs too.
+    if (!t.contributions.empty()) {
+      j["observer_grid"]["glare_terms"] = detail::glare_terms_json(t.observer_grid->terms);
+    }
+  }
   add_compliance(t, j);
   detail::add_contributions_json(t, j);
   if (!t.is_grid) return j;

@@ -6,18 +6,17 @@ namespace lightsolver::detail {
 
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
                                       const GroupedTallies& tallies, double confidence, bool judged,
-                                      bool contributions) {
+                                      bool contributions,
+                                      const std::vector<Luminaire>* luminaires) {
   std::vector<std::string> names;
   for (const auto& g : s.groups) names.push_back(g.name);
   std::vector<TargetResult> out;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
     const Target& target = scene.targets[i];
     const std::uint32_t bin = s.target_bin[i];
-    TargetResult r =
-        make_target(target, s.bins, tallies, bin, confidence, judged, &scene.luminaires);
-    if (contributions && target.type != Target::Type::ObserverGrid) {
-      add_contributions(r, s.bins, tallies, bin, confidence, names);
-    }
+    TargetResult r = make_target(target, s.bins, tallies, bin, confidence, judged,
+                                 luminaires != nullptr ? luminaires : &scene.luminaires);
+    if (contributions) add_contributions(r, s.bins, tallies, bin, confidence, names);
     out.push_back(std::move(r));
   }
   return out;

@@ -12,11 +12,13 @@
 namespace lightsolver::detail {
 
 /// Every target of the scene from the grouped tallies (grouped once): the type's own part from
-/// its row (target_results.cpp, target_types.cpp), and each group's part when asked for (not for
-/// observer grids: their points are not one estimate).
+/// its row (target_results.cpp, target_types.cpp), and each group's part when asked for.
+/// `luminaires`: those observers rate for glare (null: the scene's; Simulation::combine passes
+/// them at the fluxes it combines).
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,
                                       const GroupedTallies& tallies, double confidence, bool judged,
-                                      bool contributions);
+                                      bool contributions,
+                                      const std::vector<Luminaire>* luminaires = nullptr);
 
 /// The same after a run's first `photons` photons, shared out by the groups' photon shares.
 std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s,

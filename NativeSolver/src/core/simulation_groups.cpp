@@ -118,7 +118,14 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
   r.confidence = confidence;
   r.backend = state_->backend->name();
   r.judged = detail::judges_requirements(scene, false, false);
-  r.targets = detail::all_targets(scene, p, tallies, confidence, r.judged, false);
+  // Observers rate each luminaire's luminance, which follows its group's flux as combined.
+  std::vector<Luminaire> luminaires = scene.luminaires;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const double traced = p.groups[g].flux_lm;
+    const double factor = traced > 0.0 ? flux_lm[g] / traced : 0.0;
+    for (std::uint32_t l : p.groups[g].luminaires) luminaires[l].flux_lm *= factor;
+  }
+  r.targets = detail::all_targets(scene, p, tallies, confidence, r.judged, false, &luminaires);
   r.groups = detail::group_results(scene, p, tallies.photons);
   for (std::size_t g = 0; g < groups; ++g) r.groups[g].flux_lm = flux_lm[g];
   detail::add_verdicts(r);

@@ -368,10 +368,14 @@ void observer_grid_result(const TargetTallies& tt, TargetResult& r) {
   const ObserverGridTallies points{
       [&tt](std::size_t k) { return tt.estimate(tt.bin + 2 * std::uint32_t(k)); },
       [&tt](std::size_t k, double z) { return tt.estimate_z(tt.bin + 2 * std::uint32_t(k), z); }};
-  if (tt.luminaires == nullptr) {
+  if (tt.observer_grid == nullptr && tt.luminaires == nullptr) {
     throw std::logic_error("an observer grid's result needs the scene's luminaires");
   }
-  ObserverGridOutcome o = observer_grid_glare(tt.target, *tt.luminaires, tt.confidence, points);
+  // Traced: the geometry from the scene's luminaires; rescaled: from the results, dimmed.
+  ObserverGridOutcome o = observer_grid_glare(
+      tt.target.name,
+      tt.observer_grid ? *tt.observer_grid : observer_grid_geometry(tt.target, *tt.luminaires),
+      tt.confidence, points);
   r.estimate = points.estimate(o.estimate_point);
   r.glare = std::move(o.max);
   r.observer_grid = std::move(o.grid);

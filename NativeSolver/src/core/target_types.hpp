@@ -23,6 +23,7 @@
 namespace lightsolver::detail {
 
 class JsonNode;
+struct ObserverGridGeometry;
 
 /// What a type's check may ask of the scene validator. `key` names a field of the target being
 /// checked (the validator turns it into "targets[i].key"); failures throw InputError.
@@ -67,8 +68,10 @@ struct TargetTallies {
   double confidence;
   bool judged;  ///< the run judges requirements (grids then need their intervals)
   /// The scene's luminaires, for glare; null when results are rebuilt without the scene
-  /// (rescale.cpp rescales an observer's glare itself and refuses observer grids).
+  /// (rescale.cpp rescales an observer's glare itself).
   const std::vector<Luminaire>* luminaires;
+  /// An observer grid's geometry read back from results (rescale); null: from `luminaires`.
+  const ObserverGridGeometry* observer_grid;
 
   /// Bin `b`'s illuminance (lux) at the run's confidence, or at the critical value `z`.
   Estimate estimate(std::uint32_t b) const;

@@ -9,18 +9,10 @@
 #include <string>
 
 #include "core/target_types.hpp"
-#include "glare/observer_target.hpp"
+#include "glare/glare_terms.hpp"
 
 namespace lightsolver::detail {
 namespace {
-
-// UGR at background luminance `lb` for a point whose luminaire sum is `sum`, as compute_ugr
-// evaluates it (the sum does not depend on L_b).
-std::optional<double> ugr_at(double sum, double lb) {
-  if (!(lb > 0.0)) return std::nullopt;
-  const double k = 0.25 / lb;
-  return 8.0 * std::log10(k * sum);
-}
 
 // Bounds of max_k UGR_k with each side missing with probability at most alpha / 2. UGR_k falls
 // as L_b,k rises.
@@ -43,7 +35,7 @@ void max_bounds(const std::vector<ObserverGlare>& points, const std::vector<std:
   max.ugr_ci_low.reset();
   for (const std::size_t k : glare) {
     const double lb_high = tallies.estimate_z(k, z).ci_high * (1.0 / std::numbers::pi);
-    const std::optional<double> low = ugr_at(points[k].luminaire_sum, lb_high);
+    const std::optional<double> low = ugr_for(points[k].luminaire_sum, lb_high);
     if (low) max.ugr_ci_low = std::max(max.ugr_ci_low.value_or(*low), *low);
   }
   if (!max.ugr) return;  // unbounded: an interval open above holds it
@@ -64,50 +56,55 @@ std::size_t arg_max(const std::vector<ObserverGlare>& points,
 
 }  // namespace
 
-ObserverGridOutcome observer_grid_glare(const Target& t, const std::vector<Luminaire>& luminaires,
+ObserverGridGeometry observer_grid_geometry(const Target& t,
+                                            const std::vector<Luminaire>& luminaires) {
+  ObserverGridGeometry g;
+  g.positions = observer_grid_positions(t);
+  g.view_directions = observer_grid_directions(t);
+  std::vector<GlareObserver> eyes;
+  for (const glm::dvec3& position : g.positions) {
+    for (const glm::dvec3& view : g.view_directions) eyes.push_back({position, view, t.up});
+  }
+  g.terms = glare_terms(luminaires, eyes);
+  return g;
+}
+
+ObserverGridOutcome observer_grid_glare(const std::string& name, ObserverGridGeometry geometry,
                                         double confidence, const ObserverGridTallies& tallies) {
   ObserverGridOutcome out;
-  out.grid.positions = observer_grid_positions(t);
-  out.grid.view_directions = observer_grid_directions(t);
+  out.grid.positions = std::move(geometry.positions);
+  out.grid.view_directions = std::move(geometry.view_directions);
   std::vector<std::string> warnings;
   std::set<std::string> seen;
   std::vector<std::size_t> glare;  // the points where a luminaire counts
-  Target eye = t;
-  for (const glm::dvec3& position : out.grid.positions) {
-    for (const glm::dvec3& view : out.grid.view_directions) {
-      eye.position = position;
-      eye.view_direction = view;
-      const std::size_t k = out.grid.points.size();
-      ObserverGlare g = observer_glare(eye, luminaires, tallies.estimate(k));
-      // "No luminaire counts" is said once for the grid below, not once per eye.
-      if (!(g.luminaire_sum > 0.0) && !g.warnings.empty() &&
-          g.warnings.back().find("no luminaire counts") != std::string::npos) {
-        g.warnings.pop_back();
-      }
-      for (std::string& w : g.warnings) {
-        if (seen.insert(w).second) warnings.push_back(std::move(w));
-      }
-      g.warnings.clear();
-      if (g.luminaire_sum > 0.0) glare.push_back(k);
-      out.grid.points.push_back(std::move(g));
+  for (std::size_t k = 0; k < geometry.terms.status.size(); ++k) {
+    ObserverGlare g = eye_glare(name, geometry.terms, k, tallies.estimate(k));
+    // "No luminaire counts" is said once for the grid below, not once per eye.
+    if (!(g.luminaire_sum > 0.0) && !g.warnings.empty() &&
+        g.warnings.back().find("no luminaire counts") != std::string::npos) {
+      g.warnings.pop_back();
     }
+    for (std::string& w : g.warnings) {
+      if (seen.insert(w).second) warnings.push_back(std::move(w));
+    }
+    g.warnings.clear();
+    if (g.luminaire_sum > 0.0) glare.push_back(k);
+    out.grid.points.push_back(std::move(g));
   }
   if (!glare.empty()) out.estimate_point = arg_max(out.grid.points, glare);
   if (!glare.empty()) out.grid.max_at = out.estimate_point;
-  // The maximum's point keeps its luminaires (recomputed: the others' are dropped).
-  const std::size_t nd = out.grid.view_directions.size();
-  eye.position = out.grid.positions[out.estimate_point / nd];
-  eye.view_direction = out.grid.view_directions[out.estimate_point % nd];
-  out.max = observer_glare(eye, luminaires, tallies.estimate(out.estimate_point));
+  // The maximum's point keeps its luminaires; the others' are dropped.
+  out.max = out.grid.points.at(out.estimate_point);
   for (ObserverGlare& g : out.grid.points) g.contributions.clear();
+  out.grid.terms = std::move(geometry.terms);
   const std::size_t eyes = out.grid.points.size();
   if (glare.empty()) {
-    warnings.push_back(t.name + ": no luminaire counts toward UGR at any of its " +
+    warnings.push_back(name + ": no luminaire counts toward UGR at any of its " +
                        std::to_string(eyes) +
                        " eyes (none in a field of view with a luminous area): no discomfort "
                        "glare from luminaires");
   } else if (glare.size() < eyes) {
-    warnings.push_back(t.name + ": " + std::to_string(eyes - glare.size()) + " of its " +
+    warnings.push_back(name + ": " + std::to_string(eyes - glare.size()) + " of its " +
                        std::to_string(eyes) +
                        " eyes (position x direction) have no rated luminaire in their field: "
                        "no glare there; the maximum is over the other " +

@@ -4,6 +4,7 @@
 // holds for the maximum over all of them, not only at the point where the estimate peaks.
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "lightsolver/scene.hpp"
@@ -26,8 +27,19 @@ struct ObserverGridOutcome {
   std::size_t estimate_point = 0;  ///< that point
 };
 
-/// The glare of observer grid `t` (validated) for `luminaires`.
-ObserverGridOutcome observer_grid_glare(const Target& t, const std::vector<Luminaire>& luminaires,
+/// An observer grid's eyes, lines of sight and every point's glare terms: from the scene
+/// (observer_grid_geometry) or from results with contributions (rescale, dimmed).
+struct ObserverGridGeometry {
+  std::vector<glm::dvec3> positions, view_directions;
+  GlareTerms terms;  ///< point k = position * view_directions.size() + direction
+};
+
+/// (a) The geometry of observer grid `t` (validated) for `luminaires`.
+ObserverGridGeometry observer_grid_geometry(const Target& t,
+                                            const std::vector<Luminaire>& luminaires);
+
+/// (b) The glare of observer grid `name` from its geometry and its points' tallies.
+ObserverGridOutcome observer_grid_glare(const std::string& name, ObserverGridGeometry geometry,
                                         double confidence, const ObserverGridTallies& tallies);
 
 }  // namespace lightsolver::detail

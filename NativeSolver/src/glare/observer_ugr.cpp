@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "glare/glare_terms.hpp"
 #include "lightsolver/glare.hpp"
 
 namespace lightsolver {
@@ -30,6 +31,18 @@ std::string format_g(double v) {
 }
 
 }  // namespace
+
+namespace detail {
+
+std::optional<std::string> solid_angle_warning(const std::string& name, double solid_angle_sr) {
+  if (solid_angle_sr >= kSmallSourceSr && solid_angle_sr <= kLargeSourceSr) return std::nullopt;
+  return name + ": solid angle " + format_g(solid_angle_sr) +
+         " sr is outside CIE 117's range 0.0003-0.1 sr (" +
+         (solid_angle_sr < kSmallSourceSr ? "small source, CIE 147" : "large source, CIE 147") +
+         ")";
+}
+
+}  // namespace detail
 
 double projected_luminous_area_m2(const PhotometricData& data, const glm::dvec3& dir) {
   const glm::dvec3 d = glm::normalize(dir);
@@ -142,12 +155,8 @@ UgrResult compute_ugr(const GlareObserver& observer, const std::vector<GlareSour
         c.term = c.luminance_cd_m2 * c.luminance_cd_m2 * c.solid_angle_sr / (*p * *p);
         c.ugr_alone = 8.0 * std::log10(k * c.term);
         result.sum += c.term;
-        if (c.solid_angle_sr < kSmallSourceSr || c.solid_angle_sr > kLargeSourceSr)
-          result.warnings.push_back(src.name + ": solid angle " + format_g(c.solid_angle_sr) +
-                                    " sr is outside CIE 117's range 0.0003-0.1 sr (" +
-                                    (c.solid_angle_sr < kSmallSourceSr ? "small source, CIE 147"
-                                                                       : "large source, CIE 147") +
-                                    ")");
+        if (auto w = detail::solid_angle_warning(src.name, c.solid_angle_sr))
+          result.warnings.push_back(std::move(*w));
       }
     }
     result.contributions.push_back(std::move(c));

@@ -130,3 +130,49 @@ TEST(GroupTraceErrors, BadGroupsWeightsAndTracesAreRefused) {
 
 }  // namespace
 }  // namespace lightsolver::test
+
+namespace lightsolver::test {
+namespace {
+
+// An observer rates each luminaire's luminance, which follows its group's flux: a panel
+// combined at half its traced flux glares as the panel traced at half flux (same tallies).
+TEST(GroupTraces, CombinedGlareFollowsTheCombinedFlux) {
+  Scene s = grouped_room();
+  Luminaire panel;
+  panel.type = Luminaire::Type::Area;
+  panel.flux_lm = 4000;
+  panel.corner = {1.5, 1.7, 2.9};
+  panel.edge1 = {0, 0.6, 0};
+  panel.edge2 = {0.6, 0, 0};
+  s.luminaires.push_back(named(panel, "panel", "panel"));
+  Target eye;
+  eye.name = "eye";
+  eye.type = Target::Type::Observer;
+  eye.position = {5.0, 2.0, 1.2};
+  eye.view_direction = {-1, 0, 0};
+  s.targets.push_back(eye);
+  Simulation sim(s, Simulation::Options{"embree", 2, {}});
+  sim.fix_photon_shares({3000, 3000, 4000});
+  auto all = [&](std::uint64_t seed) {
+    std::vector<GroupTrace> t;
+    for (std::size_t g = 0; g < 3; ++g) t.push_back(sim.trace_group(g, 60'000, seed));
+    return t;
+  };
+  const std::vector<GroupTrace> full = all(5);
+  const Results bright = sim.combine({&full[0], &full[1], &full[2]}, {3000, 3000, 4000}, 0.95);
+  const Results dimmed = sim.combine({&full[0], &full[1], &full[2]}, {3000, 3000, 2000}, 0.95);
+  Luminaire half = sim.scene().luminaires[3];
+  half.flux_lm = 2000;
+  sim.set_luminaire(3, half);
+  const std::vector<GroupTrace> traced = all(5);
+  const Results at_half =
+      sim.combine({&traced[0], &traced[1], &traced[2]}, {3000, 3000, 2000}, 0.95);
+  const ObserverGlare& g = *dimmed.targets[2].glare;
+  ASSERT_TRUE(g.ugr.has_value() && bright.targets[2].glare->ugr.has_value());
+  EXPECT_LT(*g.ugr, *bright.targets[2].glare->ugr - 1.0);  // half the luminance: about 2 less
+  EXPECT_NEAR(*g.ugr, *at_half.targets[2].glare->ugr, 1e-9);
+  EXPECT_NEAR(g.luminaire_sum, at_half.targets[2].glare->luminaire_sum, 1e-12 * g.luminaire_sum);
+}
+
+}  // namespace
+}  // namespace lightsolver::test
