@@ -125,12 +125,17 @@ ObserverGlare rescale_glare(const JsonNode& n, const Estimate& indirect,
     GlareContribution c;
     c.name = p.at("name").string();
     c.counted = p.at("counted").boolean();
+    const auto f = luminaire_factor.find(c.name);
+    const double factor = f == luminaire_factor.end() ? 1.0 : f->second;
+    if (c.counted && !(p.at("luminance_cd_m2").number() * factor > 0.0)) {
+      // Dimmed to 0: dark toward the eye, as a run traced at 0 lm (and observer grids) say.
+      c.counted = false;
+      c.why_not = detail::why_not_counted(GlareTerms{}, 'd', 0);
+    }
     if (!c.counted) {
-      c.why_not = p.at("why_not").string();
+      if (c.why_not.empty()) c.why_not = p.at("why_not").string();
     } else {
-      const auto f = luminaire_factor.find(c.name);
-      c.luminance_cd_m2 =
-          p.at("luminance_cd_m2").number() * (f == luminaire_factor.end() ? 1.0 : f->second);
+      c.luminance_cd_m2 = p.at("luminance_cd_m2").number() * factor;
       c.solid_angle_sr = p.at("solid_angle_sr").number();
       c.position_index = p.at("position_index").number();
       const double part = c.luminance_cd_m2 * c.luminance_cd_m2 * c.solid_angle_sr /

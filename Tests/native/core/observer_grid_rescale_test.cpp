@@ -168,6 +168,29 @@ TEST(ObserverGridRescale, AGroupAtZeroIsTheGroupTracedDark) {
   EXPECT_EQ(off.rescaled[1], (std::pair<std::string, double>{"right", 0.0}));
 }
 
+// A plain observer says the same of a group dimmed to 0 as a run traced with it at 0 lm: its
+// panel is dark toward the eye (not counted with a luminance of 0), and the UGR agrees.
+TEST(ObserverGridRescale, APlainObserverSeesAGroupAtZeroAsTracedDark) {
+  Scene s = glare_room();
+  Target eye;
+  eye.name = "eye";
+  eye.type = Target::Type::Observer;
+  eye.position = {0.5, 2.0, 1.2};
+  eye.view_direction = {1, 0, 0};
+  s.targets.push_back(eye);
+  const Results off = rescale_results(results_to_json(traced(s)), {{"right", 0.0}});
+  const Results dark = traced(dimmed(s, 1.0, 0.0));
+  const ObserverGlare &g = *off.targets.at(2).glare, &h = *dark.targets.at(2).glare;
+  ASSERT_EQ(g.contributions.size(), h.contributions.size());
+  for (std::size_t i = 0; i < g.contributions.size(); ++i) {
+    EXPECT_EQ(g.contributions[i].counted, h.contributions[i].counted) << i;
+    EXPECT_EQ(g.contributions[i].why_not, h.contributions[i].why_not) << i;
+  }
+  EXPECT_FALSE(g.contributions[2].counted);  // r1, dimmed to 0
+  ASSERT_TRUE(g.ugr.has_value() && h.ugr.has_value());
+  EXPECT_NEAR(*g.ugr, *h.ugr, 1e-9);
+}
+
 // Results whose grid lacks its per-point data, or has it short, are refused naming the field.
 TEST(ObserverGridRescale, MissingOrShortPerPointDataNamesTheField) {
   const auto doc = nlohmann::json::parse(results_to_json(traced(glare_room())));
