@@ -105,54 +105,38 @@ void read_point_tallies(const JsonNode& c, std::size_t points, Tally* first) {
   }
 }
 
-// The glare of an observer with its luminaires' luminances dimmed (L ~ flux) at its new
-// background luminance: UGR = 8 log10(0.25 / L_b * sum L^2 omega / p^2) (docs/glare.md).
-ObserverGlare rescale_glare(const JsonNode& n, const Estimate& indirect,
-                            const std::map<std::string, double>& luminaire_factor) {
-  ObserverGlare g;
-  const double inv_pi = 1.0 / 3.14159265358979323846;
-  g.background_luminance_cd_m2 = indirect.mean * inv_pi;
-  g.background_ci_low_cd_m2 = indirect.ci_low * inv_pi;
-  g.background_ci_high_cd_m2 = indirect.ci_high * inv_pi;
-  const auto ugr = [](double sum, double lb) -> std::optional<double> {
-    if (!(lb > 0.0) || !(sum > 0.0)) return std::nullopt;
-    return 8.0 * std::log10(0.25 * sum / lb);
-  };
-  double sum = 0.0;
+// A plain observer's luminaires in the results as the glare terms of one eye (status, and
+// L, omega, p of the counted ones), for the statistics step traced runs use (eye_glare).
+GlareTerms observer_terms(const JsonNode& n) {
+  GlareTerms terms;
+  std::string status;
+  std::vector<double> values;
   const JsonNode parts = n.at("luminaires");
   for (std::size_t i = 0; i < parts.array_size(); ++i) {
     const JsonNode p = parts[i];
-    GlareContribution c;
-    c.name = p.at("name").string();
-    c.counted = p.at("counted").boolean();
-    const auto f = luminaire_factor.find(c.name);
-    const double factor = f == luminaire_factor.end() ? 1.0 : f->second;
-    if (c.counted && !(p.at("luminance_cd_m2").number() * factor > 0.0)) {
-      // Dimmed to 0: dark toward the eye, as a run traced at 0 lm (and observer grids) say.
-      c.counted = false;
-      c.why_not = detail::why_not_counted(GlareTerms{}, 'd', 0);
+    terms.luminaires.push_back(p.at("name").string());
+    terms.not_rated.emplace_back();
+    if (p.at("counted").boolean()) {
+      status += 'c';
+      for (const char* key : {"luminance_cd_m2", "solid_angle_sr", "position_index"}) {
+        const double x = p.at(key).number();
+        if (!(x > 0.0 && std::isfinite(x))) p.at(key).fail("must be > 0");
+        values.push_back(x);
+      }
+      continue;
     }
-    if (!c.counted) {
-      if (c.why_not.empty()) c.why_not = p.at("why_not").string();
-    } else {
-      c.luminance_cd_m2 = p.at("luminance_cd_m2").number() * factor;
-      c.solid_angle_sr = p.at("solid_angle_sr").number();
-      c.position_index = p.at("position_index").number();
-      const double part = c.luminance_cd_m2 * c.luminance_cd_m2 * c.solid_angle_sr /
-                          (c.position_index * c.position_index);
-      c.ugr_alone = ugr(part, g.background_luminance_cd_m2);
-      sum += part;
+    // A geometric reason has its status character; any other says why it is never rated.
+    const std::string why = p.at("why_not").string();
+    char c = 'x';
+    for (const char s : {'b', 'l', 'o', 'd'}) {
+      if (why == detail::why_not_counted(terms, s, i)) c = s;
     }
-    g.contributions.push_back(std::move(c));
+    if (c == 'x') terms.not_rated.back() = why;
+    status += c;
   }
-  g.luminaire_sum = sum;
-  g.warnings = strings(n.at("warnings"));
-  if (sum > 0.0) {
-    g.ugr = ugr(sum, g.background_luminance_cd_m2);
-    g.ugr_ci_low = ugr(sum, g.background_ci_high_cd_m2);
-    g.ugr_ci_high = ugr(sum, g.background_ci_low_cd_m2);
-  }
-  return g;
+  terms.status.push_back(std::move(status));
+  terms.terms.push_back(std::move(values));
+  return terms;
 }
 
 // The run's own fields, as traced.
@@ -281,7 +265,15 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     TargetResult t =
         detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
                             nullptr, grid == eyes.end() ? nullptr : &grid->second);
-    if (t.is_observer) t.glare = rescale_glare(targets[i], t.estimate, luminaire_factor);
+    if (t.is_observer && !t.observer_grid) {
+      const GlareTerms terms = observer_terms(targets[i]);
+      std::vector<double> factor;
+      for (const std::string& name : terms.luminaires) {
+        const auto f = luminaire_factor.find(name);
+        factor.push_back(f == luminaire_factor.end() ? 1.0 : f->second);
+      }
+      t.glare = detail::eye_glare(t.name, detail::dimmed(terms, factor), 0, t.estimate);
+    }
     detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
     r.targets.push_back(std::move(t));
   }
