@@ -2,7 +2,8 @@
 window-side luminaires in a control group, makes a light scene with the toolbar's *Light
 scene* command, runs the analysis once, then dims the window row to 30 % and switches the
 back row off in the panel's Light scenes section: the Em in the table and the colours follow
-at once, with no new run, and *As traced* brings the full values back."""
+at once, with no new run, and *As traced* brings the full values back. The office also has a
+glare observer grid: its UGR is rescaled with the rest (it once kept any scene from showing)."""
 import os
 import sys
 
@@ -34,6 +35,11 @@ def body() -> None:
         doc.getObject(name).ControlGroup = group
     analysis = doc.getObject(office_model.OBJECTS["analysis"])
     analysis.Decide = False
+    import lighting
+
+    eyes = lighting.make_observer(doc, (1.0, 1.0, 1.2), ugr_max=19.0, name="EyeGrid",
+                                  analysis=analysis)
+    eyes.GridMode, eyes.GridLength, eyes.GridWidth = True, 3000.0, 2000.0
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(analysis)
     expect(toolbar_enabled("Lighting_LightScene"), "the Light scene command is not enabled")
@@ -65,6 +71,12 @@ def body() -> None:
     expect(0.0 < dimmed < 0.5 * full, f"dimming did not lower Em: {full} -> {dimmed}")
     expect("Window row 30 %" in results.LightScene and "Back row off" in results.LightScene,
            f"the results show {results.LightScene!r}")
+    grid = next((t for t in results_obj.data(results)["targets"] if t["name"] == eyes.Name), {})
+    traced = next(t for t in results_obj.traced(results)["targets"] if t["name"] == eyes.Name)
+    STATUS["max_ugr_traced"], STATUS["max_ugr_shown"] = traced.get("ugr"), grid.get("ugr")
+    expect(grid.get("ugr") is not None and traced.get("ugr") is not None
+           and grid["ugr"] != traced["ugr"], f"the eye grid's UGR did not follow the scene: "
+           f"{traced.get('ugr')} -> {grid.get('ugr')}")
     panel.sections["scenes"].ensurePolished()
     panel.scroll.ensureWidgetVisible(panel.sections["scenes"])
     pump(0.5)
