@@ -127,16 +127,24 @@ GlareTerms observer_terms(const JsonNode& n) {
     }
     // A geometric reason has its status character; any other says why it is never rated.
     const std::string why = p.at("why_not").string();
-    char c = 'x';
-    for (const char s : {'b', 'l', 'o', 'd'}) {
-      if (why == detail::why_not_counted(terms, s, i)) c = s;
-    }
+    const char c = detail::geometric_status(why);
     if (c == 'x') terms.not_rated.back() = why;
     status += c;
   }
   terms.status.push_back(std::move(status));
   terms.terms.push_back(std::move(values));
   return terms;
+}
+
+// Each luminaire's dimming factor (its group's; 1 for a name no group lists), in `terms` order.
+std::vector<double> luminaire_factors(const GlareTerms& terms,
+                                      const std::map<std::string, double>& luminaire_factor) {
+  std::vector<double> out;
+  for (const std::string& name : terms.luminaires) {
+    const auto f = luminaire_factor.find(name);
+    out.push_back(f == luminaire_factor.end() ? 1.0 : f->second);
+  }
+  return out;
 }
 
 // The run's own fields, as traced.
@@ -228,11 +236,7 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     }
     if (t.type == Target::Type::ObserverGrid) {
       detail::ObserverGridGeometry g = detail::read_observer_grid_geometry(targets[i]);
-      std::vector<double> f;
-      for (const std::string& name : g.terms.luminaires) {
-        const auto it = luminaire_factor.find(name);
-        f.push_back(it == luminaire_factor.end() ? 1.0 : it->second);
-      }
+      const std::vector<double> f = luminaire_factors(g.terms, luminaire_factor);
       g.terms = detail::dimmed(std::move(g.terms), f);
       // Point k's two bins (whole square, its one cell) at bin + 2k, as prepare() lays them.
       bins.resize(bins.size() - 1 + 2 * g.terms.status.size(), {area});
@@ -267,12 +271,8 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
                             nullptr, grid == eyes.end() ? nullptr : &grid->second);
     if (t.is_observer && !t.observer_grid) {
       const GlareTerms terms = observer_terms(targets[i]);
-      std::vector<double> factor;
-      for (const std::string& name : terms.luminaires) {
-        const auto f = luminaire_factor.find(name);
-        factor.push_back(f == luminaire_factor.end() ? 1.0 : f->second);
-      }
-      t.glare = detail::eye_glare(t.name, detail::dimmed(terms, factor), 0, t.estimate);
+      const GlareTerms dimmed = detail::dimmed(terms, luminaire_factors(terms, luminaire_factor));
+      t.glare = detail::eye_glare(t.name, dimmed, 0, t.estimate);
     }
     detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
     r.targets.push_back(std::move(t));

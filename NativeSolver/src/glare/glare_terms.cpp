@@ -19,10 +19,11 @@ constexpr std::pair<char, const char*> kReasons[] = {
 };
 
 char status_of(const std::string& why_not) {
-  for (const auto& [c, reason] : kReasons) {
-    if (why_not == reason) return c;
+  const char c = geometric_status(why_not);
+  if (c == 'x') {
+    throw std::logic_error("compute_ugr gave a reason without a status character: " + why_not);
   }
-  throw std::logic_error("compute_ugr gave a reason without a status character: " + why_not);
+  return c;
 }
 
 // One scene luminaire as a glare source, or why it is none.
@@ -68,6 +69,13 @@ std::optional<double> ugr_for(double sum, double lb) {
   if (!(lb > 0.0) || !(sum > 0.0)) return std::nullopt;
   const double k = 0.25 / lb;
   return 8.0 * std::log10(k * sum);
+}
+
+char geometric_status(const std::string& why_not) {
+  for (const auto& [c, reason] : kReasons) {
+    if (why_not == reason) return c;
+  }
+  return 'x';
 }
 
 std::string why_not_counted(const GlareTerms& terms, char s, std::size_t luminaire) {

@@ -37,6 +37,9 @@ std::optional<std::string> solid_angle_warning(const std::string& name, double s
 
 /// The status characters and the reasons of the geometric ones ("behind the eye", ...).
 inline constexpr const char* kGlareStatus = "cblodx";
+/// The status character of a geometric reason not to count ('b', 'l', 'o', 'd'); 'x' for any
+/// other reason (the luminaire is never rated).
+char geometric_status(const std::string& why_not);
 /// Why a luminaire of status `s` does not count ('x': not_rated; 'c': "").
 std::string why_not_counted(const GlareTerms& terms, char s, std::size_t luminaire);
 

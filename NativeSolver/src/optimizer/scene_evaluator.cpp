@@ -188,6 +188,13 @@ struct SceneEvaluator::Reuse {
   std::vector<std::shared_ptr<const GroupTrace>> traces;
   std::vector<double> flux_lm;
   double installed_lm = 0.0;
+
+  // The last evaluation's traces as Simulation::combine takes them (null: a dark group).
+  std::vector<const GroupTrace*> parts() const {
+    std::vector<const GroupTrace*> out;
+    for (const auto& t : traces) out.push_back(t.get());
+    return out;
+  }
 };
 
 SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const std::string& backend,
@@ -229,10 +236,8 @@ Estimate SceneEvaluator::metric(const Metric& m) const {
       return find_result(last_, m.target).estimate;
     case MetricKind::kUniformity: {
       const TargetResult& grid = find_result(last_, m.target);
-      std::vector<const GroupTrace*> traces;
-      for (const auto& t : reuse_->traces) traces.push_back(t.get());
       const Results wide = simulation_.combine(
-          traces, reuse_->flux_lm, uniformity_confidence(grid.cells.size(), confidence_));
+          reuse_->parts(), reuse_->flux_lm, uniformity_confidence(grid.cells.size(), confidence_));
       return uniformity_estimate(grid, find_result(wide, m.target), confidence_);
     }
     case MetricKind::kInstalledFlux: {
@@ -271,9 +276,7 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
     traced += k.traces[g]->photons;
     k.cache.insert(key, k.traces[g]);
   }
-  std::vector<const GroupTrace*> traces;
-  for (const auto& t : k.traces) traces.push_back(t.get());
-  last_ = simulation_.combine(traces, k.flux_lm, confidence_);
+  last_ = simulation_.combine(k.parts(), k.flux_lm, confidence_);
   k.installed_lm = reuse::installed_flux_lm(problem_, k.plan, simulation_.scene(), r.values);
   e.trace_seconds = seconds_since(trace_start);
   e.photons_traced = traced;
