@@ -48,8 +48,8 @@ def backend_available(cli, backend):
     (a build without Vulkan, or without lavapipe installed, skips the Vulkan goldens)."""
     r = subprocess.run([cli, "backends"], capture_output=True, text=True, timeout=120,
                        env=backend_env(backend))
-    return any(line.split()[:1] == [backend] and " available" in line and "not available" not in line
-               for line in r.stdout.splitlines())
+    return any(line.split()[:1] == [backend] and " available" in line
+               and "not available" not in line for line in r.stdout.splitlines())
 
 
 def differences(expected, actual, path="", found=None):
@@ -155,6 +155,12 @@ def test_per_backend_goldens_cover_every_type():
             golden_path("lamps", backend).read_text())["targets"]
             for v in t.get("verdicts", {}).values()}
         assert verdicts == {"pass", "fail", "undecided"}
+        # Near their bounds: every traced verdict's bound lies within a quarter of its interval's
+        # width of the interval (a small change to the numbers flips it).
+        for t in json.loads(golden_path("lamps", backend).read_text())["targets"]:
+            for kind, v in t.get("verdicts", {}).items():
+                gap = max(v["ci_low"] - v["required"], v["required"] - v["ci_high"], 0.0)
+                assert gap <= 0.25 * (v["ci_high"] - v["ci_low"]), (t["name"], kind, v)
 
 
 @pytest.mark.parametrize("name", sorted(MANIFEST["commands"]))
