@@ -136,6 +136,109 @@ void add_stop_warnings(Results& r) {
   r.warnings.push_back(w + "; where a time limit stops a run depends on the machine's speed");
 }
 
+// One run's batches: traced until a stop policy (stop_policies.hpp) ends the run, with the
+// forecast, progress and checkpoints observing them.
+struct BatchLoop {
+  const Scene& scene;
+  const detail::PreparedScene& prepared;
+  detail::Backend& backend;
+  int threads;
+  const SolveOptions& options;
+  const ProgressFn& progress;
+  detail::TallyBlock& tallies;
+  Results& r;
+
+  std::vector<TargetResult> targets_at(std::uint64_t photons, double confidence) const {
+    return detail::all_targets(scene, prepared, tallies, photons, confidence, r.judged,
+                               r.contributions);
+  }
+
+  // What the rest of the run will cost, `looks` verdict looks in.
+  RunForecast forecast(const detail::BatchState& at, int looks) const {
+    RunForecast f = make_forecast(scene, prepared, tallies, r, at.elapsed_s);
+    if (r.decide) {  // the photons the verdicts still open are expected to need
+      std::vector<TargetResult> now =
+          targets_at(r.photons, detail::look_confidence(r.confidence, looks));
+      f.photons = detail::photons_to_decide_all(now, r.photons, r.photons_requested);
+      f.seconds = double(f.photons) / f.photons_per_second;
+    }
+    return f;
+  }
+
+  Checkpoint checkpoint(std::uint64_t at, double seconds) const {
+    Checkpoint c;
+    c.photons = at;
+    c.seconds = seconds;
+    c.worst_relative_half_width = worst_relative_half_width(prepared, tallies, at, r.confidence);
+    c.targets = targets_at(at, r.confidence);
+    return c;
+  }
+
+  // Traces from r.photons until a policy stops; sets r.stop_reason and r.accuracy_met and
+  // returns the seconds spent tracing.
+  double trace() {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    const bool doubling = r.target_accuracy || r.decide;  // batches: deterministic stop points
+    const std::uint64_t first_photon = r.photons;
+    const auto start = Clock::now();
+    detail::SharedTracing shared(options.processes.get(), tallies.bins.size());
+    // The stopping rules in the order they are asked; the same list on every process, so an
+    // agreed index names one rule everywhere.
+    detail::PhotonLimit photon_limit;
+    detail::CancelPolicy cancel(options.cancel);
+    detail::TimeLimit time_limit(r.max_seconds);
+    detail::AccuracyGoal accuracy(r.target_accuracy, [&](const detail::BatchState&) {
+      return goal_width(scene, prepared, tallies, r);
+    });
+    detail::DecidePolicy decide(r.decide, [&](std::uint64_t photons, int look) {
+      std::vector<TargetResult> now =
+          targets_at(photons, detail::look_confidence(r.confidence, look));
+      return detail::all_decided(now);
+    });
+    const detail::StopPolicies policies({&photon_limit, &cancel, &time_limit, &accuracy, &decide});
+    detail::ForecastObserver forecast_report;
+    if (options.forecast) {
+      forecast_report = detail::ForecastObserver(
+          [&](const detail::BatchState& at) { options.forecast(forecast(at, decide.looks())); });
+    }
+    detail::ProgressObserver progress_report(progress, cancel);
+    detail::CheckpointSplitter checkpoints(options.checkpoints);
+    auto report_checkpoint = [&](std::uint64_t at) {
+      if (options.checkpoint) options.checkpoint(checkpoint(at, seconds_since(start)));
+    };
+    auto trace_range = [&](std::uint64_t first, std::uint64_t count) {
+      shared.trace(first, count, tallies,
+                   [&](std::uint64_t from, std::uint64_t photons, detail::TallyBlock& into) {
+                     // Photons [from, from + photons) of the run are each group's share.
+                     const auto ranges = detail::group_ranges(prepared.groups, from, photons);
+                     arena.execute([&] { backend.trace(ranges, r.seed, into); });
+                   });
+    };
+    for (;;) {
+      const double elapsed = seconds_since(start);
+      const double rate = elapsed > 0.0 ? double(r.photons - first_photon) / elapsed : 0.0;
+      std::uint64_t stop = policies.before({r.photons, r.photons_requested, elapsed});
+      std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
+      n = time_limit.fit(n, rate, elapsed);
+      shared.agree(n, stop);  // rank 0's clock and user decide for every process
+      if (stop == 0) {
+        checkpoints.trace(r.photons, n, trace_range, report_checkpoint);
+        r.photons += n;
+        stop = policies.after({r.photons, r.photons_requested, seconds_since(start)});
+      }
+      if (stop != 0) {
+        r.stop_reason = policies.reason(stop);
+        break;
+      }
+      const detail::BatchState done{r.photons, r.photons_requested, seconds_since(start)};
+      forecast_report.after_batch(done);
+      progress_report.after_batch(done);  // a stop it asks for is agreed before the next batch
+    }
+    r.accuracy_met = r.stop_reason == kStopAccuracy;
+    return seconds_since(start);
+  }
+};
+
 // Rigid: the linear part is orthonormal and the last row is (0, 0, 0, 1).
 bool is_rigid(const glm::dmat4& m) {
   const glm::dmat3 r(m);
@@ -281,85 +384,11 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     tallies = *state_->kept;  // photons [0, kept_photons) are already traced
     r.photons = state_->kept_photons;
   }
-  const std::uint64_t first_photon = r.photons;
-  auto targets_at = [&](std::uint64_t photons, double confidence) {
-    return detail::all_targets(scene, prepared, tallies, photons, confidence, r.judged,
-                               r.contributions);
-  };
   double tracing_s = 0.0;
   if (prepared.total_flux_lm > 0.0) {
-    tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
-    const bool doubling = r.target_accuracy || r.decide;  // batches: deterministic stop points
-    const auto tracing_start = Clock::now();
-    detail::SharedTracing shared(options.processes.get(), tallies.bins.size());
-    // The stopping rules in the order they are asked (stop_policies.hpp); the same list on
-    // every process, so an agreed index names one rule everywhere.
-    detail::PhotonLimit photon_limit;
-    detail::CancelPolicy cancel(options.cancel);
-    detail::TimeLimit time_limit(r.max_seconds);
-    detail::AccuracyGoal accuracy(r.target_accuracy, [&](const detail::BatchState&) {
-      return goal_width(scene, prepared, tallies, r);
-    });
-    detail::DecidePolicy decide(r.decide, [&](std::uint64_t photons, int look) {
-      std::vector<TargetResult> now =
-          targets_at(photons, detail::look_confidence(r.confidence, look));
-      return detail::all_decided(now);
-    });
-    const detail::StopPolicies policies({&photon_limit, &cancel, &time_limit, &accuracy, &decide});
-    detail::ForecastObserver forecast;
-    if (options.forecast) {
-      forecast = detail::ForecastObserver([&](const detail::BatchState& at) {
-        RunForecast f = make_forecast(scene, prepared, tallies, r, at.elapsed_s);
-        if (r.decide) {  // the photons the verdicts still open are expected to need
-          std::vector<TargetResult> now =
-              targets_at(r.photons, detail::look_confidence(r.confidence, decide.looks()));
-          f.photons = detail::photons_to_decide_all(now, r.photons, r.photons_requested);
-          f.seconds = double(f.photons) / f.photons_per_second;
-        }
-        options.forecast(f);
-      });
-    }
-    detail::ProgressObserver progress_report(progress, cancel);
-    detail::CheckpointSplitter checkpoints(options.checkpoints);
-    auto report_checkpoint = [&](std::uint64_t at) {
-      if (!options.checkpoint) return;
-      Checkpoint c;
-      c.photons = at;
-      c.seconds = seconds_since(tracing_start);
-      c.worst_relative_half_width = worst_relative_half_width(prepared, tallies, at, r.confidence);
-      c.targets = targets_at(at, r.confidence);
-      options.checkpoint(c);
-    };
-    auto trace_range = [&](std::uint64_t first, std::uint64_t count) {
-      shared.trace(first, count, tallies,
-                   [&](std::uint64_t from, std::uint64_t photons, detail::TallyBlock& into) {
-                     // Photons [from, from + photons) of the run are each group's share.
-                     const auto ranges = detail::group_ranges(prepared.groups, from, photons);
-                     arena.execute([&] { state_->backend->trace(ranges, r.seed, into); });
-                   });
-    };
-    for (;;) {
-      const double elapsed = seconds_since(tracing_start);
-      const double rate = elapsed > 0.0 ? double(r.photons - first_photon) / elapsed : 0.0;
-      std::uint64_t stop = policies.before({r.photons, r.photons_requested, elapsed});
-      std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
-      n = time_limit.fit(n, rate, elapsed);
-      shared.agree(n, stop);  // rank 0's clock and user decide for every process
-      if (stop == 0) {
-        checkpoints.trace(r.photons, n, trace_range, report_checkpoint);
-        r.photons += n;
-        stop = policies.after({r.photons, r.photons_requested, seconds_since(tracing_start)});
-      }
-      if (stop != 0) {
-        r.stop_reason = policies.reason(stop);
-        break;
-      }
-      const detail::BatchState done{r.photons, r.photons_requested, seconds_since(tracing_start)};
-      forecast.after_batch(done);
-      progress_report.after_batch(done);  // a stop it asks for is agreed before the next batch
-    }
-    r.accuracy_met = r.stop_reason == kStopAccuracy;
-    tracing_s = seconds_since(tracing_start);
+    BatchLoop loop{scene,   prepared, *state_->backend, state_->threads,
+                   options, progress, tallies,          r};
+    tracing_s = loop.trace();
   } else {
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
@@ -367,7 +396,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
-  r.targets = targets_at(r.photons, r.confidence);
+  r.targets = detail::all_targets(scene, prepared, tallies, r.photons, r.confidence, r.judged,
+                                  r.contributions);
   r.groups = detail::group_results(
       scene, prepared,
       detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));
