@@ -7,8 +7,14 @@
 
 #include <atomic>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "core/shared_tracing.hpp"
+#include "lightsolver/process_group.hpp"
+#include "lightsolver/simulation.hpp"
+#include "scene_builders.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -170,6 +176,60 @@ TEST(StopPolicies, CheckpointsSplitBatchesWithoutLosingAPhoton) {
       {0, 100}, {100, 150}, {250, 50}, {300, 500}, {800, 200}, {1000, 200}};
   EXPECT_EQ(ranges, expected);
   EXPECT_EQ(reached, (std::vector<std::uint64_t>{100, 250, 1000}));
+}
+
+// Rank 1 of 2, alone in this process: sum() leaves its own tallies (rank 0's part is missing,
+// which these tests do not read); broadcast() gives rank 0's words, scripted by call number.
+class RankOne final : public ProcessGroup {
+ public:
+  /// Rank 0's stop word at broadcast `call` (0-based); its batch size is this rank's own.
+  std::vector<std::pair<std::size_t, std::uint64_t>> stops;
+  std::size_t calls = 0;
+  int rank() const override { return 1; }
+  int size() const override { return 2; }
+  void sum(std::span<std::uint64_t>) override {}
+  void broadcast(std::span<std::uint64_t> words) override {
+    words[1] = 0;
+    for (const auto& [call, stop] : stops) {
+      if (call == calls) words[1] = stop;
+    }
+    ++calls;
+  }
+};
+
+TEST(StopPolicies, EveryProcessTakesRankZerosStopBeforeABatch) {
+  PhotonLimit photons;
+  CancelPolicy cancel(nullptr);
+  TimeLimit time(1.0);
+  const StopPolicies list({&photons, &cancel, &time});
+  RankOne group;
+  group.stops = {{0, 3}};  // rank 0's clock is past the limit, this rank's is not
+  const SharedTracing shared(&group, 0);
+  std::uint64_t n = 4096, stop = list.before(at(10, 1000, 0.5));
+  EXPECT_EQ(stop, 0u);
+  shared.agree(n, stop);
+  EXPECT_EQ(n, 4096u);
+  EXPECT_STREQ(list.reason(stop), "time");
+}
+
+TEST(StopPolicies, ARunOnAnotherRankStopsWhereRankZeroCancels) {
+  Scene s;
+  test::add_material(s, "white", Material::Type::Diffuse, 0.6);
+  s.meshes.push_back(test::room_mesh("room", 0, test::dvec3(0), test::dvec3(4, 3, 3)));
+  s.targets.push_back(test::surface("room", 0));
+  s.luminaires.push_back(test::point_light({2, 1.5, 2.5}, 2000.0));
+  Simulation sim(s, {.backend = "embree", .threads = 1, .movable_meshes = {}});
+  auto group = std::make_shared<RankOne>();
+  group->stops = {{2, 2}};  // rank 0 cancels before the third batch (index 2: cancel)
+  SolveOptions o;
+  o.photons = std::uint64_t(1) << 28;  // more than two batches can hold (at most 2^14 + 2^25)
+  o.processes = group;
+  const Results r = sim.run(o);
+  EXPECT_EQ(r.stop_reason, "cancelled");
+  EXPECT_TRUE(r.partial);
+  EXPECT_EQ(group->calls, 3u);  // no batch after the agreed stop
+  EXPECT_LE(r.photons, (1u << 14) + (8u << 22));
+  EXPECT_GT(r.photons, 0u);
 }
 
 }  // namespace
