@@ -1,5 +1,6 @@
 // Simulation: a prepared scene and its backend, kept for many runs (solve() uses it once).
-// Photons are traced in batches (progress, cancellation and accuracy checks between them),
+// Photons are traced in batches until a stop policy ends the run (stop_policies.hpp: photons,
+// cancel, time, accuracy, decide; progress, forecast and checkpoints observe the batches),
 // then integer tallies become illuminance estimates.
 #include "lightsolver/simulation.hpp"
 
