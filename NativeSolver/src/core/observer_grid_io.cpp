@@ -1,56 +1,6 @@
 #include "core/observer_grid_io.hpp"
 
-#include <algorithm>
-#include <cstring>
-#include <string>
-
-#include "glare/glare_terms.hpp"
-
 namespace lightsolver::detail {
-namespace {
-
-std::vector<glm::dvec3> read_points(const JsonNode& list) {
-  if (list.array_size() == 0) list.fail("must list at least one");
-  std::vector<glm::dvec3> out;
-  for (std::size_t i = 0; i < list.array_size(); ++i) out.push_back(list[i].vec3());
-  return out;
-}
-
-// Point k's status: one known character per luminaire, 'x' exactly where not_rated says why.
-void check_status(const JsonNode& n, const std::string& status, const GlareTerms& terms) {
-  if (status.size() != terms.luminaires.size()) {
-    n.fail("has " + std::to_string(status.size()) + " characters, expected one per luminaire (" +
-           std::to_string(terms.luminaires.size()) + ")");
-  }
-  for (std::size_t i = 0; i < status.size(); ++i) {
-    if (std::strchr(kGlareStatus, status[i]) == nullptr || status[i] == '\0') {
-      n.fail(std::string("has '") + status[i] + "': expected one of \"" + kGlareStatus + "\"");
-    }
-    if ((status[i] == 'x') != !terms.not_rated[i].empty()) {
-      n.fail("luminaire \"" + terms.luminaires[i] +
-             "\" is 'x' (not rated) exactly when not_rated names it");
-    }
-  }
-}
-
-// Point k's terms: L > 0, omega > 0 and p >= 1 for each counted luminaire.
-std::vector<double> read_terms(const JsonNode& n, std::size_t counted) {
-  if (n.array_size() != 3 * counted) {
-    n.fail("has " + std::to_string(n.array_size()) +
-           " numbers, expected 3 per counted luminaire (" + std::to_string(3 * counted) + ")");
-  }
-  std::vector<double> out;
-  for (std::size_t i = 0; i < n.array_size(); ++i) {
-    const double v = n[i].number();
-    if (!(i % 3 == 2 ? v >= 1.0 : v > 0.0)) {
-      n[i].fail(i % 3 == 2 ? "a position index must be >= 1" : "must be > 0");
-    }
-    out.push_back(v);
-  }
-  return out;
-}
-
-}  // namespace
 
 nlohmann::json glare_terms_json(const GlareTerms& terms) {
   nlohmann::json not_rated = nlohmann::json::object();
@@ -61,41 +11,6 @@ nlohmann::json glare_terms_json(const GlareTerms& terms) {
           {"not_rated", std::move(not_rated)},
           {"status", terms.status},
           {"terms", terms.terms}};
-}
-
-ObserverGridGeometry read_observer_grid_geometry(const JsonNode& target) {
-  const JsonNode grid = target.at("observer_grid");
-  ObserverGridGeometry g;
-  g.positions = read_points(grid.at("positions"));
-  g.view_directions = read_points(grid.at("view_directions"));
-  if (!grid.has("glare_terms")) {
-    grid.fail("no glare_terms: trace with --contributions (scene: settings.contributions)");
-  }
-  const JsonNode n = grid.at("glare_terms");
-  GlareTerms& t = g.terms;
-  const JsonNode names = n.at("luminaires"), not_rated = n.at("not_rated");
-  not_rated.object();
-  for (std::size_t i = 0; i < names.array_size(); ++i) {
-    t.luminaires.push_back(names[i].string());
-    const char* name = t.luminaires.back().c_str();
-    t.not_rated.push_back(not_rated.has(name) ? not_rated.at(name).string() : "");
-  }
-  const std::size_t points = g.positions.size() * g.view_directions.size();
-  const JsonNode status = n.at("status"), terms = n.at("terms");
-  for (const JsonNode& list : {status, terms}) {
-    if (list.array_size() != points) {
-      list.fail("has " + std::to_string(list.array_size()) + " entries, expected one per point (" +
-                std::to_string(points) + ")");
-    }
-  }
-  for (std::size_t k = 0; k < points; ++k) {
-    t.status.push_back(status[k].string());
-    check_status(status[k], t.status.back(), t);
-    const auto counted =
-        static_cast<std::size_t>(std::count(t.status.back().begin(), t.status.back().end(), 'c'));
-    t.terms.push_back(read_terms(terms[k], counted));
-  }
-  return g;
 }
 
 }  // namespace lightsolver::detail

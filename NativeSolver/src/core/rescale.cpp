@@ -7,10 +7,9 @@
 
 #include "core/decide.hpp"
 #include "core/json_reader.hpp"
-#include "core/observer_grid_io.hpp"
+#include "core/results_glare.hpp"
 #include "core/target_results.hpp"
 #include "core/target_types.hpp"
-#include "glare/glare_terms.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
 
@@ -105,48 +104,6 @@ void read_point_tallies(const JsonNode& c, std::size_t points, Tally* first) {
   }
 }
 
-// A plain observer's luminaires in the results as the glare terms of one eye (status, and
-// L, omega, p of the counted ones), for the statistics step traced runs use (eye_glare).
-GlareTerms observer_terms(const JsonNode& n) {
-  GlareTerms terms;
-  std::string status;
-  std::vector<double> values;
-  const JsonNode parts = n.at("luminaires");
-  for (std::size_t i = 0; i < parts.array_size(); ++i) {
-    const JsonNode p = parts[i];
-    terms.luminaires.push_back(p.at("name").string());
-    terms.not_rated.emplace_back();
-    if (p.at("counted").boolean()) {
-      status += 'c';
-      for (const char* key : {"luminance_cd_m2", "solid_angle_sr", "position_index"}) {
-        const double x = p.at(key).number();
-        if (!(x > 0.0 && std::isfinite(x))) p.at(key).fail("must be > 0");
-        values.push_back(x);
-      }
-      continue;
-    }
-    // A geometric reason has its status character; any other says why it is never rated.
-    const std::string why = p.at("why_not").string();
-    const char c = detail::geometric_status(why);
-    if (c == 'x') terms.not_rated.back() = why;
-    status += c;
-  }
-  terms.status.push_back(std::move(status));
-  terms.terms.push_back(std::move(values));
-  return terms;
-}
-
-// Each luminaire's dimming factor (its group's; 1 for a name no group lists), in `terms` order.
-std::vector<double> luminaire_factors(const GlareTerms& terms,
-                                      const std::map<std::string, double>& luminaire_factor) {
-  std::vector<double> out;
-  for (const std::string& name : terms.luminaires) {
-    const auto f = luminaire_factor.find(name);
-    out.push_back(f == luminaire_factor.end() ? 1.0 : f->second);
-  }
-  return out;
-}
-
 // The run's own fields, as traced.
 void read_run(const JsonNode& root, Results& r) {
   r.photons = root.at("photons").unsigned_integer();
@@ -193,7 +150,8 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
   Results r;
   read_run(root, r);
   r.contributions = true;
-  std::map<std::string, double> previous, luminaire_factor;
+  std::map<std::string, double> previous;
+  detail::LuminaireFactors luminaire_factor;
   if (root.has("rescaled")) {
     for (const auto& [name, f] : root.at("rescaled").object().items())
       previous[name] = f.get<double>();
@@ -222,8 +180,10 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
   std::vector<Target> scene_targets;
   std::vector<std::uint32_t> first_bin;
   std::vector<detail::BinInfo> bins;
-  // Observer grids: their geometry, each luminance dimmed by its group's factor.
-  std::map<std::size_t, detail::ObserverGridGeometry> eyes;
+  // Observer grids: their geometry, each luminance dimmed by its group's factor (glare's: it
+  // sits above core, results_glare.hpp).
+  const detail::ResultsGlare& glare = detail::results_glare();
+  std::map<std::size_t, std::shared_ptr<const detail::ObserverGridGeometry>> eyes;
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
     scene_targets.push_back(read_target(targets[i]));
     const Target& t = scene_targets.back();
@@ -235,11 +195,9 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
       bins.resize(bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
     }
     if (t.type == Target::Type::ObserverGrid) {
-      detail::ObserverGridGeometry g = detail::read_observer_grid_geometry(targets[i]);
-      const std::vector<double> f = luminaire_factors(g.terms, luminaire_factor);
-      g.terms = detail::dimmed(std::move(g.terms), f);
+      auto g = glare.observer_grid(targets[i], luminaire_factor);
       // Point k's two bins (whole square, its one cell) at bin + 2k, as prepare() lays them.
-      bins.resize(bins.size() - 1 + 2 * g.terms.status.size(), {area});
+      bins.resize(bins.size() - 1 + 2 * glare.points(*g), {area});
       eyes[i] = std::move(g);
     }
   }
@@ -253,8 +211,7 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     for (std::size_t g = 0; g < names.size(); ++g) {
       const JsonNode c = parts.at(names[g].c_str());
       if (eyes.contains(i)) {
-        read_point_tallies(c, eyes.at(i).terms.status.size(),
-                           &counts[g * bins.size() + first_bin[i]]);
+        read_point_tallies(c, glare.points(*eyes.at(i)), &counts[g * bins.size() + first_bin[i]]);
         continue;
       }
       counts[g * bins.size() + first_bin[i]] = read_tally(c);
@@ -268,11 +225,9 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     const auto grid = eyes.find(i);
     TargetResult t =
         detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
-                            nullptr, grid == eyes.end() ? nullptr : &grid->second);
+                            nullptr, grid == eyes.end() ? nullptr : grid->second.get());
     if (t.is_observer && !t.observer_grid) {
-      const GlareTerms terms = observer_terms(targets[i]);
-      const GlareTerms dimmed = detail::dimmed(terms, luminaire_factors(terms, luminaire_factor));
-      t.glare = detail::eye_glare(t.name, dimmed, 0, t.estimate);
+      t.glare = glare.observer(targets[i], luminaire_factor, t.name, t.estimate);
     }
     detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
     r.targets.push_back(std::move(t));

@@ -13,9 +13,6 @@
 
 namespace lightsolver::detail {
 
-/// Why rank 0 ends the loop before a batch (0: it does not).
-enum class LoopStop : std::uint64_t { kNone = 0, kCancelled = 1, kTime = 2 };
-
 class SharedTracing {
  public:
   SharedTracing(ProcessGroup* group, std::size_t bins) : group_(group), bins_(bins) {}
@@ -36,13 +33,14 @@ class SharedTracing {
     tallies.add(unpack(packed));
   }
 
-  /// Rank 0's batch size and stop decision, on every process.
-  void agree(std::uint64_t& batch, LoopStop& stop) const {
+  /// Rank 0's batch size and stop decision (StopPolicies::before: 0, or which policy stops
+  /// the run), on every process.
+  void agree(std::uint64_t& batch, std::uint64_t& stop) const {
     if (group_ == nullptr) return;
-    std::uint64_t words[2] = {batch, static_cast<std::uint64_t>(stop)};
+    std::uint64_t words[2] = {batch, stop};
     group_->broadcast(words);
     batch = words[0];
-    stop = static_cast<LoopStop>(words[1]);
+    stop = words[1];
   }
 
  private:

@@ -1,12 +1,12 @@
 // Simulation: a prepared scene and its backend, kept for many runs (solve() uses it once).
-// Photons are traced in batches (progress, cancellation and accuracy checks between them),
+// Photons are traced in batches until a stop policy ends the run (stop_policies.hpp: photons,
+// cancel, time, accuracy, decide; progress, forecast and checkpoints observe the batches),
 // then integer tallies become illuminance estimates.
 #include "lightsolver/simulation.hpp"
 
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,6 +22,7 @@
 #include "core/run_results.hpp"
 #include "core/shared_tracing.hpp"
 #include "core/simulation_state.hpp"
+#include "core/stop_policies.hpp"
 #include "core/target_reach.hpp"
 #include "core/target_results.hpp"
 #include "core/target_types.hpp"
@@ -78,13 +79,6 @@ double goal_width(const Scene& scene, const detail::PreparedScene& s, const deta
              : worst_relative_half_width(s, t, r.photons, r.confidence);
 }
 
-// True when every target's (or cell's) interval is narrow enough relative to its mean. A
-// target with no hit yet cannot be judged (infinitely wide): keep tracing.
-bool accuracy_reached(const Scene& scene, const detail::PreparedScene& s,
-                      const detail::TallyBlock& t, const Results& r) {
-  return goal_width(scene, s, t, r) <= *r.target_accuracy;
-}
-
 // Photons that would bring the worst target (or cell) to the accuracy goal, from the tallies so
 // far; the budget while a target has no hit yet.
 std::uint64_t photons_for_goal(const Scene& scene, const detail::PreparedScene& s,
@@ -127,13 +121,6 @@ void plan_run(const Scene& scene, const SolveOptions& o, Results& r) {
   }
 }
 
-// A batch that would end well past the time limit is shortened to end near it.
-std::uint64_t fit_time_limit(std::uint64_t n, double photons_per_second, double seconds_left) {
-  if (!(photons_per_second > 0.0)) return n;
-  const double fits = std::max(photons_per_second * seconds_left, double(1u << 14));
-  return fits < double(n) ? static_cast<std::uint64_t>(fits) : n;
-}
-
 // A time limit makes the stopping point depend on the machine: say so, and what it cost.
 void add_stop_warnings(Results& r) {
   if (r.stop_reason != kStopTime) return;
@@ -150,43 +137,107 @@ void add_stop_warnings(Results& r) {
   r.warnings.push_back(w + "; where a time limit stops a run depends on the machine's speed");
 }
 
-// Traces photons [first, first + n) in pieces that end on the requested checkpoints, reporting
-// each one reached. Where a batch is split changes no tally (photon i is photon i).
-class CheckpointTracer {
- public:
-  CheckpointTracer(const SolveOptions& o, const Scene& scene, const detail::PreparedScene& s,
-                   Clock::time_point start)
-      : o_(o), scene_(scene), s_(s), start_(start) {}
+// One run's batches: traced until a stop policy (stop_policies.hpp) ends the run, with the
+// forecast, progress and checkpoints observing them.
+struct BatchLoop {
+  const Scene& scene;
+  const detail::PreparedScene& prepared;
+  detail::Backend& backend;
+  int threads;
+  const SolveOptions& options;
+  const ProgressFn& progress;
+  detail::TallyBlock& tallies;
+  Results& r;
 
-  template <class TraceFn>
-  void trace(std::uint64_t first, std::uint64_t n, const Results& r,
-             const detail::TallyBlock& tallies, TraceFn&& trace_range) {
-    std::uint64_t done = first;
-    const std::uint64_t end = first + n;
-    for (; next_ < o_.checkpoints.size() && o_.checkpoints[next_] <= end; ++next_) {
-      const std::uint64_t at = o_.checkpoints[next_];
-      if (at <= done) continue;  // not ascending, or 0: nothing new to report
-      trace_range(done, at - done);
-      done = at;
-      if (o_.checkpoint) {
-        Checkpoint c;
-        c.photons = at;
-        c.seconds = seconds_since(start_);
-        c.worst_relative_half_width = worst_relative_half_width(s_, tallies, at, r.confidence);
-        c.targets =
-            detail::all_targets(scene_, s_, tallies, at, r.confidence, r.judged, r.contributions);
-        o_.checkpoint(c);
-      }
-    }
-    if (done < end) trace_range(done, end - done);
+  std::vector<TargetResult> targets_at(std::uint64_t photons, double confidence) const {
+    return detail::all_targets(scene, prepared, tallies, photons, confidence, r.judged,
+                               r.contributions);
   }
 
- private:
-  const SolveOptions& o_;
-  const Scene& scene_;
-  const detail::PreparedScene& s_;
-  Clock::time_point start_;
-  std::size_t next_ = 0;
+  // What the rest of the run will cost, `looks` verdict looks in.
+  RunForecast forecast(const detail::BatchState& at, int looks) const {
+    RunForecast f = make_forecast(scene, prepared, tallies, r, at.elapsed_s);
+    if (r.decide) {  // the photons the verdicts still open are expected to need
+      std::vector<TargetResult> now =
+          targets_at(r.photons, detail::look_confidence(r.confidence, looks));
+      f.photons = detail::photons_to_decide_all(now, r.photons, r.photons_requested);
+      f.seconds = double(f.photons) / f.photons_per_second;
+    }
+    return f;
+  }
+
+  Checkpoint checkpoint(std::uint64_t at, double seconds) const {
+    Checkpoint c;
+    c.photons = at;
+    c.seconds = seconds;
+    c.worst_relative_half_width = worst_relative_half_width(prepared, tallies, at, r.confidence);
+    c.targets = targets_at(at, r.confidence);
+    return c;
+  }
+
+  // Traces from r.photons until a policy stops; sets r.stop_reason and r.accuracy_met and
+  // returns the seconds spent tracing.
+  double trace() {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    const bool doubling = r.target_accuracy || r.decide;  // batches: deterministic stop points
+    const std::uint64_t first_photon = r.photons;
+    const auto start = Clock::now();
+    detail::SharedTracing shared(options.processes.get(), tallies.bins.size());
+    // The stopping rules in the order they are asked; the same list on every process, so an
+    // agreed index names one rule everywhere.
+    detail::PhotonLimit photon_limit;
+    detail::CancelPolicy cancel(options.cancel);
+    detail::TimeLimit time_limit(r.max_seconds);
+    detail::AccuracyGoal accuracy(r.target_accuracy, [&](const detail::BatchState&) {
+      return goal_width(scene, prepared, tallies, r);
+    });
+    detail::DecidePolicy decide(r.decide, [&](std::uint64_t photons, int look) {
+      std::vector<TargetResult> now =
+          targets_at(photons, detail::look_confidence(r.confidence, look));
+      return detail::all_decided(now);
+    });
+    const detail::StopPolicies policies({&photon_limit, &cancel, &time_limit, &accuracy, &decide});
+    detail::ForecastObserver forecast_report;
+    if (options.forecast) {
+      forecast_report = detail::ForecastObserver(
+          [&](const detail::BatchState& at) { options.forecast(forecast(at, decide.looks())); });
+    }
+    detail::ProgressObserver progress_report(progress, cancel);
+    detail::CheckpointSplitter checkpoints(options.checkpoints);
+    auto report_checkpoint = [&](std::uint64_t at) {
+      if (options.checkpoint) options.checkpoint(checkpoint(at, seconds_since(start)));
+    };
+    auto trace_range = [&](std::uint64_t first, std::uint64_t count) {
+      shared.trace(first, count, tallies,
+                   [&](std::uint64_t from, std::uint64_t photons, detail::TallyBlock& into) {
+                     // Photons [from, from + photons) of the run are each group's share.
+                     const auto ranges = detail::group_ranges(prepared.groups, from, photons);
+                     arena.execute([&] { backend.trace(ranges, r.seed, into); });
+                   });
+    };
+    for (;;) {
+      const double elapsed = seconds_since(start);
+      const double rate = elapsed > 0.0 ? double(r.photons - first_photon) / elapsed : 0.0;
+      std::uint64_t stop = policies.before({r.photons, r.photons_requested, elapsed});
+      std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
+      n = time_limit.fit(n, rate, elapsed);
+      shared.agree(n, stop);  // rank 0's clock and user decide for every process
+      if (stop == 0) {
+        checkpoints.trace(r.photons, n, trace_range, report_checkpoint);
+        r.photons += n;
+        stop = policies.after({r.photons, r.photons_requested, seconds_since(start)});
+      }
+      if (stop != 0) {
+        r.stop_reason = policies.reason(stop);
+        break;
+      }
+      const detail::BatchState done{r.photons, r.photons_requested, seconds_since(start)};
+      forecast_report.after_batch(done);
+      progress_report.after_batch(done);  // a stop it asks for is agreed before the next batch
+    }
+    r.accuracy_met = r.stop_reason == kStopAccuracy;
+    return seconds_since(start);
+  }
 };
 
 // Rigid: the linear part is orthonormal and the last row is (0, 0, 0, 1).
@@ -334,80 +385,11 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     tallies = *state_->kept;  // photons [0, kept_photons) are already traced
     r.photons = state_->kept_photons;
   }
-  const std::uint64_t first_photon = r.photons;
-  auto targets_at = [&](std::uint64_t photons, double confidence) {
-    return detail::all_targets(scene, prepared, tallies, photons, confidence, r.judged,
-                               r.contributions);
-  };
   double tracing_s = 0.0;
-  int looks = 0;  // decide: verdicts judged so far (each at its own spent confidence)
   if (prepared.total_flux_lm > 0.0) {
-    tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
-    const bool accuracy_mode = r.target_accuracy.has_value();
-    const bool doubling = accuracy_mode || r.decide;  // batches: deterministic stopping points
-    const auto tracing_start = Clock::now();
-    bool forecast_due = static_cast<bool>(options.forecast);
-    CheckpointTracer tracer(options, scene, prepared, tracing_start);
-    detail::SharedTracing shared(options.processes.get(), tallies.bins.size());
-    bool progress_stop = false;  // the progress callback asked to stop (rank 0's counts)
-    while (r.photons < r.photons_requested) {
-      using detail::LoopStop;
-      LoopStop stop = LoopStop::kNone;
-      const double elapsed = seconds_since(tracing_start);
-      const double rate = elapsed > 0.0 ? double(r.photons - first_photon) / elapsed : 0.0;
-      if (progress_stop || (options.cancel && options.cancel->load())) {
-        stop = LoopStop::kCancelled;
-      } else if (r.max_seconds && r.photons > 0 && elapsed >= *r.max_seconds) {
-        stop = LoopStop::kTime;
-      }
-      std::uint64_t n = next_batch(r.photons, r.photons_requested, doubling, rate);
-      if (r.max_seconds) n = fit_time_limit(n, rate, *r.max_seconds - elapsed);
-      shared.agree(n, stop);  // rank 0's clock and user decide for every process
-      if (stop != LoopStop::kNone) {
-        r.stop_reason = stop == LoopStop::kTime ? kStopTime : kStopCancelled;
-        break;
-      }
-      tracer.trace(r.photons, n, r, tallies, [&](std::uint64_t first, std::uint64_t count) {
-        shared.trace(first, count, tallies,
-                     [&](std::uint64_t from, std::uint64_t photons, detail::TallyBlock& into) {
-                       // Photons [from, from + photons) of the run are each group's share.
-                       const auto ranges = detail::group_ranges(prepared.groups, from, photons);
-                       arena.execute([&] { state_->backend->trace(ranges, r.seed, into); });
-                     });
-      });
-      r.photons += n;
-      if (accuracy_mode && accuracy_reached(scene, prepared, tallies, r)) {
-        r.accuracy_met = true;
-        r.stop_reason = kStopAccuracy;
-        break;
-      }
-      // Decide: verdicts are looked at when the photons double (a bounded number of looks,
-      // each spending its share of alpha).
-      if (r.decide && std::has_single_bit(r.photons)) {
-        std::vector<TargetResult> now =
-            targets_at(r.photons, detail::look_confidence(r.confidence, ++looks));
-        if (detail::all_decided(now)) {
-          r.stop_reason = kStopDecided;
-          break;
-        }
-      }
-      // The first batches include warm-up; half a second of tracing gives a usable rate.
-      const double traced_s = seconds_since(tracing_start);
-      if (forecast_due && traced_s >= 0.5 && r.photons < r.photons_requested) {
-        forecast_due = false;
-        RunForecast f = make_forecast(scene, prepared, tallies, r, traced_s);
-        if (r.decide) {  // the photons the verdicts still open are expected to need
-          std::vector<TargetResult> now =
-              targets_at(r.photons, detail::look_confidence(r.confidence, looks));
-          f.photons = detail::photons_to_decide_all(now, r.photons, r.photons_requested);
-          f.seconds = double(f.photons) / f.photons_per_second;
-        }
-        options.forecast(f);
-      }
-      // Acted on before the next batch, together with the other processes.
-      if (progress && !progress(r.photons, r.photons_requested)) progress_stop = true;
-    }
-    tracing_s = seconds_since(tracing_start);
+    BatchLoop loop{scene,   prepared, *state_->backend, state_->threads,
+                   options, progress, tallies,          r};
+    tracing_s = loop.trace();
   } else {
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
@@ -415,7 +397,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
-  r.targets = targets_at(r.photons, r.confidence);
+  r.targets = detail::all_targets(scene, prepared, tallies, r.photons, r.confidence, r.judged,
+                                  r.contributions);
   r.groups = detail::group_results(
       scene, prepared,
       detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));

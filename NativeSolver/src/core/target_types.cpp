@@ -12,8 +12,6 @@
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
-#include "glare/observer_grid.hpp"
-#include "glare/observer_target.hpp"
 
 namespace lightsolver::detail {
 
@@ -248,11 +246,6 @@ void prepare_observer(const Target& t, const std::vector<double>&, PreparedScene
   add_eye(t.position, t.view_direction, t.up, t.name, out);
 }
 
-void observer_result(const TargetTallies& tt, TargetResult& r) {
-  r.is_observer = true;
-  if (tt.luminaires != nullptr) r.glare = observer_glare(tt.target, *tt.luminaires, r.estimate);
-}
-
 // --- observer grid: eyes x lines of sight, and the largest UGR ------------------------------
 
 void read_observer_grid(const JsonNode& n, const Scene&, Target& t) {
@@ -363,24 +356,8 @@ void prepare_observer_grid(const Target& t, const std::vector<double>&, Prepared
   }
 }
 
-// Point k's tallies are the two bins at bin + 2k (prepare_observer_grid's order).
-void observer_grid_result(const TargetTallies& tt, TargetResult& r) {
-  const ObserverGridTallies points{
-      [&tt](std::size_t k) { return tt.estimate(tt.bin + 2 * std::uint32_t(k)); },
-      [&tt](std::size_t k, double z) { return tt.estimate_z(tt.bin + 2 * std::uint32_t(k), z); }};
-  if (tt.observer_grid == nullptr && tt.luminaires == nullptr) {
-    throw std::logic_error("an observer grid's result needs the scene's luminaires");
-  }
-  // Traced: the geometry from the scene's luminaires; rescaled: from the results, dimmed.
-  ObserverGridOutcome o = observer_grid_glare(
-      tt.target.name,
-      tt.observer_grid ? *tt.observer_grid : observer_grid_geometry(tt.target, *tt.luminaires),
-      tt.confidence, points);
-  r.estimate = points.estimate(o.estimate_point);
-  r.glare = std::move(o.max);
-  r.observer_grid = std::move(o.grid);
-}
-
+// The observer rows' result hooks are glare's (src/glare/observer_rows.cpp): glare sits above
+// core, and the type table (src/tables/target_table.cpp, target_types()) puts them in.
 using T = Target::Type;
 constexpr unsigned kIlluminance = kRequireEm | kRequireU0 | kRequireEmin | kRequireUd;
 const std::array<TargetType, 4> kTypes = {{
@@ -392,35 +369,36 @@ const std::array<TargetType, 4> kTypes = {{
      prepare_grid_target, grid_result},
     {T::Observer, "observer", read_observer, check_observer, kRequireUgr,
      "an observer target has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     at_position, prepare_observer, observer_result},
+     at_position, prepare_observer, nullptr},
     {T::ObserverGrid, "observer_grid", read_observer_grid, check_observer_grid, kRequireUgr,
      "an observer grid has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     observer_grid_anchor, prepare_observer_grid, observer_grid_result},
+     observer_grid_anchor, prepare_observer_grid, nullptr},
 }};
 
 }  // namespace
 
-std::span<const TargetType> target_types() { return kTypes; }
+std::span<const TargetType> core_target_rows() { return kTypes; }
 
 const TargetType& target_type(Target::Type type) {
-  for (const auto& row : kTypes) {
+  for (const auto& row : target_types()) {
     if (row.type == type) return row;
   }
   throw std::logic_error("target type without a row in target_types.cpp");
 }
 
 const TargetType* find_target_type(std::string_view name) {
-  for (const auto& row : kTypes) {
+  for (const auto& row : target_types()) {
     if (name == row.name) return &row;
   }
   return nullptr;
 }
 
 std::string target_type_names() {
+  const std::span<const TargetType> rows = target_types();
   std::string s;
-  for (std::size_t i = 0; i < kTypes.size(); ++i) {
-    if (i > 0) s += i + 1 == kTypes.size() ? " or " : ", ";
-    s += kTypes[i].name;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (i > 0) s += i + 1 == rows.size() ? " or " : ", ";
+    s += rows[i].name;
   }
   return s;
 }

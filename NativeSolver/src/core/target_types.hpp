@@ -103,8 +103,12 @@ struct TargetType {
   void (*result)(const TargetTallies& tallies, TargetResult& r);
 };
 
-/// All types, one row each.
+/// All types, one row each, complete (every hook set). Assembled above core and glare
+/// (src/tables/target_table.cpp) from core_target_rows() and the glare layer's result hooks.
 std::span<const TargetType> target_types();
+/// The rows as core defines them (target_types.cpp): the observer rows' `result` is null here,
+/// glare's (src/glare/observer_rows.cpp), which core never includes.
+std::span<const TargetType> core_target_rows();
 /// The row of `type`.
 const TargetType& target_type(Target::Type type);
 /// The row whose scene-file name is `name`, or nullptr.
