@@ -4,7 +4,7 @@
 //
 // Rules of the subset (each keeps the two compiled results bit for bit the same):
 // - glm mirrors GLSL: vec3, uvec4, dot, normalize, floatBitsToInt, umulExtended ... mean the same
-//   on both sides. Scalar math (sqrt, cos, sin, abs, max) is std's float overload in C++.
+//   on both sides. Scalar math (sqrt, cos, sin, abs, max, min) is std's overload in C++.
 // - Float literals always carry `f` (GLSL 4.x accepts it; in C++ an unsuffixed literal is a double
 //   and would change the result). A formula generic in its precision writes Real(0.5).
 // - Parameters: plain values, LS_OUT(T) / LS_INOUT(T) for results (out/inout in GLSL, T& in C++).
@@ -56,6 +56,7 @@ using glm::vec3;
 using std::abs;
 using std::cos;
 using std::max;
+using std::min;
 using std::sin;
 using std::sqrt;
 }  // namespace shared
