@@ -9,6 +9,8 @@
 #ifndef LIGHTSOLVER_DEPOSITS_GLSL
 #define LIGHTSOLVER_DEPOSITS_GLSL
 
+#include "shared/grids.h"
+
 const uint kMaxDeposits = 16u;
 
 uint dep_key[kMaxDeposits];    // bin + 1, so that dep_floor = 0 admits every bin
@@ -63,24 +65,18 @@ uint deposits_flush() {
   return dep_refused ? largest : 0u;
 }
 
-// Virtual grids crossed from the front by o + t d, 0 <= t <= t_max (core/path_deposits.hpp).
-// `bounce`: reflections before this segment; indirect-only grids (observers) skip bounce 0.
+// Virtual grids crossed from the front by o + t d, 0 <= t <= t_max (shared/grids.h, the text
+// core/path_deposits.hpp includes too). `bounce`: reflections before this segment;
+// indirect-only grids (observers) skip bounce 0.
 void cross_grids(vec3 o, vec3 d, float t_max, uint bounce) {
-  const float t_end = t_max * (1.0 + 1e-5) + 1e-6;
+  const float t_end = grid_reach(t_max);
   for (uint k = 0u; k < pc.grid_count; ++k) {
     const GridGpu g = grids[k];
     if ((g.flags & kGridIndirectOnly) != 0u && bounce == 0u) continue;
-    const float denom = dot(d, g.normal);
-    if (!(denom < 0.0)) continue;  // parallel, or from behind
-    const float t = dot(g.corner - o, g.normal) / denom;
-    if (!(t >= 0.0 && t <= t_end)) continue;
-    const vec3 rel = o + t * d - g.corner;
-    const float a = dot(rel, g.du), b = dot(rel, g.dv);
-    if (!(a >= 0.0 && a < 1.0 && b >= 0.0 && b < 1.0)) continue;
-    const uint iu = min(uint(a * float(g.nu)), g.nu - 1u);
-    const uint iv = min(uint(b * float(g.nv)), g.nv - 1u);
+    uint cell;
+    if (!grid_crossing(o, d, t_end, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) continue;
     deposit(g.bin);
-    deposit(g.bin + 1u + iv * g.nu + iu);
+    deposit(g.bin + 1u + cell);
   }
 }
 

@@ -1,8 +1,13 @@
-// Photon emission, mirroring NativeSolver/src/core/emitters.cpp draw for draw.
+// Photon emission, drawing as the C++ emitters (core/luminaire_types.cpp) draw for draw. Shared
+// with them: the spot profile (shared/spot.h; float here, double there), the cone direction, the
+// parallelogram point and the sphere and cosine sampling (shared/sampling.h). The spot's
+// rejection loop stays here: theta comes from atan (acos is imprecise near 1 on some drivers)
+// and the accepted sample lives in a private global (lavapipe, below).
 #ifndef LIGHTSOLVER_EMIT_GLSL
 #define LIGHTSOLVER_EMIT_GLSL
 
 #include "photometric.glsl"
+#include "shared/spot.h"
 
 // upper_bound over the group's cumulative flux, on integers so the pick equals the CPU's double
 // compare. The group's luminaires are luminaires[first .. first + count) (packed group by group).
@@ -16,12 +21,6 @@ uint pick_luminaire() {
     if (u < cdf53[mid]) hi = mid; else lo = mid + 1u;
   }
   return min(lo, end - 1u);
-}
-
-float spot_profile(float theta, float half_beam, float half_field) {
-  if (theta <= half_beam) return 1.0 - 0.5 * theta / half_beam;
-  if (theta <= half_field) return 0.5 - 0.4 * (theta - half_beam) / (half_field - half_beam);
-  return 0.0;
 }
 
 // The accepted (cos theta, phi). A private global rather than a loop-carried local: lavapipe
@@ -43,15 +42,7 @@ vec3 sample_spot(LuminaireGpu l) {
       accepted = true;
     }
   }
-  const float cos_t = g_spot_sample.x, phi = g_spot_sample.y;
-  const float sin_t = sqrt(max(0.0, 1.0 - cos_t * cos_t));
-  return to_world(vec3(sin_t * cos(phi), sin_t * sin(phi), cos_t), l.axis);
-}
-
-vec3 point_on_parallelogram(LuminaireGpu l) {
-  const float s = rng_uniform();
-  const float t = rng_uniform();
-  return l.corner + s * l.edge1 + t * l.edge2;
+  return cone_direction(g_spot_sample.x, g_spot_sample.y, l.axis);
 }
 
 // One branch per luminaire type, each behind its HAS_* switch (vulkan/gpu_scene.cpp's row of
@@ -64,12 +55,13 @@ void emit(LuminaireGpu l, out vec3 origin, out vec3 dir) {
     origin = l.position;
     dir = sample_spot(l);
   } else if (HAS_AREA && l.type == kArea) {
-    origin = offset_ray_origin(point_on_parallelogram(l), l.axis);  // not blocked by its ceiling
+    // Pushed off the opening's plane: not blocked by the ceiling it sits in.
+    origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2), l.axis);
     dir = sample_cosine(l.axis);
   } else if (HAS_PHOTOMETRIC && l.type == kPhotometric) {
     emit_photometric(l, origin, dir);
   } else if (HAS_DIRECTIONAL && l.type == kDirectional) {
-    origin = offset_ray_origin(point_on_parallelogram(l), l.axis);
+    origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2), l.axis);
     dir = l.axis;
   } else {  // no such type: packing rejects it (gpu_luminaire_type)
     origin = l.position;

@@ -2,8 +2,9 @@
 # glslc (found by find_package(Vulkan COMPONENTS glslc); its cache path works in every directory)
 # (Vulkan 1.2 SPIR-V, -O, includes from this folder) into <name>.spv.inc, a comma-separated list
 # of uint32 words that C++ includes inside an array initialiser. The folder with the .inc files
-# and this folder (for trace_bindings.h, the binding numbers shared by C++ and GLSL) are added to
-# <target>'s include path. Dependencies on #included files come from glslc's depfile, so editing
+# and this folder (for trace_bindings.h, the binding numbers shared by C++ and GLSL; shared/, the
+# physics both include, is on lightsolver_lib's public path anyway) are added to <target>'s
+# include path. Dependencies on #included files come from glslc's depfile, so editing
 # any shader rebuilds exactly what uses it. NAMED: compiled without -O into <name>.named.spv.inc,
 # which keeps the OpName of blocks and constants that -O strips (for tests that reflect them).
 set(LIGHTSOLVER_SHADER_DIR ${CMAKE_CURRENT_LIST_DIR})

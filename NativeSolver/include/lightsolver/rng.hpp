@@ -2,12 +2,15 @@
 /// \file rng.hpp
 /// Counter-based random numbers: every photon path owns an independent stream keyed by
 /// (seed, photon index), so results do not depend on how photons are split between threads.
-/// Philox4x32-10 (Salmon et al., SC'11) from Random123; the Vulkan shaders implement the same
-/// function so a seed means the same thing on every backend.
-
-#include <Random123/philox.h>
+/// Philox4x32-10 (Salmon et al., SC'11) from Shaders/shared/philox.h, the text the Vulkan
+/// shaders include too, so a seed means the same thing on every backend. Random123's
+/// r123::Philox4x32 is the reference it is tested against (Tests/native/core/rng_test.cpp).
 
 #include <cstdint>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include "shared/philox.h"
 
 namespace lightsolver {
 
@@ -18,14 +21,13 @@ class PathRng {
   /// \param path_id  photon index in [0, N) within its stream
   /// \param stream   luminaire group: each group has its own photon stream (counter word 3);
   ///                 stream 0 is the stream of a scene with one group
-  PathRng(std::uint64_t seed, std::uint64_t path_id, std::uint32_t stream = 0) {
-    key_ = {{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)}};
-    ctr_ = {{static_cast<std::uint32_t>(path_id), static_cast<std::uint32_t>(path_id >> 32), 0u,
-             stream}};
-  }
+  PathRng(std::uint64_t seed, std::uint64_t path_id, std::uint32_t stream = 0)
+      : key_(static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)),
+        ctr_(static_cast<std::uint32_t>(path_id), static_cast<std::uint32_t>(path_id >> 32), 0u,
+             stream) {}
 
   /// Next uniform float in [0, 1): 24 random bits, never 1.0f.
-  float uniform() { return static_cast<float>(next_u32() >> 8) * 0x1p-24f; }
+  float uniform() { return shared::uniform_from_word(next_u32()); }
 
   /// Next uniform double in [0, 1) with 53 random bits (for CDF look-ups over many entries).
   double uniform_double() {
@@ -41,14 +43,14 @@ class PathRng {
 
  private:
   void refill() {
-    block_ = r123::Philox4x32()(ctr_, key_);
-    ++ctr_[2];  // word 2 counts blocks within the path; 2^32 blocks is far beyond any path
+    block_ = shared::philox4x32_10(ctr_, key_);
+    ++ctr_.z;  // word 2 counts blocks within the path; 2^32 blocks is far beyond any path
     index_ = 0;
   }
 
-  r123::Philox4x32::key_type key_{};
-  r123::Philox4x32::ctr_type ctr_{};
-  r123::Philox4x32::ctr_type block_{};
+  glm::uvec2 key_;  // (seed lo, seed hi)
+  glm::uvec4 ctr_;  // (path id lo, path id hi, block, stream)
+  glm::uvec4 block_{0u};
   unsigned index_ = 4;
 };
 

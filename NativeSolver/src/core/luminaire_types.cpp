@@ -18,6 +18,7 @@
 #include "core/prepared_scene.hpp"
 #include "core/sampling.hpp"
 #include "lightsolver/photometry.hpp"
+#include "shared/spot.h"
 
 namespace lightsolver::detail {
 namespace {
@@ -51,8 +52,7 @@ glm::dvec3* direction_aim(Luminaire& l) { return &l.direction; }
 glm::dvec3* file_aim(Luminaire& l) { return &l.aim; }
 
 vec3 point_on_parallelogram(const PreparedLuminaire& l, PathRng& rng) {
-  const float s = rng.uniform(), t = rng.uniform();
-  return l.corner + s * l.edge1 + t * l.edge2;
+  return shared::point_on_parallelogram(l.corner, l.edge1, l.edge2, rng);
 }
 
 // Checks `key` as a direction and makes it unit length.
@@ -112,11 +112,10 @@ void prepare_spot(const Luminaire& l, PreparedLuminaire& p) {
 }  // namespace
 
 // Relative spot intensity: piecewise linear in angle through (0, 1), (beam/2, 0.5),
-// (field/2, 0.1), and 0 beyond field/2.
+// (field/2, 0.1), and 0 beyond field/2. The formula is Shaders/shared/spot.h, which the shaders
+// include too (in float there).
 double spot_profile(double theta, double half_beam, double half_field) {
-  if (theta <= half_beam) return 1.0 - 0.5 * theta / half_beam;
-  if (theta <= half_field) return 0.5 - 0.4 * (theta - half_beam) / (half_field - half_beam);
-  return 0.0;
+  return shared::spot_profile<double>(theta, half_beam, half_field);
 }
 
 namespace {
@@ -130,11 +129,7 @@ EmittedRay emit_spot(const PreparedLuminaire& l, PathRng& rng) {
     const float phi = 2.0f * std::numbers::pi_v<float> * rng.uniform();
     const float theta = std::acos(std::clamp(cos_t, -1.0f, 1.0f));
     const double f = spot_profile(theta, l.half_beam_rad, l.half_field_rad);
-    if (rng.uniform() < f) {
-      const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
-      return {l.position,
-              to_world(vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t), l.axis)};
-    }
+    if (rng.uniform() < f) return {l.position, cone_direction(cos_t, phi, l.axis)};
   }
 }
 

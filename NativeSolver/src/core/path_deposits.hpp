@@ -2,11 +2,11 @@
 // Per-path bookkeeping of deposits, so each bin gets this path's total c and c^2 (the per-path
 // variance estimate needs whole-path totals, not individual hits). Also the virtual-grid test.
 #include <cstdint>
-#include <glm/geometric.hpp>
 #include <vector>
 
 #include "core/prepared_scene.hpp"
 #include "lightsolver/statistics.hpp"
+#include "shared/grids.h"
 
 namespace lightsolver::detail {
 
@@ -39,26 +39,21 @@ class PathDeposits {
 };
 
 // Counts the crossing of every virtual grid by the segment origin + t * dir, 0 <= t <= t_max,
-// from the grid's front. A grid lying on a surface still counts the photons arriving there:
-// the end of the segment is extended by a relative 1e-5 to absorb float error in t_max.
+// from the grid's front (Shaders/shared/grids.h, the text the shaders include too). A grid lying
+// on a surface still counts the photons arriving there (shared::grid_reach).
 // `bounce`: reflections before this segment (0: straight from the luminaire); indirect-only
 // grids (observers) skip direct segments.
 inline void cross_grids(const std::vector<PreparedGrid>& grids, const vec3& o, const vec3& d,
                         float t_max, std::uint32_t bounce, PathDeposits& deposits) {
-  const float t_end = t_max * (1.0f + 1e-5f) + 1e-6f;
+  const float t_end = shared::grid_reach(t_max);
   for (const auto& g : grids) {
     if (g.indirect_only && bounce == 0) continue;
-    const float denom = glm::dot(d, g.normal);
-    if (!(denom < 0.0f)) continue;  // parallel, or crossing from behind
-    const float t = glm::dot(g.corner - o, g.normal) / denom;
-    if (!(t >= 0.0f && t <= t_end)) continue;
-    const vec3 rel = o + t * d - g.corner;
-    const float a = glm::dot(rel, g.du), b = glm::dot(rel, g.dv);
-    if (!(a >= 0.0f && a < 1.0f && b >= 0.0f && b < 1.0f)) continue;
-    const auto iu = std::min<std::uint32_t>(static_cast<std::uint32_t>(a * g.nu), g.nu - 1);
-    const auto iv = std::min<std::uint32_t>(static_cast<std::uint32_t>(b * g.nv), g.nv - 1);
+    std::uint32_t cell;
+    if (!shared::grid_crossing(o, d, t_end, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) {
+      continue;
+    }
     deposits.add(g.bin);
-    deposits.add(g.bin + 1 + iv * g.nu + iu);
+    deposits.add(g.bin + 1 + cell);
   }
 }
 

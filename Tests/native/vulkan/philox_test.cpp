@@ -1,5 +1,7 @@
-// The GLSL Philox4x32-10 (Shaders/philox.glsl) must reproduce lightsolver::PathRng (Random123)
-// bit for bit, or the two backends would not trace the same photon paths for a seed.
+// The GLSL stream (Shaders/philox.glsl around Shaders/shared/philox.h) must reproduce
+// lightsolver::PathRng bit for bit, or the two backends would not trace the same photon paths for
+// a seed. PathRng runs the same shared/philox.h compiled as C++; core rng_test.cpp holds it to
+// Random123, so this compares the GPU with Random123 too.
 #include <cmath>
 #include <cstring>
 
