@@ -58,8 +58,10 @@ const RunOptionInfo* find_run_option(std::string_view name) {
 
 std::string range_text(const OptionRange& r) {
   if (!std::isfinite(r.min) && !std::isfinite(r.max)) return "";
-  return (r.min_open ? "(" : "[") + number_text(r.min) + ", " + number_text(r.max) +
-         (r.max_open ? ")" : "]");
+  const bool open_min = r.min_open || !std::isfinite(r.min);
+  const bool open_max = r.max_open || !std::isfinite(r.max);
+  return (open_min ? "(" : "[") + number_text(r.min) + ", " + number_text(r.max) +
+         (open_max ? ")" : "]");
 }
 
 std::string range_error(const RunOptionInfo& option, double value) {

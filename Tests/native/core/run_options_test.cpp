@@ -25,14 +25,16 @@ TEST(RunOptions, OneMessagePerRangeAndSide) {
   EXPECT_EQ(range_error(row("confidence"), 2.0), "must lie strictly between 0 and 1 (got 2)");
   EXPECT_EQ(range_error(row("confidence"), 0.0), "must lie strictly between 0 and 1 (got 0)");
   EXPECT_EQ(range_error(row("photons"), 0.0), "must be at least 1 (got 0)");
-  EXPECT_EQ(range_error(row("photons"), 1e13), "");
+  EXPECT_EQ(range_error(row("photons"), 1e13), "");  // the most: check_photon_count()
   EXPECT_EQ(range_error(row("max_bounces"), 1'000'001.0), "must be <= 1000000 (got 1000001)");
   EXPECT_EQ(range_error(row("max_seconds"), 0.0), "must be > 0 (got 0)");
   EXPECT_EQ(range_error(row("max_seconds"), INFINITY), "must be a finite number (got inf)");
   EXPECT_EQ(range_error(row("max_seconds"), NAN), "must be a finite number (got nan)");
   EXPECT_EQ(range_error(row("seed"), 1.8e19), "");  // any 64-bit seed
   EXPECT_EQ(range_text(row("confidence").range), "(0, 1)");
-  EXPECT_EQ(range_text(row("photons").range), "[1, 10000000000000]");
+  EXPECT_EQ(range_text(row("photons").range), "[1, inf)");
+  EXPECT_EQ(range_text(row("max_bounces").range), "[0, 1000000]");
+  EXPECT_EQ(range_text(row("max_seconds").range), "(0, inf)");
   EXPECT_EQ(range_text(row("seed").range), "");
 }
 
