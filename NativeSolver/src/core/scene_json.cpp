@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <type_traits>
 #include <vector>
@@ -170,21 +171,17 @@ Target read_target(const JsonNode& n, const Scene& scene, const std::string& bas
   return t;
 }
 
-// A scene setting's value as its row's type; out of the row's range: an error naming it.
+// A scene setting's value as its row's type. Ranges are validate()'s (check_scene lists every
+// error), except where the value would not fit the member (max_bounces: 32 bits).
 template <class T>
 T read_setting(const JsonNode& n, const RunOptionInfo& option) {
   if constexpr (std::is_same_v<T, bool>) {
     return n.boolean();
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return n.number();
   } else {
-    const auto v = [&] {
-      if constexpr (std::is_floating_point_v<T>) {
-        return n.number();
-      } else {
-        return n.unsigned_integer();
-      }
-    }();
-    const std::string error = range_error(option, double(v));
-    if (!error.empty()) n.fail(error);
+    const std::uint64_t v = n.unsigned_integer();
+    if (v > std::numeric_limits<T>::max()) n.fail(range_error(option, double(v)));
     return static_cast<T>(v);
   }
 }
