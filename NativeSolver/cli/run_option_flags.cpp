@@ -29,13 +29,15 @@ void add_flag(CLI::App* command, SolveOptions& options, const Row& row) {
   using T = typename Row::value_type;
   const RunOptionInfo& info = row.info;
   auto& member = options.*row.option;
+  const std::string note = default_note(row);
+  const std::string help = info.help + (note.empty() ? "" : " (default: " + note + ")");
   if constexpr (std::is_same_v<T, bool>) {
     command->add_flag_callback(
-        info.cli_flag, [&member] { member = true; }, info.help);
+        info.cli_flag, [&member] { member = true; }, help);
   } else if constexpr (std::is_same_v<T, std::string>) {
     add_backend_option(command, member);  // its choices and help: the backend registry's
   } else {
-    CLI::Option* flag = command->add_option(info.cli_flag, member, info.help);
+    CLI::Option* flag = command->add_option(info.cli_flag, member, help);
     if (!range_text(info.range).empty()) flag->check(range_check(info));
   }
 }

@@ -98,12 +98,10 @@ std::string keywords_doc(const KeywordFilter& take) {
     if constexpr (std::decay_t<decltype(row)>::kInRun) {
       if (!take(row.info)) return;
       const std::string range = range_text(row.info.range);
+      const std::string note = row.info.scene_key ? default_note(row) : "";
       doc += std::string("\n  ") + row.info.python_keyword + "=" +
              std::string(py::repr(keyword_default(row))) + ": " + row.info.help +
-             (range.empty() ? "" : " " + range) +
-             (row.info.scene_key
-                  ? std::string(" (default: the scene's settings.") + row.info.scene_key + ")"
-                  : "");
+             (range.empty() ? "" : " " + range) + (note.empty() ? "" : " (default: " + note + ")");
     }
   });
   return doc;
@@ -128,7 +126,7 @@ void bind_scene_settings(py::class_<Scene>& scene) {
             }
             s.settings.*member = checked_value<T>(value, info, info.scene_key);
           },
-          (std::string(row.info.help) + " (settings." + row.info.scene_key + ")").c_str());
+          (std::string(row.info.help) + " (default: " + default_note(row) + ")").c_str());
     }
   });
 }

@@ -57,7 +57,23 @@ def test_the_table_is_well_formed():
             "max_bounces"} <= set(ROWS)
 
 
-def test_every_flag_is_in_the_cli_help_with_its_help_and_range(cli):
+def value_text(value):
+    """A default as help texts and the docs write it: none, true, 1000000, 0.95, auto."""
+    if value is None:
+        return "none"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return value if isinstance(value, str) else f"{value:.15g}"
+
+
+def default_note(o):
+    """Where the option's default comes from, as the CLI help and the docstrings say it."""
+    if o["scene_key"]:
+        return f"(default: settings.{o['scene_key']} = {value_text(o['default'])})"
+    return "" if o["default"] is None else f"(default: {value_text(o['default'])})"
+
+
+def test_every_flag_is_in_the_cli_help_with_its_help_range_and_default(cli):
     run_help = subprocess.run([cli, "run", "--help"], capture_output=True, text=True).stdout
     cost_help = subprocess.run([cli, "cost", "--help"], capture_output=True, text=True).stdout
     study_help = subprocess.run([cli, "study", "--help"], capture_output=True, text=True).stdout
@@ -67,7 +83,7 @@ def test_every_flag_is_in_the_cli_help_with_its_help_and_range(cli):
             continue
         assert re.search(rf"^\s+{re.escape(o['cli_flag'])}\b", run_help, re.M), o["cli_flag"]
         if o["name"] != "backend":  # its help lists the backends built (backend_option.hpp)
-            assert o["help"] in run_help, o["name"]
+            assert f"{o['help']} {default_note(o)}".strip() in run_help, o["name"]
         if o["range"]:
             assert f"{o['cli_flag']} " in run_help and o["range"] in run_help, o["name"]
         for text in (cost_help, study_help):  # checkpointed runs take their rows only
@@ -87,8 +103,16 @@ def test_every_keyword_is_in_the_docstrings_with_its_default():
         # A scene setting's keyword defaults to the scene's value (None), others to their own.
         if o["scene_key"]:
             assert o["python_default"] is None
+            assert default_note(o) in lightsolver.solve.__doc__, o["name"]
         else:
             assert o["python_default"] == o["default"]
+
+
+def test_every_scene_setting_is_a_scene_property_with_its_help_and_default():
+    for o in OPTIONS:
+        if o["scene_key"]:
+            doc = getattr(lightsolver.Scene, o["scene_key"]).__doc__
+            assert f"{o['help']} {default_note(o)}" in doc, o["name"]
 
 
 def test_unknown_keywords_are_refused_by_name():

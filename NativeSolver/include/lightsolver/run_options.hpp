@@ -125,9 +125,9 @@ inline constexpr std::tuple kRunOptions{
                "with target_accuracy", {}, false, false},
               &Settings::accuracy_per_cell, &SolveOptions::accuracy_per_cell},
     RunOption{{"max_seconds",
-               "Time limit of the tracing in seconds (default: none, 300 for accuracy and "
-               "decide runs without a photon count); the scene's applies to runs without an "
-               "explicit photon count",
+               "Time limit of the tracing in seconds (without one, accuracy and decide runs "
+               "without a photon count stop after 300 s); the scene's applies to runs without "
+               "an explicit photon count",
                "max_seconds", "--max-seconds", "max_seconds", "max_seconds",
                "when a time limit applied", {0.0, std::numeric_limits<double>::infinity(), true, true}, false, false},
               &Settings::max_seconds, &SolveOptions::max_seconds},
@@ -184,6 +184,33 @@ std::string range_text(const OptionRange& range);
 /// Throws InputError(file, where, range_error(...)) when `value` is out of `option`'s range.
 void check_range(const RunOptionInfo& option, double value, const std::string& file,
                  const std::string& where);
+
+/// A value as the docs and help show it: 1000000, 0.95, true, auto.
+std::string value_text(double value);
+inline std::string value_text(bool value) { return value ? "true" : "false"; }
+inline std::string value_text(const std::string& value) { return value; }
+
+/// Where a front end's option takes its default from, for help texts: "settings.photons =
+/// 1000000" for a scene setting ("settings.max_seconds = none" when unset), the value for an
+/// option of a run only ("" when unset).
+template <class Row>
+std::string default_note(const Row& row) {
+  const auto value = row.default_value();
+  std::string text;
+  if (value) {
+    if constexpr (std::is_arithmetic_v<typename Row::value_type> &&
+                  !std::is_same_v<typename Row::value_type, bool>) {
+      text = value_text(static_cast<double>(*value));
+    } else {
+      text = value_text(*value);
+    }
+  }
+  if constexpr (Row::kInScene) {
+    return std::string("settings.") + row.info.scene_key + " = " + (value ? text : "none");
+  } else {
+    return text;
+  }
+}
 
 /// Checks every option set in `options` against its row (InputError naming the option).
 void check_run_options(const SolveOptions& options);

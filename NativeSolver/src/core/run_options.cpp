@@ -56,6 +56,8 @@ const RunOptionInfo* find_run_option(std::string_view name) {
   return nullptr;
 }
 
+std::string value_text(double value) { return number_text(value); }
+
 std::string range_text(const OptionRange& r) {
   if (!std::isfinite(r.min) && !std::isfinite(r.max)) return "";
   const bool open_min = r.min_open || !std::isfinite(r.min);
