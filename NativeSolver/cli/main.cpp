@@ -12,19 +12,19 @@
 #include <optional>
 #include <string>
 
-#include "backend_option.hpp"
 #include "lightsolver/backends.hpp"
+#include "lightsolver/cost.hpp"
 #include "lightsolver/glare.hpp"
 #include "lightsolver/mpi.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
-#include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
 #include "optimize_command.hpp"
 #include "processes.hpp"
 #include "report_command.hpp"
 #include "rescale_command.hpp"
+#include "run_option_flags.hpp"
 #include "study_command.hpp"
 
 namespace {
@@ -75,29 +75,16 @@ class ProgressBar {
   bool drawn_ = false;
 };
 
+// What `run` and `cost` take: the run options (flags from the table) and the files.
 struct RunArgs {
-  std::string scene, out, backend = lightsolver::kAutoBackend;
-  std::optional<std::uint64_t> photons, seed;
-  std::optional<double> confidence, accuracy, max_seconds;
-  int threads = 0;
+  std::string scene, out;
   bool quiet = false;
-  bool per_cell = false;       // --accuracy judged per grid cell
-  bool decide = false;         // --decide (false: the scene's settings.decide)
-  bool contributions = false;  // --contributions (false: the scene's settings.contributions)
+  lightsolver::SolveOptions options;
 };
 
+// The options of a run from the command line: a flag left out leaves the scene's setting.
 lightsolver::SolveOptions options_from(const RunArgs& a) {
-  lightsolver::SolveOptions opt;
-  opt.photons = a.photons;
-  opt.seed = a.seed;
-  opt.confidence = a.confidence;
-  opt.threads = a.threads;
-  opt.backend = a.backend;
-  opt.target_accuracy = a.accuracy;
-  if (a.per_cell) opt.accuracy_per_cell = true;  // else the scene's settings.accuracy_per_cell
-  opt.max_seconds = a.max_seconds;
-  if (a.decide) opt.decide = true;
-  if (a.contributions) opt.contributions = true;
+  lightsolver::SolveOptions opt = a.options;
   opt.cancel = &g_interrupted;
   opt.processes = lightsolver::cli::processes();
   return opt;
@@ -144,7 +131,7 @@ std::string forecast_text(const lightsolver::RunForecast& f, std::optional<doubl
 }
 
 int run(const RunArgs& a) {
-  if (a.per_cell && !a.accuracy) {
+  if (a.options.accuracy_per_cell && !a.options.target_accuracy) {
     throw lightsolver::InputError("", "--per-cell", "needs --accuracy X (the goal per cell)");
   }
   if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");  // before any tracing
@@ -156,7 +143,7 @@ int run(const RunArgs& a) {
     ProgressBar bar;
     opt.forecast = [&](const lightsolver::RunForecast& f) {
       bar.expect(f);
-      if (f.seconds > 60.0) bar.note(forecast_text(f, a.accuracy));
+      if (f.seconds > 60.0) bar.note(forecast_text(f, a.options.target_accuracy));
     };
     results = lightsolver::solve(scene, opt, std::ref(bar));
   }
@@ -168,13 +155,12 @@ int run(const RunArgs& a) {
 }
 
 // The footer of `cost`: photons and time per accuracy goal, from the last row.
-void print_goals(const lightsolver::Checkpoint& last, const lightsolver::Results& results,
-                 double prepare_s) {
+void print_goals(const lightsolver::Cost& c, const lightsolver::Results& results) {
   std::printf(
       "\none run of %s (rows: its first photons; seconds: tracing only, the scene was "
       "prepared once in %.3g s)\n",
-      results.backend.c_str(), prepare_s);
-  if (!std::isfinite(last.worst_relative_half_width)) {
+      results.backend.c_str(), c.prepare_seconds);
+  if (!std::isfinite(c.rows.back().worst_relative_half_width)) {
     std::printf(
         "a target has no hit yet: no accuracy goal can be estimated (or reached) before "
         "light reaches every target\n");
@@ -182,48 +168,38 @@ void print_goals(const lightsolver::Checkpoint& last, const lightsolver::Results
   }
   std::printf("at %.0f%% confidence, from the last row (interval width ~ 1/sqrt(photons)):\n",
               100.0 * results.confidence);
-  for (const double goal : lightsolver::kCostGoals) {
-    const lightsolver::AccuracyCost need = lightsolver::accuracy_cost(last, goal);
-    std::printf("  ±%4.1f%%: %12.3g photons, %10.3g s\n", 100.0 * goal, need.photons, need.seconds);
+  for (const lightsolver::CostGoal& g : c.goals) {
+    std::printf("  ±%4.1f%%: %12.3g photons, %10.3g s\n", 100.0 * g.accuracy, g.need.photons,
+                g.need.seconds);
   }
 }
 
-// What accuracy costs in time: one run with checkpoints at 4x photon steps (each halves the
-// interval), so a row's photons are the first photons of the next row and nothing is traced
-// twice; then the photons and time each accuracy goal needs, extrapolated from the last row by
-// the rule the solver's own forecast uses (accuracy_cost).
+// What accuracy costs in time (lightsolver/cost.hpp): one run with checkpoints, a row each.
 int cost(const RunArgs& a, std::uint64_t max_photons) {
   if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");
+  lightsolver::check_cost_photons(max_photons, "--max-photons");
   const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
-  lightsolver::SolveOptions opt = options_from(a);
-  opt.checkpoints = lightsolver::cost_checkpoints(max_photons);
-  if (opt.checkpoints.empty())
-    throw lightsolver::InputError("", "--max-photons", "must be >= 10000");
-  opt.photons = opt.checkpoints.back();
-  std::optional<lightsolver::Checkpoint> last;
-  opt.checkpoint = [&](const lightsolver::Checkpoint& c) {
-    std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(c.photons),
-                c.seconds, 100.0 * c.worst_relative_half_width,
-                double(c.photons) / std::max(c.seconds, 1e-9));
-    std::fflush(stdout);
-    last = c;
-  };
+  lightsolver::CostOptions o;
+  o.solve = options_from(a);
+  o.max_photons = max_photons;
   std::signal(SIGINT, on_sigint);
-  const auto start = std::chrono::steady_clock::now();
-  lightsolver::Simulation simulation(scene, {a.backend, a.threads, {}});
-  const double prepare_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("%14s %10s %16s %14s\n", "photons", "seconds", "worst ±/E [%]", "photons/s");
-  const lightsolver::Results results = simulation.run(opt);
+  const lightsolver::Cost c =
+      lightsolver::run_cost(scene, o, [](const lightsolver::Checkpoint& row) {
+        std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(row.photons),
+                    row.seconds, 100.0 * row.worst_relative_half_width,
+                    double(row.photons) / std::max(row.seconds, 1e-9));
+        std::fflush(stdout);
+      });
   std::signal(SIGINT, SIG_DFL);
   if (!a.out.empty())
-    lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(results));
-  if (!last) {
-    for (const std::string& w : results.warnings) std::cerr << "warning: " << w << "\n";
-    return results.partial ? 130 : 1;
+    lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(c.results));
+  if (c.rows.empty()) {
+    for (const std::string& w : c.results.warnings) std::cerr << "warning: " << w << "\n";
+    return c.results.partial ? 130 : 1;
   }
-  print_goals(*last, results, prepare_s);
-  return results.partial ? 130 : 0;
+  print_goals(c, c.results);
+  return c.results.partial ? 130 : 0;
 }
 
 // `lightsolver backends`: the registry with what this machine can start (loads GPU drivers).
@@ -259,50 +235,21 @@ int run_command_line(int argc, char** argv) {
   run_cmd->add_option("scene", ra.scene, "Scene file (lightsolver.scene/1 JSON)")
       ->required()
       ->check(CLI::ExistingFile);
-  run_cmd->add_option("--photons", ra.photons, "Photon paths (overrides settings.photons)");
-  run_cmd->add_option("--seed", ra.seed, "Random seed (overrides settings.seed)");
-  run_cmd->add_option("--confidence", ra.confidence, "Confidence level, e.g. 0.95")
-      ->check(CLI::Range(0.0, 1.0));
-  run_cmd->add_option("--threads", ra.threads, "Worker threads (0: all cores)")
-      ->check(CLI::NonNegativeNumber);
-  lightsolver::cli::add_backend_option(run_cmd, ra.backend);
+  lightsolver::cli::add_run_option_flags(run_cmd, ra.options);
   run_cmd->add_option("--out", ra.out,
                       "Write results JSON here (checked before tracing, written atomically)");
-  run_cmd
-      ->add_option("--accuracy", ra.accuracy,
-                   "Stop when every target's CI half-width is at most this fraction of its "
-                   "mean (e.g. 0.02); --photons is then the budget, else up to 1e10 photons "
-                   "within --max-seconds")
-      ->check(CLI::Range(1e-6, 0.999));
-  run_cmd->add_flag("--per-cell", ra.per_cell,
-                    "With --accuracy: stop when every grid cell (and surface target) is within "
-                    "it; cells darker than 1% of their grid's mean are judged against that 1%");
-  run_cmd
-      ->add_option("--max-seconds", ra.max_seconds,
-                   "Stop tracing after this many seconds (overrides settings.max_seconds; "
-                   "default: none, 300 for --accuracy without --photons)")
-      ->check(CLI::PositiveNumber);
-  run_cmd->add_flag("--decide", ra.decide,
-                    "Trace until every requirement's verdict is pass or fail, within --photons "
-                    "(else up to 1e10 photons) and --max-seconds (default 300); undecided ones "
-                    "say what deciding them would cost");
-  run_cmd->add_flag("--contributions", ra.contributions,
-                    "Report each luminaire group's contribution per target and cell (what "
-                    "`lightsolver rescale` needs)");
   run_cmd->add_flag("--quiet,-q", ra.quiet, "Do not print the table");
 
   RunArgs ca;
-  std::uint64_t max_photons = 16'000'000;
+  std::uint64_t max_photons = lightsolver::CostOptions{}.max_photons;
   CLI::App* cost_cmd =
       app.add_subcommand("cost", "Show what accuracy costs in time for a scene (photons vs CI)");
   cost_cmd->add_option("scene", ca.scene, "Scene file")->required()->check(CLI::ExistingFile);
-  cost_cmd->add_option("--max-photons", max_photons,
-                       "Photons of the run; rows at 1e4, 4e4, ... up to this (default 1.6e7)");
-  cost_cmd->add_option("--seed", ca.seed, "Random seed");
-  cost_cmd->add_option("--confidence", ca.confidence, "Confidence level")
-      ->check(CLI::Range(0.0, 1.0));
-  cost_cmd->add_option("--threads", ca.threads, "Worker threads (0: all cores)");
-  lightsolver::cli::add_backend_option(cost_cmd, ca.backend);
+  cost_cmd
+      ->add_option("--max-photons", max_photons,
+                   "Photons of the run; rows at 1e4, 4e4, ... up to this")
+      ->capture_default_str();
+  lightsolver::cli::add_run_option_flags(cost_cmd, ca.options, true);
   cost_cmd->add_option("--out", ca.out,
                        "Write the run's results JSON here (its photons are the last row's)");
 

@@ -16,11 +16,11 @@
 #include <iostream>
 #include <memory>
 
-#include "backend_option.hpp"
 #include "lightsolver/output_file.hpp"
-#include "processes.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/study.hpp"
+#include "processes.hpp"
+#include "run_option_flags.hpp"
 
 namespace lightsolver::cli {
 namespace {
@@ -31,11 +31,9 @@ std::atomic<bool> g_stop{false};
 void on_sigint(int) { g_stop.store(true); }
 
 struct StudyArgs {
-  std::string scene, reference, csv, json, plot, out, backend = kAutoBackend;
-  std::optional<std::uint64_t> seed;
-  std::optional<double> confidence;
-  std::uint64_t max_photons = 10'240'000;
-  int threads = 0;
+  std::string scene, reference, csv, json, plot, out;
+  SolveOptions solve;  // seed, confidence, threads, backend (flags from the run options table)
+  std::uint64_t max_photons = StudyOptions{}.max_photons;
 };
 
 std::string percent(std::optional<double> v) {
@@ -148,10 +146,7 @@ int run_study_command(const StudyArgs& a) {
   check_outputs(a);  // before any tracing
   const Scene scene = load_scene(a.scene);
   StudyOptions o;
-  o.solve.seed = a.seed;
-  o.solve.confidence = a.confidence;
-  o.solve.threads = a.threads;
-  o.solve.backend = a.backend;
+  o.solve = a.solve;
   o.solve.cancel = &g_stop;
   o.solve.processes = processes();
   o.max_photons = a.max_photons;
@@ -201,7 +196,8 @@ void add_study_command(CLI::App& app) {
       "doubling photon counts of one run, the photons and seconds per accuracy");
   cmd->add_option("scene", a->scene, "Scene file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--max-photons", a->max_photons,
-                  "Photons of the run; rows at 1e4, 2e4, 4e4, ... up to this (default 1.024e7)");
+                  "Photons of the run; rows at 1e4, 2e4, 4e4, ... up to this")
+      ->capture_default_str();
   cmd->add_option("--reference", a->reference,
                   "Results JSON of a long run of the same scene (or a closed form written as "
                   "one): rows then give the actual error");
@@ -210,11 +206,7 @@ void add_study_command(CLI::App& app) {
   cmd->add_option("--plot", a->plot,
                   "Draw error and interval width against seconds (log-log) here: .png or .svg");
   cmd->add_option("--out", a->out, "Write the run's results JSON here (the last row's photons)");
-  cmd->add_option("--seed", a->seed, "Random seed");
-  cmd->add_option("--confidence", a->confidence, "Confidence level")->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)")
-      ->check(CLI::NonNegativeNumber);
-  add_backend_option(cmd, a->backend);
+  add_run_option_flags(cmd, a->solve, true);
   cmd->callback([a] {
     int rc = 1;
     try {

@@ -12,16 +12,18 @@
 #include <nlohmann/json.hpp>
 
 #include "lightsolver/backends.hpp"
+#include "lightsolver/cost.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/glare.hpp"
+#include "lightsolver/mpi.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/rescale.hpp"
 #include "lightsolver/scene_check.hpp"
-#include "lightsolver/mpi.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "lightsolver/study.hpp"
 #include "optimize_bindings.hpp"
+#include "run_option_keywords.hpp"
 #include "simulation_bindings.hpp"
 
 namespace py = pybind11;
@@ -34,14 +36,6 @@ struct CancelToken {
   void cancel() { flag->store(true); }
   bool cancelled() const { return flag->load(); }
 };
-
-Material::Type material_type(const std::string& type) {
-  if (type == "diffuse") return Material::Type::Diffuse;
-  if (type == "mirror") return Material::Type::Mirror;
-  if (type == "glass") return Material::Type::Glass;
-  if (type == "glossy") return Material::Type::Glossy;
-  throw py::value_error("unknown material type \"" + type + "\"");
-}
 
 // {type: {key: default}} for the keys a scene file may leave out (docs/scene-format.md).
 py::dict material_defaults_dict() {
@@ -237,34 +231,24 @@ std::string results_text(const py::dict& results) {
   return py::str(py::module_::import("json").attr("dumps")(doc));
 }
 
-py::dict solve_py(const Scene& scene, std::optional<std::uint64_t> photons,
-                  std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
-                  const std::string& backend, py::object progress,
-                  std::optional<CancelToken> cancel, std::optional<double> target_accuracy,
-                  std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell,
-                  std::optional<bool> decide, std::optional<bool> contributions,
-                  py::object comm) {
+py::dict solve_py(const Scene& scene, const py::kwargs& keywords) {
   // Copied while the GIL is held: Python threads may change `scene` once tracing releases it.
   // solve() validates the copy (and reports dropped triangles among the warnings).
   const Scene snapshot = scene;
   SolveOptions opt;
-  opt.photons = photons;
-  opt.seed = seed;
-  opt.confidence = confidence;
-  opt.threads = threads;
-  opt.backend = backend;
-  opt.target_accuracy = target_accuracy;
-  opt.max_seconds = max_seconds;
-  opt.accuracy_per_cell = accuracy_per_cell;
-  opt.decide = decide;
-  opt.contributions = contributions;
+  set_run_options(keywords, opt, every_keyword, {"progress", "cancel", "comm"}, "solve");
+  const auto keyword = [&](const char* name) {
+    return keywords.contains(name) ? py::object(keywords[name]) : py::object(py::none());
+  };
   // An mpi4py communicator: every process calls solve() alike and gets the same results.
-  if (!comm.is_none()) {
+  if (const py::object comm = keyword("comm"); !comm.is_none()) {
     opt.processes = mpi::group_of_fortran_handle(comm.attr("py2f")().cast<std::int64_t>());
   }
-  CancelToken token = cancel.value_or(CancelToken{});
+  const py::object cancel = keyword("cancel");
+  CancelToken token = cancel.is_none() ? CancelToken{} : cancel.cast<CancelToken>();
   opt.cancel = token.flag.get();
   std::exception_ptr callback_error;
+  const py::object progress = keyword("progress");
   const ProgressFn fn = python_progress(progress, callback_error);
   Results r;
   {
@@ -299,29 +283,24 @@ PYBIND11_MODULE(lightsolver, m) {
       .def("cancel", &CancelToken::cancel)
       .def_property_readonly("cancelled", &CancelToken::cancelled);
 
-  py::class_<Scene>(m, "Scene", "A scene in memory (see docs/scene-format.md)")
-      .def(py::init<>())
+  py::class_<Scene> scene_class(m, "Scene", "A scene in memory (see docs/scene-format.md)");
+  scene_class.def(py::init<>())
       .def(
           "add_material",
-          [](Scene& s, const std::string& name, const std::string& type,
-             std::optional<double> reflectance, double ior, double transmittance, bool thin,
-             double specular, double roughness) {
-            Material mat = default_material(name, material_type(type));
-            mat.reflectance = reflectance.value_or(mat.reflectance);
-            mat.ior = ior;
-            mat.transmittance = transmittance;
-            mat.thin = thin;
-            mat.specular = specular;
-            mat.roughness = roughness;
+          [](Scene& s, const std::string& name, const std::string& type, py::kwargs fields) {
+            const std::string where = "add_material(\"" + name + "\")";
             if (s.find_material(name) >= 0) throw py::value_error("duplicate material " + name);
-            s.materials.push_back(mat);
+            nlohmann::json entry = {{"type", type}};
+            for (const auto& [key, value] : fields) {
+              if (!value.is_none()) entry[py::str(key).cast<std::string>()] = to_json(value, where);
+            }
+            s.materials.push_back(material_from_json(name, entry, where));
           },
-          py::arg("name"), py::arg("type") = "diffuse", py::arg("reflectance") = py::none(),
-          py::arg("ior") = material_defaults::kGlassIor,
-          py::arg("transmittance") = material_defaults::kGlassTransmittance,
-          py::arg("thin") = material_defaults::kGlassThin,
-          py::arg("specular") = material_defaults::kGlossySpecular,
-          py::arg("roughness") = material_defaults::kGlossyRoughness)
+          py::arg("name"), py::arg("type") = "diffuse",
+          "A material of any type: the keyword arguments are the type's keys of a scene file's "
+          "material (docs/scene-format.md), e.g. add_material('glass', 'glass', ior=1.5); read "
+          "by the same code as scene files, so a key the type does not have is an InputError "
+          "naming it. Keys left out (or None) take lightsolver.material_defaults().")
       .def(
           "add_mesh",
           [](Scene& s, const std::string& name, py::array vertices, py::array triangles,
@@ -358,34 +337,6 @@ PYBIND11_MODULE(lightsolver, m) {
           "cells=[8, 6])")
       .def(
           "validate", [](Scene& s) { validate(s); }, "Check values; drop degenerate triangles")
-      .def_property(
-          "photons", [](const Scene& s) { return s.settings.photons; },
-          [](Scene& s, std::uint64_t v) { s.settings.photons = v; })
-      .def_property(
-          "seed", [](const Scene& s) { return s.settings.seed; },
-          [](Scene& s, std::uint64_t v) { s.settings.seed = v; })
-      .def_property(
-          "confidence", [](const Scene& s) { return s.settings.confidence; },
-          [](Scene& s, double v) { s.settings.confidence = v; })
-      .def_property(
-          "max_seconds", [](const Scene& s) { return s.settings.max_seconds; },
-          [](Scene& s, std::optional<double> v) {
-            if (v && !(std::isfinite(*v) && *v > 0.0))
-              throw py::value_error("max_seconds must be a finite number of seconds > 0");
-            s.settings.max_seconds = v;
-          },
-          "Time limit of the tracing in seconds, or None")
-      .def_property(
-          "contributions", [](const Scene& s) { return s.settings.contributions; },
-          [](Scene& s, bool v) { s.settings.contributions = v; },
-          "Report each luminaire group's contribution per target (settings.contributions)")
-      .def_property(
-          "decide", [](const Scene& s) { return s.settings.decide; },
-          [](Scene& s, bool v) { s.settings.decide = v; },
-          "Trace until every requirement's verdict is decided (settings.decide)")
-      .def_property(
-          "max_bounces", [](const Scene& s) { return s.settings.max_bounces; },
-          [](Scene& s, std::uint32_t v) { s.settings.max_bounces = v; })
       .def_property_readonly("warnings", [](const Scene& s) { return s.warnings; })
       .def_property_readonly("mesh_names",
                              [](const Scene& s) {
@@ -400,6 +351,7 @@ PYBIND11_MODULE(lightsolver, m) {
                                return n;
                              })
       .def_property_readonly("total_flux_lm", &Scene::total_flux_lm);
+  bind_scene_settings(scene_class);  // photons, seed, confidence, ... (the run options table)
 
   m.def(
       "backends",
@@ -425,28 +377,22 @@ PYBIND11_MODULE(lightsolver, m) {
         return scene_from_json(text, "<string>", base_dir);
       },
       py::arg("text"), py::arg("base_dir") = ".", "Parse scene JSON text");
-  m.def("solve", &solve_py, py::arg("scene"), py::arg("photons") = py::none(),
-        py::arg("seed") = py::none(), py::arg("confidence") = py::none(), py::arg("threads") = 0,
-        py::arg("backend") = kAutoBackend, py::arg("progress") = py::none(),
-        py::arg("cancel") = py::none(), py::arg("target_accuracy") = py::none(),
-        py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
-        py::arg("decide") = py::none(), py::arg("contributions") = py::none(),
-        py::arg("comm") = py::none(),
-        "Trace photons; returns the results dict (grid cells as numpy arrays (nv, nu)). "
-        "progress(done, total) may return False to stop; the result is then marked partial. "
-        "target_accuracy=0.02 stops once every target's CI half-width is <= 2% of its mean "
-        "(with accuracy_per_cell=True: every grid cell's, cells darker than 1% of their grid's "
-        "mean judged against that 1%; default: the scene's settings.accuracy_per_cell); "
-        "without photons the budget is 1e10 photons within max_seconds (default 300 s). "
-        "max_seconds limits the tracing time (default: Scene.max_seconds). The dict's "
-        "stop_reason says which limit ended the run: photons, accuracy, time, cancelled or "
-        "decided. decide=True traces until every requirement's verdict is pass or fail "
-        "(default: the scene's settings.decide); targets with requirements carry verdicts "
-        "either way. contributions=True adds each luminaire group's part per target and cell "
-        "(default: the scene's settings.contributions), which rescale() needs. comm: an mpi4py "
-        "communicator (e.g. MPI.COMM_WORLD under mpirun): every process calls solve() with the "
-        "same arguments, each traces a slice of every batch and all get the results a single "
-        "process would give, bit for bit (docs/cluster.md).");
+  m.def("solve", &solve_py, py::arg("scene"),
+        ("solve(scene, **options): trace photons; returns the results dict (grid cells as "
+         "numpy arrays (nv, nu)). Keywords (the run options, docs/scene-format.md \"Settings\"; "
+         "a value out of range raises InputError naming it):" +
+         keywords_doc(every_keyword) +
+         "\n  progress=None: progress(done, total) may return False to stop; the result is then "
+         "marked partial.\n  cancel=None: a CancelToken.\n  comm=None: an mpi4py communicator "
+         "(e.g. MPI.COMM_WORLD under mpirun): every process calls solve() with the same "
+         "arguments, each traces a slice of every batch and all get the results a single "
+         "process would give, bit for bit (docs/cluster.md).\nThe dict's stop_reason says "
+         "which limit ended the run: photons, accuracy, time, cancelled or decided.")
+            .c_str());
+  m.def("run_options", &run_options_list,
+        "The run options table (lightsolver/run_options.hpp): one dict per option with name, "
+        "type, default, help, min, max, min_open, max_open, range, scene_key, cli_flag, "
+        "python_keyword, python_default, result_key, echoed_when, cost_and_study, per_backend");
   m.def("mpi_built", &mpi::built, "True when this build can share runs among MPI processes");
   m.def("mpi_launched", &mpi::launched,
         "True when an MPI launcher (mpirun, srun) started this process: its environment says so");
@@ -532,69 +478,49 @@ PYBIND11_MODULE(lightsolver, m) {
       "area.");
   m.def(
       "cost",
-      [](const Scene& scene, std::uint64_t max_photons, std::optional<std::uint64_t> seed,
-         std::optional<double> confidence, int threads, const std::string& backend) {
+      [](const Scene& scene, std::uint64_t max_photons, const py::kwargs& keywords) {
         const Scene snapshot = scene;  // copied with the GIL held, as in solve()
-        SolveOptions opt;
-        opt.checkpoints = cost_checkpoints(max_photons);
-        if (opt.checkpoints.empty()) throw InputError("", "max_photons", "must be >= 10000");
-        opt.photons = opt.checkpoints.back();
-        opt.seed = seed;
-        opt.confidence = confidence;
-        opt.threads = threads;
-        opt.backend = backend;
-        std::vector<Checkpoint> rows;
-        opt.checkpoint = [&rows](const Checkpoint& c) {  // no Python; no cells kept
-          rows.push_back({c.photons, c.seconds, c.worst_relative_half_width, {}});
-        };
-        Results r;
+        CostOptions o;
+        o.max_photons = max_photons;
+        set_run_options(keywords, o.solve, checkpointed_keyword, {}, "cost");
+        Cost c;
         {
           py::gil_scoped_release nogil;
-          r = solve(snapshot, opt);
+          c = run_cost(snapshot, o);
         }
-        py::list row_list, goal_list;
-        for (const Checkpoint& c : rows) {
-          py::dict d;
-          d["photons"] = c.photons;
-          d["seconds"] = c.seconds;
-          d["worst_relative_half_width"] = c.worst_relative_half_width;
-          row_list.append(d);
+        py::list rows, goals;
+        for (const Checkpoint& row : c.rows) {
+          rows.append(
+              py::dict(py::arg("photons") = row.photons, py::arg("seconds") = row.seconds,
+                       py::arg("worst_relative_half_width") = row.worst_relative_half_width));
         }
-        for (const double goal : kCostGoals) {
-          if (rows.empty()) break;
-          const AccuracyCost need = accuracy_cost(rows.back(), goal);
-          py::dict d;
-          d["accuracy"] = goal;
-          d["photons"] = need.photons;
-          d["seconds"] = need.seconds;
-          goal_list.append(d);
+        for (const CostGoal& g : c.goals) {
+          goals.append(py::dict(py::arg("accuracy") = g.accuracy,
+                                py::arg("photons") = g.need.photons,
+                                py::arg("seconds") = g.need.seconds));
         }
-        py::dict out;
-        out["rows"] = row_list;
-        out["goals"] = goal_list;
-        out["results"] = results_dict(r);
-        return out;
+        return py::dict(py::arg("rows") = rows, py::arg("goals") = goals,
+                        py::arg("prepare_seconds") = c.prepare_seconds,
+                        py::arg("results") = results_dict(c.results));
       },
-      py::arg("scene"), py::arg("max_photons") = 16'000'000, py::arg("seed") = py::none(),
-      py::arg("confidence") = py::none(), py::arg("threads") = 0, py::arg("backend") = kAutoBackend,
-      "What accuracy costs in time (`lightsolver cost`): ONE run of the largest checkpoint (1e4 "
-      "photons, then 4x each, up to max_photons); rows: photons, tracing seconds and worst "
-      "relative CI half-width at each checkpoint (infinity while a target has no hit); goals: "
-      "photons and seconds per accuracy goal from the last row (width ~ 1/sqrt(N)); results: "
-      "the run's results dict (the same as solve() with the last row's photons)");
+      py::arg("scene"), py::arg("max_photons") = CostOptions{}.max_photons,
+      ("What accuracy costs in time (`lightsolver cost`): ONE run of the largest checkpoint (1e4 "
+       "photons, then 4x each, up to max_photons); rows: photons, tracing seconds and worst "
+       "relative CI half-width at each checkpoint (infinity while a target has no hit); goals: "
+       "photons and seconds per accuracy goal from the last row (width ~ 1/sqrt(N)); "
+       "prepare_seconds: building the scene; results: the run's results dict (the same as "
+       "solve() with the last row's photons). Keywords:" +
+       keywords_doc(checkpointed_keyword))
+          .c_str());
   m.def(
       "study",
       [](const Scene& scene, std::uint64_t max_photons, std::optional<std::string> reference,
-         std::optional<std::uint64_t> seed, std::optional<double> confidence, int threads,
-         const std::string& backend) {
+         const py::kwargs& keywords) {
         const Scene snapshot = scene;  // copied with the GIL held, as in solve()
         StudyOptions o;
         o.max_photons = max_photons;
         o.reference_file = reference.value_or("");
-        o.solve.seed = seed;
-        o.solve.confidence = confidence;
-        o.solve.threads = threads;
-        o.solve.backend = backend;
+        set_run_options(keywords, o.solve, checkpointed_keyword, {}, "study");
         Study st;
         {
           py::gil_scoped_release nogil;
@@ -605,16 +531,17 @@ PYBIND11_MODULE(lightsolver, m) {
         out["results"] = results_dict(st.results);
         return out;
       },
-      py::arg("scene"), py::arg("max_photons") = 10'240'000, py::arg("reference") = py::none(),
-      py::arg("seed") = py::none(), py::arg("confidence") = py::none(), py::arg("threads") = 0,
-      py::arg("backend") = kAutoBackend,
-      "What accuracy costs, shown (`lightsolver study`): ONE run with checkpoints at 1e4 photons, "
-      "then 2x each, up to max_photons. Returns the study dict (lightsolver.study/1, "
-      "docs/accuracy.md): rows (photons, seconds, 'all' and per-target Em, Emin, U0, per-cell "
-      "mean and worst relative half-width and, with reference=RESULTS.json, mean and max "
-      "relative error), fit, goals (photons and seconds per per-cell accuracy, 'extrapolated' "
-      "beyond the last row), warnings; plus 'csv' (the CSV text) and 'results' (the run's). "
-      "NativeSolver/python/tools/plot_study.py draws it.");
+      py::arg("scene"), py::arg("max_photons") = StudyOptions{}.max_photons,
+      py::arg("reference") = py::none(),
+      ("What accuracy costs, shown (`lightsolver study`): ONE run with checkpoints at 1e4 photons, "
+       "then 2x each, up to max_photons. Returns the study dict (lightsolver.study/1, "
+       "docs/accuracy.md): rows (photons, seconds, 'all' and per-target Em, Emin, U0, per-cell "
+       "mean and worst relative half-width and, with reference=RESULTS.json, mean and max "
+       "relative error), fit, goals (photons and seconds per per-cell accuracy, 'extrapolated' "
+       "beyond the last row), warnings; plus 'csv' (the CSV text) and 'results' (the run's). "
+       "NativeSolver/python/tools/plot_study.py draws it. Keywords:" +
+       keywords_doc(checkpointed_keyword))
+          .c_str());
   bind_optimizer(m);   // lightsolver.optimize
   bind_simulation(m);  // lightsolver.Simulation
 }

@@ -16,19 +16,12 @@
 
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/simulation.hpp"
+#include "run_option_keywords.hpp"
 
 namespace py = pybind11;
 using namespace lightsolver;
 
 namespace {
-
-// What run() and refine() take besides the photons, as Python passes them.
-struct RunArgs {
-  std::optional<std::uint64_t> photons, seed;
-  std::optional<double> confidence, target_accuracy, max_seconds;
-  std::optional<bool> accuracy_per_cell, decide;
-  py::object progress;
-};
 
 class PySimulation {
  public:
@@ -75,18 +68,11 @@ class PySimulation {
     sim_->set_mesh_transform(mesh, m);
   }
 
-  py::dict run(const RunArgs& args, bool refine) {
-    SolveOptions o;
-    o.photons = args.photons;
-    o.seed = args.seed;
-    o.confidence = args.confidence;
-    o.target_accuracy = args.target_accuracy;
-    o.max_seconds = args.max_seconds;
-    o.accuracy_per_cell = args.accuracy_per_cell;
-    o.decide = args.decide;
+  // `o`: the run options of the call (run_option_keywords); `progress` as solve() takes it.
+  py::dict run(SolveOptions o, const py::object& progress, bool refine) {
     o.cancel = &cancel_;
     std::exception_ptr callback_error;
-    const ProgressFn fn = python_progress(args.progress, callback_error);
+    const ProgressFn fn = python_progress(progress, callback_error);
     Results r;
     {
       std::lock_guard lock(locked(mutex_), std::adopt_lock);
@@ -142,6 +128,16 @@ class PySimulation {
   std::string base_dir_;
 };
 
+// refine() takes run()'s keywords but photons (photons_total instead) and decide.
+bool refine_keyword(const RunOptionInfo& row) {
+  return per_run_keyword(row) && std::string_view(row.name) != "photons" &&
+         std::string_view(row.name) != "decide";
+}
+
+py::object progress_of(const py::kwargs& keywords) {
+  return keywords.contains("progress") ? py::object(keywords["progress"]) : py::object(py::none());
+}
+
 }  // namespace
 
 void bind_simulation(py::module_& m) {
@@ -163,38 +159,30 @@ void bind_simulation(py::module_& m) {
            "in the last column) applied to its coordinates as loaded. Discards the kept photons.")
       .def(
           "run",
-          [](PySimulation& s, std::optional<std::uint64_t> photons,
-             std::optional<std::uint64_t> seed, std::optional<double> confidence,
-             std::optional<double> target_accuracy, std::optional<double> max_seconds,
-             std::optional<bool> accuracy_per_cell, std::optional<bool> decide,
-             py::object progress) {
-            return s.run({photons, seed, confidence, target_accuracy, max_seconds,
-                          accuracy_per_cell, decide, std::move(progress)},
-                         false);
+          [](PySimulation& s, const py::kwargs& keywords) {
+            SolveOptions o;
+            set_run_options(keywords, o, per_run_keyword, {"progress"}, "run");
+            return s.run(std::move(o), progress_of(keywords), false);
           },
-          py::arg("photons") = py::none(), py::arg("seed") = py::none(),
-          py::arg("confidence") = py::none(), py::arg("target_accuracy") = py::none(),
-          py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
-          py::arg("decide") = py::none(), py::arg("progress") = py::none(),
-          "Traces from photon 0 as lightsolver.solve() would (same arguments, same results dict); "
-          "the tallies are kept for refine()")
+          ("Traces from photon 0 as lightsolver.solve() would (same keywords but the backend's, "
+           "same results dict); the tallies are kept for refine(). Keywords:" +
+           keywords_doc(per_run_keyword) + "\n  progress=None: as solve()'s")
+              .c_str())
       .def(
           "refine",
-          [](PySimulation& s, std::uint64_t photons_total, std::optional<std::uint64_t> seed,
-             std::optional<double> confidence, std::optional<double> target_accuracy,
-             std::optional<double> max_seconds, std::optional<bool> accuracy_per_cell,
-             py::object progress) {
-            return s.run({photons_total, seed, confidence, target_accuracy, max_seconds,
-                          accuracy_per_cell, std::nullopt, std::move(progress)},
-                         true);
+          [](PySimulation& s, std::uint64_t photons_total, const py::kwargs& keywords) {
+            SolveOptions o;
+            set_run_options(keywords, o, refine_keyword, {"progress"}, "refine");
+            o.photons = photons_total;
+            return s.run(std::move(o), progress_of(keywords), true);
           },
-          py::arg("photons_total"), py::arg("seed") = py::none(),
-          py::arg("confidence") = py::none(), py::arg("target_accuracy") = py::none(),
-          py::arg("max_seconds") = py::none(), py::arg("accuracy_per_cell") = py::none(),
-          py::arg("progress") = py::none(),
-          "Continues the kept photons up to photons_total in all: the same results, bit for "
-          "bit, as run(photons=photons_total). Starts at photon 0 after a change, with another "
-          "seed, or when more photons are kept. Never decides (verdicts are judged as in run).")
+          py::arg("photons_total"),
+          ("Continues the kept photons up to photons_total in all: the same results, bit for "
+           "bit, as run(photons=photons_total). Starts at photon 0 after a change, with another "
+           "seed, or when more photons are kept. Never decides (verdicts are judged as in run). "
+           "Keywords:" +
+           keywords_doc(refine_keyword) + "\n  progress=None: as solve()'s")
+              .c_str())
       .def("cancel", &PySimulation::cancel,
            "Stops the run in progress (any thread) after its current batch; its result is "
            "partial and its photons are kept")

@@ -115,7 +115,10 @@ struct Target {
   Requirements requirements;
 };
 
-/// Run settings (defaults as documented).
+/// A scene's run settings (scene file `settings`). Each member is a row of the run options
+/// table (run_options.hpp), from which the scene reader, validate(), the CLI flags and the
+/// Python keywords and Scene properties take their names, ranges and help; these initializers
+/// are the defaults they all show.
 struct Settings {
   std::uint64_t photons = 1'000'000;
   std::uint32_t max_bounces = 1000;

@@ -18,6 +18,12 @@ Scene load_scene(const std::string& path);
 Scene scene_from_json(const std::string& text, const std::string& file,
                       const std::string& base_dir);
 
+/// Reads one material of a scene file's "materials" object (`type` and the type's keys; the
+/// keys left out keep default_material()'s values). Values are range-checked later, by
+/// validate(). `where` names the entry in messages.
+Material material_from_json(const std::string& name, const nlohmann::json& entry,
+                            const std::string& where);
+
 /// Reads one luminaire entry of a scene file's "luminaires" list (name, type and the type's
 /// keys, as docs/scene-format.md lists them) through the luminaire-type table, so callers need
 /// no code per type. Values are range-checked later, by validate(). `where` names the entry

@@ -66,7 +66,11 @@ std::vector<std::uint64_t> cost_checkpoints(std::uint64_t max_photons);
 /// The accuracy goals (relative half-widths) whose cost they extrapolate from the last row.
 inline constexpr double kCostGoals[] = {0.10, 0.05, 0.02, 0.01, 0.005};
 
-/// Overrides of the scene's settings for one run, and how to run it.
+/// Overrides of the scene's settings for one run, and how to run it. The options a user sets
+/// (photons ... contributions) are rows of the run options table (run_options.hpp): the CLI's
+/// flags, the Python keywords, their ranges (check_run_options(), run by solve() and
+/// Simulation::run()) and the results keys that echo them come from there. The callbacks,
+/// checkpoints, cancel flag and process group below are set by the front ends themselves.
 struct SolveOptions {
   std::optional<std::uint64_t> photons;  ///< default: scene.settings.photons
   std::optional<std::uint64_t> seed;     ///< default: scene.settings.seed

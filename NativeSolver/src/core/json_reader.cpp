@@ -30,6 +30,10 @@ std::size_t JsonNode::array_size() const {
 }
 
 void JsonNode::require_object(std::initializer_list<const char*> allowed) const {
+  require_object(std::span<const char* const>(allowed.begin(), allowed.size()));
+}
+
+void JsonNode::require_object(std::span<const char* const> allowed) const {
   for (const auto& item : object().items()) {
     bool known = false;
     for (const char* k : allowed) known = known || item.key() == k;

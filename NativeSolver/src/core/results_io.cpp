@@ -9,6 +9,7 @@
 #include "core/groups_io.hpp"
 #include "core/observer_grid_io.hpp"
 #include "lightsolver/defaults.hpp"
+#include "lightsolver/run_options.hpp"
 #include "lightsolver/solver.hpp"
 
 namespace lightsolver {
@@ -202,30 +203,31 @@ std::string stop_text(const Results& r) {
 }  // namespace
 
 std::string results_to_json(const Results& r) {
+  // The options a run echoes take their keys from the run options table.
   nlohmann::json j = {{"format", kResultsFormat},
                       {"photons", r.photons},
-                      {"photons_requested", r.photons_requested},
+                      {result_key("photons"), r.photons_requested},
                       {"partial", r.partial},
                       {"stop_reason", r.stop_reason},
                       {"seconds", r.seconds},
-                      {"backend", r.backend},
-                      {"confidence", r.confidence},
-                      {"seed", r.seed},
+                      {result_key("backend"), r.backend},
+                      {result_key("confidence"), r.confidence},
+                      {result_key("seed"), r.seed},
                       {"ray_segments", r.ray_segments},
                       {"capped_paths", r.capped_paths},
                       {"cut_paths", r.cut_paths},
                       {"total_flux_lm", r.total_flux_lm},
                       {"warnings", r.warnings}};
-  if (r.max_seconds) j["max_seconds"] = *r.max_seconds;
+  if (r.max_seconds) j[result_key("max_seconds")] = *r.max_seconds;
   j["effects"] = detail::effects_json(r.effects);
   if (r.target_accuracy) {
-    j["target_accuracy"] = *r.target_accuracy;
+    j[result_key("target_accuracy")] = *r.target_accuracy;
     j["accuracy_met"] = r.accuracy_met;
-    j["accuracy_per_cell"] = r.accuracy_per_cell;
+    j[result_key("accuracy_per_cell")] = r.accuracy_per_cell;
   }
   if (r.judged) {
     j["verdict"] = to_string(r.verdict);
-    j["decide"] = r.decide;
+    j[result_key("decide")] = r.decide;
   }
   nlohmann::json targets = nlohmann::json::array();
   for (const auto& t : r.targets) targets.push_back(target_json(t));

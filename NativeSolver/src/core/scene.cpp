@@ -13,6 +13,7 @@
 #include "core/luminaire_types.hpp"
 #include "core/target_types.hpp"
 #include "lightsolver/photometry.hpp"
+#include "lightsolver/run_options.hpp"
 #include "lightsolver/statistics.hpp"
 
 namespace lightsolver {
@@ -343,14 +344,11 @@ class Validator {
   };
 
   void settings() {
-    if (s_.settings.max_bounces > limits::kMaxBounces) {
-      fail("settings.max_bounces",
-           "must be <= 1000000 (got " + std::to_string(s_.settings.max_bounces) + ")");
-    }
+    // Each setting's own range (the run options table), then what depends on two of them.
+    for (const auto& [where, error] : settings_errors(s_.settings)) fail(where, error);
     check_photon_count(s_.settings.photons, s_.settings.max_bounces, s_.source_file,
                        "settings.photons");
     const double c = s_.settings.confidence;
-    if (!(c > 0.0 && c < 1.0)) fail("settings.confidence", "must lie strictly between 0 and 1");
     if (c < 0.5) {
       s_.warnings.push_back("settings.confidence: " + show(c) +
                             " gives intervals narrower than one standard deviation; "

@@ -4,13 +4,17 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <type_traits>
+#include <vector>
 
 #include "core/json_reader.hpp"
 #include "core/luminaire_types.hpp"
 #include "core/requirements_table.hpp"
 #include "core/scene_document.hpp"
 #include "core/target_types.hpp"
+#include "lightsolver/run_options.hpp"
 #include "lightsolver/scene_io.hpp"
 
 namespace lightsolver {
@@ -167,25 +171,37 @@ Target read_target(const JsonNode& n, const Scene& scene, const std::string& bas
   return t;
 }
 
+// A scene setting's value as its row's type. Ranges are validate()'s (check_scene lists every
+// error), except where the value would not fit the member (max_bounces: 32 bits).
+template <class T>
+T read_setting(const JsonNode& n, const RunOptionInfo& option) {
+  if constexpr (std::is_same_v<T, bool>) {
+    return n.boolean();
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return n.number();
+  } else {
+    const std::uint64_t v = n.unsigned_integer();
+    if (v > std::numeric_limits<T>::max()) n.fail(range_error(option, double(v)));
+    return static_cast<T>(v);
+  }
+}
+
+// Every key is a row of the run options table (lightsolver/run_options.hpp).
 Settings read_settings(const JsonNode& n) {
-  n.require_object({"photons", "max_bounces", "seed", "confidence", "max_seconds",
-                    "accuracy_per_cell", "decide", "contributions"});
+  std::vector<const char*> keys;
+  for_each_run_option([&](const auto& row) {
+    if (row.info.scene_key) keys.push_back(row.info.scene_key);
+  });
+  n.require_object(keys);
   Settings s;
-  if (n.has("photons")) s.photons = n.at("photons").unsigned_integer();
-  if (n.has("max_bounces")) {
-    const std::uint64_t b = n.at("max_bounces").unsigned_integer();
-    if (b > limits::kMaxBounces) n.at("max_bounces").fail("must be <= 1000000");
-    s.max_bounces = static_cast<std::uint32_t>(b);
-  }
-  if (n.has("seed")) s.seed = n.at("seed").unsigned_integer();
-  s.confidence = n.number_or("confidence", s.confidence);
-  s.decide = n.boolean_or("decide", s.decide);
-  if (n.has("max_seconds")) {
-    s.max_seconds = n.at("max_seconds").number();  // finite
-    if (!(*s.max_seconds > 0.0)) n.at("max_seconds").fail("must be > 0 (seconds)");
-  }
-  s.accuracy_per_cell = n.boolean_or("accuracy_per_cell", s.accuracy_per_cell);
-  s.contributions = n.boolean_or("contributions", s.contributions);
+  for_each_run_option([&](const auto& row) {
+    using Row = std::decay_t<decltype(row)>;
+    if constexpr (Row::kInScene) {
+      if (n.has(row.info.scene_key)) {
+        s.*row.setting = read_setting<typename Row::value_type>(n.at(row.info.scene_key), row.info);
+      }
+    }
+  });
   return s;
 }
 
@@ -262,6 +278,11 @@ Scene scene_from_json(const std::string& text, const std::string& file,
 }
 
 Scene load_scene(const std::string& path) { return detail::load_scene_document(path).scene; }
+
+Material material_from_json(const std::string& name, const nlohmann::json& entry,
+                            const std::string& where) {
+  return read_material(name, JsonNode(entry, "", where));
+}
 
 Luminaire luminaire_from_json(const nlohmann::json& entry, const std::string& where,
                               const std::string& base_dir) {

@@ -26,6 +26,7 @@
 #include "core/target_reach.hpp"
 #include "core/target_results.hpp"
 #include "core/target_types.hpp"
+#include "lightsolver/run_options.hpp"
 
 namespace lightsolver {
 
@@ -339,6 +340,7 @@ void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
 std::uint64_t Simulation::kept_photons() const { return state_->kept ? state_->kept_photons : 0; }
 
 Results Simulation::refine(const SolveOptions& options, const ProgressFn& progress) {
+  check_run_options(options);
   if (!options.photons) throw InputError("", "photons", "refine() needs the photons in all");
   if (options.decide.value_or(false)) throw InputError("", "decide", "not with refine()");
   SolveOptions o = options;
@@ -347,6 +349,7 @@ Results Simulation::refine(const SolveOptions& options, const ProgressFn& progre
 }
 
 Results Simulation::run(const SolveOptions& options, const ProgressFn& progress) {
+  check_run_options(options);  // each option's range, as the front ends check it
   return run_from(options, progress, false);
 }
 
