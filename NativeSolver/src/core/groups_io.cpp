@@ -16,6 +16,17 @@ void add_groups_json(const Results& r, nlohmann::json& j) {
                       {"luminaires", g.luminaires}});
   }
   j["groups"] = std::move(groups);
+  nlohmann::json luminaires = nlohmann::json::array();
+  for (const LuminaireResult& l : r.luminaires) {
+    luminaires.push_back({{"name", l.name},
+                          {"type", l.type},
+                          {"group", l.group},
+                          {"flux_lm", l.flux_lm},
+                          {"tilt_factor", l.tilt_factor},
+                          {"dimming", l.dimming},
+                          {"emitted_flux_lm", l.emitted_flux_lm}});
+  }
+  j["luminaires"] = std::move(luminaires);
   if (!r.rescaled.empty()) {
     nlohmann::json factors = nlohmann::json::object();
     for (const auto& [name, factor] : r.rescaled) factors[name] = factor;
