@@ -103,3 +103,20 @@ def test_freecads_python_imports_it_and_finds_the_schema(where):
                          env={"PYTHONPATH": folder}, timeout=60)
     assert out.returncode == 0, out.stderr
     assert out.stdout.startswith(folder)
+
+
+def test_every_target_type_of_the_solver_is_read(tmp_path, room_scene):
+    """The reader knows every target type the solver writes (a type added to the solver
+    without a reading here fails this test), and says so of a type it does not know."""
+    scene = json.loads(room_scene.read_text())
+    known = {t["type"] for t in scene["targets"]} | {"observer", "observer_grid"}
+    types = getattr(lightsolver, "target_types", None)  # the solver's rows, where exported
+    if types is not None:
+        known |= {str(row.get("name") or row.get("type")) if isinstance(row, dict) else str(row)
+                  for row in types()}
+    assert known <= set(reader.READ_TYPES), known - set(reader.READ_TYPES)
+    doc = golden("room")
+    doc["targets"][0]["type"] = "daylight_factor"
+    read = reader.read(doc, strict=False)
+    assert any("'daylight_factor' is unknown to this reader" in n for n in read.notes)
+    assert read.targets[0].em.value == doc["targets"][0]["mean_lux"]

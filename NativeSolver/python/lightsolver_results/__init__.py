@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
-__all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "ResultsError", "Stat", "Target",
+__all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "ResultsError", "Stat", "Target",
            "LuminaireFlux", "ObserverGridView", "Results", "plain", "schema", "check", "migrate",
            "read", "load"]
 
@@ -33,6 +33,9 @@ FORMAT = "lightsolver.results/1"
 CELL_ARRAYS = ("cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits")
 #: Target types whose result is a UGR (an observer grid's is its maximum over its points).
 GLARE_KINDS = ("observer", "observer_grid")
+#: The target types :func:`read` knows the results of (the solver's target type rows); of
+#: another type only the illuminance is read, and the notes say so.
+READ_TYPES = ("surface", "grid") + GLARE_KINDS
 #: Said on every page that prints a flux derived from the scene instead of the traced one.
 DERIVED_FLUX_NOTE = ("these results were written before the solver recorded each luminaire's "
                      "traced flux: the flux shown is derived from the scene, without a "
@@ -356,6 +359,9 @@ def read(source: Union[Dict[str, Any], str, "os.PathLike[str]"],
         raise ResultsError("the results break docs/schemas/results.schema.json: "
                            + "; ".join(problems[:5]))
     notes.extend(f"schema: {p}" for p in problems)
+    notes.extend(f"target {t.get('name')!r}: type {t.get('type')!r} is unknown to this reader; "
+                 "only its illuminance is read" for t in current["targets"]
+                 if isinstance(t, dict) and t.get("type", "surface") not in READ_TYPES)
     luminaires = [LuminaireFlux(str(lum["name"]), str(lum["type"]), str(lum["group"]),
                                 float(lum["flux_lm"]), float(lum["tilt_factor"]),
                                 float(lum["dimming"]), float(lum["emitted_flux_lm"]))
