@@ -1,10 +1,11 @@
 // results_from_json: the results JSON (lightsolver.results/1) read back into Results, the
-// inverse of results_to_json (results_io.cpp, groups_io.cpp, observer_grid_io.cpp,
-// effects_io.cpp): every field those write is read here, so a round trip gives the same text.
-#include <algorithm>
-#include <cstring>
-#include <map>
+// inverse of results_to_json (results_io.cpp; groups_io.cpp and observer_grid_io.cpp read
+// back what they write): every field written is read, so a round trip gives the same text.
+#include <optional>
+#include <string>
+#include <vector>
 
+#include "core/groups_io.hpp"
 #include "core/json_reader.hpp"
 #include "core/observer_grid_io.hpp"
 #include "lightsolver/defaults.hpp"
@@ -32,12 +33,8 @@ std::vector<glm::dvec3> points(const JsonNode& n) {
   return out;
 }
 
-Tally read_tally(const JsonNode& n) {
-  return {n.at("sum").unsigned_integer(), n.at("sum_sq").unsigned_integer()};
-}
-
-// {"mean_lux", "ci_low_lux", "ci_high_lux", "sigma_lux", "hits"}, or a contribution's and a
-// cell's shorter spelling (`mean_key`, no sigma).
+// {"mean_lux", "ci_low_lux", "ci_high_lux", "sigma_lux", "hits"}, or a cell's shorter
+// spelling (`mean_key`, no sigma).
 Estimate read_estimate(const JsonNode& n, const char* mean_key, bool sigma) {
   Estimate e;
   e.mean = n.at(mean_key).number();
@@ -185,38 +182,6 @@ ObserverGridGlare read_observer_grid(const JsonNode& target) {
   return g;
 }
 
-// A target's contributions, in the order of `groups` (the JSON keys them by name).
-std::vector<Contribution> read_contributions(const JsonNode& n, const TargetResult& t,
-                                             const std::vector<GroupResult>& groups) {
-  std::vector<Contribution> out;
-  const JsonNode all = n.at("contributions");
-  if (all.object().size() != groups.size()) all.fail("expected one entry per luminaire group");
-  for (const GroupResult& g : groups) {
-    const JsonNode c = all.at(g.name.c_str());
-    Contribution part;
-    part.group = g.name;
-    part.estimate = read_estimate(c, "illuminance_lux", false);
-    if (t.observer_grid) {
-      const JsonNode list = c.at("points");
-      for (std::size_t k = 0; k < list.array_size(); ++k) {
-        if (list[k].array_size() != 2) list[k].fail("expected [sum, sum_sq]");
-        part.tallies.push_back({list[k][0].unsigned_integer(), list[k][1].unsigned_integer()});
-      }
-    } else {
-      part.tallies.push_back(read_tally(c));
-    }
-    if (t.is_grid) {
-      const JsonNode cells = c.at("cells");
-      for (std::size_t k = 0; k < cells.array_size(); ++k) {
-        part.cells.push_back(read_estimate(cells[k], "lux", false));
-        part.tallies.push_back(read_tally(cells[k]));
-      }
-    }
-    out.push_back(std::move(part));
-  }
-  return out;
-}
-
 TargetResult read_target(const JsonNode& n, const std::vector<GroupResult>& groups) {
   TargetResult t;
   t.name = n.at("name").string();
@@ -247,34 +212,8 @@ TargetResult read_target(const JsonNode& n, const std::vector<GroupResult>& grou
       t.cells.push_back(read_estimate(cells[k], "lux", false));
     }
   }
-  if (n.has("contributions")) t.contributions = read_contributions(n, t, groups);
+  if (n.has("contributions")) t.contributions = detail::read_contributions_json(n, t, groups);
   return t;
-}
-
-void read_groups(const JsonNode& root, Results& r) {
-  if (!root.has("groups")) return;
-  const JsonNode groups = root.at("groups");
-  for (std::size_t i = 0; i < groups.array_size(); ++i) {
-    const JsonNode g = groups[i];
-    r.groups.push_back({g.at("name").string(), g.at("flux_lm").number(),
-                        g.at("photons").unsigned_integer(), strings(g.at("luminaires"))});
-  }
-  if (root.has("luminaires")) {
-    const JsonNode list = root.at("luminaires");
-    for (std::size_t i = 0; i < list.array_size(); ++i) {
-      const JsonNode l = list[i];
-      r.luminaires.push_back({l.at("name").string(), l.at("type").string(), l.at("group").string(),
-                              l.at("flux_lm").number(), l.at("tilt_factor").number(),
-                              l.at("dimming").number(), l.at("emitted_flux_lm").number()});
-    }
-  }
-  if (root.has("rescaled")) {  // in group order (the JSON keys them by name)
-    const JsonNode factors = root.at("rescaled");
-    for (const GroupResult& g : r.groups) {
-      r.rescaled.emplace_back(g.name, factors.at(g.name.c_str()).number());
-    }
-    if (r.rescaled.size() != factors.object().size()) factors.fail("names an unknown group");
-  }
 }
 
 void read_effects(const JsonNode& root, Results& r) {
@@ -322,7 +261,7 @@ Results results_from_json(const std::string& text, const std::string& source) {
     r.decide = root.at("decide").boolean();
   }
   read_effects(root, r);
-  read_groups(root, r);
+  detail::read_groups_json(root, r);
   const JsonNode targets = root.at("targets");
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
     r.targets.push_back(read_target(targets[i], r.groups));
