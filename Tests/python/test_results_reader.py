@@ -1,7 +1,6 @@
 """The one Python results reader (NativeSolver/python/lightsolver_results): schema-checked, the
 legacy fallbacks in one migration step that says what it did, each target type read once; found
 by FreeCAD's /usr/bin/python3 from the build folder and from the source tree."""
-import copy
 import json
 import os
 import subprocess

@@ -165,10 +165,11 @@ class TargetResult:
             result.min_lux, result.max_lux = value(target.emin), value(target.emax)
             result.uniformity = value(target.u0)
             if result.cells_lux:  # the extreme cells' own intervals, until the solver's below
-                i_min = min(range(len(result.cells_lux)), key=result.cells_lux.__getitem__)
-                i_max = max(range(len(result.cells_lux)), key=result.cells_lux.__getitem__)
-                result.min_ci_lux = (result.cells_ci_low_lux[i_min], result.cells_ci_high_lux[i_min])
-                result.max_ci_lux = (result.cells_ci_low_lux[i_max], result.cells_ci_high_lux[i_max])
+                lux, low, high = result.cells_lux, result.cells_ci_low_lux, result.cells_ci_high_lux
+                i_min = min(range(len(lux)), key=lux.__getitem__)
+                i_max = max(range(len(lux)), key=lux.__getitem__)
+                result.min_ci_lux = (low[i_min], high[i_min])
+                result.max_ci_lux = (low[i_max], high[i_max])
             if target.emin.has_interval:  # simultaneous over the cells: docs/statistics.md
                 result.min_ci_lux = (target.emin.low, target.emin.high)
             if target.emax.has_interval:
