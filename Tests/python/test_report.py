@@ -442,3 +442,93 @@ def test_an_observer_is_reported_with_its_ugr_interval_and_verdict(tmp_path):
         assert f"{eye['ugr']:.1f}"[:3] in html  # the printed UGR is the results' value
     verdict = eye["verdicts"]["ugr"]["verdict"]
     assert {"pass": "PASS", "fail": "FAIL", "undecided": "UNDECIDED"}[verdict] in html
+
+
+def _tilt_scene(tmp_path):
+    """A floor lit by the parser corpus's TILT=INCLUDE lamp (type C; factor 0.90 at 45 degrees
+    from straight down) aimed 45 degrees off, and a point light: the TILT changes the lamp's
+    flux by 10 %."""
+    lamp = "lm63_1991_tilt_include.ies"
+    shutil.copy(SOURCE_DIR / "Tests" / "fuzz" / "corpus" / "ies" / lamp, tmp_path / lamp)
+    scene = {
+        "format": "lightsolver.scene/1",
+        "materials": {"floor": {"type": "diffuse", "reflectance": 0.3}},
+        "meshes": [{"name": "floor", "material": "floor",
+                    "vertices": [[0, 0, 0], [4, 0, 0], [4, 4, 0], [0, 4, 0]],
+                    "triangles": [[0, 1, 2], [0, 2, 3]]}],
+        "luminaires": [{"name": "tilted", "type": "photometric", "file": lamp,
+                        "position": [2, 2, 2.5],
+                        "aim": [0.7071067811865476, 0, -0.7071067811865476]},
+                       {"name": "bulb", "type": "point", "position": [1, 1, 2.5], "flux_lm": 500}],
+        "targets": [{"name": "floor grid", "type": "grid", "corner": [0, 0, 0],
+                     "edge1": [4, 0, 0], "edge2": [0, 4, 0], "cells": [2, 2]}],
+        "settings": {"photons": 20000, "seed": 3}}
+    path = tmp_path / "tilt.json"
+    path.write_text(json.dumps(scene))
+    return path, lamp
+
+
+def test_the_schedule_prints_the_traced_flux_with_tilt(tmp_path):
+    """The schedule's flux is the one the solver traced (results ``luminaires``), TILT applied;
+    results without that record fall back to the scene, and the page says so."""
+    from lightsolver_report import schedule
+
+    path, lamp = _tilt_scene(tmp_path)
+    results = lightsolver_report.trace(path)
+    traced = {lum["name"]: lum for lum in results["luminaires"]}
+    assert traced["tilted"]["tilt_factor"] == pytest.approx(0.90, abs=1e-12)
+    summary = lightsolver.photometry_summary(str(tmp_path / lamp))
+    untilted = schedule.scene_flux(json.loads(path.read_text())["luminaires"][0], summary)
+    report = build(path, results, date=DATE)
+    tilted = next(r for r in report.luminaires if r.file == lamp)
+    assert tilted.flux_lm == traced["tilted"]["emitted_flux_lm"]  # the solver's number
+    assert tilted.flux_lm == pytest.approx(0.90 * untilted, rel=1e-9)  # measurably not the file's
+    assert tilted.tilt_factor == traced["tilted"]["tilt_factor"]
+    assert report.traced_flux
+    assert report.total_flux_lm == pytest.approx(results["total_flux_lm"], rel=1e-12)
+    html = render_html(path, results, date=DATE)
+    assert f"{fmt.number(tilted.flux_lm, 5)}<br><span class=\"ci\">TILT × 0.9</span>" in html
+    assert "as the solver traced it" in html and "derived from the scene" not in html
+
+    older = {k: v for k, v in results.items() if k != "luminaires"}  # an older solver's file
+    report = build(path, older, date=DATE)
+    derived = next(r for r in report.luminaires if r.file == lamp)
+    assert derived.flux_lm == pytest.approx(untilted, rel=1e-12) and not report.traced_flux
+    assert report.total_flux_lm != pytest.approx(results["total_flux_lm"], rel=1e-3)
+    html = render_html(path, older, date=DATE)
+    assert "derived from the scene" in html and "TILT ×" not in html
+    assert any("without a photometric TILT table" in w for w in report.warnings)
+
+
+def test_an_observer_grid_is_reported_as_an_observer_grid(tmp_path, room_scene):
+    """An observer grid is its own kind of area: its maximum UGR with the simultaneous
+    interval, its points and where the maximum is (not "Surface")."""
+    scene = json.loads(room_scene.read_text())
+    scene["targets"].append({"name": "eyes", "type": "observer_grid", "corner": [0.5, 0.5, 1.2],
+                             "edge1": [5.0, 0, 0], "edge2": [0, 3.0, 0], "cells": [2, 2],
+                             "view_step_deg": 90, "requirements": {"ugr_max": 19}})
+    path = tmp_path / "room_with_eyes.json"
+    path.write_text(json.dumps(scene))
+    for mesh in scene.get("meshes", []):
+        if "file" in mesh:
+            shutil.copy(room_scene.parent / mesh["file"], tmp_path / mesh["file"])
+    results = lightsolver_report.trace(path, photons=100_000, seed=3)
+    eyes = next(t for t in results["targets"] if t["name"] == "eyes")
+    assert eyes["ugr"] is not None, "the room's panels give glare somewhere"
+    area = next(a for a in build(path, results, date=DATE).areas if a.name == "eyes")
+    assert area.type == "observer_grid" and area.ugr_name == "max UGR"
+    assert (area.ugr.value, area.ugr.low, area.ugr.high) == (
+        eyes["ugr"], eyes["ugr_ci_low"], eyes["ugr_ci_high"])
+    assert (area.observer_positions, area.observer_directions) == (4, 4)
+    at = eyes["observer_grid"]["max_at"]
+    assert area.max_at == (tuple(eyes["observer_grid"]["positions"][at["position"]]),
+                           tuple(eyes["observer_grid"]["view_directions"][at["direction"]]))
+    html = render_html(path, results, date=DATE)
+    section = html[html.index("3.4 eyes"):]
+    section = section[:section.index("</section>")]
+    assert "Observer grid: eyes for discomfort glare" in section and "Surface" not in section
+    assert "4 positions × 4 view directions (16 points)" in section
+    assert "%.2f, %.2f, %.2f" % area.max_at[0] in section
+    assert f"{fmt.number(eyes['ugr'], 4)}</td>" in section  # the maximum, as the results give it
+    verdict = eyes["verdicts"]["ugr"]["verdict"]
+    assert {"pass": "PASS", "fail": "FAIL", "undecided": "UNDECIDED"}[verdict] in section

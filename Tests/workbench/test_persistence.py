@@ -147,6 +147,26 @@ class Persistence(DocTestCase):
         self.assertEqual(json.loads(results_objects(doc)[0].ResultsJson), json.loads(text))
         self.assertEqual(inputs_with_results(doc), [])
 
+    def test_results_of_an_older_solver_read_as_the_report_reads_them(self):
+        """One reader (lightsolver_results) for the workbench and the report: a grid without
+        Emin/Emax/U0 (the oldest results) gets them from its cells in its migration step, the
+        same values the report prints, and the stored document is left as it was."""
+        from lighting.solver.results import AnalysisResult, reader
+
+        data = fake_results(None)
+        for key in ("min_lux", "max_lux", "uniformity"):
+            data["targets"][0].pop(key)
+        before = json.dumps(data, sort_keys=True)
+        grid = AnalysisResult.from_data(data)["Workplane"]
+        self.assertEqual((grid.min_lux, grid.max_lux), (300.0, 535.0))
+        self.assertAlmostEqual(grid.uniformity, 300.0 / 420.0, places=15)
+        self.assertEqual(grid.min_ci_lux, (290.0, 310.0))  # the lowest cell's own interval
+        self.assertEqual(json.dumps(data, sort_keys=True), before)
+        read = reader().read(data, strict=False)
+        self.assertEqual(read["Workplane"].emin.value, grid.min_lux)
+        self.assertTrue(any("grid statistics derived from the cells" in n for n in read.notes))
+        self.assertEqual(reader().__name__, "lightsolver_results")
+
     @needs_solver
     def test_solved_results_survive_reopen(self):
         """After a run: one results object per analysis, holding JSON that the schema

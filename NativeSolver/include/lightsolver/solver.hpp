@@ -225,6 +225,23 @@ struct GroupResult {
   std::vector<std::string> luminaires;
 };
 
+/// One luminaire as traced: the flux it emitted in the run, and where that number comes from.
+/// The maintenance factor is not the solver's: a scene's `flux_lm` is already the flux to
+/// trace (the workbench exports initial flux x MF and keeps MF in the scene's metadata).
+struct LuminaireResult {
+  std::string name;
+  std::string type;   ///< the scene file's luminaire type ("point", "photometric", ...)
+  std::string group;  ///< its luminaire group (GroupResult::name)
+  /// Its flux before TILT: the scene's flux_lm; a photometric file's own flux (scaled by
+  /// flux_lm when given); a directional beam's illuminance x opening area across the beam.
+  double flux_lm = 0.0;
+  double tilt_factor = 1.0;  ///< a photometric TILT table's factor at its tilt (1 without one)
+  double dimming = 1.0;      ///< its group's factor in a rescaled result (1 as traced)
+  /// flux_lm x tilt_factor x dimming: what it emitted in the calculation. The group's
+  /// luminaires add up to GroupResult::flux_lm.
+  double emitted_flux_lm = 0.0;
+};
+
 /// An effect the tracer left out because the scene does not need it, and why ("no glass").
 struct SkippedEffect {
   std::string effect;
@@ -269,6 +286,8 @@ struct Results {
   bool contributions = false;       ///< targets carry their per-group contributions
   /// A result of `rescale`: the dimming factor of every group (1 where none was given).
   std::vector<std::pair<std::string, double>> rescaled;
+  /// Every luminaire, in scene order, as traced: the flux it emitted in the calculation.
+  std::vector<LuminaireResult> luminaires;
 };
 
 /// Runs the photon tracer. Deterministic: same scene, seed and photons give bit-identical

@@ -10,26 +10,15 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
+import lightsolver_results
 from lightsolver_report.fmt import finite
-from lightsolver_report.schedule import (LuminaireRow, MaterialRow, PhotometryFn,
-                                         build_luminaires, build_materials)
+from lightsolver_report.schedule import (LuminaireRow, MaterialRow, PhotometricFiles,
+                                         PhotometryFn, build_luminaires, build_materials)
+from lightsolver_results import Stat, Target
 
 #: Verdict keys in the order the report lists them, with the requirement key and unit of each.
 QUANTITIES: Tuple[Tuple[str, str, str], ...] = (
     ("em", "em_lux", "lx"), ("emin", "emin_lux", "lx"), ("u0", "u0", ""), ("ud", "ud", ""))
-
-
-@dataclass
-class Stat:
-    """A value with its confidence interval (low, high), where the results give one."""
-
-    value: Optional[float]
-    low: Optional[float] = None
-    high: Optional[float] = None
-
-    @property
-    def has_interval(self) -> bool:
-        return self.low is not None and self.high is not None
 
 
 @dataclass
@@ -94,14 +83,23 @@ class Area:
     verdict: Optional[str] = None
     verdicts: List[Verdict] = field(default_factory=list)
     grid: Optional[GridData] = None
-    #: Observers (eyes for discomfort glare): the UGR with its interval (docs/glare.md).
+    #: Observers (eyes for discomfort glare): the UGR with its interval (docs/glare.md); an
+    #: observer grid's maximum over its points, the interval simultaneous over them.
     ugr: Optional[Stat] = None
+    #: Observer grids: positions, view directions, and where the maximum UGR is.
+    observer_positions: int = 0
+    observer_directions: int = 0
+    max_at: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]] = None
     horizontal: bool = False
     power_density_w_m2: Optional[float] = None
     power_density_w_m2_100lx: Optional[float] = None
     plan_svg: str = ""
     chart_svg: str = ""
     chart_note: str = ""
+
+    @property
+    def ugr_name(self) -> str:
+        return "max UGR" if self.type == "observer_grid" else "UGR"
 
     @property
     def undecided(self) -> List[Verdict]:
@@ -132,6 +130,9 @@ class Report:
     areas: List[Area]
     warnings: List[str]
     solver_total_flux_lm: Optional[float]
+    #: The schedule's flux is the solver's record of what it traced (False: derived from the
+    #: scene, for results written before the solver recorded it).
+    traced_flux: bool = True
 
     @property
     def ugr_tables(self) -> List[LuminaireRow]:
@@ -154,6 +155,16 @@ class Report:
         return sum(r.total_flux_lm for r in self.luminaires)
 
     @property
+    def tilted(self) -> bool:
+        """Some luminaire's flux has a TILT table's factor other than 1 in it."""
+        return any(r.tilt_factor != 1.0 for r in self.luminaires)
+
+    @property
+    def dimmed(self) -> bool:
+        """Some luminaire is dimmed (rescaled results)."""
+        return any(r.dimming != 1.0 for r in self.luminaires)
+
+    @property
     def total_power_w(self) -> Optional[float]:
         """Connected load, only when every luminaire's power is known."""
         if not self.luminaires or any(r.power_w is None for r in self.luminaires):
@@ -171,21 +182,6 @@ class Report:
             for v in area.verdicts:
                 counts[v.verdict] = counts.get(v.verdict, 0) + 1
         return counts
-
-
-def _stat(target: Dict[str, Any], value_key: str, low_key: str, high_key: str) -> Stat:
-    return Stat(finite(target.get(value_key)), finite(target.get(low_key)),
-                finite(target.get(high_key)))
-
-
-def _ud(target: Dict[str, Any]) -> Stat:
-    """Ud = Emin/Emax: the results' own value and interval, else the ratio of the estimates."""
-    value = finite(target.get("ud"))
-    if value is None:
-        low, high = finite(target.get("min_lux")), finite(target.get("max_lux"))
-        if low is not None and high:
-            value = low / high
-    return Stat(value, finite(target.get("ud_ci_low")), finite(target.get("ud_ci_high")))
 
 
 def _requirements(req: Optional[Dict[str, Any]]) -> List[Requirement]:
@@ -223,9 +219,9 @@ def _axis_name(edge: np.ndarray) -> Optional[int]:
     return None
 
 
-def _grid_data(target: Dict[str, Any], scene_target: Dict[str, Any]) -> Optional[GridData]:
-    nu, nv = (int(n) for n in target.get("cells_uv", (0, 0)))
-    cells = target.get("cells") or []
+def _grid_data(target: Target, scene_target: Dict[str, Any]) -> Optional[GridData]:
+    nu, nv = target.cells_uv or (0, 0)
+    cells = target.cells
     if nu * nv == 0 or len(cells) != nu * nv:
         return None
     lux = np.array([float(c["lux"]) for c in cells], dtype=float).reshape(nv, nu)
@@ -248,33 +244,34 @@ def _is_horizontal_up(scene_target: Dict[str, Any]) -> bool:
     return norm > 0 and n[2] / norm > 0.999
 
 
-def build_area(target: Dict[str, Any], scene_target: Dict[str, Any],
-               labels: Dict[str, str]) -> Area:
-    """One calculation area from its results entry and its scene entry."""
-    name = str(target.get("name", ""))
-    area = Area(name=name, label=labels.get(name, name), type=str(target.get("type", "")),
-                area_m2=finite(target.get("area_m2")), hits=target.get("hits"),
-                em=_stat(target, "mean_lux", "ci_low_lux", "ci_high_lux"))
-    if area.type == "grid":
-        area.emin = _stat(target, "min_lux", "min_ci_low_lux", "min_ci_high_lux")
-        area.emax = _stat(target, "max_lux", "max_ci_low_lux", "max_ci_high_lux")
-        area.u0 = _stat(target, "uniformity", "uniformity_ci_low", "uniformity_ci_high")
-        area.ud = _ud(target)
-        uv = target.get("cells_uv")
-        area.cells_uv = (int(uv[0]), int(uv[1])) if uv else None
+def build_area(target: Target, scene_target: Dict[str, Any], labels: Dict[str, str]) -> Area:
+    """One calculation area from its results target (lightsolver_results' per-type reading)
+    and its scene entry."""
+    area = Area(name=target.name, label=labels.get(target.name, target.name), type=target.type,
+                area_m2=target.area_m2, hits=target.hits, em=target.em)
+    if target.is_grid:
+        area.emin, area.emax, area.u0 = target.emin, target.emax, target.u0
+        area.ud = target.ud
+        area.cells_uv = target.cells_uv
         area.grid = _grid_data(target, scene_target)
         area.horizontal = _is_horizontal_up(scene_target)
-    if area.type == "observer":
-        area.ugr = _stat(target, "ugr", "ugr_ci_low", "ugr_ci_high")
-    req = target.get("requirements")
+    if target.is_glare:
+        area.ugr = target.ugr
+    grid = target.observer_grid
+    if grid is not None:
+        area.observer_positions = len(grid.positions)
+        area.observer_directions = len(grid.view_directions)
+        if grid.max_at is not None:
+            area.max_at = (grid.max_position, grid.max_direction)
+    req: Optional[Dict[str, Any]] = target.requirements or None
     if req is None:  # a solver that does not resolve them: show what the scene states
         req = scene_target.get("requirements")
     area.requirements = _requirements(req)
     if isinstance(req, dict):
         area.task = str(req["task"]) if req.get("task") else scene_target.get("task")
         area.source = str(req["source"]) if req.get("source") else None
-    area.verdicts = _verdicts(target.get("verdicts"))
-    verdict = target.get("verdict")
+    area.verdicts = _verdicts(target.entry.get("verdicts"))
+    verdict = target.entry.get("verdict")
     area.verdict = str(verdict) if isinstance(verdict, str) else None
     return area
 
@@ -300,9 +297,13 @@ def build_report(scene: Dict[str, Any], results: Dict[str, Any], *, scene_name: 
     meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
     labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
     scene_targets = {str(t.get("name")): t for t in scene.get("targets", [])}
-    areas = [build_area(t, scene_targets.get(str(t.get("name")), {}), labels)
-             for t in results.get("targets", [])]
-    luminaires, photometry_warnings = build_luminaires(scene, base_dir, photometry)
+    files = PhotometricFiles(base_dir, photometry)
+    # Read once: schema-checked, older layouts migrated (the luminaires' flux then derived
+    # from the scene), problems and migrations said among the warnings.
+    read = lightsolver_results.read(results, scene, files.scene_flux, strict=False)
+    doc = read.doc
+    areas = [build_area(t, scene_targets.get(t.name, {}), labels) for t in read.targets]
+    luminaires = build_luminaires(scene, files, read.luminaires)
     report = Report(
         title=title or str(meta.get("project") or meta.get("title") or meta.get("document")
                            or os.path.splitext(scene_name)[0]),
@@ -310,11 +311,11 @@ def build_report(scene: Dict[str, Any], results: Dict[str, Any], *, scene_name: 
         date=date, solver_version=solver_version, scene_file=scene_name,
         document_file=os.path.basename(str(meta.get("document_file") or "")),
         generator=str(meta.get("generator") or ""),
-        run=_run_facts(scene, results),
-        verdict=results.get("verdict") if isinstance(results.get("verdict"), str) else None,
+        run=_run_facts(scene, doc),
+        verdict=doc.get("verdict") if isinstance(doc.get("verdict"), str) else None,
         luminaires=luminaires, materials=build_materials(scene, material_defaults), areas=areas,
-        warnings=[str(w) for w in results.get("warnings", [])] + photometry_warnings,
-        solver_total_flux_lm=finite(results.get("total_flux_lm")))
+        warnings=[str(w) for w in doc.get("warnings", [])] + files.warnings + read.notes,
+        solver_total_flux_lm=finite(doc.get("total_flux_lm")), traced_flux=read.traced_flux)
     power = report.total_power_w
     for area in areas:
         if power is not None and area.horizontal and area.area_m2:

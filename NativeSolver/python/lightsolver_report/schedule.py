@@ -1,17 +1,20 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The luminaire schedule and the materials table of the report, from the scene (and what the
-photometric files say of themselves, through ``lightsolver.photometry_summary``)."""
+"""The luminaire schedule and the materials table of the report, from the scene, what the
+photometric files say of themselves (``lightsolver.photometry_summary``) and the flux each
+luminaire emitted as the solver traced it (the results' ``luminaires``, read by
+``lightsolver_results``)."""
 from __future__ import annotations
 
 import hashlib
 import os
 import re
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from lightsolver_report.fmt import finite
+from lightsolver_results import LuminaireFlux
 
 #: IES keywords / EULUMDAT fields that name the maker, in order of preference.
 MAKER_KEYS = ("MANUFAC", "COMPANY")
@@ -39,14 +42,20 @@ class LuminaireRow:
     ugr_4h8h: Optional[Tuple[float, float]] = None
     #: The file's full UGR table (CIE 190), as data sheets print it; None where not judged.
     ugr_table: Optional["UgrTableView"] = None
-    flux_lm: float = 0.0  # emitted in the calculation (maintained, when a factor applied)
+    #: Emitted in the calculation, as traced (after TILT and a rescale's dimming; maintained,
+    #: when a factor applied).
+    flux_lm: float = 0.0
+    #: Its flux before TILT and dimming (the scene's flux_lm, a file's own flux).
+    rated_flux_lm: float = 0.0
+    tilt_factor: float = 1.0  # a photometric TILT table's factor at the luminaire's tilt
+    dimming: float = 1.0  # its group's factor in rescaled results
     maintenance_factor: Optional[float] = None
     power_w: Optional[float] = None
 
     @property
     def initial_flux_lm(self) -> Optional[float]:
-        """The flux before the maintenance factor (the calculation's flux / MF)."""
-        return self.flux_lm / self.maintenance_factor if self.maintenance_factor else None
+        """The flux before the maintenance factor (the rated flux / MF)."""
+        return self.rated_flux_lm / self.maintenance_factor if self.maintenance_factor else None
 
     @property
     def count(self) -> int:
@@ -112,8 +121,10 @@ def _describe(lum: Dict[str, Any]) -> str:
     return str(kind)
 
 
-def _emitted_flux(lum: Dict[str, Any], summary: Optional[Dict[str, Any]]) -> float:
-    """Flux the luminaire emits (docs/scene-format.md, Ranges), TILT not applied."""
+def scene_flux(lum: Dict[str, Any], summary: Optional[Dict[str, Any]]) -> float:
+    """The luminaire's flux derived from its scene entry (docs/scene-format.md, Ranges), TILT
+    not applied: only for results that do not record the traced flux (lightsolver_results'
+    migration step calls it through :meth:`PhotometricFiles.scene_flux`)."""
     kind = lum.get("type")
     if kind == "directional":
         e1 = np.asarray(lum.get("edge1", (0, 0, 0)), dtype=float)
@@ -134,29 +145,49 @@ def _emitted_flux(lum: Dict[str, Any], summary: Optional[Dict[str, Any]]) -> flo
     return flux or 0.0
 
 
-def build_luminaires(scene: Dict[str, Any], base_dir: str,
-                     photometry: Optional[PhotometryFn]) -> Tuple[List[LuminaireRow], List[str]]:
-    """The schedule (alike luminaires on one row, in scene order) and the photometric files'
-    warnings."""
+class PhotometricFiles:
+    """The scene's photometric files: each summary read once, with the parser's warnings."""
+
+    def __init__(self, base_dir: str, photometry: Optional[PhotometryFn]) -> None:
+        self.base_dir, self.photometry = base_dir, photometry
+        self.summaries: Dict[str, Optional[Dict[str, Any]]] = {}
+        self.warnings: List[str] = []
+
+    def summary(self, file: str) -> Optional[Dict[str, Any]]:
+        if file not in self.summaries:
+            self.summaries[file] = _summary(file, self.base_dir, self.photometry, self.warnings)
+        return self.summaries[file]
+
+    def scene_flux(self, lum: Dict[str, Any]) -> float:
+        """The luminaire's flux from the scene (results without ``luminaires``)."""
+        file = lum.get("file") if lum.get("type") == "photometric" else None
+        return scene_flux(lum, self.summary(str(file)) if file is not None else None)
+
+
+def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
+                     traced: Sequence[LuminaireFlux]) -> List[LuminaireRow]:
+    """The schedule (alike luminaires on one row, in scene order), each luminaire at the flux
+    ``traced`` gives it (the results' ``luminaires``, migrated: derived from the scene for
+    older results); 0 lm for a luminaire the results do not list."""
     meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
     labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
     per_lum = meta.get("luminaires") if isinstance(meta.get("luminaires"), dict) else {}
+    by_name = {lum.name: lum for lum in traced}
     rows: Dict[Tuple[Any, ...], LuminaireRow] = {}
-    warnings: List[str] = []
-    summaries: Dict[str, Optional[Dict[str, Any]]] = {}
     for lum in scene.get("luminaires", []):
         name = str(lum.get("name", ""))
         extra = per_lum.get(name) if isinstance(per_lum.get(name), dict) else {}
         file = lum.get("file") if lum.get("type") == "photometric" else None
-        summary = None
-        if file is not None:
-            if file not in summaries:
-                summaries[file] = _summary(file, base_dir, photometry, warnings)
-            summary = summaries[file]
+        summary = files.summary(file) if file is not None else None
         mf = finite(lum.get("maintenance_factor", extra.get("maintenance_factor")))
         if lum.get("type") == "photometric" and lum.get("flux_lm") is None:
             mf = None  # the file's own absolute flux: no maintenance factor was applied
-        row = LuminaireRow(kind=_describe(lum), file=file, flux_lm=_emitted_flux(lum, summary),
+        flux = by_name.get(name)
+        row = LuminaireRow(kind=_describe(lum), file=file,
+                           flux_lm=flux.emitted_flux_lm if flux else 0.0,
+                           rated_flux_lm=flux.flux_lm if flux else 0.0,
+                           tilt_factor=flux.tilt_factor if flux else 1.0,
+                           dimming=flux.dimming if flux else 1.0,
                            maintenance_factor=mf if mf else None,
                            power_w=finite(lum.get("power_w")))
         if summary is not None:
@@ -169,15 +200,16 @@ def build_luminaires(scene: Dict[str, Any], base_dir: str,
             row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
             row.file_watts = finite(summary.get("input_watts")) or None
             row.ugr_table = ugr_table_view(file if os.path.isabs(file) else
-                                           os.path.join(base_dir, file))
+                                           os.path.join(files.base_dir, file))
             row.ugr_4h8h = row.ugr_table.headline() if row.ugr_table else None
-        same_file = _content_key(file, base_dir)
-        key = (row.kind, same_file, row.flux_lm, row.maintenance_factor, row.power_w)
+        same_file = _content_key(file, files.base_dir)
+        key = (row.kind, same_file, row.flux_lm, row.rated_flux_lm, row.tilt_factor,
+               row.dimming, row.maintenance_factor, row.power_w)
         entry = rows.setdefault(key, row)
         entry.names.append(str(labels.get(name, name)))
         if file is not None and file not in entry.files:
             entry.files.append(file)
-    return list(rows.values()), warnings
+    return list(rows.values())
 
 
 @dataclass

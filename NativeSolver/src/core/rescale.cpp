@@ -1,51 +1,33 @@
-// rescale: a results document with per-group tallies, re-read and rebuilt at other dimming
-// factors by the code a traced run uses (target_results.cpp, decide.cpp, results_io.cpp).
+// rescale: a results document with per-group tallies, read by results_from_json and rebuilt at
+// other dimming factors by the code a traced run uses (target_results.cpp, decide.cpp,
+// results_io.cpp).
 #include "lightsolver/rescale.hpp"
 
 #include <cmath>
 #include <map>
 
 #include "core/decide.hpp"
-#include "core/json_reader.hpp"
 #include "core/results_glare.hpp"
 #include "core/target_results.hpp"
 #include "core/target_types.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
+#include "lightsolver/results_io.hpp"
 
 namespace lightsolver {
 namespace {
 
-using detail::JsonNode;
-
-std::optional<double> optional_number(const JsonNode& n, const char* key) {
-  if (!n.has(key) || n.at(key).is_null()) return std::nullopt;
-  return n.at(key).number();
-}
-
-std::vector<std::string> strings(const JsonNode& n) {
-  std::vector<std::string> out;
-  for (std::size_t i = 0; i < n.array_size(); ++i) out.push_back(n[i].string());
-  return out;
-}
-
-Requirements read_requirements(const JsonNode& n) {
-  Requirements q;
-  q.em_lux = optional_number(n, "em_lux");
-  q.u0 = optional_number(n, "u0");
-  q.emin_lux = optional_number(n, "emin_lux");
-  q.ud = optional_number(n, "ud");
-  q.ugr_max = optional_number(n, "ugr_max");
-  if (n.has("task")) q.task = n.at("task").string();
-  if (n.has("source")) q.source = n.at("source").string();
-  return q;
+// Where an error in the results document is (InputError's field).
+std::string at(std::size_t target, const std::string& rest = "") {
+  return "targets[" + std::to_string(target) + "]" + (rest.empty() ? "" : "." + rest);
 }
 
 // The factor of each group, in the results' group order; InputError for bad ones.
-std::vector<double> group_factors(const JsonNode& groups, const GroupFactors& factors) {
-  std::vector<double> out(groups.array_size(), 1.0);
+std::vector<double> group_factors(const std::vector<GroupResult>& groups,
+                                  const GroupFactors& factors, const std::string& source) {
+  std::vector<double> out(groups.size(), 1.0);
   std::map<std::string, std::size_t> index;
-  for (std::size_t g = 0; g < out.size(); ++g) index[groups[g].at("name").string()] = g;
+  for (std::size_t g = 0; g < out.size(); ++g) index[groups[g].name] = g;
   std::vector<bool> given(out.size(), false);
   for (const auto& [name, factor] : factors) {
     const auto it = index.find(name);
@@ -53,16 +35,14 @@ std::vector<double> group_factors(const JsonNode& groups, const GroupFactors& fa
       std::string known;
       for (const auto& [n, _] : index) known += (known.empty() ? "\"" : ", \"") + n + "\"";
       throw InputError(
-          groups.file(), "--dim " + name,
+          source, "--dim " + name,
           "no luminaire group \"" + name + "\" in these results (groups: " + known + ")");
     }
     if (!(std::isfinite(factor) && factor >= 0.0)) {
-      throw InputError(groups.file(), "--dim " + name,
+      throw InputError(source, "--dim " + name,
                        "the factor must be a finite number >= 0 (0: off, 1: as traced)");
     }
-    if (given[it->second]) {
-      throw InputError(groups.file(), "--dim " + name, "the group is dimmed twice");
-    }
+    if (given[it->second]) throw InputError(source, "--dim " + name, "the group is dimmed twice");
     given[it->second] = true;
     out[it->second] = factor;
   }
@@ -70,104 +50,107 @@ std::vector<double> group_factors(const JsonNode& groups, const GroupFactors& fa
 }
 
 // A target of the results: what make_target needs (type, cells, requirements).
-Target read_target(const JsonNode& n) {
+Target scene_target(const TargetResult& in, std::size_t i, const std::string& source) {
   Target t;
-  t.name = n.at("name").string();
-  const std::string type = n.at("type").string();
-  const detail::TargetType* row = detail::find_target_type(type);
-  if (row == nullptr) n.at("type").fail("unknown target type \"" + type + "\"");
+  t.name = in.name;
+  const detail::TargetType* row = detail::find_target_type(in.type);
+  if (row == nullptr)
+    throw InputError(source, at(i, "type"), "unknown target type \"" + in.type + "\"");
   t.type = row->type;
-  if (t.type == Target::Type::Grid) {
-    t.nu = static_cast<std::uint32_t>(n.at("cells_uv")[0].unsigned_integer());
-    t.nv = static_cast<std::uint32_t>(n.at("cells_uv")[1].unsigned_integer());
-  }
-  if (n.has("requirements")) t.requirements = read_requirements(n.at("requirements"));
+  t.nu = in.nu;
+  t.nv = in.nv;
+  t.requirements = in.requirements;
   return t;
 }
 
-Tally read_tally(const JsonNode& n) {
-  return {n.at("sum").unsigned_integer(), n.at("sum_sq").unsigned_integer()};
-}
-
-// An observer grid's per-point tallies ("points": [[sum, sum_sq], ...]) into bins 2k from
-// `first` (each point's whole square; its cell bin is not read by the results).
-void read_point_tallies(const JsonNode& c, std::size_t points, Tally* first) {
-  const JsonNode list = c.at("points");
-  if (list.array_size() != points) {
-    list.fail("has " + std::to_string(list.array_size()) + " entries, expected one per point (" +
-              std::to_string(points) + ")");
-  }
-  for (std::size_t k = 0; k < points; ++k) {
-    const JsonNode p = list[k];
-    if (p.array_size() != 2) p.fail("expected [sum, sum_sq]");
-    first[2 * k] = {p[0].unsigned_integer(), p[1].unsigned_integer()};
-  }
-}
-
 // The run's own fields, as traced.
-void read_run(const JsonNode& root, Results& r) {
-  r.photons = root.at("photons").unsigned_integer();
-  r.photons_requested = root.at("photons_requested").unsigned_integer();
-  r.partial = root.at("partial").boolean();
-  r.stop_reason = root.at("stop_reason").string();
-  r.seconds = root.at("seconds").number();
-  r.backend = root.at("backend").string();
-  r.confidence = root.at("confidence").number();
-  r.seed = root.at("seed").unsigned_integer();
-  r.ray_segments = root.at("ray_segments").unsigned_integer();
-  r.capped_paths = root.at("capped_paths").unsigned_integer();
-  r.cut_paths = root.at("cut_paths").unsigned_integer();
-  r.warnings = strings(root.at("warnings"));
-  r.max_seconds = optional_number(root, "max_seconds");
-  r.target_accuracy = optional_number(root, "target_accuracy");
-  if (r.target_accuracy) {
-    r.accuracy_met = root.at("accuracy_met").boolean();
-    r.accuracy_per_cell = root.at("accuracy_per_cell").boolean();
+void copy_run(const Results& in, Results& r) {
+  r.photons = in.photons;
+  r.photons_requested = in.photons_requested;
+  r.partial = in.partial;
+  r.stop_reason = in.stop_reason;
+  r.seconds = in.seconds;
+  r.backend = in.backend;
+  r.confidence = in.confidence;
+  r.seed = in.seed;
+  r.ray_segments = in.ray_segments;
+  r.capped_paths = in.capped_paths;
+  r.cut_paths = in.cut_paths;
+  r.warnings = in.warnings;
+  r.max_seconds = in.max_seconds;
+  r.target_accuracy = in.target_accuracy;
+  r.accuracy_met = in.accuracy_met;
+  r.accuracy_per_cell = in.accuracy_per_cell;
+  r.judged = in.judged;
+  r.decide = in.decide;
+}
+
+// Every luminaire as traced (absent from results older than the field), dimmed by its
+// group's factor since the trace (`rescaled`, as recorded).
+std::vector<LuminaireResult> dimmed_luminaires(const Results& in, const Results& r,
+                                               const std::string& source) {
+  std::map<std::string, double> factor(r.rescaled.begin(), r.rescaled.end());
+  std::vector<LuminaireResult> out = in.luminaires;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    LuminaireResult& l = out[i];
+    const auto f = factor.find(l.group);
+    if (f == factor.end()) {
+      throw InputError(source, "luminaires[" + std::to_string(i) + "].group",
+                       "no luminaire group \"" + l.group + "\"");
+    }
+    l.dimming = f->second;
+    l.emitted_flux_lm = l.flux_lm * l.tilt_factor * l.dimming;
   }
-  r.judged = root.has("verdict");
-  if (r.judged) r.decide = root.at("decide").boolean();
+  return out;
+}
+
+// Target i's tallies of group part `c` into its bins from `first`: the whole target, then its
+// cells; an observer grid's points at bin + 2k (each point's whole square; its cell bin is
+// not read by the results).
+void place_tallies(const Contribution& c, const TargetResult& t, std::size_t points, std::size_t i,
+                   const std::string& source, Tally* first) {
+  const std::string where = at(i, "contributions." + c.group);
+  if (points > 0) {
+    if (c.tallies.size() != points) {
+      throw InputError(source, where + ".points",
+                       "has " + std::to_string(c.tallies.size()) +
+                           " entries, expected one per point (" + std::to_string(points) + ")");
+    }
+    for (std::size_t k = 0; k < points; ++k) first[2 * k] = c.tallies[k];
+    return;
+  }
+  const std::size_t cells = t.is_grid ? std::size_t(t.nu) * t.nv : 0;
+  if (c.tallies.size() != 1 + cells) throw InputError(source, where + ".cells", "wrong cell count");
+  for (std::size_t k = 0; k <= cells; ++k) first[k] = c.tallies[k];
 }
 
 }  // namespace
 
 Results rescale_results(const std::string& results_json, const GroupFactors& factors,
                         const std::string& source) {
-  const nlohmann::json doc = detail::parse_json_text(results_json, source);
-  const JsonNode root(doc, "", source);
-  if (root.at("format").string() != kResultsFormat) {
-    root.at("format").fail(std::string("expected \"") + kResultsFormat + "\"");
+  const Results in = results_from_json(results_json, source);
+  if (in.groups.empty()) {
+    throw InputError(source, "", "results without luminaire groups: trace them again");
   }
-  if (!root.has("groups")) root.fail("results without luminaire groups: trace them again");
-  const JsonNode groups = root.at("groups"), targets = root.at("targets");
-  for (std::size_t i = 0; i < targets.array_size(); ++i) {
-    if (!targets[i].has("contributions")) {
-      targets[i].fail(
-          "results without contributions: trace with --contributions (scene: "
-          "settings.contributions) to rescale them");
+  for (std::size_t i = 0; i < in.targets.size(); ++i) {
+    if (in.targets[i].contributions.empty()) {
+      throw InputError(source, at(i),
+                       "results without contributions: trace with --contributions (scene: "
+                       "settings.contributions) to rescale them");
     }
   }
-  const std::vector<double> factor = group_factors(groups, factors);
+  const std::vector<double> factor = group_factors(in.groups, factors, source);
   Results r;
-  read_run(root, r);
+  copy_run(in, r);
   r.contributions = true;
-  std::map<std::string, double> previous;
+  std::map<std::string, double> previous(in.rescaled.begin(), in.rescaled.end());
   detail::LuminaireFactors luminaire_factor;
-  if (root.has("rescaled")) {
-    for (const auto& [name, f] : root.at("rescaled").object().items())
-      previous[name] = f.get<double>();
-  }
   detail::GroupedTallies tallies;
   std::vector<std::string> names;
   for (std::size_t g = 0; g < factor.size(); ++g) {
-    const JsonNode n = groups[g];
-    GroupResult gr;
-    gr.name = n.at("name").string();
-    gr.flux_lm = n.at("flux_lm").number() * factor[g];
-    gr.photons = n.at("photons").unsigned_integer();
-    for (std::size_t l = 0; l < n.at("luminaires").array_size(); ++l) {
-      gr.luminaires.push_back(n.at("luminaires")[l].string());
-      luminaire_factor[gr.luminaires.back()] = factor[g];
-    }
+    GroupResult gr = in.groups[g];
+    gr.flux_lm *= factor[g];
+    for (const std::string& l : gr.luminaires) luminaire_factor[l] = factor[g];
     const auto p = previous.find(gr.name);
     r.rescaled.emplace_back(gr.name, factor[g] * (p == previous.end() ? 1.0 : p->second));
     r.total_flux_lm += gr.flux_lm;
@@ -176,6 +159,7 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     names.push_back(gr.name);
     r.groups.push_back(std::move(gr));
   }
+  r.luminaires = dimmed_luminaires(in, r, source);
   // Every target's bins (whole target, then cells) end to end, with their areas.
   std::vector<Target> scene_targets;
   std::vector<std::uint32_t> first_bin;
@@ -184,10 +168,11 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
   // sits above core, results_glare.hpp).
   const detail::ResultsGlare& glare = detail::results_glare();
   std::map<std::size_t, std::shared_ptr<const detail::ObserverGridGeometry>> eyes;
-  for (std::size_t i = 0; i < targets.array_size(); ++i) {
-    scene_targets.push_back(read_target(targets[i]));
+  for (std::size_t i = 0; i < in.targets.size(); ++i) {
+    const TargetResult& t_in = in.targets[i];
+    scene_targets.push_back(scene_target(t_in, i, source));
     const Target& t = scene_targets.back();
-    const double area = targets[i].at("area_m2").number();
+    const double area = t_in.area_m2;
     first_bin.push_back(static_cast<std::uint32_t>(bins.size()));
     bins.push_back({area});
     // As prepare() lays them out: equal cells; an observer's second bin is unused here.
@@ -195,7 +180,13 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
       bins.resize(bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
     }
     if (t.type == Target::Type::ObserverGrid) {
-      auto g = glare.observer_grid(targets[i], luminaire_factor);
+      const ObserverGridGlare& grid = t_in.observer_grid.value();
+      if (grid.terms.status.empty()) {
+        throw InputError(source, at(i, "observer_grid"),
+                         "no glare_terms: trace with --contributions (scene: "
+                         "settings.contributions)");
+      }
+      auto g = glare.observer_grid(grid, luminaire_factor);
       // Point k's two bins (whole square, its one cell) at bin + 2k, as prepare() lays them.
       bins.resize(bins.size() - 1 + 2 * glare.points(*g), {area});
       eyes[i] = std::move(g);
@@ -204,21 +195,11 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
   tallies.bin_count = bins.size();
   std::vector<Tally> counts(names.size() * bins.size());
   tallies.bins = &counts;
-  for (std::size_t i = 0; i < targets.array_size(); ++i) {
-    const JsonNode parts = targets[i].at("contributions");
-    const std::uint32_t cells =
-        scene_targets[i].type == Target::Type::Grid ? scene_targets[i].nu * scene_targets[i].nv : 0;
+  for (std::size_t i = 0; i < in.targets.size(); ++i) {
+    const std::size_t points = eyes.contains(i) ? glare.points(*eyes.at(i)) : 0;
     for (std::size_t g = 0; g < names.size(); ++g) {
-      const JsonNode c = parts.at(names[g].c_str());
-      if (eyes.contains(i)) {
-        read_point_tallies(c, glare.points(*eyes.at(i)), &counts[g * bins.size() + first_bin[i]]);
-        continue;
-      }
-      counts[g * bins.size() + first_bin[i]] = read_tally(c);
-      if (cells > 0 && c.at("cells").array_size() != cells) c.at("cells").fail("wrong cell count");
-      for (std::uint32_t k = 0; k < cells; ++k) {
-        counts[g * bins.size() + first_bin[i] + 1 + k] = read_tally(c.at("cells")[k]);
-      }
+      place_tallies(in.targets[i].contributions[g], in.targets[i], points, i, source,
+                    &counts[g * bins.size() + first_bin[i]]);
     }
   }
   for (std::size_t i = 0; i < scene_targets.size(); ++i) {
@@ -227,7 +208,8 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
         detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
                             nullptr, grid == eyes.end() ? nullptr : grid->second.get());
     if (t.is_observer && !t.observer_grid) {
-      t.glare = glare.observer(targets[i], luminaire_factor, t.name, t.estimate);
+      t.glare = glare.observer(in.targets[i].glare.value(), luminaire_factor, t.name, t.estimate,
+                               source, at(i));
     }
     detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
     r.targets.push_back(std::move(t));

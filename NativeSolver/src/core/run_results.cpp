@@ -1,5 +1,6 @@
 #include "core/run_results.hpp"
 
+#include "core/luminaire_types.hpp"
 #include "core/target_results.hpp"
 
 namespace lightsolver::detail {
@@ -36,6 +37,24 @@ std::vector<GroupResult> group_results(const Scene& scene, const PreparedScene& 
     GroupResult r{g.name, g.flux_lm, photons[out.size()], {}};
     for (const std::uint32_t l : g.luminaires) r.luminaires.push_back(scene.luminaires[l].name);
     out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::vector<LuminaireResult> luminaire_results(const Scene& scene, const PreparedScene& s,
+                                               const std::vector<double>& dimming) {
+  std::vector<LuminaireResult> out(scene.luminaires.size());
+  for (std::size_t g = 0; g < s.groups.size(); ++g) {
+    const double factor = g < dimming.size() ? dimming[g] : 1.0;
+    for (const std::uint32_t i : s.groups[g].luminaires) {
+      const Luminaire& l = scene.luminaires[i];
+      LuminaireResult& r = out[i];
+      r = {l.name,    luminaire_type(l.type).name, s.groups[g].name,
+           l.flux_lm, photometric_tilt_factor(l),  factor,
+           0.0};
+      // The product prepare_luminaires() adds into the group's flux, bit for bit.
+      r.emitted_flux_lm = r.flux_lm * r.tilt_factor * r.dimming;
+    }
   }
   return out;
 }

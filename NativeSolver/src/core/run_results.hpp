@@ -29,6 +29,12 @@ std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s
 std::vector<GroupResult> group_results(const Scene& scene, const PreparedScene& s,
                                        const std::vector<std::uint64_t>& photons);
 
+/// Every luminaire as traced, in scene order (the one place the results' per-luminaire flux
+/// comes from): its flux, TILT factor and emitted flux as prepare_luminaires() sums them into
+/// its group's flux, times `dimming[g]` for group g (empty: 1, a traced run).
+std::vector<LuminaireResult> luminaire_results(const Scene& scene, const PreparedScene& s,
+                                               const std::vector<double>& dimming = {});
+
 /// The scene's and the photometric files' warnings, and those the run's counts call for (zero
 /// flux, capped or cut paths, partial, undecided, accuracy budget spent).
 void add_warnings(const Scene& scene, Results& r);

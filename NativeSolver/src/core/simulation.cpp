@@ -405,6 +405,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.groups = detail::group_results(
       scene, prepared,
       detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));
+  r.luminaires = detail::luminaire_results(scene, prepared);
   state_->kept = std::move(tallies);  // what refine() continues from
   state_->kept_photons = r.photons;
   state_->kept_seed = r.seed;

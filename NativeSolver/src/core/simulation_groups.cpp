@@ -127,7 +127,12 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
   }
   r.targets = detail::all_targets(scene, p, tallies, confidence, r.judged, false, &luminaires);
   r.groups = detail::group_results(scene, p, tallies.photons);
-  for (std::size_t g = 0; g < groups; ++g) r.groups[g].flux_lm = flux_lm[g];
+  std::vector<double> dimming(groups, 0.0);
+  for (std::size_t g = 0; g < groups; ++g) {
+    r.groups[g].flux_lm = flux_lm[g];
+    if (p.groups[g].flux_lm > 0.0) dimming[g] = flux_lm[g] / p.groups[g].flux_lm;
+  }
+  r.luminaires = detail::luminaire_results(scene, p, dimming);
   detail::add_verdicts(r);
   detail::add_warnings(scene, r);
   return r;

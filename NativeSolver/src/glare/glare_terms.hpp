@@ -35,8 +35,6 @@ std::optional<double> ugr_for(double sum, double lb);
 /// CIE 117's range warning for a source of `solid_angle_sr` (none inside 0.0003-0.1 sr).
 std::optional<std::string> solid_angle_warning(const std::string& name, double solid_angle_sr);
 
-/// The status characters and the reasons of the geometric ones ("behind the eye", ...).
-inline constexpr const char* kGlareStatus = "cblodx";
 /// The status character of a geometric reason not to count ('b', 'l', 'o', 'd'); 'x' for any
 /// other reason (the luminaire is never rated).
 char geometric_status(const std::string& why_not);

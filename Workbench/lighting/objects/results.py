@@ -22,9 +22,11 @@ from lighting.objects.base import BaseProxy, HIDDEN, Prop, READ_ONLY, proxy_type
 TYPE = "Lighting::Results"
 _RO = READ_ONLY
 
-#: Per-target float lists derived from the JSON (property -> targets[] key).
-PER_TARGET = {"MeanLux": "mean_lux", "CiLowLux": "ci_low_lux", "CiHighLux": "ci_high_lux",
-              "MinLux": "min_lux", "MaxLux": "max_lux", "Uniformity": "uniformity"}
+#: Per-target float lists derived from the JSON (property -> the reader's statistic and part:
+#: lightsolver_results.Target's ``em``, ``emin``, ``emax``, ``u0``).
+PER_TARGET = {"MeanLux": ("em", "value"), "CiLowLux": ("em", "low"),
+              "CiHighLux": ("em", "high"), "MinLux": ("emin", "value"),
+              "MaxLux": ("emax", "value"), "Uniformity": ("u0", "value")}
 #: Grid cell values, all targets concatenated (property -> cells[] key).
 CELL_VALUES = {"CellsLux": "lux", "CellsCiLowLux": "ci_low_lux",
                "CellsCiHighLux": "ci_high_lux"}
@@ -162,15 +164,27 @@ def _num(value: Any) -> float:
         return 0.0
 
 
+class _NONE:  # a statistic the target type does not have: every part absent (0 in the lists)
+    value = low = high = None
+
+
 def derive(obj: Any) -> None:
     """Set the derived properties from ResultsJson (all empty when there is none)."""
+    from lighting.solver.results import reader
+
     found, note = shown(obj)
-    doc = found or {}
-    entries = [e for e in doc.get("targets", []) if isinstance(e, dict)]
-    _set(obj, "TargetNames", [str(e.get("name", "")) for e in entries])
-    for name, key in PER_TARGET.items():
-        _set(obj, name, [_num(e.get(key)) for e in entries])
-    cells: List[List[Dict[str, Any]]] = [list(e.get("cells") or []) for e in entries]
+    # Read as the report reads it (lightsolver_results): each target type once, older layouts
+    # migrated; not schema-checked here (documents of older versions must open).
+    try:
+        read = reader().read(found, strict=False, check_schema=False) if found else None
+    except ValueError:  # lightsolver_results.ResultsError: no results document
+        read = None
+    doc = read.doc if read is not None else {}
+    targets = read.targets if read is not None else []
+    _set(obj, "TargetNames", [t.name for t in targets])
+    for name, (stat, part) in PER_TARGET.items():
+        _set(obj, name, [_num(getattr(getattr(t, stat) or _NONE, part)) for t in targets])
+    cells: List[List[Dict[str, Any]]] = [list(t.entry.get("cells") or []) for t in targets]
     _set(obj, "CellCounts", [len(c) for c in cells])
     for name, key in CELL_VALUES.items():
         _set(obj, name, [_num(c.get(key)) for group in cells for c in group])

@@ -1,11 +1,44 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Results: the solver's layout as plain data, kept in the document, formatted as a table."""
+"""Results: the solver's layout as plain data, kept in the document, formatted as a table.
+
+Read through the solver's one Python results reader, ``lightsolver_results``
+(NativeSolver/python/lightsolver_results): its per-type reading of each target and its
+migration of older results (grid statistics from the cells) are the report's too."""
 from __future__ import annotations
 
+import importlib
 import json
 import math
+import os
+import sys
 from dataclasses import dataclass, field
+from types import ModuleType
 from typing import Any, Dict, List, Optional, Tuple
+
+READER = "lightsolver_results"
+
+
+def reader() -> ModuleType:
+    """Import ``lightsolver_results``: beside the ``lightsolver`` module (a build folder, the
+    folder scripts/install-workbench.sh puts on the path), else in the source tree this
+    workbench belongs to. It needs no native module, so stored results read without one."""
+    try:
+        return importlib.import_module(READER)
+    except ImportError:
+        pass
+    from lighting.messages import SolverUnavailableError
+    from lighting.solver import run
+
+    folders = run.candidate_dirs() + [os.path.join(run.repository_root(), "NativeSolver",
+                                                   "python")]
+    for folder in folders:
+        if os.path.isfile(os.path.join(folder, READER, "__init__.py")):
+            if folder not in sys.path:
+                sys.path.append(folder)
+            return importlib.import_module(READER)
+    raise SolverUnavailableError(f"The results reader '{READER}' is not found beside the "
+                                 f"lightsolver module nor in {folders[-1]}; build the project "
+                                 "(cmake --build build)")
 
 
 def _float(value: Any, default: float = 0.0) -> float:
@@ -26,12 +59,9 @@ def normalise(raw: Dict[str, Any]) -> Dict[str, Any]:
     """The solver's results as plain JSON data in the ``lightsolver.results/1`` layout.
 
     ``lightsolver.solve()`` already returns the layout the CLI writes (one C++ serializer,
-    docs/schemas/results.schema.json); only the numpy cell arrays it adds beside it are dropped,
-    so results from either source are stored alike."""
-    out = {key: value for key, value in raw.items() if key != "targets"}
-    out["targets"] = [{k: v for k, v in tgt.items() if k not in CELL_ARRAYS}
-                      for tgt in raw.get("targets", [])]
-    return out
+    docs/schemas/results.schema.json); only the numpy cell arrays it adds beside it are dropped
+    (``lightsolver_results.plain``), so results from either source are stored alike."""
+    return reader().plain(raw)
 
 
 @dataclass
@@ -112,64 +142,52 @@ class TargetResult:
         return all(checks) if checks else None
 
     @classmethod
-    def from_entry(cls, entry: Dict[str, Any], label: str = "",
-                   required: Tuple[float, float] = (0.0, 0.0)) -> "TargetResult":
-        """From a normalised ``targets[]`` entry."""
-        result = cls(name=str(entry.get("name", "")), label=label or str(entry.get("name", "")),
-                     kind=str(entry.get("type", "surface")),
-                     mean_lux=_float(entry.get("mean_lux")),
-                     ci_low_lux=_float(entry.get("ci_low_lux")),
-                     ci_high_lux=_float(entry.get("ci_high_lux")),
-                     sigma_lux=_float(entry.get("sigma_lux")), hits=_float(entry.get("hits")),
-                     area_m2=_float(entry.get("area_m2")),
+    def from_target(cls, target: Any, label: str = "",
+                    required: Tuple[float, float] = (0.0, 0.0)) -> "TargetResult":
+        """From a ``lightsolver_results.Target`` (the reader's per-type reading of a migrated
+        ``targets[]`` entry)."""
+        value = lambda s: _float(s.value) if s is not None else 0.0  # noqa: E731
+        result = cls(name=target.name, label=label or target.name, kind=target.type,
+                     mean_lux=value(target.em), ci_low_lux=_float(target.em.low),
+                     ci_high_lux=_float(target.em.high), sigma_lux=_float(target.sigma_lux),
+                     hits=_float(target.hits), area_m2=_float(target.area_m2),
                      required_lux=required[0], required_uniformity=required[1])
-        if result.kind in GLARE_KINDS:  # an observer grid's: the maximum's
-            result.ugr = _optional(entry.get("ugr"))
-            result.ugr_ci = (_optional(entry.get("ugr_ci_low")),
-                             _optional(entry.get("ugr_ci_high")))
-        cells = entry.get("cells") or []
-        if result.kind == "grid":
-            uv = entry.get("cells_uv") or [len(cells), 1]
-            result.cells_uv = (int(uv[0]), int(uv[1]))
+        if target.is_glare:  # an observer grid's: the maximum's
+            result.ugr = target.ugr.value
+            result.ugr_ci = (target.ugr.low, target.ugr.high)
+        if target.is_grid:
+            cells = target.cells
+            result.cells_uv = target.cells_uv
             result.cells_lux = [_float(c.get("lux")) for c in cells]
             result.cells_ci_low_lux = [_float(c.get("ci_low_lux")) for c in cells]
             result.cells_ci_high_lux = [_float(c.get("ci_high_lux")) for c in cells]
             result.cells_hits = [_float(c.get("hits")) for c in cells]
-            result.min_lux = _float(entry.get("min_lux", min(result.cells_lux, default=0.0)))
-            result.max_lux = _float(entry.get("max_lux", max(result.cells_lux, default=0.0)))
-            mean = result.mean_lux
-            result.uniformity = _float(entry.get("uniformity",
-                                                 result.min_lux / mean if mean > 0 else 0.0))
-            if result.cells_lux:
-                i_min = min(range(len(result.cells_lux)), key=result.cells_lux.__getitem__)
-                i_max = max(range(len(result.cells_lux)), key=result.cells_lux.__getitem__)
-                result.min_ci_lux = (result.cells_ci_low_lux[i_min], result.cells_ci_high_lux[i_min])
-                result.max_ci_lux = (result.cells_ci_low_lux[i_max], result.cells_ci_high_lux[i_max])
-            _solver_intervals(result, entry)
-        if entry.get("verdict") in ("pass", "fail", "undecided"):
-            result.verdict = str(entry["verdict"])
-            result.verdicts = dict(entry.get("verdicts") or {})
+            result.min_lux, result.max_lux = value(target.emin), value(target.emax)
+            result.uniformity = value(target.u0)
+            if result.cells_lux:  # the extreme cells' own intervals, until the solver's below
+                lux, low, high = result.cells_lux, result.cells_ci_low_lux, result.cells_ci_high_lux
+                i_min = min(range(len(lux)), key=lux.__getitem__)
+                i_max = max(range(len(lux)), key=lux.__getitem__)
+                result.min_ci_lux = (low[i_min], high[i_min])
+                result.max_ci_lux = (low[i_max], high[i_max])
+            if target.emin.has_interval:  # simultaneous over the cells: docs/statistics.md
+                result.min_ci_lux = (target.emin.low, target.emin.high)
+            if target.emax.has_interval:
+                result.max_ci_lux = (target.emax.low, target.emax.high)
+            if target.u0.has_interval:
+                result.solver_uniformity_ci = (target.u0.low, target.u0.high)
+        if target.verdict is not None:
+            result.verdict = target.verdict
+            result.verdicts = dict(target.verdicts)
         return result
 
-
-def _optional(value: Any) -> Optional[float]:
-    """A finite number, or None (JSON null, absent)."""
-    if value is None:
-        return None
-    number = _float(value, float("nan"))
-    return number if math.isfinite(number) else None
-
-
-def _solver_intervals(result: TargetResult, entry: Dict[str, Any]) -> None:
-    """The solver's intervals of Emin, Emax and U0 (simultaneous over the cells, so honest for a
-    minimum or maximum of noisy cells: docs/statistics.md), where the run judged requirements."""
-    if "min_ci_low_lux" in entry:
-        result.min_ci_lux = (_float(entry["min_ci_low_lux"]), _float(entry["min_ci_high_lux"]))
-    if "max_ci_low_lux" in entry:
-        result.max_ci_lux = (_float(entry["max_ci_low_lux"]), _float(entry["max_ci_high_lux"]))
-    if "uniformity_ci_low" in entry:
-        result.solver_uniformity_ci = (_float(entry["uniformity_ci_low"]),
-                                       _float(entry["uniformity_ci_high"]))
+    @classmethod
+    def from_entry(cls, entry: Dict[str, Any], label: str = "",
+                   required: Tuple[float, float] = (0.0, 0.0)) -> "TargetResult":
+        """From one ``targets[]`` entry (migrated alone, as the reader does a whole document)."""
+        doc = {"format": reader().FORMAT, "targets": [entry]}
+        return cls.from_target(reader().read(doc, strict=False, check_schema=False).targets[0],
+                               label, required)
 
 
 @dataclass
@@ -205,9 +223,12 @@ class AnalysisResult:
         """From a normalised results dictionary."""
         labels = labels or {}
         required = required or {}
-        targets = [TargetResult.from_entry(e, labels.get(e.get("name", ""), ""),
-                                           required.get(e.get("name", ""), (0.0, 0.0)))
-                   for e in data.get("targets", [])]
+        # Not schema-checked here: live frames arrive many times a second, and documents
+        # saved by older versions must open; the solver wrote what it checks.
+        read = reader().read(data, strict=False, check_schema=False)
+        targets = [TargetResult.from_target(t, labels.get(t.name, ""),
+                                            required.get(t.name, (0.0, 0.0)))
+                   for t in read.targets]
         return cls(targets=targets, photons=_float(data.get("photons")),
                    partial=bool(data.get("partial", False)), seconds=_float(data.get("seconds")),
                    backend=str(data.get("backend", "")),

@@ -1,0 +1,121 @@
+"""The one Python results reader (NativeSolver/python/lightsolver_results): schema-checked, the
+legacy fallbacks in one migration step that says what it did, each target type read once; found
+by FreeCAD's /usr/bin/python3 from the build folder and from the source tree."""
+import json
+import os
+import subprocess
+
+import pytest
+
+import lightsolver
+import lightsolver_results as reader
+from conftest import SOURCE_DIR
+
+GOLDEN = SOURCE_DIR / "Tests" / "golden"
+
+
+def golden(name):
+    return json.loads((GOLDEN / f"{name}.results.json").read_text())
+
+
+@pytest.mark.parametrize("name", ["room", "office"])
+def test_current_results_read_without_migration(name):
+    doc = golden(name)
+    read = reader.read(doc)
+    assert read.notes == [] and read.traced_flux
+    assert [t.name for t in read.targets] == [t["name"] for t in doc["targets"]]
+    for t, entry in zip(read.targets, doc["targets"]):
+        assert (t.em.value, t.em.low, t.em.high) == (
+            entry["mean_lux"], entry["ci_low_lux"], entry["ci_high_lux"])
+        if t.is_grid:
+            assert t.emin.value == entry["min_lux"] and t.u0.value == entry["uniformity"]
+            assert t.ud.value == entry["min_lux"] / entry["max_lux"] and not t.ud.has_interval
+    assert sum(lum.emitted_flux_lm for lum in read.luminaires) == pytest.approx(
+        doc["total_flux_lm"], rel=1e-12)
+    assert doc == golden(name)  # the caller's document is left as it was
+
+
+def test_the_migration_fills_what_older_solvers_left_out_and_says_so():
+    doc = golden("room")
+    grid = doc["targets"][1]
+    for key in ("min_lux", "max_lux", "uniformity"):
+        grid.pop(key)
+    doc.pop("luminaires")
+    scene = json.loads((SOURCE_DIR / "Examples" / "room" / "room.json").read_text())
+    read = reader.read(doc, scene, lambda lum: 2.0 * lum["flux_lm"])
+    lux = [c["lux"] for c in grid["cells"]]
+    workplane = read["workplane"]
+    assert (workplane.emin.value, workplane.emax.value) == (min(lux), max(lux))
+    assert workplane.u0.value == min(lux) / grid["mean_lux"]
+    assert any("grid statistics derived from the cells" in n and "workplane" in n
+               for n in read.notes)
+    assert reader.DERIVED_FLUX_NOTE in read.notes and not read.traced_flux
+    assert [lum.emitted_flux_lm for lum in read.luminaires] == [
+        2.0 * lum["flux_lm"] for lum in scene["luminaires"]]
+    assert all(lum.tilt_factor == 1.0 for lum in read.luminaires)
+    # Without a scene the luminaires stay absent (nothing to derive them from).
+    assert reader.read(doc).luminaires == []
+
+
+def test_schema_problems_raise_or_become_notes():
+    doc = golden("office")
+    doc["targets"][0]["mean_lux"] = "bright"
+    with pytest.raises(reader.ResultsError, match="targets/0/mean_lux"):
+        reader.read(doc)
+    lenient = reader.read(doc, strict=False)
+    assert any(n.startswith("schema: targets/0/mean_lux") for n in lenient.notes)
+    assert lenient.targets[0].em.value is None
+    with pytest.raises(reader.ResultsError, match="format"):
+        reader.read(dict(doc, format="lightsolver.results/0"), strict=False)
+    assert reader.check(golden("office")) == []
+
+
+def test_an_observer_grid_is_read_as_one(room_scene):
+    scene = lightsolver.load_scene(str(room_scene))
+    scene.add_target("eyes", "observer_grid", corner=[0.5, 0.5, 1.2], edge1=[5.0, 0, 0],
+                     edge2=[0, 3.0, 0], cells=[2, 2], view_step_deg=90)
+    raw = lightsolver.solve(scene, photons=50_000, seed=3)
+    read = reader.read(reader.plain(raw))
+    eyes = read["eyes"]
+    entry = raw["targets"][-1]
+    assert eyes.is_glare and not eyes.is_grid
+    assert (eyes.ugr.value, eyes.ugr.low, eyes.ugr.high) == (
+        entry["ugr"], entry["ugr_ci_low"], entry["ugr_ci_high"])
+    grid = eyes.observer_grid
+    assert grid.points == 16 and len(grid.ugr) == 4
+    at = entry["observer_grid"]["max_at"]
+    assert grid.max_at == (at["position"], at["direction"])
+    assert grid.ugr[at["position"]][at["direction"]] == entry["ugr"]
+    assert [lum.name for lum in read.luminaires] == [lum["name"] for lum in raw["luminaires"]]
+
+
+@pytest.mark.parametrize("where", ["build", "source"])
+def test_freecads_python_imports_it_and_finds_the_schema(where):
+    """/usr/bin/python3 (FreeCAD's embedded interpreter) with only the reader's folder on the
+    path: the build folder's copy has the schema beside it, the source tree's finds
+    docs/schemas."""
+    folder = (os.path.dirname(os.path.dirname(reader.__file__)) if where == "build"
+              else str(SOURCE_DIR / "NativeSolver" / "python"))
+    code = ("import lightsolver_results as r, sys; s = r.schema(); "
+            "print(r.__file__); sys.exit(0 if s and s['title'] else 1)")
+    out = subprocess.run(["/usr/bin/python3", "-S", "-c", code], capture_output=True, text=True,
+                         env={"PYTHONPATH": folder}, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith(folder)
+
+
+def test_every_target_type_of_the_solver_is_read(tmp_path, room_scene):
+    """The reader knows every target type the solver writes (a type added to the solver
+    without a reading here fails this test), and says so of a type it does not know."""
+    scene = json.loads(room_scene.read_text())
+    known = {t["type"] for t in scene["targets"]} | {"observer", "observer_grid"}
+    types = getattr(lightsolver, "target_types", None)  # the solver's rows, where exported
+    if types is not None:
+        known |= {str(row.get("name") or row.get("type")) if isinstance(row, dict) else str(row)
+                  for row in types()}
+    assert known <= set(reader.READ_TYPES), known - set(reader.READ_TYPES)
+    doc = golden("room")
+    doc["targets"][0]["type"] = "daylight_factor"
+    read = reader.read(doc, strict=False)
+    assert any("'daylight_factor' is unknown to this reader" in n for n in read.notes)
+    assert read.targets[0].em.value == doc["targets"][0]["mean_lux"]
