@@ -78,7 +78,7 @@ Target read_target(const JsonNode& n) {
   const detail::TargetType* row = detail::find_target_type(type);
   if (row == nullptr) n.at("type").fail("unknown target type \"" + type + "\"");
   t.type = row->type;
-  if (t.type == Target::Type::Grid) {
+  if (row->cells) {
     t.nu = static_cast<std::uint32_t>(n.at("cells_uv")[0].unsigned_integer());
     t.nv = static_cast<std::uint32_t>(n.at("cells_uv")[1].unsigned_integer());
   }
@@ -90,18 +90,18 @@ Tally read_tally(const JsonNode& n) {
   return {n.at("sum").unsigned_integer(), n.at("sum_sq").unsigned_integer()};
 }
 
-// An observer grid's per-point tallies ("points": [[sum, sum_sq], ...]) into bins 2k from
-// `first` (each point's whole square; its cell bin is not read by the results).
-void read_point_tallies(const JsonNode& c, std::size_t points, Tally* first) {
+// An observer grid's per-point tallies ("points": [[sum, sum_sq], ...]) into each point's
+// square (its cell bin is not read by the results); `group`: the group's tallies.
+void read_point_tallies(const JsonNode& c, const detail::PreparedTarget& at, Tally* group) {
   const JsonNode list = c.at("points");
-  if (list.array_size() != points) {
+  if (list.array_size() != at.points) {
     list.fail("has " + std::to_string(list.array_size()) + " entries, expected one per point (" +
-              std::to_string(points) + ")");
+              std::to_string(at.points) + ")");
   }
-  for (std::size_t k = 0; k < points; ++k) {
+  for (std::uint32_t k = 0; k < at.points; ++k) {
     const JsonNode p = list[k];
     if (p.array_size() != 2) p.fail("expected [sum, sum_sq]");
-    first[2 * k] = {p[0].unsigned_integer(), p[1].unsigned_integer()};
+    group[at.point_bin(k)] = {p[0].unsigned_integer(), p[1].unsigned_integer()};
   }
 }
 
@@ -218,63 +218,59 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     names.push_back(gr.name);
     r.groups.push_back(std::move(gr));
   }
-  // Every target's bins (whole target, then cells) end to end, with their areas.
+  // Every target's bins end to end, laid out as prepare() lays them (append_target_bins).
   std::vector<Target> scene_targets;
-  std::vector<std::uint32_t> first_bin;
+  std::vector<detail::PreparedTarget> layout;
   std::vector<detail::BinInfo> bins;
   // Observer grids: their geometry, each luminance dimmed by its group's factor.
   std::map<std::size_t, detail::ObserverGridGeometry> eyes;
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
     scene_targets.push_back(read_target(targets[i]));
     const Target& t = scene_targets.back();
-    const double area = targets[i].at("area_m2").number();
-    first_bin.push_back(static_cast<std::uint32_t>(bins.size()));
-    bins.push_back({area});
-    // As prepare() lays them out: equal cells; an observer's second bin is unused here.
-    if (t.type == Target::Type::Grid) {
-      bins.resize(bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
-    }
-    if (t.type == Target::Type::ObserverGrid) {
+    const detail::TargetType& row = detail::target_type(t.type);
+    std::uint32_t points = row.eyes(t);
+    if (t.type == Target::Type::ObserverGrid) {  // its eyes are read back with its geometry
       detail::ObserverGridGeometry g = detail::read_observer_grid_geometry(targets[i]);
       const std::vector<double> f = luminaire_factors(g.terms, luminaire_factor);
       g.terms = detail::dimmed(std::move(g.terms), f);
-      // Point k's two bins (whole square, its one cell) at bin + 2k, as prepare() lays them.
-      bins.resize(bins.size() - 1 + 2 * g.terms.status.size(), {area});
+      points = static_cast<std::uint32_t>(g.terms.status.size());
       eyes[i] = std::move(g);
     }
+    const double area = targets[i].at("area_m2").number();
+    layout.push_back(detail::append_target_bins(bins, area, row.cells ? t.nu * t.nv : 0, points));
   }
   tallies.bin_count = bins.size();
   std::vector<Tally> counts(names.size() * bins.size());
   tallies.bins = &counts;
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
     const JsonNode parts = targets[i].at("contributions");
-    const std::uint32_t cells =
-        scene_targets[i].type == Target::Type::Grid ? scene_targets[i].nu * scene_targets[i].nv : 0;
+    const detail::PreparedTarget& at = layout[i];
     for (std::size_t g = 0; g < names.size(); ++g) {
       const JsonNode c = parts.at(names[g].c_str());
+      Tally* group = &counts[g * bins.size()];
       if (eyes.contains(i)) {
-        read_point_tallies(c, eyes.at(i).terms.status.size(),
-                           &counts[g * bins.size() + first_bin[i]]);
+        read_point_tallies(c, at, group);
         continue;
       }
-      counts[g * bins.size() + first_bin[i]] = read_tally(c);
-      if (cells > 0 && c.at("cells").array_size() != cells) c.at("cells").fail("wrong cell count");
-      for (std::uint32_t k = 0; k < cells; ++k) {
-        counts[g * bins.size() + first_bin[i] + 1 + k] = read_tally(c.at("cells")[k]);
+      group[at.bin] = read_tally(c);
+      if (at.cells > 0 && c.at("cells").array_size() != at.cells) {
+        c.at("cells").fail("wrong cell count");
       }
+      for (std::uint32_t k = 0; k < at.cells; ++k)
+        group[at.cell_bin(k)] = read_tally(c.at("cells")[k]);
     }
   }
   for (std::size_t i = 0; i < scene_targets.size(); ++i) {
     const auto grid = eyes.find(i);
     TargetResult t =
-        detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
+        detail::make_target(scene_targets[i], bins, tallies, layout[i], r.confidence, r.judged,
                             nullptr, grid == eyes.end() ? nullptr : &grid->second);
     if (t.is_observer && !t.observer_grid) {
       const GlareTerms terms = observer_terms(targets[i]);
       const GlareTerms dimmed = detail::dimmed(terms, luminaire_factors(terms, luminaire_factor));
       t.glare = detail::eye_glare(t.name, dimmed, 0, t.estimate);
     }
-    detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
+    detail::add_contributions(t, bins, tallies, layout[i], r.confidence, names);
     r.targets.push_back(std::move(t));
   }
   detail::add_verdicts(r);

@@ -13,10 +13,10 @@ std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s
   std::vector<TargetResult> out;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
     const Target& target = scene.targets[i];
-    const std::uint32_t bin = s.target_bin[i];
-    TargetResult r = make_target(target, s.bins, tallies, bin, confidence, judged,
+    const PreparedTarget& at = s.targets[i];
+    TargetResult r = make_target(target, s.bins, tallies, at, confidence, judged,
                                  luminaires != nullptr ? luminaires : &scene.luminaires);
-    if (contributions) add_contributions(r, s.bins, tallies, bin, confidence, names);
+    if (contributions) add_contributions(r, s.bins, tallies, at, confidence, names);
     out.push_back(std::move(r));
   }
   return out;

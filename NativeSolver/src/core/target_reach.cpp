@@ -123,6 +123,34 @@ std::string label(const Scene& scene, std::size_t i) {
   return "targets[" + std::to_string(i) + "] (\"" + scene.targets[i].name + "\")";
 }
 
+// A target's grid rows (its record's), every one counting reflected light only: its eyes.
+bool only_reflected(const PreparedScene& s, const PreparedTarget& at) {
+  if (at.grid_rows == 0) return false;
+  for (std::uint32_t r = at.first_grid; r < at.first_grid + at.grid_rows; ++r) {
+    if (s.grids[r].indirect_only == 0) return false;
+  }
+  return true;
+}
+
+// Every grid row of the target faces away from every luminaire.
+bool rows_are_dark(const PreparedScene& s, const PreparedTarget& at,
+                   const std::vector<EmissionSupport>& supports, double margin_m) {
+  for (std::uint32_t r = at.first_grid; r < at.first_grid + at.grid_rows; ++r) {
+    const PreparedGrid& g = s.grids[r];
+    if (!dark_for_all(supports, dvec3(g.corner), glm::normalize(dvec3(g.normal)), margin_m)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// A surface target: every triangle of its mesh faces away (a movable mesh is never judged).
+bool mesh_target_is_dark(const PreparedMesh& m, const std::vector<EmissionSupport>& supports,
+                         double margin_m) {
+  return !m.movable && !m.normals.empty() && m.normals.size() * supports.size() <= kMaxPairs &&
+         mesh_is_dark(m, supports, margin_m);
+}
+
 }  // namespace
 
 std::vector<DarkTarget> dark_targets(const Scene& scene, const PreparedScene& prepared,
@@ -134,25 +162,18 @@ std::vector<DarkTarget> dark_targets(const Scene& scene, const PreparedScene& pr
     if (scene.luminaires[i].flux_lm > 0.0) supports.push_back(support_of(prepared.luminaires[i]));
   }
   const double margin_m = margin_for(prepared);
-  std::size_t grid = 0;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-    const Target& t = scene.targets[i];
-    if (t.type == Target::Type::Observer) {
-      ++grid;
+    const PreparedTarget& at = prepared.targets[i];  // where it tallies: a mesh, or grid rows
+    if (only_reflected(prepared, at)) {
       out.push_back({i, label(scene, i) +
                             ": an observer counts reflected light only and no surface reflects "
                             "(every reflectance is 0): its background luminance will be 0"});
       continue;
     }
-    bool dark = false;
-    if (t.type == Target::Type::Grid) {
-      const PreparedGrid& g = prepared.grids[grid++];
-      dark = dark_for_all(supports, dvec3(g.corner), glm::normalize(dvec3(g.normal)), margin_m);
-    } else {
-      const PreparedMesh& m = prepared.meshes[static_cast<std::size_t>(t.mesh)];
-      dark = !m.movable && !m.normals.empty() && m.normals.size() * supports.size() <= kMaxPairs &&
-             mesh_is_dark(m, supports, margin_m);
-    }
+    const bool dark =
+        at.mesh >= 0
+            ? mesh_target_is_dark(prepared.meshes[std::size_t(at.mesh)], supports, margin_m)
+            : at.grid_rows > 0 && rows_are_dark(prepared, at, supports, margin_m);
     if (dark) {
       out.push_back({i, label(scene, i) +
                             ": faces away from every luminaire and no surface reflects (every "

@@ -71,10 +71,9 @@ PreparedGrid prepare_grid(const Target& t, const glm::dvec3& origin, std::uint32
 
 // An eye's tally: a virtual square of kObserverSquare_m side centred on the eye, facing the line
 // of sight (light travelling toward the eye from the viewed half-space crosses it against its
-// normal), counting only reflected light. Two bins (whole square, its one cell) at the end.
+// normal), counting only reflected light, into its kEyeBins bins from `bin`.
 void add_eye(const glm::dvec3& eye, const glm::dvec3& view, const glm::dvec3& up_hint,
-             const std::string& name, PreparedScene& out) {
-  const auto bin = static_cast<std::uint32_t>(out.bins.size());
+             const std::string& name, std::uint32_t bin, PreparedScene& out) {
   Target square;
   const glm::dvec3 v = glm::normalize(view);
   const glm::dvec3 side = glm::normalize(glm::cross(v, up_hint));
@@ -85,12 +84,23 @@ void add_eye(const glm::dvec3& eye, const glm::dvec3& view, const glm::dvec3& up
   square.nu = square.nv = 1;
   PreparedGrid g = prepare_grid(square, out.origin, bin);
   g.indirect_only = 1;
-  const double square_m2 = kObserverSquare_m * kObserverSquare_m;
-  out.bins.insert(out.bins.end(), 2, {square_m2});
   out.grids.push_back(g);
   out.observers.push_back(name);
-  out.goal_bins.back().push_back(bin);
 }
+
+// The bins and grid rows of a target with `eyes` eyes (all its eyes' squares first, then a
+// grid row per eye, eye k's at point_bin(k)); `add(k, bin)` adds eye k's row.
+template <class AddEye>
+void prepare_eyes(std::uint32_t eyes, PreparedScene& out, AddEye add) {
+  PreparedTarget rec = append_target_bins(out.bins, kObserverSquare_m * kObserverSquare_m, 0, eyes);
+  rec.first_grid = static_cast<std::uint32_t>(out.grids.size());
+  rec.grid_rows = eyes;
+  for (std::uint32_t k = 0; k < eyes; ++k) add(k, rec.point_bin(k));
+  out.targets.push_back(rec);
+}
+
+std::uint32_t no_eyes(const Target&) { return 0; }
+std::uint32_t one_eye(const Target&) { return 1; }
 
 // --- surface: a mesh's absorbed and reflected light -----------------------------------------
 
@@ -125,12 +135,15 @@ void check_surface(const TargetChecks& c, Target& t) {
 
 void prepare_surface(const Target& t, const std::vector<double>& mesh_area, PreparedScene& out) {
   PreparedMesh& m = out.meshes[t.mesh];
+  PreparedTarget rec;
   if (m.bin < 0) {  // two targets naming one mesh share its bin
-    m.bin = static_cast<std::int32_t>(out.bins.size());
-    out.bins.push_back({mesh_area[t.mesh]});
+    rec = append_target_bins(out.bins, mesh_area[t.mesh], 0, 0);
+    m.bin = static_cast<std::int32_t>(rec.bin);
   }
-  out.target_bin.push_back(static_cast<std::uint32_t>(m.bin));
-  out.goal_bins.push_back({static_cast<std::uint32_t>(m.bin)});
+  rec.bin = static_cast<std::uint32_t>(m.bin);
+  rec.mesh = t.mesh;
+  rec.first_grid = static_cast<std::uint32_t>(out.grids.size());
+  out.targets.push_back(rec);
 }
 
 // --- grid: a virtual rectangle of cells (light crossing it from the front) ------------------
@@ -170,13 +183,12 @@ void check_grid(const TargetChecks& c, Target& t) {
 }
 
 void prepare_grid_target(const Target& t, const std::vector<double>&, PreparedScene& out) {
-  const auto bin = static_cast<std::uint32_t>(out.bins.size());
-  const double area = glm::length(glm::cross(t.edge1, t.edge2));
-  out.bins.push_back({area});
-  out.bins.resize(out.bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
-  out.grids.push_back(prepare_grid(t, out.origin, bin));
-  out.target_bin.push_back(bin);
-  out.goal_bins.push_back({bin});
+  PreparedTarget rec =
+      append_target_bins(out.bins, glm::length(glm::cross(t.edge1, t.edge2)), t.nu * t.nv, 0);
+  rec.first_grid = static_cast<std::uint32_t>(out.grids.size());
+  rec.grid_rows = 1;
+  out.grids.push_back(prepare_grid(t, out.origin, rec.bin));
+  out.targets.push_back(rec);
 }
 
 // Cell and grid estimates at any alpha, for the simultaneous intervals of grid_intervals();
@@ -184,10 +196,12 @@ void prepare_grid_target(const Target& t, const std::vector<double>&, PreparedSc
 GridSampler grid_sampler(const TargetTallies& tt) {
   auto estimate = [&tt, alpha = -1.0, z = 0.0](std::uint32_t b, double a) mutable {
     if (a != alpha) z = z_for_alpha(alpha = a);
-    return tt.estimate_z(tt.bin + b, z);
+    return tt.estimate_z(b, z);
   };
-  return {tt.target.nu * tt.target.nv, [estimate](double a) mutable { return estimate(0, a); },
-          [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
+  const PreparedTarget& at = tt.layout;
+  return {
+      at.cells, [estimate, at](double a) mutable { return estimate(at.bin, a); },
+      [estimate, at](std::uint32_t c, double a) mutable { return estimate(at.cell_bin(c), a); }};
 }
 
 void grid_result(const TargetTallies& tt, TargetResult& r) {
@@ -195,8 +209,10 @@ void grid_result(const TargetTallies& tt, TargetResult& r) {
   r.is_grid = true;
   r.nu = t.nu;
   r.nv = t.nv;
-  r.cells.reserve(std::size_t(t.nu) * t.nv);
-  for (std::uint32_t c = 0; c < t.nu * t.nv; ++c) r.cells.push_back(tt.estimate(tt.bin + 1 + c));
+  r.cells.reserve(tt.layout.cells);
+  for (std::uint32_t c = 0; c < tt.layout.cells; ++c) {
+    r.cells.push_back(tt.estimate(tt.layout.cell_bin(c)));
+  }
   const auto [lo, hi] = std::minmax_element(r.cells.begin(), r.cells.end(),
                                             [](auto& a, auto& b) { return a.mean < b.mean; });
   r.min_lux = lo->mean;
@@ -243,9 +259,9 @@ void check_observer(const TargetChecks& c, Target& t) {
 }
 
 void prepare_observer(const Target& t, const std::vector<double>&, PreparedScene& out) {
-  out.target_bin.push_back(static_cast<std::uint32_t>(out.bins.size()));
-  out.goal_bins.emplace_back();
-  add_eye(t.position, t.view_direction, t.up, t.name, out);
+  prepare_eyes(1, out, [&](std::uint32_t, std::uint32_t bin) {
+    add_eye(t.position, t.view_direction, t.up, t.name, bin, out);
+  });
 }
 
 void observer_result(const TargetTallies& tt, TargetResult& r) {
@@ -354,20 +370,29 @@ std::optional<glm::dvec3> observer_grid_anchor(const Target& t) {
   return t.positions.empty() ? t.corner : t.positions.front();
 }
 
-void prepare_observer_grid(const Target& t, const std::vector<double>&, PreparedScene& out) {
-  out.target_bin.push_back(static_cast<std::uint32_t>(out.bins.size()));
-  out.goal_bins.emplace_back();
-  const std::vector<glm::dvec3> directions = observer_grid_directions(t);
-  for (const glm::dvec3& eye : observer_grid_positions(t)) {
-    for (const glm::dvec3& view : directions) add_eye(eye, view, t.up, t.name, out);
-  }
+// Eyes x lines of sight, eye-major (observer_grid_positions, observer_grid_directions).
+std::uint32_t observer_grid_eyes(const Target& t) {
+  return static_cast<std::uint32_t>(observer_grid_positions(t).size() *
+                                    observer_grid_directions(t).size());
 }
 
-// Point k's tallies are the two bins at bin + 2k (prepare_observer_grid's order).
+void prepare_observer_grid(const Target& t, const std::vector<double>&, PreparedScene& out) {
+  const std::vector<glm::dvec3> positions = observer_grid_positions(t);
+  const std::vector<glm::dvec3> directions = observer_grid_directions(t);
+  const auto eyes = static_cast<std::uint32_t>(positions.size() * directions.size());
+  prepare_eyes(eyes, out, [&](std::uint32_t k, std::uint32_t bin) {
+    add_eye(positions[k / directions.size()], directions[k % directions.size()], t.up, t.name, bin,
+            out);
+  });
+}
+
 void observer_grid_result(const TargetTallies& tt, TargetResult& r) {
+  const PreparedTarget& at = tt.layout;
   const ObserverGridTallies points{
-      [&tt](std::size_t k) { return tt.estimate(tt.bin + 2 * std::uint32_t(k)); },
-      [&tt](std::size_t k, double z) { return tt.estimate_z(tt.bin + 2 * std::uint32_t(k), z); }};
+      [&tt, &at](std::size_t k) { return tt.estimate(at.point_bin(std::uint32_t(k))); },
+      [&tt, &at](std::size_t k, double z) {
+        return tt.estimate_z(at.point_bin(std::uint32_t(k)), z);
+      }};
   if (tt.observer_grid == nullptr && tt.luminaires == nullptr) {
     throw std::logic_error("an observer grid's result needs the scene's luminaires");
   }
@@ -387,15 +412,15 @@ const std::array<TargetType, 4> kTypes = {{
     {T::Surface, "surface", read_surface, check_surface, kRequireEm,
      "a surface target has no cells: only em_lux applies to it (use a grid target for U0, Emin "
      "and Ud)",
-     TallyKind::MeshBin, false, no_anchor, prepare_surface, no_result},
-    {T::Grid, "grid", read_grid, check_grid, kIlluminance, "", TallyKind::GridRows, true, at_corner,
-     prepare_grid_target, grid_result},
+     TallyKind::MeshBin, false, no_eyes, no_anchor, prepare_surface, no_result},
+    {T::Grid, "grid", read_grid, check_grid, kIlluminance, "", TallyKind::GridRows, true, no_eyes,
+     at_corner, prepare_grid_target, grid_result},
     {T::Observer, "observer", read_observer, check_observer, kRequireUgr,
      "an observer target has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     at_position, prepare_observer, observer_result},
+     one_eye, at_position, prepare_observer, observer_result},
     {T::ObserverGrid, "observer_grid", read_observer_grid, check_observer_grid, kRequireUgr,
      "an observer grid has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     observer_grid_anchor, prepare_observer_grid, observer_grid_result},
+     observer_grid_eyes, observer_grid_anchor, prepare_observer_grid, observer_grid_result},
 }};
 
 }  // namespace
@@ -423,6 +448,24 @@ std::string target_type_names() {
     s += kTypes[i].name;
   }
   return s;
+}
+
+PreparedTarget append_target_bins(std::vector<BinInfo>& bins, double area_m2, std::uint32_t cells,
+                                  std::uint32_t eyes) {
+  PreparedTarget rec;
+  rec.bin = static_cast<std::uint32_t>(bins.size());
+  if (eyes > 0) {
+    rec.points = eyes;
+    rec.point_stride = kEyeBins;
+    rec.bin_count = kEyeBins * eyes;
+    bins.resize(bins.size() + rec.bin_count, {area_m2});
+    return rec;
+  }
+  rec.cells = cells;
+  rec.bin_count = 1 + cells;
+  bins.push_back({area_m2});
+  bins.resize(bins.size() + cells, {cells > 0 ? area_m2 / double(cells) : 0.0});
+  return rec;
 }
 
 std::vector<glm::dvec3> observer_grid_positions(const Target& t) {
