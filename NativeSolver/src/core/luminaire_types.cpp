@@ -50,6 +50,39 @@ glm::dvec3* no_aim(Luminaire&) { return nullptr; }
 glm::dvec3* direction_aim(Luminaire& l) { return &l.direction; }
 glm::dvec3* file_aim(Luminaire& l) { return &l.aim; }
 
+double own_flux(const Luminaire& l) { return l.flux_lm; }
+
+// Support from one point (every direction) or a parallelogram's corners (a half space or a beam
+// along the axis), in the prepared luminaire's local coordinates.
+EmissionSupport from_point(const PreparedLuminaire& l, double half_angle_rad) {
+  EmissionSupport s;
+  s.axis = glm::normalize(glm::dvec3(l.axis));
+  s.points = {glm::dvec3(l.position)};
+  s.half_angle_rad = half_angle_rad;
+  return s;
+}
+
+EmissionSupport from_parallelogram(const PreparedLuminaire& l, double half_angle_rad) {
+  EmissionSupport s;
+  s.axis = glm::normalize(glm::dvec3(l.axis));
+  const glm::dvec3 corner(l.corner), e1(l.edge1), e2(l.edge2);
+  s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
+  s.half_angle_rad = half_angle_rad;
+  return s;
+}
+
+GlareShape no_glare(std::string why_not) {
+  GlareShape g;
+  g.why_not = std::move(why_not);
+  return g;
+}
+
+GlareShape small_source_glare(const Luminaire&) {
+  return no_glare(
+      "a point or spot luminaire has no luminous area (CIE 117 needs one; CIE 147's "
+      "small-source rating is not implemented)");
+}
+
 vec3 point_on_parallelogram(const PreparedLuminaire& l, PathRng& rng) {
   const float s = rng.uniform(), t = rng.uniform();
   return l.corner + s * l.edge1 + t * l.edge2;
@@ -80,6 +113,10 @@ EmittedRay emit_point(const PreparedLuminaire& l, PathRng& rng) {
   return {l.position, sample_sphere(rng)};
 }
 
+EmissionSupport support_point(const PreparedLuminaire& l) {
+  return from_point(l, std::numbers::pi);
+}
+
 // --- spot: smooth beam/field profile about an axis ------------------------------------------
 
 void read_spot(const JsonNode& n, Luminaire& l, const std::string&) {
@@ -108,6 +145,8 @@ void prepare_spot(const Luminaire& l, PreparedLuminaire& p) {
   p.cos_half_field = std::cos(p.half_field_rad);  // in float, as the GPU computes it
   p.axis = vec3(l.direction);
 }
+
+EmissionSupport support_spot(const PreparedLuminaire& l) { return from_point(l, l.half_field_rad); }
 
 }  // namespace
 
@@ -161,6 +200,21 @@ EmittedRay emit_area(const PreparedLuminaire& l, PathRng& rng) {
   return {p, sample_cosine(l.axis, rng)};
 }
 
+EmissionSupport support_area(const PreparedLuminaire& l) {
+  return from_parallelogram(l, 0.5 * std::numbers::pi);
+}
+
+// Uniform luminance over the rectangle toward its front: L = flux / (pi A).
+GlareShape glare_area(const Luminaire& l) {
+  GlareShape g;
+  g.kind = GlareShape::Kind::LambertianArea;
+  g.centre = centre_of_parallelogram(l);
+  g.normal = glm::cross(l.edge1, l.edge2);
+  g.area_m2 = glm::length(g.normal);
+  g.flux_lm = l.flux_lm;
+  return g;
+}
+
 // --- directional: a parallel beam (sunlight) through a parallelogram opening ----------------
 
 void read_directional(const JsonNode& n, Luminaire& l, const std::string&) {
@@ -196,6 +250,14 @@ void prepare_directional(const Luminaire& l, PreparedLuminaire& p) { p.axis = ve
 
 EmittedRay emit_directional(const PreparedLuminaire& l, PathRng& rng) {
   return {offset_ray_origin(point_on_parallelogram(l, rng), l.axis), l.axis};
+}
+
+EmissionSupport support_directional(const PreparedLuminaire& l) {
+  return from_parallelogram(l, 0.0);
+}
+
+GlareShape glare_directional(const Luminaire&) {
+  return no_glare("a directional beam (daylight) is not a luminaire in the field of view");
 }
 
 // --- photometric: an IES / EULUMDAT distribution in an aimed, rotated frame -----------------
@@ -250,19 +312,64 @@ EmittedRay emit_photometric(const PreparedLuminaire& l, PathRng& rng) {
   return {offset_ray_origin(l.position + vec3(o), l.axis), glm::normalize(vec3(d))};
 }
 
+// The lamp's output at its tilt (type C TILT tables; 1 otherwise).
+double photometric_flux(const Luminaire& l) { return l.flux_lm * photometric_tilt_factor(l); }
+
+// Largest gamma a type C file emits at: the cell past its last non-zero row still has light
+// (intensity is interpolated across a cell). Other types: every direction.
+double photometric_half_angle(const PhotometricData& d) {
+  constexpr double kPi = std::numbers::pi;
+  if (d.type != PhotometricType::C || d.vertical_angles_deg.empty()) return kPi;
+  const std::size_t nv = d.vertical_angles_deg.size();
+  std::size_t last = nv;  // none yet
+  for (std::size_t h = 0; h < d.horizontal_angles_deg.size(); ++h) {
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (d.candela_at(h, v) > 0.0 && (last == nv || v > last)) last = v;
+    }
+  }
+  if (last == nv) return 0.0;  // emits nothing (0 lm: no support claim needed either way)
+  const std::size_t edge = std::min(last + 1, nv - 1);
+  return d.vertical_angles_deg[edge] * kPi / 180.0;
+}
+
+// From anywhere in the file's luminous opening, within its distribution's cone.
+EmissionSupport support_photometric(const PreparedLuminaire& l) {
+  EmissionSupport s = from_point(l, std::numbers::pi);
+  const PhotometricData* d = l.source ? l.source->photometry.get() : nullptr;
+  if (!d) return s;  // no file data: every direction, a generous opening
+  s.radius = 0.5 * std::hypot(d->opening_length_m, d->opening_width_m, d->opening_height_m);
+  s.half_angle_rad = photometric_half_angle(*d);
+  return s;
+}
+
+// Intensity as traced: the file's candela scaled to the emitted flux, at its tilt.
+GlareShape glare_photometric(const Luminaire& l) {
+  if (!l.sampler || !(l.sampler->integrated_flux_lm() > 0.0)) return no_glare("emits nothing");
+  GlareShape g;
+  g.kind = GlareShape::Kind::PhotometricBody;
+  g.centre = l.position;
+  g.aim = glm::normalize(l.aim);
+  g.c0 = photometric_c0(l);
+  g.candela_scale = l.flux_lm / l.sampler->integrated_flux_lm() * photometric_tilt_factor(l);
+  return g;
+}
+
 using T = Luminaire::Type;
-const std::array<LuminaireType, 5> kTypes = {{
-    {T::Point, "point", read_point, check_point, prepare_point, emit_point, at_position,
-     at_position, move_position, no_aim, true},
-    {T::Spot, "spot", read_spot, check_spot, prepare_spot, emit_spot, at_position, at_position,
-     move_position, direction_aim, true},
-    {T::Area, "area", read_area, check_area, prepare_area, emit_area, at_corner,
-     centre_of_parallelogram, move_parallelogram, no_aim, true},
+const std::array<LuminaireType, kLuminaireTypeCount> kTypes = {{
+    {T::Point, "point", read_point, check_point, prepare_point, emit_point, own_flux, support_point,
+     small_source_glare, "point_emission", at_position, at_position, move_position, no_aim, true},
+    {T::Spot, "spot", read_spot, check_spot, prepare_spot, emit_spot, own_flux, support_spot,
+     small_source_glare, "spot_emission", at_position, at_position, move_position, direction_aim,
+     true},
+    {T::Area, "area", read_area, check_area, prepare_area, emit_area, own_flux, support_area,
+     glare_area, "area_emission", at_corner, centre_of_parallelogram, move_parallelogram, no_aim,
+     true},
     {T::Directional, "directional", read_directional, check_directional, prepare_directional,
-     emit_directional, at_corner, centre_of_parallelogram, move_parallelogram, direction_aim,
-     false},
+     emit_directional, own_flux, support_directional, glare_directional, "directional_emission",
+     at_corner, centre_of_parallelogram, move_parallelogram, direction_aim, false},
     {T::Photometric, "photometric", read_photometric, check_photometric, prepare_photometric,
-     emit_photometric, at_position, at_position, move_position, file_aim, true},
+     emit_photometric, photometric_flux, support_photometric, glare_photometric,
+     "photometric_emission", at_position, at_position, move_position, file_aim, true},
 }};
 
 }  // namespace
@@ -282,6 +389,12 @@ void read_luminaire_keys(const LuminaireType& row, const JsonNode& n, Luminaire&
 }
 
 std::span<const LuminaireType> luminaire_types() { return kTypes; }
+
+std::size_t luminaire_type_index(Luminaire::Type type) {
+  return static_cast<std::size_t>(&luminaire_type(type) - kTypes.data());
+}
+
+double emitted_flux_lm(const Luminaire& l) { return luminaire_type(l.type).emitted_flux(l); }
 
 const LuminaireType& luminaire_type(Luminaire::Type type) {
   for (const auto& row : kTypes) {

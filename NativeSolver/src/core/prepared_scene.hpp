@@ -53,6 +53,7 @@ struct PreparedLuminaire {
   // Spot profile: relative intensity through (0,1), (beam/2, 0.5), (field/2, 0.1), 0 beyond.
   float half_beam_rad = 0, half_field_rad = 0, cos_half_field = 1;
   const Luminaire* source = nullptr;  // for photometric data and names
+  double flux_lm = 0.0;               // emitted as traced (emitted_flux_lm: TILT applied), lm
   vec3 c0{1, 0, 0};                   // photometric frame: gamma=0 along axis, C0 along c0
 };
 
