@@ -23,6 +23,7 @@
 #include "lightsolver/study.hpp"
 #include "optimize_bindings.hpp"
 #include "simulation_bindings.hpp"
+#include "types_bindings.hpp"
 
 namespace py = pybind11;
 using namespace lightsolver;
@@ -617,4 +618,5 @@ PYBIND11_MODULE(lightsolver, m) {
       "NativeSolver/python/tools/plot_study.py draws it.");
   bind_optimizer(m);   // lightsolver.optimize
   bind_simulation(m);  // lightsolver.Simulation
+  bind_types(m);       // lightsolver.luminaire_types(), target_types()
 }

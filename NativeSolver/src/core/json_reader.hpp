@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <initializer_list>
+#include <span>
 #include <string>
 
 #include "lightsolver/error.hpp"
@@ -28,6 +29,7 @@ class JsonNode {
   JsonNode operator[](std::size_t i) const;              // array element
   std::size_t array_size() const;                        // fails unless an array
   void require_object(std::initializer_list<const char*> allowed) const;  // no unknown keys
+  void require_object(std::span<const char* const> allowed) const;       // no unknown keys
   const nlohmann::json& object() const;                  // fails unless an object
 
   double number() const;  // finite number

@@ -96,8 +96,10 @@ void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
 
 // --- point: isotropic ---------------------------------------------------------------------
 
+constexpr const char* kPointKeys[] = {"name", "type", "flux_lm", "position"};
+
 void read_point(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object({"name", "type", "flux_lm", "position"});
+  n.require_object(kPointKeys);
   l.position = n.at("position").vec3();
   l.flux_lm = n.at("flux_lm").number();
 }
@@ -119,9 +121,11 @@ EmissionSupport support_point(const PreparedLuminaire& l) {
 
 // --- spot: smooth beam/field profile about an axis ------------------------------------------
 
+constexpr const char* kSpotKeys[] = {"name",      "type",           "flux_lm",        "position",
+                                     "direction", "beam_angle_deg", "field_angle_deg"};
+
 void read_spot(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object(
-      {"name", "type", "flux_lm", "position", "direction", "beam_angle_deg", "field_angle_deg"});
+  n.require_object(kSpotKeys);
   l.position = n.at("position").vec3();
   l.direction = n.at("direction").vec3();
   l.beam_angle_deg = n.at("beam_angle_deg").number();
@@ -179,8 +183,10 @@ EmittedRay emit_spot(const PreparedLuminaire& l, PathRng& rng) {
 
 // --- area: Lambertian parallelogram, emitting along edge1 x edge2 ---------------------------
 
+constexpr const char* kAreaKeys[] = {"name", "type", "flux_lm", "corner", "edge1", "edge2"};
+
 void read_area(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object({"name", "type", "flux_lm", "corner", "edge1", "edge2"});
+  n.require_object(kAreaKeys);
   read_parallelogram(n, l);
   l.flux_lm = n.at("flux_lm").number();
 }
@@ -217,8 +223,11 @@ GlareShape glare_area(const Luminaire& l) {
 
 // --- directional: a parallel beam (sunlight) through a parallelogram opening ----------------
 
+constexpr const char* kDirectionalKeys[] = {"name",   "type",  "illuminance_lx", "direction",
+                                            "corner", "edge1", "edge2"};
+
 void read_directional(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object({"name", "type", "illuminance_lx", "direction", "corner", "edge1", "edge2"});
+  n.require_object(kDirectionalKeys);
   l.direction = n.at("direction").vec3();
   l.illuminance_lx = n.at("illuminance_lx").number();
   read_parallelogram(n, l);
@@ -262,8 +271,11 @@ GlareShape glare_directional(const Luminaire&) {
 
 // --- photometric: an IES / EULUMDAT distribution in an aimed, rotated frame -----------------
 
+constexpr const char* kPhotometricKeys[] = {"name", "type",         "file",   "position",
+                                            "aim",  "rotation_deg", "flux_lm"};
+
 void read_photometric(const JsonNode& n, Luminaire& l, const std::string& base_dir) {
-  n.require_object({"name", "type", "file", "position", "aim", "rotation_deg", "flux_lm"});
+  n.require_object(kPhotometricKeys);
   l.position = n.at("position").vec3();
   if (n.has("aim")) l.aim = n.at("aim").vec3();
   l.rotation_deg = n.number_or("rotation_deg", 0.0);
@@ -355,21 +367,93 @@ GlareShape glare_photometric(const Luminaire& l) {
 }
 
 using T = Luminaire::Type;
+using G = GlareShape::Kind;
 const std::array<LuminaireType, kLuminaireTypeCount> kTypes = {{
-    {T::Point, "point", read_point, check_point, prepare_point, emit_point, own_flux, support_point,
-     small_source_glare, "point_emission", at_position, at_position, move_position, no_aim, true},
-    {T::Spot, "spot", read_spot, check_spot, prepare_spot, emit_spot, own_flux, support_spot,
-     small_source_glare, "spot_emission", at_position, at_position, move_position, direction_aim,
-     true},
-    {T::Area, "area", read_area, check_area, prepare_area, emit_area, own_flux, support_area,
-     glare_area, "area_emission", at_corner, centre_of_parallelogram, move_parallelogram, no_aim,
-     true},
-    {T::Directional, "directional", read_directional, check_directional, prepare_directional,
-     emit_directional, own_flux, support_directional, glare_directional, "directional_emission",
-     at_corner, centre_of_parallelogram, move_parallelogram, direction_aim, false},
-    {T::Photometric, "photometric", read_photometric, check_photometric, prepare_photometric,
-     emit_photometric, photometric_flux, support_photometric, glare_photometric,
-     "photometric_emission", at_position, at_position, move_position, file_aim, true},
+    {.type = T::Point,
+     .name = "point",
+     .keys = kPointKeys,
+     .read = read_point,
+     .check = check_point,
+     .prepare = prepare_point,
+     .emit = emit_point,
+     .emitted_flux = own_flux,
+     .support = support_point,
+     .glare_kind = G::None,
+     .glare = small_source_glare,
+     .effect = "point_emission",
+     .anchor = at_position,
+     .centre = at_position,
+     .move_to = move_position,
+     .aim = no_aim,
+     .placed = true},
+    {.type = T::Spot,
+     .name = "spot",
+     .keys = kSpotKeys,
+     .read = read_spot,
+     .check = check_spot,
+     .prepare = prepare_spot,
+     .emit = emit_spot,
+     .emitted_flux = own_flux,
+     .support = support_spot,
+     .glare_kind = G::None,
+     .glare = small_source_glare,
+     .effect = "spot_emission",
+     .anchor = at_position,
+     .centre = at_position,
+     .move_to = move_position,
+     .aim = direction_aim,
+     .placed = true},
+    {.type = T::Area,
+     .name = "area",
+     .keys = kAreaKeys,
+     .read = read_area,
+     .check = check_area,
+     .prepare = prepare_area,
+     .emit = emit_area,
+     .emitted_flux = own_flux,
+     .support = support_area,
+     .glare_kind = G::LambertianArea,
+     .glare = glare_area,
+     .effect = "area_emission",
+     .anchor = at_corner,
+     .centre = centre_of_parallelogram,
+     .move_to = move_parallelogram,
+     .aim = no_aim,
+     .placed = true},
+    {.type = T::Directional,
+     .name = "directional",
+     .keys = kDirectionalKeys,
+     .read = read_directional,
+     .check = check_directional,
+     .prepare = prepare_directional,
+     .emit = emit_directional,
+     .emitted_flux = own_flux,
+     .support = support_directional,
+     .glare_kind = G::None,
+     .glare = glare_directional,
+     .effect = "directional_emission",
+     .anchor = at_corner,
+     .centre = centre_of_parallelogram,
+     .move_to = move_parallelogram,
+     .aim = direction_aim,
+     .placed = false},
+    {.type = T::Photometric,
+     .name = "photometric",
+     .keys = kPhotometricKeys,
+     .read = read_photometric,
+     .check = check_photometric,
+     .prepare = prepare_photometric,
+     .emit = emit_photometric,
+     .emitted_flux = photometric_flux,
+     .support = support_photometric,
+     .glare_kind = G::PhotometricBody,
+     .glare = glare_photometric,
+     .effect = "photometric_emission",
+     .anchor = at_position,
+     .centre = at_position,
+     .move_to = move_position,
+     .aim = file_aim,
+     .placed = true},
 }};
 
 }  // namespace

@@ -68,6 +68,8 @@ struct GlareShape {
 struct LuminaireType {
   Luminaire::Type type;
   const char* name;  ///< "type" in the scene file
+  /// The keys of its scene-file entry (besides power_w and group, which every type has).
+  std::span<const char* const> keys;
   /// Reads the type's keys (rejecting unknown ones); "name" and "type" are already read.
   /// `base_dir`: the scene file's folder, for files the luminaire refers to.
   void (*read)(const JsonNode& n, Luminaire& l, const std::string& base_dir);
@@ -82,7 +84,10 @@ struct LuminaireType {
   double (*emitted_flux)(const Luminaire& l);
   /// Where and in which directions the prepared luminaire can emit (target_reach.cpp).
   EmissionSupport (*support)(const PreparedLuminaire& l);
-  /// What it is as a glare source (glare/glare_terms.cpp rates it).
+  /// What kind of glare source the type is (None: glare(any luminaire) says why not).
+  GlareShape::Kind glare_kind;
+  /// What the luminaire is as a glare source (glare/glare_terms.cpp rates it): of glare_kind,
+  /// or None for one that emits nothing.
   GlareShape (*glare)(const Luminaire& l);
   /// The effect a scene with this type needs (Results::effects; "point_emission"): see
   /// emission_effect() in scene_effects.hpp.

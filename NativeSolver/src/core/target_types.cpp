@@ -104,8 +104,10 @@ std::uint32_t one_eye(const Target&) { return 1; }
 
 // --- surface: a mesh's absorbed and reflected light -----------------------------------------
 
+constexpr const char* kSurfaceKeys[] = {"name", "type", "mesh", "requirements", "task"};
+
 void read_surface(const JsonNode& n, const Scene& scene, Target& t) {
-  n.require_object({"name", "type", "mesh", "requirements", "task"});
+  n.require_object(kSurfaceKeys);
   const std::string mesh = n.at("mesh").string();
   t.mesh = scene.find_mesh(mesh);
   if (t.mesh < 0) n.at("mesh").fail("unknown mesh \"" + mesh + "\"");
@@ -148,8 +150,11 @@ void prepare_surface(const Target& t, const std::vector<double>& mesh_area, Prep
 
 // --- grid: a virtual rectangle of cells (light crossing it from the front) ------------------
 
+constexpr const char* kGridKeys[] = {"name",  "type",  "corner",       "edge1",
+                                     "edge2", "cells", "requirements", "task"};
+
 void read_grid(const JsonNode& n, const Scene&, Target& t) {
-  n.require_object({"name", "type", "corner", "edge1", "edge2", "cells", "requirements", "task"});
+  n.require_object(kGridKeys);
   t.corner = n.at("corner").vec3();
   t.edge1 = n.at("edge1").vec3();
   t.edge2 = n.at("edge2").vec3();
@@ -226,8 +231,11 @@ void grid_result(const TargetTallies& tt, TargetResult& r) {
 
 // --- observer: an eye's reflected light, and its UGR ----------------------------------------
 
+constexpr const char* kObserverKeys[] = {"name", "type",         "position", "view_direction",
+                                         "up",   "requirements", "task"};
+
 void read_observer(const JsonNode& n, const Scene&, Target& t) {
-  n.require_object({"name", "type", "position", "view_direction", "up", "requirements", "task"});
+  n.require_object(kObserverKeys);
   t.position = n.at("position").vec3();
   t.view_direction = n.at("view_direction").vec3();
   if (n.has("up")) t.up = n.at("up").vec3();
@@ -271,9 +279,12 @@ void observer_result(const TargetTallies& tt, TargetResult& r) {
 
 // --- observer grid: eyes x lines of sight, and the largest UGR ------------------------------
 
+constexpr const char* kObserverGridKeys[] = {
+    "name",          "type", "positions",    "corner", "edge1", "edge2", "cells", "view_directions",
+    "view_step_deg", "up",   "requirements", "task"};
+
 void read_observer_grid(const JsonNode& n, const Scene&, Target& t) {
-  n.require_object({"name", "type", "positions", "corner", "edge1", "edge2", "cells",
-                    "view_directions", "view_step_deg", "up", "requirements", "task"});
+  n.require_object(kObserverGridKeys);
   if (n.has("positions")) {
     for (const char* key : {"corner", "edge1", "edge2", "cells"}) {
       if (n.has(key)) n.fail("give either \"positions\" or corner, edge1, edge2 and cells");
@@ -408,19 +419,98 @@ void observer_grid_result(const TargetTallies& tt, TargetResult& r) {
 
 using T = Target::Type;
 constexpr unsigned kIlluminance = kRequireEm | kRequireU0 | kRequireEmin | kRequireUd;
+// The results-file keys each type's result adds (results_io.cpp's target_json, add_glare,
+// add_grid_intervals: the intervals only when requirements are judged).
+constexpr const char* kGridFields[] = {"cells_uv",
+                                       "cells",
+                                       "min_lux",
+                                       "max_lux",
+                                       "uniformity",
+                                       "min_ci_low_lux",
+                                       "min_ci_high_lux",
+                                       "max_ci_low_lux",
+                                       "max_ci_high_lux",
+                                       "uniformity_ci_low",
+                                       "uniformity_ci_high",
+                                       "ud",
+                                       "ud_ci_low",
+                                       "ud_ci_high"};
+constexpr const char* kGlareFields[] = {"background_luminance_cd_m2",
+                                        "background_ci_low_cd_m2",
+                                        "background_ci_high_cd_m2",
+                                        "ugr",
+                                        "ugr_ci_low",
+                                        "ugr_ci_high",
+                                        "luminaires",
+                                        "warnings"};
+constexpr const char* kObserverGridFields[] = {"background_luminance_cd_m2",
+                                               "background_ci_low_cd_m2",
+                                               "background_ci_high_cd_m2",
+                                               "ugr",
+                                               "ugr_ci_low",
+                                               "ugr_ci_high",
+                                               "luminaires",
+                                               "warnings",
+                                               "observer_grid"};
+
 const std::array<TargetType, 4> kTypes = {{
-    {T::Surface, "surface", read_surface, check_surface, kRequireEm,
-     "a surface target has no cells: only em_lux applies to it (use a grid target for U0, Emin "
-     "and Ud)",
-     TallyKind::MeshBin, false, no_eyes, no_anchor, prepare_surface, no_result},
-    {T::Grid, "grid", read_grid, check_grid, kIlluminance, "", TallyKind::GridRows, true, no_eyes,
-     at_corner, prepare_grid_target, grid_result},
-    {T::Observer, "observer", read_observer, check_observer, kRequireUgr,
-     "an observer target has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     one_eye, at_position, prepare_observer, observer_result},
-    {T::ObserverGrid, "observer_grid", read_observer_grid, check_observer_grid, kRequireUgr,
-     "an observer grid has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     observer_grid_eyes, observer_grid_anchor, prepare_observer_grid, observer_grid_result},
+    {.type = T::Surface,
+     .name = "surface",
+     .keys = kSurfaceKeys,
+     .read = read_surface,
+     .check = check_surface,
+     .requirements = kRequireEm,
+     .other_requirements = "a surface target has no cells: only em_lux applies to it (use a "
+                           "grid target for U0, Emin and Ud)",
+     .tally = TallyKind::MeshBin,
+     .cells = false,
+     .eyes = no_eyes,
+     .anchor = no_anchor,
+     .prepare = prepare_surface,
+     .result = no_result,
+     .result_fields = {}},
+    {.type = T::Grid,
+     .name = "grid",
+     .keys = kGridKeys,
+     .read = read_grid,
+     .check = check_grid,
+     .requirements = kIlluminance,
+     .other_requirements = "",
+     .tally = TallyKind::GridRows,
+     .cells = true,
+     .eyes = no_eyes,
+     .anchor = at_corner,
+     .prepare = prepare_grid_target,
+     .result = grid_result,
+     .result_fields = kGridFields},
+    {.type = T::Observer,
+     .name = "observer",
+     .keys = kObserverKeys,
+     .read = read_observer,
+     .check = check_observer,
+     .requirements = kRequireUgr,
+     .other_requirements = "an observer target has only ugr_max (illuminance needs a grid)",
+     .tally = TallyKind::GridRows,
+     .cells = false,
+     .eyes = one_eye,
+     .anchor = at_position,
+     .prepare = prepare_observer,
+     .result = observer_result,
+     .result_fields = kGlareFields},
+    {.type = T::ObserverGrid,
+     .name = "observer_grid",
+     .keys = kObserverGridKeys,
+     .read = read_observer_grid,
+     .check = check_observer_grid,
+     .requirements = kRequireUgr,
+     .other_requirements = "an observer grid has only ugr_max (illuminance needs a grid)",
+     .tally = TallyKind::GridRows,
+     .cells = false,
+     .eyes = observer_grid_eyes,
+     .anchor = observer_grid_anchor,
+     .prepare = prepare_observer_grid,
+     .result = observer_grid_result,
+     .result_fields = kObserverGridFields},
 }};
 
 }  // namespace

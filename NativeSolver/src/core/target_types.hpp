@@ -82,6 +82,8 @@ struct TargetTallies {
 struct TargetType {
   Target::Type type;
   const char* name;  ///< "type" in the scene file
+  /// The keys of its scene-file entry.
+  std::span<const char* const> keys;
   /// Reads the type's keys, rejecting unknown ones ("name" is already read; "requirements"
   /// and "task" are read after it, and must be allowed).
   void (*read)(const JsonNode& n, const Scene& scene, Target& t);
@@ -104,6 +106,8 @@ struct TargetType {
   void (*prepare)(const Target& t, const std::vector<double>& mesh_area_m2, PreparedScene& out);
   /// Fills the type's part of `r` (name, type, requirements, area and estimate are set).
   void (*result)(const TargetTallies& tallies, TargetResult& r);
+  /// The results-file keys its result adds to every target's (results_io.cpp writes them).
+  std::span<const char* const> result_fields;
 };
 
 /// All types, one row each.
