@@ -368,7 +368,7 @@ GlareShape glare_photometric(const Luminaire& l) {
 
 using T = Luminaire::Type;
 using G = GlareShape::Kind;
-const std::array<LuminaireType, kLuminaireTypeCount> kTypes = {{
+const auto kTypes = std::to_array<LuminaireType>({
     {.type = T::Point,
      .name = "point",
      .keys = kPointKeys,
@@ -454,7 +454,8 @@ const std::array<LuminaireType, kLuminaireTypeCount> kTypes = {{
      .move_to = move_position,
      .aim = file_aim,
      .placed = true},
-}};
+});
+static_assert(kTypes.size() <= kMaxLuminaireTypes);
 
 }  // namespace
 

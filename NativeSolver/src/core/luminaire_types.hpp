@@ -114,8 +114,8 @@ void read_luminaire_keys(const LuminaireType& row, const JsonNode& n, Luminaire&
 /// The spot profile (relative intensity at `theta` from the axis; half angles in radians).
 double spot_profile(double theta, double half_beam, double half_field);
 
-/// The number of rows (luminaire_types().size()), for tables sized at compile time.
-inline constexpr std::size_t kLuminaireTypeCount = 5;
+/// At most this many rows (tables sized at compile time: the scene analysis's effects).
+inline constexpr std::size_t kMaxLuminaireTypes = 16;
 
 /// The flux `l` emits as traced: its row's emitted_flux (TILT applied). A group's flux is the
 /// sum of its luminaires'; a rescale multiplies it by the group's dimming factor.

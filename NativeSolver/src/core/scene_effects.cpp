@@ -66,6 +66,8 @@ void set_luminaire_effects(SceneEffects& e, const PreparedScene& s) {
 
 }  // namespace
 
+std::size_t effect_count() { return kFirstEmission + luminaire_types().size(); }
+
 Effect emission_effect(Luminaire::Type type) {
   return static_cast<Effect>(kFirstEmission + luminaire_type_index(type));
 }
@@ -111,7 +113,7 @@ SceneEffects analyse_effects(const PreparedScene& s) {
 
 EffectsReport effects_report(const SceneEffects& effects) {
   EffectsReport r;
-  for (std::size_t i = 0; i < kEffectCount; ++i) {
+  for (std::size_t i = 0; i < effect_count(); ++i) {
     const auto e = static_cast<Effect>(i);
     if (effects.has(e)) {
       r.simulated.emplace_back(effect_name(e));

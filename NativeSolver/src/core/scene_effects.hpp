@@ -31,8 +31,11 @@ enum class Effect : std::uint8_t {
   kFirstEmission
 };
 
-inline constexpr std::size_t kEffectCount =
-    static_cast<std::size_t>(Effect::kFirstEmission) + kLuminaireTypeCount;
+/// How many effects there are: the fixed ones, then one per luminaire type.
+std::size_t effect_count();
+/// Room for every effect (SceneEffects' tables).
+inline constexpr std::size_t kMaxEffects =
+    static_cast<std::size_t>(Effect::kFirstEmission) + kMaxLuminaireTypes;
 
 /// The effect of emitting from luminaires of `type` ("spot_emission").
 Effect emission_effect(Luminaire::Type type);
@@ -50,8 +53,8 @@ class SceneEffects {
 
  private:
   static std::size_t index(Effect e) { return static_cast<std::size_t>(e); }
-  std::array<bool, kEffectCount> on_{};
-  std::array<std::string, kEffectCount> reasons_;
+  std::array<bool, kMaxEffects> on_{};
+  std::array<std::string, kMaxEffects> reasons_;
 };
 
 /// Analyses a prepared scene. Only meshes with triangles count (an empty mesh is never hit).

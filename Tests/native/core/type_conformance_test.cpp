@@ -82,7 +82,7 @@ TEST(TypeConformance, EveryLuminaireRowIsHandledByEveryLayer) {
   const std::set<std::string> effects = schema_enum(
       schema.at("properties").at("effects").at("properties").at("simulated").at("items"));
   std::set<std::string> names;
-  ASSERT_EQ(detail::luminaire_types().size(), detail::kLuminaireTypeCount);
+  ASSERT_LE(detail::luminaire_types().size(), detail::kMaxLuminaireTypes);
   for (const detail::LuminaireType& row : detail::luminaire_types()) {
     SCOPED_TRACE(row.name);
     EXPECT_TRUE(names.insert(row.name).second);
