@@ -23,12 +23,12 @@ struct LuminaireTypeInfo {
 
 /// One target type.
 struct TargetTypeInfo {
-  std::string name;                       ///< "type" in the scene file
-  std::vector<std::string> keys;          ///< its scene-file keys
-  std::vector<std::string> requirements;  ///< the requirement keys it takes ("em_lux", ...)
-  bool cells = false;                     ///< results have cells (nu x nv)
-  bool eyes = false;                      ///< tallies eyes (reflected light only; glare)
-  std::string tally;                      ///< "mesh_bin" or "grid_rows"
+  std::string name;                        ///< "type" in the scene file
+  std::vector<std::string> keys;           ///< its scene-file keys
+  std::vector<std::string> requirements;   ///< the requirement keys it takes ("em_lux", ...)
+  bool cells = false;                      ///< results have cells (nu x nv)
+  bool eyes = false;                       ///< tallies eyes (reflected light only; glare)
+  std::string tally;                       ///< "mesh_bin" or "grid_rows"
   std::vector<std::string> result_fields;  ///< results keys it adds to every target's
 };
 
