@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <numbers>
@@ -15,14 +14,13 @@
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
+#include "core/luminaire_rows.hpp"
 #include "core/prepared_scene.hpp"
 #include "core/sampling.hpp"
 #include "lightsolver/photometry.hpp"
 
 namespace lightsolver::detail {
-namespace {
-
-namespace fs = std::filesystem;
+namespace luminaire_rows {
 
 // Numbers in messages: 6 significant digits, as the validator prints them.
 std::string show(double v) {
@@ -31,29 +29,10 @@ std::string show(double v) {
   return s.str();
 }
 
-void read_parallelogram(const JsonNode& n, Luminaire& l) {
-  l.corner = n.at("corner").vec3();
-  l.edge1 = n.at("edge1").vec3();
-  l.edge2 = n.at("edge2").vec3();
-}
-
 glm::dvec3 at_position(const Luminaire& l) { return l.position; }
-glm::dvec3 at_corner(const Luminaire& l) { return l.corner; }
-glm::dvec3 centre_of_parallelogram(const Luminaire& l) {
-  return l.corner + 0.5 * (l.edge1 + l.edge2);
-}
 void move_position(Luminaire& l, const glm::dvec3& c) { l.position = c; }
-void move_parallelogram(Luminaire& l, const glm::dvec3& c) {
-  l.corner = c - 0.5 * (l.edge1 + l.edge2);
-}
-glm::dvec3* no_aim(Luminaire&) { return nullptr; }
-glm::dvec3* direction_aim(Luminaire& l) { return &l.direction; }
 glm::dvec3* file_aim(Luminaire& l) { return &l.aim; }
 
-double own_flux(const Luminaire& l) { return l.flux_lm; }
-
-// Support from one point (every direction) or a parallelogram's corners (a half space or a beam
-// along the axis), in the prepared luminaire's local coordinates.
 EmissionSupport from_point(const PreparedLuminaire& l, double half_angle_rad) {
   EmissionSupport s;
   s.axis = glm::normalize(glm::dvec3(l.axis));
@@ -62,6 +41,43 @@ EmissionSupport from_point(const PreparedLuminaire& l, double half_angle_rad) {
   return s;
 }
 
+GlareShape no_glare(std::string why_not) {
+  GlareShape g;
+  g.why_not = std::move(why_not);
+  return g;
+}
+
+void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
+  c.direction(key, v);
+  v = glm::normalize(v);
+}
+
+}  // namespace luminaire_rows
+
+namespace {
+
+using namespace luminaire_rows;
+
+void read_parallelogram(const JsonNode& n, Luminaire& l) {
+  l.corner = n.at("corner").vec3();
+  l.edge1 = n.at("edge1").vec3();
+  l.edge2 = n.at("edge2").vec3();
+}
+
+glm::dvec3 at_corner(const Luminaire& l) { return l.corner; }
+glm::dvec3 centre_of_parallelogram(const Luminaire& l) {
+  return l.corner + 0.5 * (l.edge1 + l.edge2);
+}
+void move_parallelogram(Luminaire& l, const glm::dvec3& c) {
+  l.corner = c - 0.5 * (l.edge1 + l.edge2);
+}
+glm::dvec3* no_aim(Luminaire&) { return nullptr; }
+glm::dvec3* direction_aim(Luminaire& l) { return &l.direction; }
+
+double own_flux(const Luminaire& l) { return l.flux_lm; }
+
+// Support from a parallelogram's corners (a half space or a beam along the axis), in the
+// prepared luminaire's local coordinates.
 EmissionSupport from_parallelogram(const PreparedLuminaire& l, double half_angle_rad) {
   EmissionSupport s;
   s.axis = glm::normalize(glm::dvec3(l.axis));
@@ -69,12 +85,6 @@ EmissionSupport from_parallelogram(const PreparedLuminaire& l, double half_angle
   s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
   s.half_angle_rad = half_angle_rad;
   return s;
-}
-
-GlareShape no_glare(std::string why_not) {
-  GlareShape g;
-  g.why_not = std::move(why_not);
-  return g;
 }
 
 GlareShape small_source_glare(const Luminaire&) {
@@ -86,12 +96,6 @@ GlareShape small_source_glare(const Luminaire&) {
 vec3 point_on_parallelogram(const PreparedLuminaire& l, PathRng& rng) {
   const float s = rng.uniform(), t = rng.uniform();
   return l.corner + s * l.edge1 + t * l.edge2;
-}
-
-// Checks `key` as a direction and makes it unit length.
-void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
-  c.direction(key, v);
-  v = glm::normalize(v);
 }
 
 // --- point: isotropic ---------------------------------------------------------------------
@@ -269,103 +273,6 @@ GlareShape glare_directional(const Luminaire&) {
   return no_glare("a directional beam (daylight) is not a luminaire in the field of view");
 }
 
-// --- photometric: an IES / EULUMDAT distribution in an aimed, rotated frame -----------------
-
-constexpr const char* kPhotometricKeys[] = {"name", "type",         "file",   "position",
-                                            "aim",  "rotation_deg", "flux_lm"};
-
-void read_photometric(const JsonNode& n, Luminaire& l, const std::string& base_dir) {
-  n.require_object(kPhotometricKeys);
-  l.position = n.at("position").vec3();
-  if (n.has("aim")) l.aim = n.at("aim").vec3();
-  l.rotation_deg = n.number_or("rotation_deg", 0.0);
-  std::optional<double> flux;
-  if (n.has("flux_lm")) {
-    flux = n.at("flux_lm").number();
-    // Checked here so the message names the scene file (load_photometric knows only the field).
-    if (!(*flux >= 0.0)) n.at("flux_lm").fail("must be a finite value >= 0");
-  }
-  l.file = n.at("file").string();
-  load_photometric(l, (fs::path(base_dir) / l.file).lexically_normal().string(), flux,
-                   n.path() + ".flux_lm");
-}
-
-void check_photometric(const LuminaireChecks& c, Luminaire& l) {
-  c.coordinates("position", l.position);
-  unit_direction(c, "aim", l.aim);
-  if (!l.sampler) c.fail("file", "no photometric data loaded");
-  if (!std::isfinite(l.rotation_deg)) c.fail("rotation_deg", "not finite");
-  c.flux(l, " (emitted, from the file)");
-  // The scaled table's peak: the file's candela times emitted flux / the file's integrated flux.
-  if (!l.photometry || l.photometry->candela.empty()) return;
-  const double peak_cd =
-      *std::max_element(l.photometry->candela.begin(), l.photometry->candela.end()) *
-      (l.flux_lm / l.sampler->integrated_flux_lm());
-  if (!(peak_cd <= limits::kMaxIntensity_cd)) {
-    c.fail("file", "peak intensity " + show(peak_cd) +
-                       " cd (as scaled) is more than 10^15 cd: beyond any physical light source");
-  }
-}
-
-void prepare_photometric(const Luminaire& l, PreparedLuminaire& p) {
-  p.axis = vec3(glm::normalize(l.aim));
-  p.c0 = vec3(photometric_c0(l));
-}
-
-// Direction and opening point drawn exactly from the file's distribution (equal power per
-// photon), mapped from the luminaire frame (gamma = 0 along -z, C0 along +x) to the world.
-// The origin is pushed off the opening's plane so a recessed or flush luminaire is not
-// blocked by the ceiling it sits in.
-EmittedRay emit_photometric(const PreparedLuminaire& l, PathRng& rng) {
-  const PhotometricSampler& sampler = *l.source->sampler;
-  const glm::dvec3 aim(l.axis), c0(l.c0);
-  const glm::dvec3 o = lightsolver::to_world(sampler.sample_origin(rng), aim, c0);
-  const glm::dvec3 d = lightsolver::to_world(sampler.sample_direction(rng), aim, c0);
-  return {offset_ray_origin(l.position + vec3(o), l.axis), glm::normalize(vec3(d))};
-}
-
-// The lamp's output at its tilt (type C TILT tables; 1 otherwise).
-double photometric_flux(const Luminaire& l) { return l.flux_lm * photometric_tilt_factor(l); }
-
-// Largest gamma a type C file emits at: the cell past its last non-zero row still has light
-// (intensity is interpolated across a cell). Other types: every direction.
-double photometric_half_angle(const PhotometricData& d) {
-  constexpr double kPi = std::numbers::pi;
-  if (d.type != PhotometricType::C || d.vertical_angles_deg.empty()) return kPi;
-  const std::size_t nv = d.vertical_angles_deg.size();
-  std::size_t last = nv;  // none yet
-  for (std::size_t h = 0; h < d.horizontal_angles_deg.size(); ++h) {
-    for (std::size_t v = 0; v < nv; ++v) {
-      if (d.candela_at(h, v) > 0.0 && (last == nv || v > last)) last = v;
-    }
-  }
-  if (last == nv) return 0.0;  // emits nothing (0 lm: no support claim needed either way)
-  const std::size_t edge = std::min(last + 1, nv - 1);
-  return d.vertical_angles_deg[edge] * kPi / 180.0;
-}
-
-// From anywhere in the file's luminous opening, within its distribution's cone.
-EmissionSupport support_photometric(const PreparedLuminaire& l) {
-  EmissionSupport s = from_point(l, std::numbers::pi);
-  const PhotometricData* d = l.source ? l.source->photometry.get() : nullptr;
-  if (!d) return s;  // no file data: every direction, a generous opening
-  s.radius = 0.5 * std::hypot(d->opening_length_m, d->opening_width_m, d->opening_height_m);
-  s.half_angle_rad = photometric_half_angle(*d);
-  return s;
-}
-
-// Intensity as traced: the file's candela scaled to the emitted flux, at its tilt.
-GlareShape glare_photometric(const Luminaire& l) {
-  if (!l.sampler || !(l.sampler->integrated_flux_lm() > 0.0)) return no_glare("emits nothing");
-  GlareShape g;
-  g.kind = GlareShape::Kind::PhotometricBody;
-  g.centre = l.position;
-  g.aim = glm::normalize(l.aim);
-  g.c0 = photometric_c0(l);
-  g.candela_scale = l.flux_lm / l.sampler->integrated_flux_lm() * photometric_tilt_factor(l);
-  return g;
-}
-
 using T = Luminaire::Type;
 using G = GlareShape::Kind;
 const auto kTypes = std::to_array<LuminaireType>({
@@ -437,23 +344,7 @@ const auto kTypes = std::to_array<LuminaireType>({
      .move_to = move_parallelogram,
      .aim = direction_aim,
      .placed = false},
-    {.type = T::Photometric,
-     .name = "photometric",
-     .keys = kPhotometricKeys,
-     .read = read_photometric,
-     .check = check_photometric,
-     .prepare = prepare_photometric,
-     .emit = emit_photometric,
-     .emitted_flux = photometric_flux,
-     .support = support_photometric,
-     .glare_kind = G::PhotometricBody,
-     .glare = glare_photometric,
-     .effect = "photometric_emission",
-     .anchor = at_position,
-     .centre = at_position,
-     .move_to = move_position,
-     .aim = file_aim,
-     .placed = true},
+    photometric_luminaire_type(),
 });
 static_assert(kTypes.size() <= kMaxLuminaireTypes);
 
