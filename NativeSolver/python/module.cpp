@@ -25,6 +25,7 @@
 #include "optimize_bindings.hpp"
 #include "run_option_keywords.hpp"
 #include "simulation_bindings.hpp"
+#include "types_bindings.hpp"
 
 namespace py = pybind11;
 using namespace lightsolver;
@@ -544,4 +545,5 @@ PYBIND11_MODULE(lightsolver, m) {
           .c_str());
   bind_optimizer(m);   // lightsolver.optimize
   bind_simulation(m);  // lightsolver.Simulation
+  bind_types(m);       // lightsolver.luminaire_types(), target_types()
 }

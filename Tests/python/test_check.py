@@ -199,3 +199,41 @@ def test_loaded_scene_is_not_warned_twice(room_scene: Path):
     check = lightsolver.check_scene(scene)
     assert check["errors"] == []
     assert fields(check["warnings"]).count("settings.confidence") == 1
+
+
+def panel_over_black_floor(with_work_plane: bool) -> "lightsolver.Scene":
+    """Issue 23's case: a black floor, a 3400 lm panel facing down at 3 m, an observer grid
+    with one eye at (5.5, 2, 1.2) looking +x, then (optionally) a 4 x 3 work plane at 0.8 m."""
+    s = lightsolver.Scene()
+    s.add_material("black", reflectance=0.0)
+    v = np.array([[0, 0, 0], [8, 0, 0], [8, 4, 0], [0, 4, 0]], dtype=float)
+    s.add_mesh("floor", v, np.array([[0, 1, 2], [0, 2, 3]]), "black")
+    s.add_light("panel", "area", corner=[3.5, 1.5, 3.0], edge1=[0, 1, 0], edge2=[1, 0, 0],
+                flux_lm=3400)
+    s.add_target("eyes", "observer_grid", positions=[[5.5, 2, 1.2]], view_directions=[[1, 0, 0]])
+    if with_work_plane:
+        s.add_target("work plane", "grid", corner=[1, 0.5, 0.8], edge1=[6, 0, 0],
+                     edge2=[0, 3, 0], cells=[4, 3])
+    return s
+
+
+def test_a_lit_work_plane_after_an_observer_grid_is_not_called_dark():
+    """The reach check reads each target's own grid rows (its PreparedTarget): the warning names
+    the eyes, which count reflected light only, and not the lit work plane."""
+    s = panel_over_black_floor(True)
+    check = lightsolver.check_scene(s)
+    assert check["errors"] == []
+    dark = [w for w in check["warnings"] if w["field"].startswith("targets")]
+    assert fields(dark) == ["targets[0]"]
+    assert "reflected light only" in dark[0]["message"]
+    r = lightsolver.solve(s, photons=20000, seed=1)
+    plane = next(t for t in r["targets"] if t["name"] == "work plane")
+    assert plane["mean_lux"] > 0.0
+    assert not [w for w in r["warnings"] if "work plane" in w]
+
+
+def test_an_observer_grid_alone_is_checked_by_its_eyes():
+    check = lightsolver.check_scene(panel_over_black_floor(False))
+    assert check["errors"] == []
+    assert fields([w for w in check["warnings"] if w["field"].startswith("targets")]) == [
+        "targets[0]"]

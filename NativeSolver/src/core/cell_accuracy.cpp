@@ -74,23 +74,22 @@ double worst_cell_relative_half_width(const Scene& scene, const PreparedScene& s
   double worst = 0.0;
   const GroupedTallies tallies = grouped_tallies(s, t.bins, photons);
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-    const std::uint32_t bin = s.target_bin[i];
+    const PreparedTarget& at = s.targets[i];
     const auto estimate = [&](std::uint32_t b) {
       return tallies.estimate(b, s.bins[b].area_m2, confidence);
     };
-    const Estimate whole = estimate(bin);
+    const Estimate whole = estimate(at.bin);
     if (whole.hits == 0 || !(whole.mean > 0.0)) return kInf;
-    if (!target_type(scene.targets[i].type).cells) {
-      for (const std::uint32_t b : s.goal_bins[i]) {  // each eye of an observer grid
-        const Estimate e = estimate(b);
+    if (at.cells == 0) {
+      for (std::uint32_t k = 0; k < at.goal_count(); ++k) {  // each eye of an observer grid
+        const Estimate e = estimate(at.goal_bin(k));
         if (e.hits == 0 || !(e.mean > 0.0)) return kInf;
         worst = std::max(worst, target_relative_half_width(e));
       }
       continue;
     }
-    const std::uint32_t cells = scene.targets[i].nu * scene.targets[i].nv;
-    for (std::uint32_t c = 0; c < cells; ++c) {
-      worst = std::max(worst, cell_relative_half_width(estimate(bin + 1 + c), whole.mean));
+    for (std::uint32_t c = 0; c < at.cells; ++c) {
+      worst = std::max(worst, cell_relative_half_width(estimate(at.cell_bin(c)), whole.mean));
     }
   }
   return worst;

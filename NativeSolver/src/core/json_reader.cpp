@@ -55,7 +55,8 @@ double JsonNode::number() const {
 
 std::uint64_t JsonNode::unsigned_integer() const {
   if (j_.is_number_unsigned()) return j_.get<std::uint64_t>();
-  if (j_.is_number_integer()) fail("must be >= 0 (got " + std::to_string(j_.get<long long>()) + ")");
+  if (j_.is_number_integer())
+    fail("must be >= 0 (got " + std::to_string(j_.get<long long>()) + ")");
   if (j_.is_number_float()) {
     const double v = j_.get<double>();
     if (v >= 0 && v == std::floor(v) && v < 1.8e19) return static_cast<std::uint64_t>(v);
@@ -100,8 +101,8 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& file)
   } catch (const nlohmann::json::exception& e) {  // e.g. a number too large for a double
     std::string what = e.what();
     const auto pos = what.find("] ");
-    throw InputError(file, "", "malformed JSON: " +
-                                   (pos == std::string::npos ? what : what.substr(pos + 2)));
+    throw InputError(file, "",
+                     "malformed JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
   }
 }
 

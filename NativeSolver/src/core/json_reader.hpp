@@ -29,7 +29,7 @@ class JsonNode {
   JsonNode operator[](std::size_t i) const;              // array element
   std::size_t array_size() const;                        // fails unless an array
   void require_object(std::initializer_list<const char*> allowed) const;  // no unknown keys
-  void require_object(std::span<const char* const> allowed) const;
+  void require_object(std::span<const char* const> allowed) const;       // no unknown keys
   const nlohmann::json& object() const;                  // fails unless an object
 
   double number() const;  // finite number

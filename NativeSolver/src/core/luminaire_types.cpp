@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <numbers>
@@ -15,15 +14,14 @@
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
+#include "core/luminaire_rows.hpp"
 #include "core/prepared_scene.hpp"
 #include "core/sampling.hpp"
 #include "lightsolver/photometry.hpp"
 #include "shared/spot.h"
 
 namespace lightsolver::detail {
-namespace {
-
-namespace fs = std::filesystem;
+namespace luminaire_rows {
 
 // Numbers in messages: 6 significant digits, as the validator prints them.
 std::string show(double v) {
@@ -32,39 +30,80 @@ std::string show(double v) {
   return s.str();
 }
 
+glm::dvec3 at_position(const Luminaire& l) { return l.position; }
+void move_position(Luminaire& l, const glm::dvec3& c) { l.position = c; }
+glm::dvec3* file_aim(Luminaire& l) { return &l.aim; }
+
+EmissionSupport from_point(const PreparedLuminaire& l, double half_angle_rad) {
+  EmissionSupport s;
+  s.axis = glm::normalize(glm::dvec3(l.axis));
+  s.points = {glm::dvec3(l.position)};
+  s.half_angle_rad = half_angle_rad;
+  return s;
+}
+
+GlareShape no_glare(std::string why_not) {
+  GlareShape g;
+  g.why_not = std::move(why_not);
+  return g;
+}
+
+void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
+  c.direction(key, v);
+  v = glm::normalize(v);
+}
+
+}  // namespace luminaire_rows
+
+namespace {
+
+using namespace luminaire_rows;
+
 void read_parallelogram(const JsonNode& n, Luminaire& l) {
   l.corner = n.at("corner").vec3();
   l.edge1 = n.at("edge1").vec3();
   l.edge2 = n.at("edge2").vec3();
 }
 
-glm::dvec3 at_position(const Luminaire& l) { return l.position; }
 glm::dvec3 at_corner(const Luminaire& l) { return l.corner; }
 glm::dvec3 centre_of_parallelogram(const Luminaire& l) {
   return l.corner + 0.5 * (l.edge1 + l.edge2);
 }
-void move_position(Luminaire& l, const glm::dvec3& c) { l.position = c; }
 void move_parallelogram(Luminaire& l, const glm::dvec3& c) {
   l.corner = c - 0.5 * (l.edge1 + l.edge2);
 }
 glm::dvec3* no_aim(Luminaire&) { return nullptr; }
 glm::dvec3* direction_aim(Luminaire& l) { return &l.direction; }
-glm::dvec3* file_aim(Luminaire& l) { return &l.aim; }
+
+double own_flux(const Luminaire& l) { return l.flux_lm; }
+
+// Support from a parallelogram's corners (a half space or a beam along the axis), in the
+// prepared luminaire's local coordinates.
+EmissionSupport from_parallelogram(const PreparedLuminaire& l, double half_angle_rad) {
+  EmissionSupport s;
+  s.axis = glm::normalize(glm::dvec3(l.axis));
+  const glm::dvec3 corner(l.corner), e1(l.edge1), e2(l.edge2);
+  s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
+  s.half_angle_rad = half_angle_rad;
+  return s;
+}
+
+GlareShape small_source_glare(const Luminaire&) {
+  return no_glare(
+      "a point or spot luminaire has no luminous area (CIE 117 needs one; CIE 147's "
+      "small-source rating is not implemented)");
+}
 
 vec3 point_on_parallelogram(const PreparedLuminaire& l, PathRng& rng) {
   return shared::point_on_parallelogram(l.corner, l.edge1, l.edge2, rng);
 }
 
-// Checks `key` as a direction and makes it unit length.
-void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
-  c.direction(key, v);
-  v = glm::normalize(v);
-}
-
 // --- point: isotropic ---------------------------------------------------------------------
 
+constexpr const char* kPointKeys[] = {"name", "type", "flux_lm", "position"};
+
 void read_point(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object({"name", "type", "flux_lm", "position"});
+  n.require_object(kPointKeys);
   l.position = n.at("position").vec3();
   l.flux_lm = n.at("flux_lm").number();
 }
@@ -80,11 +119,17 @@ EmittedRay emit_point(const PreparedLuminaire& l, PathRng& rng) {
   return {l.position, sample_sphere(rng)};
 }
 
+EmissionSupport support_point(const PreparedLuminaire& l) {
+  return from_point(l, std::numbers::pi);
+}
+
 // --- spot: smooth beam/field profile about an axis ------------------------------------------
 
+constexpr const char* kSpotKeys[] = {"name",      "type",           "flux_lm",        "position",
+                                     "direction", "beam_angle_deg", "field_angle_deg"};
+
 void read_spot(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object(
-      {"name", "type", "flux_lm", "position", "direction", "beam_angle_deg", "field_angle_deg"});
+  n.require_object(kSpotKeys);
   l.position = n.at("position").vec3();
   l.direction = n.at("direction").vec3();
   l.beam_angle_deg = n.at("beam_angle_deg").number();
@@ -108,6 +153,8 @@ void prepare_spot(const Luminaire& l, PreparedLuminaire& p) {
   p.cos_half_field = std::cos(p.half_field_rad);  // in float, as the GPU computes it
   p.axis = vec3(l.direction);
 }
+
+EmissionSupport support_spot(const PreparedLuminaire& l) { return from_point(l, l.half_field_rad); }
 
 }  // namespace
 
@@ -135,8 +182,10 @@ EmittedRay emit_spot(const PreparedLuminaire& l, PathRng& rng) {
 
 // --- area: Lambertian parallelogram, emitting along edge1 x edge2 ---------------------------
 
+constexpr const char* kAreaKeys[] = {"name", "type", "flux_lm", "corner", "edge1", "edge2"};
+
 void read_area(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object({"name", "type", "flux_lm", "corner", "edge1", "edge2"});
+  n.require_object(kAreaKeys);
   read_parallelogram(n, l);
   l.flux_lm = n.at("flux_lm").number();
 }
@@ -156,10 +205,28 @@ EmittedRay emit_area(const PreparedLuminaire& l, PathRng& rng) {
   return {p, sample_cosine(l.axis, rng)};
 }
 
+EmissionSupport support_area(const PreparedLuminaire& l) {
+  return from_parallelogram(l, 0.5 * std::numbers::pi);
+}
+
+// Uniform luminance over the rectangle toward its front: L = flux / (pi A).
+GlareShape glare_area(const Luminaire& l) {
+  GlareShape g;
+  g.kind = GlareShape::Kind::LambertianArea;
+  g.centre = centre_of_parallelogram(l);
+  g.normal = glm::cross(l.edge1, l.edge2);
+  g.area_m2 = glm::length(g.normal);
+  g.flux_lm = l.flux_lm;
+  return g;
+}
+
 // --- directional: a parallel beam (sunlight) through a parallelogram opening ----------------
 
+constexpr const char* kDirectionalKeys[] = {"name",   "type",  "illuminance_lx", "direction",
+                                            "corner", "edge1", "edge2"};
+
 void read_directional(const JsonNode& n, Luminaire& l, const std::string&) {
-  n.require_object({"name", "type", "illuminance_lx", "direction", "corner", "edge1", "edge2"});
+  n.require_object(kDirectionalKeys);
   l.direction = n.at("direction").vec3();
   l.illuminance_lx = n.at("illuminance_lx").number();
   read_parallelogram(n, l);
@@ -193,72 +260,88 @@ EmittedRay emit_directional(const PreparedLuminaire& l, PathRng& rng) {
   return {offset_ray_origin(point_on_parallelogram(l, rng), l.axis), l.axis};
 }
 
-// --- photometric: an IES / EULUMDAT distribution in an aimed, rotated frame -----------------
-
-void read_photometric(const JsonNode& n, Luminaire& l, const std::string& base_dir) {
-  n.require_object({"name", "type", "file", "position", "aim", "rotation_deg", "flux_lm"});
-  l.position = n.at("position").vec3();
-  if (n.has("aim")) l.aim = n.at("aim").vec3();
-  l.rotation_deg = n.number_or("rotation_deg", 0.0);
-  std::optional<double> flux;
-  if (n.has("flux_lm")) {
-    flux = n.at("flux_lm").number();
-    // Checked here so the message names the scene file (load_photometric knows only the field).
-    if (!(*flux >= 0.0)) n.at("flux_lm").fail("must be a finite value >= 0");
-  }
-  l.file = n.at("file").string();
-  load_photometric(l, (fs::path(base_dir) / l.file).lexically_normal().string(), flux,
-                   n.path() + ".flux_lm");
+EmissionSupport support_directional(const PreparedLuminaire& l) {
+  return from_parallelogram(l, 0.0);
 }
 
-void check_photometric(const LuminaireChecks& c, Luminaire& l) {
-  c.coordinates("position", l.position);
-  unit_direction(c, "aim", l.aim);
-  if (!l.sampler) c.fail("file", "no photometric data loaded");
-  if (!std::isfinite(l.rotation_deg)) c.fail("rotation_deg", "not finite");
-  c.flux(l, " (emitted, from the file)");
-  // The scaled table's peak: the file's candela times emitted flux / the file's integrated flux.
-  if (!l.photometry || l.photometry->candela.empty()) return;
-  const double peak_cd =
-      *std::max_element(l.photometry->candela.begin(), l.photometry->candela.end()) *
-      (l.flux_lm / l.sampler->integrated_flux_lm());
-  if (!(peak_cd <= limits::kMaxIntensity_cd)) {
-    c.fail("file", "peak intensity " + show(peak_cd) +
-                       " cd (as scaled) is more than 10^15 cd: beyond any physical light source");
-  }
-}
-
-void prepare_photometric(const Luminaire& l, PreparedLuminaire& p) {
-  p.axis = vec3(glm::normalize(l.aim));
-  p.c0 = vec3(photometric_c0(l));
-}
-
-// Direction and opening point drawn exactly from the file's distribution (equal power per
-// photon), mapped from the luminaire frame (gamma = 0 along -z, C0 along +x) to the world.
-// The origin is pushed off the opening's plane so a recessed or flush luminaire is not
-// blocked by the ceiling it sits in.
-EmittedRay emit_photometric(const PreparedLuminaire& l, PathRng& rng) {
-  const PhotometricSampler& sampler = *l.source->sampler;
-  const glm::dvec3 aim(l.axis), c0(l.c0);
-  const glm::dvec3 o = lightsolver::to_world(sampler.sample_origin(rng), aim, c0);
-  const glm::dvec3 d = lightsolver::to_world(sampler.sample_direction(rng), aim, c0);
-  return {offset_ray_origin(l.position + vec3(o), l.axis), glm::normalize(vec3(d))};
+GlareShape glare_directional(const Luminaire&) {
+  return no_glare("a directional beam (daylight) is not a luminaire in the field of view");
 }
 
 using T = Luminaire::Type;
-const std::array<LuminaireType, 5> kTypes = {{
-    {T::Point, "point", read_point, check_point, prepare_point, emit_point, at_position,
-     at_position, move_position, no_aim, true},
-    {T::Spot, "spot", read_spot, check_spot, prepare_spot, emit_spot, at_position, at_position,
-     move_position, direction_aim, true},
-    {T::Area, "area", read_area, check_area, prepare_area, emit_area, at_corner,
-     centre_of_parallelogram, move_parallelogram, no_aim, true},
-    {T::Directional, "directional", read_directional, check_directional, prepare_directional,
-     emit_directional, at_corner, centre_of_parallelogram, move_parallelogram, direction_aim,
-     false},
-    {T::Photometric, "photometric", read_photometric, check_photometric, prepare_photometric,
-     emit_photometric, at_position, at_position, move_position, file_aim, true},
-}};
+using G = GlareShape::Kind;
+const auto kTypes = std::to_array<LuminaireType>({
+    {.type = T::Point,
+     .name = "point",
+     .keys = kPointKeys,
+     .read = read_point,
+     .check = check_point,
+     .prepare = prepare_point,
+     .emit = emit_point,
+     .emitted_flux = own_flux,
+     .support = support_point,
+     .glare_kind = G::None,
+     .glare = small_source_glare,
+     .effect = "point_emission",
+     .anchor = at_position,
+     .centre = at_position,
+     .move_to = move_position,
+     .aim = no_aim,
+     .placed = true},
+    {.type = T::Spot,
+     .name = "spot",
+     .keys = kSpotKeys,
+     .read = read_spot,
+     .check = check_spot,
+     .prepare = prepare_spot,
+     .emit = emit_spot,
+     .emitted_flux = own_flux,
+     .support = support_spot,
+     .glare_kind = G::None,
+     .glare = small_source_glare,
+     .effect = "spot_emission",
+     .anchor = at_position,
+     .centre = at_position,
+     .move_to = move_position,
+     .aim = direction_aim,
+     .placed = true},
+    {.type = T::Area,
+     .name = "area",
+     .keys = kAreaKeys,
+     .read = read_area,
+     .check = check_area,
+     .prepare = prepare_area,
+     .emit = emit_area,
+     .emitted_flux = own_flux,
+     .support = support_area,
+     .glare_kind = G::LambertianArea,
+     .glare = glare_area,
+     .effect = "area_emission",
+     .anchor = at_corner,
+     .centre = centre_of_parallelogram,
+     .move_to = move_parallelogram,
+     .aim = no_aim,
+     .placed = true},
+    {.type = T::Directional,
+     .name = "directional",
+     .keys = kDirectionalKeys,
+     .read = read_directional,
+     .check = check_directional,
+     .prepare = prepare_directional,
+     .emit = emit_directional,
+     .emitted_flux = own_flux,
+     .support = support_directional,
+     .glare_kind = G::None,
+     .glare = glare_directional,
+     .effect = "directional_emission",
+     .anchor = at_corner,
+     .centre = centre_of_parallelogram,
+     .move_to = move_parallelogram,
+     .aim = direction_aim,
+     .placed = false},
+    photometric_luminaire_type(),
+});
+static_assert(kTypes.size() <= kMaxLuminaireTypes);
 
 }  // namespace
 
@@ -277,6 +360,12 @@ void read_luminaire_keys(const LuminaireType& row, const JsonNode& n, Luminaire&
 }
 
 std::span<const LuminaireType> luminaire_types() { return kTypes; }
+
+std::size_t luminaire_type_index(Luminaire::Type type) {
+  return static_cast<std::size_t>(&luminaire_type(type) - kTypes.data());
+}
+
+double emitted_flux_lm(const Luminaire& l) { return luminaire_type(l.type).emitted_flux(l); }
 
 const LuminaireType& luminaire_type(Luminaire::Type type) {
   for (const auto& row : kTypes) {

@@ -1,13 +1,19 @@
 #pragma once
 // One row per luminaire type: how the scene file spells it, how it is read, checked, prepared
-// and emitted on the CPU. The reader (scene_json.cpp), the validator (scene.cpp), prepare()
-// (prepared_scene.cpp) and the CPU emitter (emitters.hpp) look the type up here instead of
-// switching over Luminaire::Type. The GPU has its own row per type (vulkan/gpu_scene.cpp,
-// Shaders/emit.glsl): docs/solver.md, "Adding a luminaire type".
+// and emitted on the CPU, the flux it emits, where and in which directions it emits (target
+// reach), what it is as a glare source and the effect it adds. The reader (scene_json.cpp),
+// the validator (scene.cpp), prepare() (prepared_scene.cpp), the CPU emitter (emitters.hpp),
+// the reach check (target_reach.cpp), the effects (scene_effects.cpp) and the glare terms
+// (glare/glare_terms.cpp) look the type up here instead of switching over Luminaire::Type.
+// The GPU has its own row per type (vulkan/gpu_scene.cpp, Shaders/emit.glsl): docs/solver.md,
+// "Adding a luminaire type".
+#include <cstddef>
 #include <glm/vec3.hpp>
+#include <numbers>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/prepared_scene.hpp"
 #include "lightsolver/scene.hpp"
@@ -33,10 +39,37 @@ class LuminaireChecks {
   virtual void flux(const Luminaire& l, const char* note) const = 0;
 };
 
+/// Where a luminaire emits from (within `radius` of the convex hull of `points`, local
+/// coordinates) and in which directions (within `half_angle_rad` of `axis`; pi: every one).
+/// target_reach.cpp proves from it that a target faces away from every luminaire.
+struct EmissionSupport {
+  std::vector<glm::dvec3> points;
+  double radius = 0.0;
+  glm::dvec3 axis{0.0, 0.0, 1.0};
+  double half_angle_rad = std::numbers::pi;
+};
+
+/// A luminaire as a discomfort-glare source (CIE 117), for glare/glare_terms.cpp, which rates
+/// it: a Lambertian luminous area, a photometric file's luminous body, or none and why. Only
+/// geometry and photometry here: the rating is the glare layer's.
+struct GlareShape {
+  enum class Kind { None, LambertianArea, PhotometricBody };
+  Kind kind = Kind::None;
+  std::string why_not;     ///< None: why it is no glare source (results' why_not)
+  glm::dvec3 centre{0.0};  ///< where the eye sees it (world)
+  glm::dvec3 normal{0.0};  ///< LambertianArea: its emitting side, of length area_m2
+  double area_m2 = 0.0;    ///< LambertianArea
+  double flux_lm = 0.0;    ///< LambertianArea: the flux it emits
+  glm::dvec3 aim{0.0, 0.0, -1.0}, c0{1.0, 0.0, 0.0};  ///< PhotometricBody: the file's frame
+  double candela_scale = 0.0;  ///< PhotometricBody: file candela -> traced intensity (TILT too)
+};
+
 /// One luminaire type. Every hook is required.
 struct LuminaireType {
   Luminaire::Type type;
   const char* name;  ///< "type" in the scene file
+  /// The keys of its scene-file entry (besides power_w and group, which every type has).
+  std::span<const char* const> keys;
   /// Reads the type's keys (rejecting unknown ones); "name" and "type" are already read.
   /// `base_dir`: the scene file's folder, for files the luminaire refers to.
   void (*read)(const JsonNode& n, Luminaire& l, const std::string& base_dir);
@@ -47,6 +80,18 @@ struct LuminaireType {
   /// Draws one photon's start and direction (local coordinates) from the prepared luminaire;
   /// prepare() stores it in PreparedLuminaire::emit.
   EmittedRay (*emit)(const PreparedLuminaire& l, PathRng& rng);
+  /// The flux it emits as traced (lm): flux_lm, times a photometric file's TILT factor.
+  double (*emitted_flux)(const Luminaire& l);
+  /// Where and in which directions the prepared luminaire can emit (target_reach.cpp).
+  EmissionSupport (*support)(const PreparedLuminaire& l);
+  /// What kind of glare source the type is (None: glare(any luminaire) says why not).
+  GlareShape::Kind glare_kind;
+  /// What the luminaire is as a glare source (glare/glare_terms.cpp rates it): of glare_kind,
+  /// or None for one that emits nothing.
+  GlareShape (*glare)(const Luminaire& l);
+  /// The effect a scene with this type needs (Results::effects; "point_emission"): see
+  /// emission_effect() in scene_effects.hpp.
+  const char* effect;
   /// A point of the luminaire in world coordinates, for the scene's centre.
   glm::dvec3 (*anchor)(const Luminaire& l);
   /// Where the luminaire is for placement (the optimizer, spacing rules): its position, or
@@ -69,8 +114,17 @@ void read_luminaire_keys(const LuminaireType& row, const JsonNode& n, Luminaire&
 /// The spot profile (relative intensity at `theta` from the axis; half angles in radians).
 double spot_profile(double theta, double half_beam, double half_field);
 
+/// At most this many rows (tables sized at compile time: the scene analysis's effects).
+inline constexpr std::size_t kMaxLuminaireTypes = 16;
+
+/// The flux `l` emits as traced: its row's emitted_flux (TILT applied). A group's flux is the
+/// sum of its luminaires'; a rescale multiplies it by the group's dimming factor.
+double emitted_flux_lm(const Luminaire& l);
+
 /// All types, one row each.
 std::span<const LuminaireType> luminaire_types();
+/// The index of `type`'s row in luminaire_types().
+std::size_t luminaire_type_index(Luminaire::Type type);
 /// The row of `type`.
 const LuminaireType& luminaire_type(Luminaire::Type type);
 /// The row whose scene-file name is `name`, or nullptr.

@@ -76,6 +76,7 @@ PreparedLuminaire prepare_luminaire(const Luminaire& l, const glm::dvec3& origin
   const LuminaireType& row = luminaire_type(l.type);
   row.prepare(l, p);
   p.emit = row.emit;
+  p.flux_lm = row.emitted_flux(l);
   return p;
 }
 
@@ -138,7 +139,7 @@ void prepare_luminaires(const Scene& scene, PreparedScene& out) {
   for (std::size_t i = 0; i < scene.luminaires.size(); ++i) {
     const Luminaire& l = scene.luminaires[i];
     out.luminaires.push_back(prepare_luminaire(l, out.origin));
-    const double flux = l.flux_lm * photometric_tilt_factor(l);  // a lamp's output at its tilt
+    const double flux = out.luminaires.back().flux_lm;  // a lamp's output at its tilt
     total += flux;
     const std::string& name = shared && l.group.empty() ? kSharedGroupName : l.group_name();
     const auto [at, added] = group_of.try_emplace(name, out.groups.size());

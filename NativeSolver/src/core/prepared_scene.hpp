@@ -53,6 +53,7 @@ struct PreparedLuminaire {
   // Spot profile: relative intensity through (0,1), (beam/2, 0.5), (field/2, 0.1), 0 beyond.
   float half_beam_rad = 0, half_field_rad = 0, cos_half_field = 1;
   const Luminaire* source = nullptr;  // for photometric data and names
+  double flux_lm = 0.0;               // emitted as traced (emitted_flux_lm: TILT applied), lm
   vec3 c0{1, 0, 0};                   // photometric frame: gamma=0 along axis, C0 along c0
 };
 
@@ -69,6 +70,30 @@ struct BinInfo {
   double area_m2 = 0.0;
 };
 
+/// Bins per eye of an observer or observer grid: its square, then the square's one cell (an
+/// eye is a 1 x 1 grid row).
+inline constexpr std::uint32_t kEyeBins = 2;
+
+/// Where a target's tallies are: one record per Scene target, laid out by its type's prepare
+/// hook (target_types.cpp, append_target_bins). Results, contributions, accuracy goals, reach
+/// and rescale read it instead of recounting a type's bins or grid rows.
+struct PreparedTarget {
+  std::uint32_t bin = 0;        ///< first bin: the whole target (an eye target's first square)
+  std::uint32_t bin_count = 1;  ///< bins from `bin` that are its own or shared (a mesh's: 1)
+  std::uint32_t cells = 0;      ///< cell bins: cell c at cell_bin(c) (a grid's nu * nv)
+  std::uint32_t points = 0;     ///< eyes: eye k's square at point_bin(k), kEyeBins each
+  std::uint32_t point_stride = 0;
+  std::uint32_t first_grid = 0;  ///< its PreparedGrid rows: [first_grid, first_grid + grid_rows)
+  std::uint32_t grid_rows = 0;
+  std::int32_t mesh = -1;  ///< the mesh whose bin it is (PreparedScene::meshes), or -1
+
+  std::uint32_t cell_bin(std::uint32_t c) const { return bin + 1 + c; }
+  std::uint32_t point_bin(std::uint32_t k) const { return bin + point_stride * k; }
+  /// The bins an accuracy goal judges: each eye's square, else the whole target.
+  std::uint32_t goal_count() const { return points > 0 ? points : 1; }
+  std::uint32_t goal_bin(std::uint32_t k) const { return points > 0 ? point_bin(k) : bin; }
+};
+
 struct PreparedScene {
   glm::dvec3 origin{0.0};  // world = local + origin
   std::vector<Material> materials;
@@ -79,11 +104,8 @@ struct PreparedScene {
   // Fixed photon-share weights, one per group (Simulation::fix_photon_shares); empty: by flux.
   std::vector<double> share_weights;
   std::vector<BinInfo> bins;
-  std::vector<std::uint32_t> target_bin;  // first bin of each Scene target
-  // Per Scene target, the bins an accuracy goal judges: its whole bin (each eye's for an
-  // observer grid).
-  std::vector<std::vector<std::uint32_t>> goal_bins;
-  std::vector<std::string> observers;  // the target of each eye's tally (indirect-only grids)
+  std::vector<PreparedTarget> targets;  // one per Scene target, in scene order
+  std::vector<std::string> observers;   // the target of each eye's tally (indirect-only grids)
   double total_flux_lm = 0.0;
   std::uint32_t max_bounces = 1000;
   std::size_t triangle_count = 0;

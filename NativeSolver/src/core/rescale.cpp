@@ -57,8 +57,10 @@ Target scene_target(const TargetResult& in, std::size_t i, const std::string& so
   if (row == nullptr)
     throw InputError(source, at(i, "type"), "unknown target type \"" + in.type + "\"");
   t.type = row->type;
-  t.nu = in.nu;
-  t.nv = in.nv;
+  if (row->cells) {
+    t.nu = in.nu;
+    t.nv = in.nv;
+  }
   t.requirements = in.requirements;
   return t;
 }
@@ -104,24 +106,27 @@ std::vector<LuminaireResult> dimmed_luminaires(const Results& in, const Results&
   return out;
 }
 
-// Target i's tallies of group part `c` into its bins from `first`: the whole target, then its
-// cells; an observer grid's points at bin + 2k (each point's whole square; its cell bin is
-// not read by the results).
-void place_tallies(const Contribution& c, const TargetResult& t, std::size_t points, std::size_t i,
-                   const std::string& source, Tally* first) {
+// Target i's tallies of group part `c` into its bins (`layout`, as prepare() lays them) of the
+// group's tallies `group`: the whole target, then its cells; an observer grid's (`points`) into
+// each point's square (its cell bin is not read by the results).
+void place_tallies(const Contribution& c, const detail::PreparedTarget& layout, bool points,
+                   std::size_t i, const std::string& source, Tally* group) {
   const std::string where = at(i, "contributions." + c.group);
-  if (points > 0) {
-    if (c.tallies.size() != points) {
+  if (points) {
+    if (c.tallies.size() != layout.points) {
       throw InputError(source, where + ".points",
                        "has " + std::to_string(c.tallies.size()) +
-                           " entries, expected one per point (" + std::to_string(points) + ")");
+                           " entries, expected one per point (" + std::to_string(layout.points) +
+                           ")");
     }
-    for (std::size_t k = 0; k < points; ++k) first[2 * k] = c.tallies[k];
+    for (std::uint32_t k = 0; k < layout.points; ++k) group[layout.point_bin(k)] = c.tallies[k];
     return;
   }
-  const std::size_t cells = t.is_grid ? std::size_t(t.nu) * t.nv : 0;
-  if (c.tallies.size() != 1 + cells) throw InputError(source, where + ".cells", "wrong cell count");
-  for (std::size_t k = 0; k <= cells; ++k) first[k] = c.tallies[k];
+  if (c.tallies.size() != 1 + std::size_t(layout.cells)) {
+    throw InputError(source, where + ".cells", "wrong cell count");
+  }
+  group[layout.bin] = c.tallies[0];
+  for (std::uint32_t k = 0; k < layout.cells; ++k) group[layout.cell_bin(k)] = c.tallies[1 + k];
 }
 
 }  // namespace
@@ -160,9 +165,9 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     r.groups.push_back(std::move(gr));
   }
   r.luminaires = dimmed_luminaires(in, r, source);
-  // Every target's bins (whole target, then cells) end to end, with their areas.
+  // Every target's bins end to end, laid out as prepare() lays them (append_target_bins).
   std::vector<Target> scene_targets;
-  std::vector<std::uint32_t> first_bin;
+  std::vector<detail::PreparedTarget> layout;
   std::vector<detail::BinInfo> bins;
   // Observer grids: their geometry, each luminance dimmed by its group's factor (glare's: it
   // sits above core, results_glare.hpp).
@@ -172,14 +177,9 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     const TargetResult& t_in = in.targets[i];
     scene_targets.push_back(scene_target(t_in, i, source));
     const Target& t = scene_targets.back();
-    const double area = t_in.area_m2;
-    first_bin.push_back(static_cast<std::uint32_t>(bins.size()));
-    bins.push_back({area});
-    // As prepare() lays them out: equal cells; an observer's second bin is unused here.
-    if (t.type == Target::Type::Grid) {
-      bins.resize(bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
-    }
-    if (t.type == Target::Type::ObserverGrid) {
+    const detail::TargetType& row = detail::target_type(t.type);
+    std::uint32_t points = row.eyes(t);
+    if (t.type == Target::Type::ObserverGrid) {  // its eyes are read back with its geometry
       const ObserverGridGlare& grid = t_in.observer_grid.value();
       if (grid.terms.status.empty()) {
         throw InputError(source, at(i, "observer_grid"),
@@ -187,31 +187,31 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
                          "settings.contributions)");
       }
       auto g = glare.observer_grid(grid, luminaire_factor);
-      // Point k's two bins (whole square, its one cell) at bin + 2k, as prepare() lays them.
-      bins.resize(bins.size() - 1 + 2 * glare.points(*g), {area});
+      points = static_cast<std::uint32_t>(glare.points(*g));
       eyes[i] = std::move(g);
     }
+    layout.push_back(
+        detail::append_target_bins(bins, t_in.area_m2, row.cells ? t.nu * t.nv : 0, points));
   }
   tallies.bin_count = bins.size();
   std::vector<Tally> counts(names.size() * bins.size());
   tallies.bins = &counts;
   for (std::size_t i = 0; i < in.targets.size(); ++i) {
-    const std::size_t points = eyes.contains(i) ? glare.points(*eyes.at(i)) : 0;
     for (std::size_t g = 0; g < names.size(); ++g) {
-      place_tallies(in.targets[i].contributions[g], in.targets[i], points, i, source,
-                    &counts[g * bins.size() + first_bin[i]]);
+      place_tallies(in.targets[i].contributions[g], layout[i], eyes.contains(i), i, source,
+                    &counts[g * bins.size()]);
     }
   }
   for (std::size_t i = 0; i < scene_targets.size(); ++i) {
     const auto grid = eyes.find(i);
     TargetResult t =
-        detail::make_target(scene_targets[i], bins, tallies, first_bin[i], r.confidence, r.judged,
+        detail::make_target(scene_targets[i], bins, tallies, layout[i], r.confidence, r.judged,
                             nullptr, grid == eyes.end() ? nullptr : grid->second.get());
     if (t.is_observer && !t.observer_grid) {
       t.glare = glare.observer(in.targets[i].glare.value(), luminaire_factor, t.name, t.estimate,
                                source, at(i));
     }
-    detail::add_contributions(t, bins, tallies, first_bin[i], r.confidence, names);
+    detail::add_contributions(t, bins, tallies, layout[i], r.confidence, names);
     r.targets.push_back(std::move(t));
   }
   detail::add_verdicts(r);

@@ -14,10 +14,10 @@ std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s
   std::vector<TargetResult> out;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
     const Target& target = scene.targets[i];
-    const std::uint32_t bin = s.target_bin[i];
-    TargetResult r = make_target(target, s.bins, tallies, bin, confidence, judged,
+    const PreparedTarget& at = s.targets[i];
+    TargetResult r = make_target(target, s.bins, tallies, at, confidence, judged,
                                  luminaires != nullptr ? luminaires : &scene.luminaires);
-    if (contributions) add_contributions(r, s.bins, tallies, bin, confidence, names);
+    if (contributions) add_contributions(r, s.bins, tallies, at, confidence, names);
     out.push_back(std::move(r));
   }
   return out;
@@ -52,8 +52,9 @@ std::vector<LuminaireResult> luminaire_results(const Scene& scene, const Prepare
       r = {l.name,    luminaire_type(l.type).name, s.groups[g].name,
            l.flux_lm, photometric_tilt_factor(l),  factor,
            0.0};
-      // The product prepare_luminaires() adds into the group's flux, bit for bit.
-      r.emitted_flux_lm = r.flux_lm * r.tilt_factor * r.dimming;
+      // The type row's emitted flux (TILT applied), which prepare_luminaires() adds into the
+      // group's flux, dimmed: the same product, bit for bit.
+      r.emitted_flux_lm = emitted_flux_lm(l) * r.dimming;
     }
   }
   return out;

@@ -6,13 +6,13 @@ namespace lightsolver::detail {
 namespace {
 
 using M = Material::Type;
-using L = Luminaire::Type;
 
-constexpr const char* kNames[kEffectCount] = {
-    "interreflection", "diffuse_reflection",   "mirror_reflection",   "glossy_reflection",
-    "refraction",      "surface_targets",      "grid_crossing",       "observer_crossing",
-    "instancing",      "luminaire_choice",     "point_emission",      "spot_emission",
-    "area_emission",   "directional_emission", "photometric_emission"};
+constexpr std::size_t kFirstEmission = static_cast<std::size_t>(Effect::kFirstEmission);
+// The effects before the emission effects (those are named by the luminaire types' rows).
+constexpr const char* kNames[kFirstEmission] = {
+    "interreflection", "diffuse_reflection", "mirror_reflection", "glossy_reflection",
+    "refraction",      "surface_targets",    "grid_crossing",     "observer_crossing",
+    "instancing",      "luminaire_choice"};
 
 // Chance that a photon leaves a surface of this material at all (before any geometry). Glass
 // always reflects some light (Fresnel), so it always counts as returning light.
@@ -53,22 +53,29 @@ void set_material_effect(SceneEffects& e, Effect effect, M type, const char* kin
   e.set(effect, reflects, std::move(reason));
 }
 
+// Each luminaire type's emission: on when a luminaire of the type is present.
 void set_luminaire_effects(SceneEffects& e, const PreparedScene& s) {
-  auto uses = [&](L t) {
-    return std::any_of(s.luminaires.begin(), s.luminaires.end(),
-                       [t](const PreparedLuminaire& l) { return l.type == t; });
-  };
   e.set(Effect::LuminaireChoice, s.luminaires.size() > 1, "one luminaire");
-  e.set(Effect::PointEmission, uses(L::Point), "no point luminaire");
-  e.set(Effect::SpotEmission, uses(L::Spot), "no spot luminaire");
-  e.set(Effect::AreaEmission, uses(L::Area), "no area luminaire");
-  e.set(Effect::DirectionalEmission, uses(L::Directional), "no directional luminaire");
-  e.set(Effect::PhotometricEmission, uses(L::Photometric), "no photometric luminaire");
+  for (const LuminaireType& row : luminaire_types()) {
+    const bool used =
+        std::any_of(s.luminaires.begin(), s.luminaires.end(),
+                    [&row](const PreparedLuminaire& l) { return l.type == row.type; });
+    e.set(emission_effect(row.type), used, std::string("no ") + row.name + " luminaire");
+  }
 }
 
 }  // namespace
 
-const char* effect_name(Effect e) { return kNames[static_cast<std::size_t>(e)]; }
+std::size_t effect_count() { return kFirstEmission + luminaire_types().size(); }
+
+Effect emission_effect(Luminaire::Type type) {
+  return static_cast<Effect>(kFirstEmission + luminaire_type_index(type));
+}
+
+const char* effect_name(Effect e) {
+  const auto i = static_cast<std::size_t>(e);
+  return i < kFirstEmission ? kNames[i] : luminaire_types()[i - kFirstEmission].effect;
+}
 
 void SceneEffects::set(Effect e, bool on, std::string reason_if_off) {
   on_[index(e)] = on;
@@ -106,7 +113,7 @@ SceneEffects analyse_effects(const PreparedScene& s) {
 
 EffectsReport effects_report(const SceneEffects& effects) {
   EffectsReport r;
-  for (std::size_t i = 0; i < kEffectCount; ++i) {
+  for (std::size_t i = 0; i < effect_count(); ++i) {
     const auto e = static_cast<Effect>(i);
     if (effects.has(e)) {
       r.simulated.emplace_back(effect_name(e));

@@ -1,13 +1,14 @@
 #pragma once
 // Which effects a prepared scene needs: reflection by material kind, refraction, the target
-// kinds and the luminaire types. One analysis for both tracers: the Embree backend picks its
-// specialised path kernel from it (embree/path_kernel.hpp), the Vulkan backend its
-// specialisation constants (vulkan/gpu_scene.cpp), and the results list what was simulated and
-// what was skipped, with the reason.
+// kinds and the luminaire types (one emission effect per row of luminaire_types.cpp). One analysis
+// for both tracers: the Embree backend picks its specialised path kernel from it
+// (embree/path_kernel.hpp), the Vulkan backend its specialisation constants (vulkan/gpu_scene.cpp),
+// and the results list what was simulated and what was skipped, with the reason.
 #include <array>
 #include <cstdint>
 #include <string>
 
+#include "core/luminaire_types.hpp"
 #include "core/prepared_scene.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -25,15 +26,19 @@ enum class Effect : std::uint8_t {
   ObserverCrossing,   ///< indirect-only grids (observers' eyes)
   Instancing,         ///< movable meshes behind Embree instances
   LuminaireChoice,    ///< several luminaires: the flux CDF is searched per photon
-  PointEmission,      ///< luminaire types present, one effect each
-  SpotEmission,
-  AreaEmission,
-  DirectionalEmission,
-  PhotometricEmission,
-  kCount
+  /// Then one emission effect per luminaire type, in the rows' order (emission_effect()):
+  /// each row names its own (LuminaireType::effect).
+  kFirstEmission
 };
 
-inline constexpr std::size_t kEffectCount = static_cast<std::size_t>(Effect::kCount);
+/// How many effects there are: the fixed ones, then one per luminaire type.
+std::size_t effect_count();
+/// Room for every effect (SceneEffects' tables).
+inline constexpr std::size_t kMaxEffects =
+    static_cast<std::size_t>(Effect::kFirstEmission) + kMaxLuminaireTypes;
+
+/// The effect of emitting from luminaires of `type` ("spot_emission").
+Effect emission_effect(Luminaire::Type type);
 
 /// The name results use for `e` ("refraction", "mirror_reflection"...).
 const char* effect_name(Effect e);
@@ -48,8 +53,8 @@ class SceneEffects {
 
  private:
   static std::size_t index(Effect e) { return static_cast<std::size_t>(e); }
-  std::array<bool, kEffectCount> on_{};
-  std::array<std::string, kEffectCount> reasons_;
+  std::array<bool, kMaxEffects> on_{};
+  std::array<std::string, kMaxEffects> reasons_;
 };
 
 /// Analyses a prepared scene. Only meshes with triangles count (an empty mesh is never hit).

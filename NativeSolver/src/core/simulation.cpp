@@ -62,8 +62,9 @@ double worst_relative_half_width(const detail::PreparedScene& s, const detail::T
                                  std::uint64_t photons, double confidence) {
   double worst = 0.0;
   const detail::GroupedTallies tallies = detail::grouped_tallies(s, t.bins, photons);
-  for (const auto& bins : s.goal_bins) {
-    for (const std::uint32_t bin : bins) {
+  for (const detail::PreparedTarget& target : s.targets) {
+    for (std::uint32_t k = 0; k < target.goal_count(); ++k) {
+      const std::uint32_t bin = target.goal_bin(k);
       const Estimate e = tallies.estimate(bin, s.bins[bin].area_m2, confidence);
       if (e.hits == 0 || !(e.mean > 0.0)) return std::numeric_limits<double>::infinity();
       worst = std::max(worst, 0.5 * (e.ci_high - e.ci_low) / e.mean);

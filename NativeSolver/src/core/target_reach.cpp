@@ -6,7 +6,7 @@
 #include <limits>
 #include <numbers>
 
-#include "lightsolver/photometry.hpp"
+#include "core/luminaire_types.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -17,63 +17,6 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kAngleMargin_rad = 1e-3;
 // Target triangles x luminaires beyond which a target is not judged (the check must stay cheap).
 constexpr std::size_t kMaxPairs = 4'000'000;
-
-// Where a luminaire emits from (within `radius` of the convex hull of `points`) and in which
-// directions (within `half_angle_rad` of `axis`; pi: every direction).
-struct EmissionSupport {
-  std::vector<dvec3> points;
-  double radius = 0.0;
-  dvec3 axis{0.0, 0.0, 1.0};
-  double half_angle_rad = kPi;
-};
-
-// Largest gamma a type C file emits at: the cell past its last non-zero row still has light
-// (intensity is interpolated across a cell). Other types: every direction.
-double photometric_half_angle(const PhotometricData& d) {
-  if (d.type != PhotometricType::C || d.vertical_angles_deg.empty()) return kPi;
-  const std::size_t nv = d.vertical_angles_deg.size();
-  std::size_t last = nv;  // none yet
-  for (std::size_t h = 0; h < d.horizontal_angles_deg.size(); ++h) {
-    for (std::size_t v = 0; v < nv; ++v) {
-      if (d.candela_at(h, v) > 0.0 && (last == nv || v > last)) last = v;
-    }
-  }
-  if (last == nv) return 0.0;  // emits nothing (0 lm: no support claim needed either way)
-  const std::size_t edge = std::min(last + 1, nv - 1);
-  return d.vertical_angles_deg[edge] * kPi / 180.0;
-}
-
-EmissionSupport support_of(const PreparedLuminaire& l) {
-  EmissionSupport s;
-  s.axis = glm::normalize(dvec3(l.axis));
-  const dvec3 corner(l.corner), e1(l.edge1), e2(l.edge2);
-  switch (l.type) {
-    case Luminaire::Type::Point:
-      s.points = {dvec3(l.position)};
-      break;
-    case Luminaire::Type::Spot:
-      s.points = {dvec3(l.position)};
-      s.half_angle_rad = l.half_field_rad;
-      break;
-    case Luminaire::Type::Area:
-      s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
-      s.half_angle_rad = 0.5 * kPi;
-      break;
-    case Luminaire::Type::Directional:
-      s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
-      s.half_angle_rad = 0.0;
-      break;
-    case Luminaire::Type::Photometric: {
-      s.points = {dvec3(l.position)};
-      const PhotometricData* d = l.source ? l.source->photometry.get() : nullptr;
-      if (!d) break;  // no file data: every direction, a generous opening
-      s.radius = 0.5 * std::hypot(d->opening_length_m, d->opening_width_m, d->opening_height_m);
-      s.half_angle_rad = photometric_half_angle(*d);
-      break;
-    }
-  }
-  return s;
-}
 
 // True when no photon of `s` can cross the plane through `c` with unit normal `n` from its
 // front: every origin is behind the plane, or every direction leaves it. `margin_m` absorbs
@@ -123,6 +66,34 @@ std::string label(const Scene& scene, std::size_t i) {
   return "targets[" + std::to_string(i) + "] (\"" + scene.targets[i].name + "\")";
 }
 
+// A target's grid rows (its record's), every one counting reflected light only: its eyes.
+bool only_reflected(const PreparedScene& s, const PreparedTarget& at) {
+  if (at.grid_rows == 0) return false;
+  for (std::uint32_t r = at.first_grid; r < at.first_grid + at.grid_rows; ++r) {
+    if (s.grids[r].indirect_only == 0) return false;
+  }
+  return true;
+}
+
+// Every grid row of the target faces away from every luminaire.
+bool rows_are_dark(const PreparedScene& s, const PreparedTarget& at,
+                   const std::vector<EmissionSupport>& supports, double margin_m) {
+  for (std::uint32_t r = at.first_grid; r < at.first_grid + at.grid_rows; ++r) {
+    const PreparedGrid& g = s.grids[r];
+    if (!dark_for_all(supports, dvec3(g.corner), glm::normalize(dvec3(g.normal)), margin_m)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// A surface target: every triangle of its mesh faces away (a movable mesh is never judged).
+bool mesh_target_is_dark(const PreparedMesh& m, const std::vector<EmissionSupport>& supports,
+                         double margin_m) {
+  return !m.movable && !m.normals.empty() && m.normals.size() * supports.size() <= kMaxPairs &&
+         mesh_is_dark(m, supports, margin_m);
+}
+
 }  // namespace
 
 std::vector<DarkTarget> dark_targets(const Scene& scene, const PreparedScene& prepared,
@@ -131,28 +102,22 @@ std::vector<DarkTarget> dark_targets(const Scene& scene, const PreparedScene& pr
   if (effects.has(Effect::Interreflection) || prepared.total_flux_lm <= 0.0) return out;
   std::vector<EmissionSupport> supports;
   for (std::size_t i = 0; i < prepared.luminaires.size(); ++i) {
-    if (scene.luminaires[i].flux_lm > 0.0) supports.push_back(support_of(prepared.luminaires[i]));
+    const PreparedLuminaire& l = prepared.luminaires[i];
+    if (scene.luminaires[i].flux_lm > 0.0) supports.push_back(luminaire_type(l.type).support(l));
   }
   const double margin_m = margin_for(prepared);
-  std::size_t grid = 0;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
-    const Target& t = scene.targets[i];
-    if (t.type == Target::Type::Observer) {
-      ++grid;
+    const PreparedTarget& at = prepared.targets[i];  // where it tallies: a mesh, or grid rows
+    if (only_reflected(prepared, at)) {
       out.push_back({i, label(scene, i) +
                             ": an observer counts reflected light only and no surface reflects "
                             "(every reflectance is 0): its background luminance will be 0"});
       continue;
     }
-    bool dark = false;
-    if (t.type == Target::Type::Grid) {
-      const PreparedGrid& g = prepared.grids[grid++];
-      dark = dark_for_all(supports, dvec3(g.corner), glm::normalize(dvec3(g.normal)), margin_m);
-    } else {
-      const PreparedMesh& m = prepared.meshes[static_cast<std::size_t>(t.mesh)];
-      dark = !m.movable && !m.normals.empty() && m.normals.size() * supports.size() <= kMaxPairs &&
-             mesh_is_dark(m, supports, margin_m);
-    }
+    const bool dark =
+        at.mesh >= 0
+            ? mesh_target_is_dark(prepared.meshes[std::size_t(at.mesh)], supports, margin_m)
+            : at.grid_rows > 0 && rows_are_dark(prepared, at, supports, margin_m);
     if (dark) {
       out.push_back({i, label(scene, i) +
                             ": faces away from every luminaire and no surface reflects (every "

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
+#include "core/target_rows.hpp"
 
 namespace lightsolver::detail {
 
@@ -24,6 +25,10 @@ Estimate TargetTallies::estimate_z(std::uint32_t b, double z) const {
 }
 
 namespace {
+vec3 local(const glm::dvec3& p, const glm::dvec3& origin) { return vec3(p - origin); }
+}  // namespace
+
+namespace target_rows {
 
 // Numbers in messages: 6 significant digits, as the validator prints them.
 std::string show(double v) {
@@ -32,13 +37,7 @@ std::string show(double v) {
   return s.str();
 }
 
-vec3 local(const glm::dvec3& p, const glm::dvec3& origin) { return vec3(p - origin); }
-
-std::optional<glm::dvec3> no_anchor(const Target&) { return std::nullopt; }
-std::optional<glm::dvec3> at_corner(const Target& t) { return t.corner; }
 std::optional<glm::dvec3> at_position(const Target& t) { return t.position; }
-
-void no_result(const TargetTallies&, TargetResult&) {}
 
 // "cells": [nu, nv], each >= 1, at most `most` together.
 void read_cells(const JsonNode& n, Target& t, std::uint64_t most, const char* too_many) {
@@ -67,33 +66,23 @@ PreparedGrid prepare_grid(const Target& t, const glm::dvec3& origin, std::uint32
   return g;
 }
 
-// An eye's tally: a virtual square of kObserverSquare_m side centred on the eye, facing the line
-// of sight (light travelling toward the eye from the viewed half-space crosses it against its
-// normal), counting only reflected light. Two bins (whole square, its one cell) at the end.
-void add_eye(const glm::dvec3& eye, const glm::dvec3& view, const glm::dvec3& up_hint,
-             const std::string& name, PreparedScene& out) {
-  const auto bin = static_cast<std::uint32_t>(out.bins.size());
-  Target square;
-  const glm::dvec3 v = glm::normalize(view);
-  const glm::dvec3 side = glm::normalize(glm::cross(v, up_hint));
-  const glm::dvec3 up = glm::cross(v, side);  // side x up = v: the square's normal is v
-  square.edge1 = kObserverSquare_m * side;
-  square.edge2 = kObserverSquare_m * up;
-  square.corner = eye - 0.5 * (square.edge1 + square.edge2);
-  square.nu = square.nv = 1;
-  PreparedGrid g = prepare_grid(square, out.origin, bin);
-  g.indirect_only = 1;
-  const double square_m2 = kObserverSquare_m * kObserverSquare_m;
-  out.bins.insert(out.bins.end(), 2, {square_m2});
-  out.grids.push_back(g);
-  out.observers.push_back(name);
-  out.goal_bins.back().push_back(bin);
-}
+}  // namespace target_rows
+
+namespace {
+
+using namespace target_rows;
+
+std::optional<glm::dvec3> no_anchor(const Target&) { return std::nullopt; }
+std::optional<glm::dvec3> at_corner(const Target& t) { return t.corner; }
+std::uint32_t no_eyes(const Target&) { return 0; }
+void no_result(const TargetTallies&, TargetResult&) {}
 
 // --- surface: a mesh's absorbed and reflected light -----------------------------------------
 
+constexpr const char* kSurfaceKeys[] = {"name", "type", "mesh", "requirements", "task"};
+
 void read_surface(const JsonNode& n, const Scene& scene, Target& t) {
-  n.require_object({"name", "type", "mesh", "requirements", "task"});
+  n.require_object(kSurfaceKeys);
   const std::string mesh = n.at("mesh").string();
   t.mesh = scene.find_mesh(mesh);
   if (t.mesh < 0) n.at("mesh").fail("unknown mesh \"" + mesh + "\"");
@@ -123,18 +112,24 @@ void check_surface(const TargetChecks& c, Target& t) {
 
 void prepare_surface(const Target& t, const std::vector<double>& mesh_area, PreparedScene& out) {
   PreparedMesh& m = out.meshes[t.mesh];
+  PreparedTarget rec;
   if (m.bin < 0) {  // two targets naming one mesh share its bin
-    m.bin = static_cast<std::int32_t>(out.bins.size());
-    out.bins.push_back({mesh_area[t.mesh]});
+    rec = append_target_bins(out.bins, mesh_area[t.mesh], 0, 0);
+    m.bin = static_cast<std::int32_t>(rec.bin);
   }
-  out.target_bin.push_back(static_cast<std::uint32_t>(m.bin));
-  out.goal_bins.push_back({static_cast<std::uint32_t>(m.bin)});
+  rec.bin = static_cast<std::uint32_t>(m.bin);
+  rec.mesh = t.mesh;
+  rec.first_grid = static_cast<std::uint32_t>(out.grids.size());
+  out.targets.push_back(rec);
 }
 
 // --- grid: a virtual rectangle of cells (light crossing it from the front) ------------------
 
+constexpr const char* kGridKeys[] = {"name",  "type",  "corner",       "edge1",
+                                     "edge2", "cells", "requirements", "task"};
+
 void read_grid(const JsonNode& n, const Scene&, Target& t) {
-  n.require_object({"name", "type", "corner", "edge1", "edge2", "cells", "requirements", "task"});
+  n.require_object(kGridKeys);
   t.corner = n.at("corner").vec3();
   t.edge1 = n.at("edge1").vec3();
   t.edge2 = n.at("edge2").vec3();
@@ -168,13 +163,12 @@ void check_grid(const TargetChecks& c, Target& t) {
 }
 
 void prepare_grid_target(const Target& t, const std::vector<double>&, PreparedScene& out) {
-  const auto bin = static_cast<std::uint32_t>(out.bins.size());
-  const double area = glm::length(glm::cross(t.edge1, t.edge2));
-  out.bins.push_back({area});
-  out.bins.resize(out.bins.size() + std::size_t(t.nu) * t.nv, {area / (double(t.nu) * t.nv)});
-  out.grids.push_back(prepare_grid(t, out.origin, bin));
-  out.target_bin.push_back(bin);
-  out.goal_bins.push_back({bin});
+  PreparedTarget rec =
+      append_target_bins(out.bins, glm::length(glm::cross(t.edge1, t.edge2)), t.nu * t.nv, 0);
+  rec.first_grid = static_cast<std::uint32_t>(out.grids.size());
+  rec.grid_rows = 1;
+  out.grids.push_back(prepare_grid(t, out.origin, rec.bin));
+  out.targets.push_back(rec);
 }
 
 // Cell and grid estimates at any alpha, for the simultaneous intervals of grid_intervals();
@@ -182,10 +176,12 @@ void prepare_grid_target(const Target& t, const std::vector<double>&, PreparedSc
 GridSampler grid_sampler(const TargetTallies& tt) {
   auto estimate = [&tt, alpha = -1.0, z = 0.0](std::uint32_t b, double a) mutable {
     if (a != alpha) z = z_for_alpha(alpha = a);
-    return tt.estimate_z(tt.bin + b, z);
+    return tt.estimate_z(b, z);
   };
-  return {tt.target.nu * tt.target.nv, [estimate](double a) mutable { return estimate(0, a); },
-          [estimate](std::uint32_t c, double a) mutable { return estimate(1 + c, a); }};
+  const PreparedTarget& at = tt.layout;
+  return {
+      at.cells, [estimate, at](double a) mutable { return estimate(at.bin, a); },
+      [estimate, at](std::uint32_t c, double a) mutable { return estimate(at.cell_bin(c), a); }};
 }
 
 void grid_result(const TargetTallies& tt, TargetResult& r) {
@@ -193,8 +189,10 @@ void grid_result(const TargetTallies& tt, TargetResult& r) {
   r.is_grid = true;
   r.nu = t.nu;
   r.nv = t.nv;
-  r.cells.reserve(std::size_t(t.nu) * t.nv);
-  for (std::uint32_t c = 0; c < t.nu * t.nv; ++c) r.cells.push_back(tt.estimate(tt.bin + 1 + c));
+  r.cells.reserve(tt.layout.cells);
+  for (std::uint32_t c = 0; c < tt.layout.cells; ++c) {
+    r.cells.push_back(tt.estimate(tt.layout.cell_bin(c)));
+  }
   const auto [lo, hi] = std::minmax_element(r.cells.begin(), r.cells.end(),
                                             [](auto& a, auto& b) { return a.mean < b.mean; });
   r.min_lux = lo->mean;
@@ -206,173 +204,56 @@ void grid_result(const TargetTallies& tt, TargetResult& r) {
   }
 }
 
-// --- observer: an eye's reflected light, and its UGR ----------------------------------------
-
-void read_observer(const JsonNode& n, const Scene&, Target& t) {
-  n.require_object({"name", "type", "position", "view_direction", "up", "requirements", "task"});
-  t.position = n.at("position").vec3();
-  t.view_direction = n.at("view_direction").vec3();
-  if (n.has("up")) t.up = n.at("up").vec3();
-}
-
-// Checks `up` and makes it unit length.
-void check_up(const TargetChecks& c, Target& t) {
-  c.direction("up", t.up);
-  t.up = glm::normalize(t.up);
-}
-
-bool across(const glm::dvec3& view, const glm::dvec3& up) {
-  return glm::length(glm::cross(view, up)) >= 1e-6;
-}
-
-// An eye inside the coordinate range, a line of sight and an up direction that are not
-// parallel (normalised here; up is made orthogonal to the line of sight when used).
-void check_observer(const TargetChecks& c, Target& t) {
-  c.coordinates("position", t.position);
-  c.direction("view_direction", t.view_direction);
-  c.direction("up", t.up);
-  t.view_direction = glm::normalize(t.view_direction);
-  t.up = glm::normalize(t.up);
-  if (!across(t.view_direction, t.up)) {
-    c.fail("up",
-           "is parallel to view_direction: the observer needs an up "
-           "direction across its line of sight (default +z)");
-  }
-}
-
-void prepare_observer(const Target& t, const std::vector<double>&, PreparedScene& out) {
-  out.target_bin.push_back(static_cast<std::uint32_t>(out.bins.size()));
-  out.goal_bins.emplace_back();
-  add_eye(t.position, t.view_direction, t.up, t.name, out);
-}
-
-// --- observer grid: eyes x lines of sight, and the largest UGR ------------------------------
-
-void read_observer_grid(const JsonNode& n, const Scene&, Target& t) {
-  n.require_object({"name", "type", "positions", "corner", "edge1", "edge2", "cells",
-                    "view_directions", "view_step_deg", "up", "requirements", "task"});
-  if (n.has("positions")) {
-    for (const char* key : {"corner", "edge1", "edge2", "cells"}) {
-      if (n.has(key)) n.fail("give either \"positions\" or corner, edge1, edge2 and cells");
-    }
-    const JsonNode list = n.at("positions");
-    if (list.array_size() == 0) list.fail("must list at least one eye position");
-    if (list.array_size() > limits::kMaxObserverGridPoints) {
-      list.fail("more than 1024 eye positions");
-    }
-    for (std::size_t i = 0; i < list.array_size(); ++i) t.positions.push_back(list[i].vec3());
-  } else {
-    t.corner = n.at("corner").vec3();
-    t.edge1 = n.at("edge1").vec3();
-    t.edge2 = n.at("edge2").vec3();
-    read_cells(n, t, limits::kMaxObserverGridPoints, "more than 1024 eye positions");
-  }
-  if (n.has("view_directions") == n.has("view_step_deg")) {
-    n.fail("give either \"view_directions\" or \"view_step_deg\"");
-  }
-  if (n.has("view_step_deg")) t.view_step_deg = n.at("view_step_deg").number();
-  if (n.has("view_directions")) {
-    const JsonNode list = n.at("view_directions");
-    if (list.array_size() == 0) list.fail("must list at least one view direction");
-    if (list.array_size() > limits::kMaxObserverGridPoints) {
-      list.fail("more than 1024 view directions");
-    }
-    for (std::size_t i = 0; i < list.array_size(); ++i) {
-      t.view_directions.push_back(list[i].vec3());
-    }
-  }
-  if (n.has("up")) t.up = n.at("up").vec3();
-}
-
-// The eyes: listed, or the rectangle's cells (within 1024, each cell centre in range).
-std::uint64_t check_positions(const TargetChecks& c, const Target& t) {
-  if (!t.positions.empty()) {
-    for (std::size_t i = 0; i < t.positions.size(); ++i) {
-      c.coordinates("positions[" + std::to_string(i) + "]", t.positions[i]);
-    }
-    return t.positions.size();
-  }
-  c.parallelogram(t, "the rectangle of eye positions has zero area");
-  const std::uint64_t count = std::uint64_t(t.nu) * t.nv;
-  if (t.nu == 0 || t.nv == 0) c.fail("cells", "need at least 1x1 eye positions");
-  if (count > limits::kMaxObserverGridPoints) {
-    c.fail("cells", std::to_string(count) + " eye positions, more than 1024");
-  }
-  return count;
-}
-
-// The lines of sight: listed (each across `up`), or a step that divides the full turn.
-std::uint64_t check_directions(const TargetChecks& c, Target& t) {
-  if (t.view_step_deg) {
-    const double step = *t.view_step_deg;
-    const double turns = 360.0 / step;
-    if (!(step > 0.0 && step <= 360.0) || std::abs(turns - std::round(turns)) > 1e-9 * turns) {
-      c.fail("view_step_deg",
-             "must be > 0 and divide 360 (e.g. 15, 45, 90; got " + show(step) + ")");
-    }
-    // Before the count is converted: a tiny step gives an infinite or huge one.
-    if (!(turns <= double(limits::kMaxObserverGridPoints))) {
-      c.fail("view_step_deg", "gives " + show(turns) + " view directions, more than 1024");
-    }
-    if (!t.view_directions.empty()) c.fail("view_directions", "give it or view_step_deg, not both");
-    return static_cast<std::uint64_t>(std::round(turns));
-  }
-  if (t.view_directions.empty()) {
-    c.fail("view_directions", "must list at least one view direction (or give view_step_deg)");
-  }
-  for (std::size_t i = 0; i < t.view_directions.size(); ++i) {
-    const std::string key = "view_directions[" + std::to_string(i) + "]";
-    c.direction(key, t.view_directions[i]);
-    t.view_directions[i] = glm::normalize(t.view_directions[i]);
-    if (!across(t.view_directions[i], t.up)) {
-      c.fail(key, "is parallel to up: an eye needs an up direction across its line of sight");
-    }
-  }
-  return t.view_directions.size();
-}
-
-void check_observer_grid(const TargetChecks& c, Target& t) {
-  check_up(c, t);
-  const std::uint64_t positions = check_positions(c, t);
-  const std::uint64_t directions = check_directions(c, t);
-  if (positions * directions > limits::kMaxObserverGridPoints) {
-    c.fail(t.positions.empty() ? "cells" : "positions",
-           std::to_string(positions) + " positions x " + std::to_string(directions) +
-               " view directions = " + std::to_string(positions * directions) +
-               " eyes, more than 1024 (each is a tally every ray segment is tested against)");
-  }
-}
-
-std::optional<glm::dvec3> observer_grid_anchor(const Target& t) {
-  return t.positions.empty() ? t.corner : t.positions.front();
-}
-
-void prepare_observer_grid(const Target& t, const std::vector<double>&, PreparedScene& out) {
-  out.target_bin.push_back(static_cast<std::uint32_t>(out.bins.size()));
-  out.goal_bins.emplace_back();
-  const std::vector<glm::dvec3> directions = observer_grid_directions(t);
-  for (const glm::dvec3& eye : observer_grid_positions(t)) {
-    for (const glm::dvec3& view : directions) add_eye(eye, view, t.up, t.name, out);
-  }
-}
-
-// The observer rows' result hooks are glare's (src/glare/observer_rows.cpp): glare sits above
-// core, and the type table (src/tables/target_table.cpp, target_types()) puts them in.
 using T = Target::Type;
 constexpr unsigned kIlluminance = kRequireEm | kRequireU0 | kRequireEmin | kRequireUd;
+// The results-file keys each type's result adds (results_io.cpp's target_json, add_glare,
+// add_grid_intervals: the intervals only when requirements are judged).
+constexpr const char* kGridFields[] = {"cells_uv",
+                                       "cells",
+                                       "min_lux",
+                                       "max_lux",
+                                       "uniformity",
+                                       "min_ci_low_lux",
+                                       "min_ci_high_lux",
+                                       "max_ci_low_lux",
+                                       "max_ci_high_lux",
+                                       "uniformity_ci_low",
+                                       "uniformity_ci_high",
+                                       "ud",
+                                       "ud_ci_low",
+                                       "ud_ci_high"};
 const std::array<TargetType, 4> kTypes = {{
-    {T::Surface, "surface", read_surface, check_surface, kRequireEm,
-     "a surface target has no cells: only em_lux applies to it (use a grid target for U0, Emin "
-     "and Ud)",
-     TallyKind::MeshBin, false, no_anchor, prepare_surface, no_result},
-    {T::Grid, "grid", read_grid, check_grid, kIlluminance, "", TallyKind::GridRows, true, at_corner,
-     prepare_grid_target, grid_result},
-    {T::Observer, "observer", read_observer, check_observer, kRequireUgr,
-     "an observer target has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     at_position, prepare_observer, nullptr},
-    {T::ObserverGrid, "observer_grid", read_observer_grid, check_observer_grid, kRequireUgr,
-     "an observer grid has only ugr_max (illuminance needs a grid)", TallyKind::GridRows, false,
-     observer_grid_anchor, prepare_observer_grid, nullptr},
+    {.type = T::Surface,
+     .name = "surface",
+     .keys = kSurfaceKeys,
+     .read = read_surface,
+     .check = check_surface,
+     .requirements = kRequireEm,
+     .other_requirements = "a surface target has no cells: only em_lux applies to it (use a "
+                           "grid target for U0, Emin and Ud)",
+     .tally = TallyKind::MeshBin,
+     .cells = false,
+     .eyes = no_eyes,
+     .anchor = no_anchor,
+     .prepare = prepare_surface,
+     .result = no_result,
+     .result_fields = {}},
+    {.type = T::Grid,
+     .name = "grid",
+     .keys = kGridKeys,
+     .read = read_grid,
+     .check = check_grid,
+     .requirements = kIlluminance,
+     .other_requirements = "",
+     .tally = TallyKind::GridRows,
+     .cells = true,
+     .eyes = no_eyes,
+     .anchor = at_corner,
+     .prepare = prepare_grid_target,
+     .result = grid_result,
+     .result_fields = kGridFields},
+    observer_target_type(),
+    observer_grid_target_type(),
 }};
 
 }  // namespace
@@ -403,31 +284,22 @@ std::string target_type_names() {
   return s;
 }
 
-std::vector<glm::dvec3> observer_grid_positions(const Target& t) {
-  if (!t.positions.empty()) return t.positions;
-  std::vector<glm::dvec3> eyes;
-  for (std::uint32_t iv = 0; iv < t.nv; ++iv) {
-    for (std::uint32_t iu = 0; iu < t.nu; ++iu) {
-      eyes.push_back(t.corner + (iu + 0.5) / t.nu * t.edge1 + (iv + 0.5) / t.nv * t.edge2);
-    }
+PreparedTarget append_target_bins(std::vector<BinInfo>& bins, double area_m2, std::uint32_t cells,
+                                  std::uint32_t eyes) {
+  PreparedTarget rec;
+  rec.bin = static_cast<std::uint32_t>(bins.size());
+  if (eyes > 0) {
+    rec.points = eyes;
+    rec.point_stride = kEyeBins;
+    rec.bin_count = kEyeBins * eyes;
+    bins.resize(bins.size() + rec.bin_count, {area_m2});
+    return rec;
   }
-  return eyes;
-}
-
-std::vector<glm::dvec3> observer_grid_directions(const Target& t) {
-  if (!t.view_step_deg) return t.view_directions;
-  const glm::dvec3 up = glm::normalize(t.up);
-  glm::dvec3 start = glm::dvec3(1, 0, 0) - up.x * up;  // +x in the plane across up
-  if (glm::length(start) < 1e-6) start = glm::dvec3(0, 1, 0) - up.y * up;
-  start = glm::normalize(start);
-  const glm::dvec3 left = glm::cross(up, start);  // counter-clockwise seen from above
-  const auto count = static_cast<std::size_t>(std::round(360.0 / *t.view_step_deg));
-  std::vector<glm::dvec3> views;
-  for (std::size_t k = 0; k < count; ++k) {
-    const double a = k * *t.view_step_deg * std::numbers::pi / 180.0;
-    views.push_back(std::cos(a) * start + std::sin(a) * left);
-  }
-  return views;
+  rec.cells = cells;
+  rec.bin_count = 1 + cells;
+  bins.push_back({area_m2});
+  bins.resize(bins.size() + cells, {cells > 0 ? area_m2 / double(cells) : 0.0});
+  return rec;
 }
 
 }  // namespace lightsolver::detail

@@ -64,7 +64,7 @@ struct TargetTallies {
   const Target& target;
   const std::vector<BinInfo>& bins;  ///< every bin's area
   const GroupedTallies& tallies;     ///< the run's tallies, its groups combined (groups.hpp)
-  std::uint32_t bin;                 ///< the target's first bin (PreparedScene::target_bin)
+  const PreparedTarget& layout;      ///< where its bins are (PreparedScene::targets)
   double confidence;
   bool judged;  ///< the run judges requirements (grids then need their intervals)
   /// The scene's luminaires, for glare; null when results are rebuilt without the scene
@@ -82,6 +82,8 @@ struct TargetTallies {
 struct TargetType {
   Target::Type type;
   const char* name;  ///< "type" in the scene file
+  /// The keys of its scene-file entry.
+  std::span<const char* const> keys;
   /// Reads the type's keys, rejecting unknown ones ("name" is already read; "requirements"
   /// and "task" are read after it, and must be allowed).
   void (*read)(const JsonNode& n, const Scene& scene, Target& t);
@@ -94,13 +96,18 @@ struct TargetType {
   TallyKind tally;
   /// Its bins after the first are nu x nv cells (results' `cells`; per-cell accuracy goals).
   bool cells;
+  /// The eyes it tallies (kEyeBins each, reflected light only); 0: its bins are the whole
+  /// target and its cells. An observer grid read back from results counts its points instead.
+  std::uint32_t (*eyes)(const Target& t);
   /// A point of the target for the scene's centre, when it has coordinates of its own.
   std::optional<glm::dvec3> (*anchor)(const Target& t);
-  /// Adds its bins (and grid rows) to `out`, its first bin to out.target_bin and the bins an
-  /// accuracy goal judges to out.goal_bins (one entry per target). `mesh_area_m2`: per mesh.
+  /// Adds its bins (append_target_bins) and grid rows to `out`, and its record to out.targets.
+  /// `mesh_area_m2`: per mesh.
   void (*prepare)(const Target& t, const std::vector<double>& mesh_area_m2, PreparedScene& out);
   /// Fills the type's part of `r` (name, type, requirements, area and estimate are set).
   void (*result)(const TargetTallies& tallies, TargetResult& r);
+  /// The results-file keys its result adds to every target's (results_io.cpp writes them).
+  std::span<const char* const> result_fields;
 };
 
 /// All types, one row each, complete (every hook set). Assembled above core and glare
@@ -115,6 +122,13 @@ const TargetType& target_type(Target::Type type);
 const TargetType* find_target_type(std::string_view name);
 /// "surface, grid, observer or observer_grid", for messages.
 std::string target_type_names();
+
+/// Appends a target's bins to `bins` in the one layout every reader takes from the record it
+/// returns: `eyes` > 0: kEyeBins per eye, each of `area_m2` (an eye's square); otherwise the
+/// whole target (`area_m2`) and then `cells` equal cells. Grid rows and mesh are left unset.
+/// prepare() and rescale (results read back) both lay bins out here.
+PreparedTarget append_target_bins(std::vector<BinInfo>& bins, double area_m2, std::uint32_t cells,
+                                  std::uint32_t eyes);
 
 /// An observer grid's eyes (listed, or the rectangle's cell centres, row by row) and lines of
 /// sight (listed, or every view_step_deg about `up` from +x; +y when up is along x).

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/luminaire_types.hpp"
+
 namespace lightsolver::detail {
 namespace {
 
@@ -32,35 +34,24 @@ struct Candidate {
   std::string why_not;
 };
 
+// The luminaire's row says what it is as a source (luminaire_types.cpp); rated here.
 Candidate glare_candidate(const Luminaire& l) {
-  switch (l.type) {
-    case Luminaire::Type::Area: {
-      const glm::dvec3 n = glm::cross(l.edge1, l.edge2);
-      return {lambertian_glare_source(l.name, l.corner + 0.5 * (l.edge1 + l.edge2), n,
-                                      glm::length(n), l.flux_lm),
-              {}};
-    }
-    case Luminaire::Type::Photometric: {
-      if (!l.sampler || !(l.sampler->integrated_flux_lm() > 0.0)) return {{}, "emits nothing"};
-      // Intensity as traced: the file's candela scaled to the emitted flux, at its tilt.
-      const double scale = l.flux_lm / l.sampler->integrated_flux_lm() * photometric_tilt_factor(l);
+  const GlareShape g = luminaire_type(l.type).glare(l);
+  switch (g.kind) {
+    case GlareShape::Kind::LambertianArea:
+      return {lambertian_glare_source(l.name, g.centre, g.normal, g.area_m2, g.flux_lm), {}};
+    case GlareShape::Kind::PhotometricBody:
       try {
-        return {photometric_glare_source(l.name, l.photometry, l.sampler, l.position,
-                                         glm::normalize(l.aim), photometric_c0(l), scale),
+        return {photometric_glare_source(l.name, l.photometry, l.sampler, g.centre, g.aim, g.c0,
+                                         g.candela_scale),
                 {}};
       } catch (const InputError&) {
         return {{}, "its file gives no luminous area (a point opening): no luminance to rate"};
       }
-    }
-    case Luminaire::Type::Point:
-    case Luminaire::Type::Spot:
-      return {{},
-              "a point or spot luminaire has no luminous area (CIE 117 needs one; CIE 147's "
-              "small-source rating is not implemented)"};
-    case Luminaire::Type::Directional:
+    case GlareShape::Kind::None:
       break;
   }
-  return {{}, "a directional beam (daylight) is not a luminaire in the field of view"};
+  return {{}, g.why_not};
 }
 
 }  // namespace

@@ -14,11 +14,14 @@ void observer_result(const TargetTallies& tt, TargetResult& r) {
   if (tt.luminaires != nullptr) r.glare = observer_glare(tt.target, *tt.luminaires, r.estimate);
 }
 
-// Point k's tallies are the two bins at bin + 2k (prepare_observer_grid's order).
+// Point k's tallies are its whole square's bin (the target's layout record, prepare's order).
 void observer_grid_result(const TargetTallies& tt, TargetResult& r) {
+  const PreparedTarget& at = tt.layout;
   const ObserverGridTallies points{
-      [&tt](std::size_t k) { return tt.estimate(tt.bin + 2 * std::uint32_t(k)); },
-      [&tt](std::size_t k, double z) { return tt.estimate_z(tt.bin + 2 * std::uint32_t(k), z); }};
+      [&tt, &at](std::size_t k) { return tt.estimate(at.point_bin(std::uint32_t(k))); },
+      [&tt, &at](std::size_t k, double z) {
+        return tt.estimate_z(at.point_bin(std::uint32_t(k)), z);
+      }};
   if (tt.observer_grid == nullptr && tt.luminaires == nullptr) {
     throw std::logic_error("an observer grid's result needs the scene's luminaires");
   }

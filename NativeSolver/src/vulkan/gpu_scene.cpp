@@ -40,11 +40,11 @@ using M = Material::Type;
 // its branch of emit.glsl. One row per type of core's table (luminaire_types.cpp), checked by
 // gpu_luminaire_type() and vulkan_tests' GpuLuminaireTypes.
 const GpuLuminaireType kGpuLuminaireTypes[] = {
-    {L::Point, LS_LUMINAIRE_POINT, gpu::kHasPoint, Effect::PointEmission},
-    {L::Spot, LS_LUMINAIRE_SPOT, gpu::kHasSpot, Effect::SpotEmission},
-    {L::Area, LS_LUMINAIRE_AREA, gpu::kHasArea, Effect::AreaEmission},
-    {L::Directional, LS_LUMINAIRE_DIRECTIONAL, gpu::kHasDirectional, Effect::DirectionalEmission},
-    {L::Photometric, LS_LUMINAIRE_PHOTOMETRIC, gpu::kHasPhotometric, Effect::PhotometricEmission},
+    {L::Point, LS_LUMINAIRE_POINT, gpu::kHasPoint},
+    {L::Spot, LS_LUMINAIRE_SPOT, gpu::kHasSpot},
+    {L::Area, LS_LUMINAIRE_AREA, gpu::kHasArea},
+    {L::Directional, LS_LUMINAIRE_DIRECTIONAL, gpu::kHasDirectional},
+    {L::Photometric, LS_LUMINAIRE_PHOTOMETRIC, gpu::kHasPhotometric},
 };
 
 // Materials are packed by their enum value; the shader's codes come from trace_bindings.h.
@@ -98,7 +98,9 @@ std::vector<vkw::SpecConstant> features(const PreparedScene& s) {
       {gpu::kHasInstances, e.has(E::Instancing)}};
   std::vector<vkw::SpecConstant> out;
   for (const auto& [id, value] : on) out.push_back({id, value ? 1u : 0u});
-  for (const auto& row : kGpuLuminaireTypes) out.push_back({row.feature, e.has(row.effect)});
+  for (const auto& row : kGpuLuminaireTypes) {
+    out.push_back({row.feature, e.has(emission_effect(row.type))});
+  }
   return out;
 }
 

@@ -35,8 +35,7 @@ struct GpuSceneData {
 struct GpuLuminaireType {
   Luminaire::Type type;
   std::uint32_t code;
-  gpu::SpecId feature;
-  Effect effect;  ///< the scene analysis's effect that switches it on
+  gpu::SpecId feature;  ///< on when the scene analysis has the type's emission_effect()
 };
 
 /// The row of `type`; throws std::logic_error when the type has none.

@@ -171,6 +171,63 @@ TEST(DarkTargets, ObserversSeeNothingWithoutReflection) {
   expect_run_agrees(s, d);
 }
 
+// An observer grid's eyes are grid rows of their own (PreparedTarget): a grid listed after it
+// is judged by its own row, not by an eye's (issue 23: the work plane below a panel was called
+// dark because the check counted grid rows by hand and skipped the observer grid's).
+Scene panel_over_black_floor() {
+  Scene s;
+  add_material(s, "black", Material::Type::Diffuse, 0.0);
+  s.meshes.push_back(quad_mesh("floor", 0, {0, 0, 0}, {8, 0, 0}, {0, 4, 0}));
+  Luminaire panel;
+  panel.name = "panel";
+  panel.type = Luminaire::Type::Area;
+  panel.corner = {3.5, 1.5, 3.0};
+  panel.edge1 = {0, 1, 0};  // edge1 x edge2 = -z: faces down
+  panel.edge2 = {1, 0, 0};
+  panel.flux_lm = 3400;
+  s.luminaires.push_back(panel);
+  return s;
+}
+
+Target one_eye_grid(const std::string& name) {
+  Target eyes;
+  eyes.name = name;
+  eyes.type = Target::Type::ObserverGrid;
+  eyes.positions = {{5.5, 2, 1.2}};
+  eyes.view_directions = {{1, 0, 0}};
+  return eyes;
+}
+
+TEST(DarkTargets, ObserverGridBeforeAGridLeavesTheGridItsOwnRow) {
+  Scene s = panel_over_black_floor();
+  s.targets.push_back(one_eye_grid("eyes"));
+  s.targets.push_back(grid("work plane", {1, 0.5, 0.8}, {6, 0, 0}, {0, 3, 0}, 4, 3));
+  validate(s);
+  const std::vector<std::size_t> d = dark(s);
+  EXPECT_EQ(d, (std::vector<std::size_t>{0}));  // the eyes see no reflected light; the plane is lit
+  expect_run_agrees(s, d);
+  const Results r = run_on_backend("embree", s, 40'000, 3);
+  for (const std::string& w : r.warnings) EXPECT_EQ(w.find("work plane"), std::string::npos) << w;
+}
+
+// An observer grid alone: its record has grid rows and no mesh (no mesh index -1 to look up),
+// on the run's path and on check_scene's.
+TEST(DarkTargets, ObserverGridAloneIsJudgedByItsEyes) {
+  Scene s = panel_over_black_floor();
+  s.targets.push_back(one_eye_grid("eyes"));
+  validate(s);
+  EXPECT_EQ(dark(s), (std::vector<std::size_t>{0}));
+  const SceneCheck check = check_scene(s);
+  EXPECT_TRUE(check.errors.empty());
+  const auto it = std::find_if(check.warnings.begin(), check.warnings.end(),
+                               [](const auto& w) { return w.field == "targets[0]"; });
+  ASSERT_NE(it, check.warnings.end());
+  EXPECT_NE(it->message.find("counts reflected light only"), std::string::npos) << it->message;
+  const Results r = run_on_backend("embree", s, 1000, 1);
+  ASSERT_EQ(r.targets.size(), 1u);
+  EXPECT_EQ(r.targets[0].estimate.hits, 0u);
+}
+
 TEST(DarkTargets, NothingIsClaimedWhenASurfaceReflects) {
   Scene s = black_room();
   s.materials[0].reflectance = 0.3;

@@ -194,11 +194,12 @@ TEST(SceneEffects, ListsEveryEffectOnceWithTheReasonForSkippingIt) {
   EXPECT_TRUE(e.has(Effect::GridCrossing));
   EXPECT_TRUE(e.has(Effect::SurfaceTargets));
   EXPECT_EQ(e.reason(Effect::ObserverCrossing), "no observer");
-  EXPECT_TRUE(e.has(Effect::SpotEmission) && e.has(Effect::PointEmission));
+  EXPECT_TRUE(e.has(detail::emission_effect(Luminaire::Type::Spot)) &&
+              e.has(detail::emission_effect(Luminaire::Type::Point)));
   EXPECT_TRUE(e.has(Effect::LuminaireChoice));
-  EXPECT_EQ(e.reason(Effect::AreaEmission), "no area luminaire");
+  EXPECT_EQ(e.reason(detail::emission_effect(Luminaire::Type::Area)), "no area luminaire");
   const EffectsReport r = detail::effects_report(e);
-  EXPECT_EQ(r.simulated.size() + r.skipped.size(), detail::kEffectCount);
+  EXPECT_EQ(r.simulated.size() + r.skipped.size(), detail::effect_count());
   for (const SkippedEffect& k : r.skipped) EXPECT_FALSE(k.reason.empty()) << k.effect;
   // A run reports the same lists, and its text says what was left out and why.
   SolveOptions o;
