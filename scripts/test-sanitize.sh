@@ -21,8 +21,7 @@ export LSAN_OPTIONS="suppressions=$root/Tests/sanitizers/lsan.supp:print_suppres
 # coverage rates and counts at scale, which the main CTest run checks).
 slow='^(CiHonesty\.|Decide\.StoppingAtTheFirstDecidedLook|ObserverAgainstTable\.StandardRoom'
 slow+='|ObserverGridCoverage\.|IntervalCoverage\..*Over500Seeds'
-slow+='|Backends/HardCases\.(EveryPhotonCountedPastFloatResolution|TinyTargetInAHugeHall)'
-slow+='|optimizer\.ReusedTraces\.ReportedMembersStayFeasibleOver100Seeds)'
+slow+='|Backends/HardCases\.(EveryPhotonCountedPastFloatResolution|TinyTargetInAHugeHall))'
 
 start=$(date +%s)
 cmake -S . -B "$dir" -G Ninja -DLIGHTSOLVER_SANITIZE=ON -DCMAKE_BUILD_TYPE=Sanitize \
