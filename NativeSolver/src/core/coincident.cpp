@@ -388,7 +388,8 @@ class Detector {
       for (std::size_t k = i; k < j;) {
         std::size_t l = k;
         while (l < j && moves_[l].vertex == moves_[k].vertex) ++l;
-        disp[moves_[k].vertex] = displacement(&moves_[k], &moves_[l]);
+        // data() + l, not &moves_[l]: l may be one past the end.
+        disp[moves_[k].vertex] = displacement(moves_.data() + k, moves_.data() + l);
         k = l;
       }
       for (std::size_t v = 0; v < canon.size(); ++v) disp[v] = disp[canon[v]];

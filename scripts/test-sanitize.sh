@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The native GoogleTest suites (core, glare, optimizer, photometry; Vulkan on lavapipe where the
+# backend is built) compiled with AddressSanitizer (leak check on), UndefinedBehaviorSanitizer and
+# -D_GLIBCXX_ASSERTIONS into build-asan/, then run through CTest. A finding aborts the test that
+# made it. scripts/test.sh runs this after the main suite; docs/testing.md "Sanitizer build".
+# Extra arguments go to the CMake configure step.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+dir=build-asan
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# The first finding ends the test with a stack. Leak suppressions are for memory that libraries
+# outside this project keep (Tests/sanitizers/lsan.supp says which and why).
+export ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:strict_string_checks=1:abort_on_error=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export LSAN_OPTIONS="suppressions=$root/Tests/sanitizers/lsan.supp:print_suppressions=0"
+
+# Statistical tests that repeat a run over hundreds of seeds or trace 10^7 photons take minutes
+# each under ASan; the code they run is run by the shorter tests of the same suites (they check
+# coverage rates and counts at scale, which the main CTest run checks).
+slow='^(CiHonesty\.|Decide\.StoppingAtTheFirstDecidedLook|ObserverAgainstTable\.StandardRoom'
+slow+='|ObserverGridCoverage\.|IntervalCoverage\..*Over500Seeds'
+slow+='|Backends/HardCases\.(EveryPhotonCountedPastFloatResolution|TinyTargetInAHugeHall))'
+
+start=$(date +%s)
+cmake -S . -B "$dir" -G Ninja -DLIGHTSOLVER_SANITIZE=ON -DCMAKE_BUILD_TYPE=Sanitize \
+  -DLIGHTSOLVER_BUILD_PYTHON=OFF -DLIGHTSOLVER_BUILD_BENCHMARKS=OFF "$@"
+# Only the test programs (no CLI): the suites that exist in this configuration.
+mapfile -t targets < <(ninja -C "$dir" -t targets all |
+  sed -n 's/^\([a-z_]*_tests\): phony$/\1/p' | grep -v '^cmake_')
+cmake --build "$dir" -j "$jobs" --target "${targets[@]}"
+built=$(date +%s)
+
+# lavapipe stays loaded for the whole test process: the Vulkan loader unloads the ICD when the
+# last instance goes, and the memory LLVM keeps from lavapipe's one-time set-up (reachable from
+# the ICD's globals while it is loaded) would then be reported as leaked once per instance.
+# Preloading it leaves leak checking on for everything else, ours included.
+lvp=$(sed -n 's/.*"library_path": *"\([^"]*\)".*/\1/p' \
+  /usr/share/vulkan/icd.d/lvp_icd.x86_64.json 2>/dev/null || true)
+if [ -n "$lvp" ] && [ -e "$lvp" ]; then
+  export LD_PRELOAD="$lvp${LD_PRELOAD:+:$LD_PRELOAD}"
+  export ASAN_OPTIONS="$ASAN_OPTIONS:verify_asan_link_order=0"  # the ICD comes before libasan
+fi
+ctest --test-dir "$dir" --output-on-failure -j "$jobs" --timeout 900 -E "$slow"
+done_at=$(date +%s)
+echo "test-sanitize: ${targets[*]}: build $((built - start)) s, tests $((done_at - built)) s"
