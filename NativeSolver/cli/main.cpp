@@ -79,6 +79,7 @@ class ProgressBar {
 struct RunArgs {
   std::string scene, out;
   bool quiet = false;
+  bool effects = false;  // list each effect the scene did not need, with why
   lightsolver::SolveOptions options;
 };
 
@@ -148,7 +149,7 @@ int run(const RunArgs& a) {
     results = lightsolver::solve(scene, opt, std::ref(bar));
   }
   std::signal(SIGINT, SIG_DFL);
-  if (!a.quiet) std::cout << lightsolver::results_table(results);
+  if (!a.quiet) std::cout << lightsolver::results_table(results, a.effects);
   if (!a.out.empty())
     lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(results));
   return results.partial ? 130 : 0;  // 128 + SIGINT, as shells report an interrupted command
@@ -239,6 +240,9 @@ int run_command_line(int argc, char** argv) {
   run_cmd->add_option("--out", ra.out,
                       "Write results JSON here (checked before tracing, written atomically)");
   run_cmd->add_flag("--quiet,-q", ra.quiet, "Do not print the table");
+  run_cmd->add_flag("--effects", ra.effects,
+                    "After the table, list each effect the scene does not need (not simulated), "
+                    "with why");
 
   RunArgs ca;
   std::uint64_t max_photons = lightsolver::CostOptions{}.max_photons;

@@ -15,10 +15,10 @@ SMALL_ROOM = SOURCE_DIR / "Examples" / "optimization" / "small_room" / "small_ro
 EFFECTS = SCHEMA["properties"]["effects"]["properties"]["simulated"]["items"]["enum"]
 
 
-def run(cli, scene, tmp_path, env=None, name="r.json"):
+def run(cli, scene, tmp_path, env=None, name="r.json", extra=()):
     out = tmp_path / name
     r = subprocess.run([cli, "run", str(scene), "--photons", "100000", "--seed", "3",
-                        "--backend", "embree", "--out", str(out)],
+                        "--backend", "embree", "--out", str(out), *extra],
                        capture_output=True, text=True, timeout=120,
                        env={**os.environ, **(env or {})})
     assert r.returncode == 0, r.stderr
@@ -33,9 +33,13 @@ def test_results_list_every_effect_once_and_the_cli_prints_what_was_skipped(cli,
     assert sorted(effects["simulated"] + list(skipped)) == sorted(EFFECTS)
     assert {"interreflection", "diffuse_reflection", "grid_crossing"} <= set(effects["simulated"])
     assert skipped["refraction"] == "no glass"
-    assert "no glass: refraction not simulated" in stdout
     assert "simulated: interreflection, diffuse reflection, " in stdout
-    assert "no observer: observer crossing not simulated" in stdout
+    # One line of effects: the skipped ones are counted, listed only with --effects.
+    assert f"({len(skipped)} effects not needed by this scene, not simulated" in stdout
+    assert "not simulated\n" not in stdout.replace("--effects lists them)\n", "")
+    listed, _ = run(cli, SMALL_ROOM, tmp_path, extra=["--effects"], name="listed.json")
+    assert "no glass: refraction not simulated" in listed
+    assert "no observer: observer crossing not simulated" in listed
 
 
 def test_the_general_kernel_gives_the_same_numbers(cli, room_scene, tmp_path):

@@ -299,8 +299,10 @@ Results solve(const Scene& scene, const SolveOptions& options = {},
 /// Results as JSON text, format `lightsolver.results/1` (docs/scene-format.md).
 std::string results_to_json(const Results& results);
 
-/// Human-readable table: target, lux, ± half-width, hits; grids with min/max/U0.
-std::string results_table(const Results& results);
+/// Human-readable table: target, lux, ± half-width, hits; grids with min/max/U0; glare,
+/// verdicts, one line of the effects simulated (`list_skipped_effects`: and a line per effect
+/// skipped, with why) and the warnings.
+std::string results_table(const Results& results, bool list_skipped_effects = false);
 
 /// Library version ("0.1.0").
 const char* version();

@@ -12,6 +12,9 @@ nlohmann::json effects_json(const EffectsReport& effects);
 
 /// "simulated: interreflection, diffuse reflection, ...", then one line per skipped effect,
 /// "no glass: refraction not simulated".
-std::string effects_lines(const EffectsReport& effects);
+/// One line naming what was simulated and how many effects the scene did not need; with
+/// `list_skipped`, a line per skipped effect with its reason ("no glass: refraction not
+/// simulated").
+std::string effects_lines(const EffectsReport& effects, bool list_skipped);
 
 }  // namespace lightsolver::detail

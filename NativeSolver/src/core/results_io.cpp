@@ -272,7 +272,7 @@ std::string max_place(const TargetResult& t) {
 
 }  // namespace
 
-std::string results_table(const Results& r) {
+std::string results_table(const Results& r, bool list_skipped_effects) {
   std::ostringstream out;
   char line[256];
   std::snprintf(line, sizeof line, "%-24s %12s %10s %10s %10s %10s %7s", "target", "E [lx]",
@@ -318,7 +318,7 @@ std::string results_table(const Results& r) {
         << "): " << to_string(r.verdict) << "\n";
     verdict_lines(r, out);
   }
-  out << detail::effects_lines(r.effects);
+  out << detail::effects_lines(r.effects, list_skipped_effects);
   for (const auto& w : r.warnings) out << "warning: " << w << "\n";
   return out.str();
 }
