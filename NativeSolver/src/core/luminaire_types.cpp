@@ -365,8 +365,6 @@ std::size_t luminaire_type_index(Luminaire::Type type) {
   return static_cast<std::size_t>(&luminaire_type(type) - kTypes.data());
 }
 
-double emitted_flux_lm(const Luminaire& l) { return luminaire_type(l.type).emitted_flux(l); }
-
 const LuminaireType& luminaire_type(Luminaire::Type type) {
   for (const auto& row : kTypes) {
     if (row.type == type) return row;

@@ -117,10 +117,6 @@ double spot_profile(double theta, double half_beam, double half_field);
 /// At most this many rows (tables sized at compile time: the scene analysis's effects).
 inline constexpr std::size_t kMaxLuminaireTypes = 16;
 
-/// The flux `l` emits as traced: its row's emitted_flux (TILT applied). A group's flux is the
-/// sum of its luminaires'; a rescale multiplies it by the group's dimming factor.
-double emitted_flux_lm(const Luminaire& l);
-
 /// All types, one row each.
 std::span<const LuminaireType> luminaire_types();
 /// The index of `type`'s row in luminaire_types().

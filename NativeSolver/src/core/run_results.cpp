@@ -52,9 +52,9 @@ std::vector<LuminaireResult> luminaire_results(const Scene& scene, const Prepare
       r = {l.name,    luminaire_type(l.type).name, s.groups[g].name,
            l.flux_lm, photometric_tilt_factor(l),  factor,
            0.0};
-      // The type row's emitted flux (TILT applied), which prepare_luminaires() adds into the
-      // group's flux, dimmed: the same product, bit for bit.
-      r.emitted_flux_lm = emitted_flux_lm(l) * r.dimming;
+      // The flux prepare() traced for it (its row's emitted_flux, TILT applied) and added into
+      // the group's flux, dimmed.
+      r.emitted_flux_lm = s.luminaires[i].flux_lm * r.dimming;
     }
   }
   return out;

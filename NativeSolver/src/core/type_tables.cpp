@@ -46,14 +46,14 @@ std::vector<LuminaireTypeInfo> luminaire_type_infos() {
   for (const detail::LuminaireType& row : detail::luminaire_types()) {
     Luminaire scratch;  // the hooks that answer per type, not per luminaire, are asked with it
     scratch.type = row.type;
-    LuminaireTypeInfo info{row.name, strings(row.keys), row.effect,
-                           glare_source_name(row.glare_kind)};
-    if (row.glare_kind == detail::GlareShape::Kind::None) {
-      info.not_glare_because = row.glare(scratch).why_not;
-    }
-    info.aimable = row.aim(scratch) != nullptr;
-    info.placed = row.placed;
-    out.push_back(std::move(info));
+    const bool no_glare = row.glare_kind == detail::GlareShape::Kind::None;
+    out.push_back({.name = row.name,
+                   .keys = strings(row.keys),
+                   .effect = row.effect,
+                   .glare_source = glare_source_name(row.glare_kind),
+                   .not_glare_because = no_glare ? row.glare(scratch).why_not : "",
+                   .aimable = row.aim(scratch) != nullptr,
+                   .placed = row.placed});
   }
   return out;
 }
@@ -61,18 +61,18 @@ std::vector<LuminaireTypeInfo> luminaire_type_infos() {
 std::vector<TargetTypeInfo> target_type_infos() {
   std::vector<TargetTypeInfo> out;
   for (const detail::TargetType& row : detail::target_types()) {
-    Target scratch;
-    scratch.type = row.type;
-    TargetTypeInfo info{row.name, strings(row.keys), requirement_names(row.requirements)};
-    info.cells = row.cells;
     // Eyes per type: one for an observer; a grid of them counts its own (0 when empty).
-    Target one_eye = scratch;
+    Target one_eye;
+    one_eye.type = row.type;
     one_eye.positions = {{0, 0, 0}};
     one_eye.view_directions = {{1, 0, 0}};
-    info.eyes = row.eyes(one_eye) > 0;
-    info.tally = row.tally == detail::TallyKind::MeshBin ? "mesh_bin" : "grid_rows";
-    info.result_fields = strings(row.result_fields);
-    out.push_back(std::move(info));
+    out.push_back({.name = row.name,
+                   .keys = strings(row.keys),
+                   .requirements = requirement_names(row.requirements),
+                   .cells = row.cells,
+                   .eyes = row.eyes(one_eye) > 0,
+                   .tally = row.tally == detail::TallyKind::MeshBin ? "mesh_bin" : "grid_rows",
+                   .result_fields = strings(row.result_fields)});
   }
   return out;
 }

@@ -98,7 +98,7 @@ TEST(TypeConformance, EveryLuminaireRowIsHandledByEveryLayer) {
     const detail::PreparedScene p = detail::prepare(s);
     EXPECT_TRUE(detail::analyse_effects(p).has(detail::emission_effect(row.type)));
     // Emission and flux as traced.
-    EXPECT_EQ(p.luminaires[0].flux_lm, detail::emitted_flux_lm(s.luminaires[0]));
+    EXPECT_EQ(p.luminaires[0].flux_lm, row.emitted_flux(s.luminaires[0]));
     EXPECT_GT(p.luminaires[0].flux_lm, 0.0);
     ASSERT_NE(p.luminaires[0].emit, nullptr);
     // Reach: where and in which directions it emits.
