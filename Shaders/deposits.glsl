@@ -66,7 +66,7 @@ uint deposits_flush() {
 }
 
 // Virtual grids crossed from the front by o + t d, 0 <= t <= t_max (shared/grids.h, the text
-// core/path_deposits.hpp includes too). `bounce`: reflections before this segment;
+// model/path_deposits.hpp includes too). `bounce`: reflections before this segment;
 // indirect-only grids (observers) skip bounce 0.
 void cross_grids(vec3 o, vec3 d, float t_max, uint bounce) {
   const float t_end = grid_reach(t_max);

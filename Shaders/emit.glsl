@@ -1,4 +1,4 @@
-// Photon emission, drawing as the C++ emitters (core/luminaire_types.cpp) draw for draw. Shared
+// Photon emission, drawing as the C++ emitters (types/luminaire_types.cpp) draw for draw. Shared
 // with them: the spot profile (shared/spot.h; float here, double there), the cone direction, the
 // parallelogram point and the sphere and cosine sampling (shared/sampling.h). The spot's
 // rejection loop stays here: theta comes from atan (acos is imprecise near 1 on some drivers)

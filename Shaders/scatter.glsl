@@ -1,4 +1,4 @@
-// Surface interactions: the physics is shared/scatter.h, the text NativeSolver/src/core/scatter.hpp
+// Surface interactions: the physics is shared/scatter.h, the text NativeSolver/src/model/scatter.hpp
 // includes too; here only the choice of lobe on the packed material (integer thresholds of the
 // 24 random bits, which decide as the CPU's double compares) and the switch over material kinds.
 // The photon keeps its power and survives by probability, so tallies stay integer counts.

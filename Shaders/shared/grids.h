@@ -1,5 +1,5 @@
 // Virtual grids (work planes, observers' squares), one text for the CPU
-// (NativeSolver/src/core/path_deposits.hpp) and the shaders (deposits.glsl): where a ray segment
+// (NativeSolver/src/model/path_deposits.hpp) and the shaders (deposits.glsl): where a ray segment
 // crosses a grid. What is done with the crossing (per-path deposit counts) stays per language.
 // Written in the subset of prelude.h.
 #ifndef LIGHTSOLVER_SHARED_GRIDS_H

@@ -1,5 +1,5 @@
 // Geometry and direction sampling used on every photon bounce, one text for the CPU
-// (NativeSolver/src/core/sampling.hpp) and the shaders (sampling.glsl): same float formulas, same
+// (NativeSolver/src/model/sampling.hpp) and the shaders (sampling.glsl): same float formulas, same
 // order of random draws. Written in the subset of prelude.h.
 #ifndef LIGHTSOLVER_SHARED_SAMPLING_H
 #define LIGHTSOLVER_SHARED_SAMPLING_H

@@ -1,4 +1,4 @@
-// Surface physics, one text for the CPU (NativeSolver/src/core/scatter.hpp) and the shaders
+// Surface physics, one text for the CPU (NativeSolver/src/model/scatter.hpp) and the shaders
 // (scatter.glsl): Fresnel reflectance, the thin pane, GGX microfacet normals, the glossy lobe's
 // specular reflection and the whole dielectric (glass) interaction. Each keeps the photon's power
 // and decides survival by probability; false means absorbed. Written in the subset of prelude.h.

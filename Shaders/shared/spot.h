@@ -1,4 +1,4 @@
-// The spot luminaire's relative intensity, one text for the CPU (core/luminaire_types.cpp, in
+// The spot luminaire's relative intensity, one text for the CPU (types/luminaire_types.cpp, in
 // double) and the shaders (emit.glsl, in float): piecewise linear in the angle theta from the
 // axis through (0, 1), (half beam, 0.5), (half field, 0.1), and 0 beyond half the field angle
 // (the CIE definitions of beam and field angle). Written in the subset of prelude.h.

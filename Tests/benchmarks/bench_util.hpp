@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "core/backend.hpp"
+#include "model/backend.hpp"
 
 namespace lightsolver::bench {
 

@@ -9,7 +9,7 @@
 
 #include "bench_scenes.hpp"
 #include "bench_util.hpp"
-#include "core/prepared_scene.hpp"
+#include "model/prepared_scene.hpp"
 #include "embree/embree_backend.hpp"
 #include "lightsolver/scene_io.hpp"
 

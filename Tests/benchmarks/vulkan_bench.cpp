@@ -5,8 +5,8 @@
 
 #include "bench_scenes.hpp"
 #include "bench_util.hpp"
-#include "core/backend.hpp"
-#include "core/prepared_scene.hpp"
+#include "model/backend.hpp"
+#include "model/prepared_scene.hpp"
 #include "embree/embree_backend.hpp"
 #include "vulkan/vulkan_backend.hpp"
 

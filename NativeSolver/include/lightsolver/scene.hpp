@@ -94,7 +94,7 @@ struct Luminaire {
 /// Where illuminance is reported. An observer is an eye (docs/glare.md): the tracer tallies the
 /// light reaching it after at least one reflection (its background luminance) and the results
 /// give its UGR. An observer grid is many eyes (positions x view directions) and its maximum
-/// UGR. Each type's keys, checks, tallies and results: core/target_types.cpp.
+/// UGR. Each type's keys, checks, tallies and results: types/target_types.cpp.
 struct Target {
   enum class Type { Surface, Grid, Observer, ObserverGrid };
   std::string name;

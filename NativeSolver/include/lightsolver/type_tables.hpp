@@ -2,7 +2,7 @@
 /// \file type_tables.hpp
 /// The solver's luminaire and target types as front ends see them (the workbench, the report,
 /// `lightsolver.luminaire_types()` / `lightsolver.target_types()`): one entry per row of the
-/// type tables (src/core/luminaire_types.cpp, target_types.cpp), read from the rows, so a front
+/// type tables (src/types/luminaire_types.cpp, target_types.cpp), read from the rows, so a front
 /// end asks instead of keeping its own per-type branches.
 #include <string>
 #include <vector>

@@ -17,9 +17,9 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "core/emitters.hpp"
-#include "core/path_deposits.hpp"
-#include "core/scatter.hpp"
+#include "model/emitters.hpp"
+#include "model/path_deposits.hpp"
+#include "model/scatter.hpp"
 #include "embree/embree_scene.hpp"
 #include "embree/hit_triangles.hpp"
 #include "embree/path_kernel.hpp"

@@ -2,7 +2,7 @@
 // The CPU backend: Embree's rtcIntersect1 per segment, paths spread over TBB workers.
 #include <memory>
 
-#include "core/backend.hpp"
+#include "model/backend.hpp"
 
 namespace lightsolver::detail {
 

@@ -1,5 +1,5 @@
-// The Embree backend's entry in the backend registry (core/backend_registry.hpp).
-#include "core/backend_registry.hpp"
+// The Embree backend's entry in the backend registry (model/backend_registry.hpp).
+#include "model/backend_registry.hpp"
 #include "embree/embree_backend.hpp"
 
 namespace lightsolver::detail {

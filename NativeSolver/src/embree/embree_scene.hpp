@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "core/prepared_scene.hpp"
+#include "model/prepared_scene.hpp"
 
 namespace lightsolver::detail {
 

@@ -5,7 +5,7 @@
 #include <memory>
 #include <vector>
 
-#include "core/prepared_scene.hpp"
+#include "model/prepared_scene.hpp"
 
 namespace lightsolver::detail {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The Embree backend's path kernels: the path loop is compiled once per feature set, and the
-// scene analysis (core/scene_effects.hpp) picks one at run time, as the Vulkan backend picks
+// scene analysis (prepare/scene_effects.hpp) picks one at run time, as the Vulkan backend picks
 // its specialisation constants. A kernel leaves out what its scene cannot need: material kinds
 // no surface has (the glass Fresnel code, the GGX lobe, mirrors), every scattering when no
 // surface returns light (direct light only: a path ends at its first hit), the grid test when
@@ -8,9 +8,9 @@
 // path goes on, so tallies are bit-identical (embree_kernel_test).
 #include <glm/geometric.hpp>
 
-#include "core/path_deposits.hpp"
-#include "core/scatter.hpp"
-#include "core/scene_effects.hpp"
+#include "model/path_deposits.hpp"
+#include "model/scatter.hpp"
+#include "prepare/scene_effects.hpp"
 
 namespace lightsolver::detail {
 

@@ -1,11 +1,11 @@
 #pragma once
 // Glare read back from results (`rescale`, docs/glare.md "Rescaling an observer grid"): an
 // observer grid's geometry and glare terms, a plain observer's luminaires, each luminance dimmed
-// by its group's factor. The hooks of core/results_glare.hpp.
+// by its group's factor. The hooks of results/results_glare.hpp.
 #include <memory>
 #include <string>
 
-#include "core/results_glare.hpp"
+#include "results/results_glare.hpp"
 #include "glare/observer_grid.hpp"
 
 namespace lightsolver::detail {

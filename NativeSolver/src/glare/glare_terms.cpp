@@ -7,7 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "core/luminaire_types.hpp"
+#include "types/luminaire_types.hpp"
 
 namespace lightsolver::detail {
 namespace {

@@ -8,7 +8,7 @@
 #include <set>
 #include <string>
 
-#include "core/target_types.hpp"
+#include "types/target_types.hpp"
 #include "glare/glare_terms.hpp"
 
 namespace lightsolver::detail {

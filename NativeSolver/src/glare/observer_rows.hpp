@@ -1,8 +1,8 @@
 #pragma once
 // The glare of the observer and observer-grid target types: their rows' result hooks
-// (core/target_types.hpp). Core defines the rest of those rows and never includes glare; the
+// (types/target_types.hpp). Core defines the rest of those rows and never includes glare; the
 // type table (src/tables/target_table.cpp) puts these hooks into them.
-#include "core/target_types.hpp"
+#include "types/target_types.hpp"
 
 namespace lightsolver::detail {
 

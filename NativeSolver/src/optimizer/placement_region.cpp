@@ -4,7 +4,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
-#include "core/luminaire_types.hpp"
+#include "types/luminaire_types.hpp"
 
 namespace lightsolver::optimizer::regions {
 namespace {

@@ -5,7 +5,7 @@
 #include <glm/vec2.hpp>
 #include <vector>
 
-#include "core/json_reader.hpp"
+#include "io/json_reader.hpp"
 #include "lightsolver/optimizer/domain.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 

@@ -8,7 +8,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "core/luminaire_types.hpp"
+#include "types/luminaire_types.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "optimizer/group_traces.hpp"
 

@@ -8,10 +8,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/json_reader.hpp"
-#include "core/luminaire_types.hpp"
-#include "core/scene_document.hpp"
-#include "core/target_types.hpp"
+#include "io/json_reader.hpp"
+#include "types/luminaire_types.hpp"
+#include "scene/scene_document.hpp"
+#include "types/target_types.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "optimizer/placement_region.hpp"
 

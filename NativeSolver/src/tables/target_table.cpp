@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/results_glare.hpp"
-#include "core/target_types.hpp"
+#include "results/results_glare.hpp"
+#include "types/target_types.hpp"
 #include "glare/glare_results_io.hpp"
 #include "glare/observer_rows.hpp"
 

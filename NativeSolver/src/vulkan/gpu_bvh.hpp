@@ -8,7 +8,7 @@
 #include <glm/vec4.hpp>
 #include <vector>
 
-#include "core/prepared_scene.hpp"
+#include "model/prepared_scene.hpp"
 #include "vulkan/gpu_layout.hpp"
 
 namespace lightsolver::detail {

@@ -80,7 +80,7 @@ gpu::Grid pack_grid(const PreparedGrid& p) {
   return g;
 }
 
-// The switches are core's scene analysis (core/scene_effects.hpp), the one the Embree kernels
+// The switches are core's scene analysis (prepare/scene_effects.hpp), the one the Embree kernels
 // and the results' effect list use. A material kind whose every surface absorbs is switched off:
 // scatter.glsl then absorbs the photon, as its own branch would.
 std::vector<vkw::SpecConstant> features(const PreparedScene& s) {

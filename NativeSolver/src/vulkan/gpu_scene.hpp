@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/prepared_scene.hpp"
-#include "core/scene_effects.hpp"
+#include "model/prepared_scene.hpp"
+#include "prepare/scene_effects.hpp"
 #include "vulkan/algorithm.hpp"
 #include "vulkan/gpu_bvh.hpp"
 #include "vulkan/gpu_layout.hpp"

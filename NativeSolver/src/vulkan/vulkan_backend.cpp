@@ -203,7 +203,7 @@ class VulkanBackend final : public Backend {
     throw std::logic_error("Vulkan backend: no contents for binding " + std::to_string(binding));
   }
 
-  // Every group's tallies (core/groups.hpp: at most 2^26 of them, checked before tracing).
+  // Every group's tallies (model/groups.hpp: at most 2^26 of them, checked before tracing).
   std::size_t tally_bytes() const {
     return 2 * sizeof(std::uint64_t) * s_.groups.size() * s_.bins.size();
   }

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <memory>
 
-#include "core/backend.hpp"
+#include "model/backend.hpp"
 
 namespace lightsolver::detail {
 

@@ -1,5 +1,5 @@
-// The Vulkan backend's entry in the backend registry (core/backend_registry.hpp).
-#include "core/backend_registry.hpp"
+// The Vulkan backend's entry in the backend registry (model/backend_registry.hpp).
+#include "model/backend_registry.hpp"
 #include "vulkan/context.hpp"
 #include "vulkan/vulkan_backend.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <functional>
 
-#include "core/prepared_scene.hpp"
+#include "model/prepared_scene.hpp"
 #include "scene_builders.hpp"
 
 namespace lightsolver::test {

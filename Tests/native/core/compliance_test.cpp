@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/decide.hpp"
+#include "estimate/decide.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 

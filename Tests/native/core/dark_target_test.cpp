@@ -1,12 +1,12 @@
-// Targets that cannot receive light (core/target_reach.hpp): said before tracing when no
+// Targets that cannot receive light (prepare/target_reach.hpp): said before tracing when no
 // surface reflects and the target faces away from every luminaire's emission, per luminaire
 // type; never said when something reflects or where a luminaire can reach the target. Each
 // claim is checked against a run: a target called dark gets no photon at all.
 #include <gtest/gtest.h>
 
-#include "core/prepared_scene.hpp"
-#include "core/scene_effects.hpp"
-#include "core/target_reach.hpp"
+#include "model/prepared_scene.hpp"
+#include "prepare/scene_effects.hpp"
+#include "prepare/target_reach.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_check.hpp"
 #include "scene_builders.hpp"

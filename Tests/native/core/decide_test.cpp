@@ -1,7 +1,7 @@
 // Coverage of the Emin, U0 and Ud intervals over many seeds on closed-form grids, and decide
 // runs: a requirement 1 % above the truth fails with fewer photons than per-cell accuracy
 // would take; a budget too small ends undecided and says what deciding would cost.
-#include "core/decide.hpp"
+#include "estimate/decide.hpp"
 
 #include <gtest/gtest.h>
 

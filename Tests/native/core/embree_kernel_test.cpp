@@ -1,4 +1,4 @@
-// The scene analysis (core/scene_effects.hpp) and the Embree path kernels it picks
+// The scene analysis (prepare/scene_effects.hpp) and the Embree path kernels it picks
 // (embree/path_kernel.hpp): each scene below switches one effect on or off, the analysis must
 // say so, the backend must run the kernel it implies, and that kernel's tallies must equal the
 // general kernel's to the bit for the same seed.
@@ -8,10 +8,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/backend.hpp"
-#include "core/groups.hpp"
-#include "core/prepared_scene.hpp"
-#include "core/scene_effects.hpp"
+#include "model/backend.hpp"
+#include "model/groups.hpp"
+#include "model/prepared_scene.hpp"
+#include "prepare/scene_effects.hpp"
 #include "embree/embree_backend.hpp"
 #include "embree/path_kernel.hpp"
 #include "scene_builders.hpp"

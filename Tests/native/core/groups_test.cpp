@@ -2,7 +2,7 @@
 // contributions that add up to the run, `rescale` equal to a run traced with the new fluxes,
 // honest rescaled intervals over 500 seeds, photons shared out so a dim lamp beside a bright
 // one is measured, results independent of the thread count, and clear errors.
-#include "core/groups.hpp"
+#include "model/groups.hpp"
 
 #include <gtest/gtest.h>
 

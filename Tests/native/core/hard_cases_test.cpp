@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/backend.hpp"
+#include "model/backend.hpp"
 #include "scene_builders.hpp"
 
 namespace lightsolver::test {

@@ -1,6 +1,6 @@
-// The luminaire-type table (core/luminaire_types.hpp): one complete row per Luminaire::Type,
+// The luminaire-type table (types/luminaire_types.hpp): one complete row per Luminaire::Type,
 // found by its scene-file name; the reader's message lists every name.
-#include "core/luminaire_types.hpp"
+#include "types/luminaire_types.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "core/target_types.hpp"
+#include "types/target_types.hpp"
 #include "lightsolver/glare.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "scene_builders.hpp"

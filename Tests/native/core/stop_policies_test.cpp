@@ -1,7 +1,7 @@
-// The stopping rules and batch observers of a run, each alone (core/stop_policies.hpp): fed
+// The stopping rules and batch observers of a run, each alone (run/stop_policies.hpp): fed
 // batch states by hand, no tracing. run_limits_test.cpp and simulation_test.cpp check them
 // together in traced runs.
-#include "core/stop_policies.hpp"
+#include "run/stop_policies.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/shared_tracing.hpp"
+#include "run/shared_tracing.hpp"
 #include "lightsolver/process_group.hpp"
 #include "lightsolver/simulation.hpp"
 #include "scene_builders.hpp"

@@ -1,7 +1,7 @@
-// The target-type table (core/target_types.hpp): one complete row per Target::Type, found by
+// The target-type table (types/target_types.hpp): one complete row per Target::Type, found by
 // its scene-file name; the reader's message lists every name; a task row's limits reach only
 // the types that take them.
-#include "core/target_types.hpp"
+#include "types/target_types.hpp"
 
 #include <gtest/gtest.h>
 

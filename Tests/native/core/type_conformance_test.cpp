@@ -13,11 +13,11 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "core/luminaire_types.hpp"
-#include "core/prepared_scene.hpp"
-#include "core/scene_effects.hpp"
-#include "core/target_reach.hpp"
-#include "core/target_types.hpp"
+#include "types/luminaire_types.hpp"
+#include "model/prepared_scene.hpp"
+#include "prepare/scene_effects.hpp"
+#include "prepare/target_reach.hpp"
+#include "types/target_types.hpp"
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/rescale.hpp"
 #include "scene_builders.hpp"

@@ -19,30 +19,45 @@ import sys
 import tempfile
 from pathlib import Path
 
-# Module -> the modules it may include (itself always). Bottom to top: photometry and mpi
-# stand alone; core (scene, prepare, run, estimate) sees neither a backend nor glare; glare
-# sits above the estimate layer; backends (embree, vulkan) implement core's Backend and never
-# see each other; tables assemble the type tables from the rows of core and glare; the
-# optimizer drives runs from above.
+# Module -> the modules it may include (itself always). The core, bottom to top: io (JSON reading,
+# output files); model (the prepared scene, tallies, the Backend interface); types (one unit per
+# luminaire and target type); scene (reading); prepare (check, prepare, effects, reach); estimate
+# (statistics, target results, decisions); run (Simulation, stop policies, solve, study); results
+# (the results file and rescale). Glare sits above estimate and results and is never included by
+# them; the backends implement model's Backend over the prepared scene and never see each other;
+# tables assemble the type tables from the rows of types and glare; the optimizer drives runs
+# from above. photometry and mpi stand alone.
+_CORE = ["io", "model", "types", "scene", "prepare", "estimate", "run", "results"]
 LAYERS: dict[str, set[str]] = {
     "photometry": set(),
     "mpi": set(),
-    "core": set(),
-    "glare": {"core"},
-    "embree": {"core"},
-    "vulkan": {"core"},
-    "tables": {"core", "glare"},
-    "optimizer": {"core", "glare"},
+    "io": set(),
+    "model": {"io"},
+    "types": {"io", "model"},
+    "scene": {"io", "model", "types"},
+    "prepare": {"io", "model", "types", "scene"},
+    "estimate": {"io", "model", "types"},
+    "run": {"io", "model", "types", "scene", "prepare", "estimate"},
+    "results": {"io", "model", "types", "estimate"},
+    "glare": {"io", "model", "types", "estimate", "results"},
+    "embree": {"io", "model", "types", "prepare"},
+    "vulkan": {"io", "model", "types", "prepare"},
+    "tables": {"io", "model", "types", "results", "glare"},
+    "optimizer": set(_CORE) | {"glare"},
 }
 
 # Why a rule exists, for the message.
-WHY: dict[str, str] = {
-    "core": "core (the estimate layer and below) never includes a backend, glare (a layer "
-    "above it) or the optimizer: register through a table assembled above it "
-    "(src/tables, backend_list.cpp)",
-    "embree": "a backend includes core only, never another backend",
-    "vulkan": "a backend includes core only, never another backend",
-}
+_CORE_WHY = ("the core never includes a backend, glare (a layer above the estimates) or the "
+             "optimizer, and each of its folders only those below it: reach a layer above "
+             "through a table assembled above both (src/tables, backend_list.cpp)")
+WHY: dict[str, str] = {m: f"{m} may include only {', '.join(sorted(LAYERS[m] | {m}))}; "
+                          f"{_CORE_WHY}" for m in _CORE}
+WHY.update({
+    "embree": "a backend includes the core's model, types and prepare only, never another "
+              "backend",
+    "vulkan": "a backend includes the core's model, types and prepare only, never another "
+              "backend",
+})
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
 SOURCES = {".cpp", ".hpp", ".h", ".inc", ".cc"}
@@ -82,21 +97,28 @@ def violations(src: Path) -> list[str]:
 def self_test() -> int:
     """Builds fixture trees: a clean one must pass, each broken rule must be named by line."""
     cases = {
-        "core/a.cpp": ('#include "core/b.hpp"\n#include "glare/g.hpp"\n', "core/a.cpp:2:"),
-        "core/c.hpp": ('#include <vulkan/v.hpp>\n', "core/c.hpp:1:"),
-        "embree/e.cpp": ('#include "core/b.hpp"\n\n#include "vulkan/v.hpp"\n', "embree/e.cpp:3:"),
-        "photometry/p.cpp": ('#include "core/b.hpp"\n', "photometry/p.cpp:1:"),
-        "core/d.cpp": ('#include "../glare/g.hpp"\n', "core/d.cpp:1:"),
+        "estimate/a.cpp": ('#include "model/b.hpp"\n#include "glare/g.hpp"\n',
+                           "estimate/a.cpp:2:"),
+        "model/c.hpp": ('#include <vulkan/v.hpp>\n', "model/c.hpp:1:"),
+        "embree/e.cpp": ('#include "model/b.hpp"\n\n#include "vulkan/v.hpp"\n',
+                         "embree/e.cpp:3:"),
+        "photometry/p.cpp": ('#include "model/b.hpp"\n', "photometry/p.cpp:1:"),
+        "estimate/d.cpp": ('#include "../glare/g.hpp"\n', "estimate/d.cpp:1:"),
+        "model/f.cpp": ('#include "run/r.hpp"\n', "model/f.cpp:1:"),
+        "results/h.cpp": ('#include "glare/g.hpp"\n', "results/h.cpp:1:"),
+        "embree/k.cpp": ('#include "run/r.hpp"\n', "embree/k.cpp:1:"),
     }
     clean = {
-        "core/b.hpp": '#include "lightsolver/scene.hpp"\n#include <vector>\n#include "b2.hpp"\n',
-        "glare/g.hpp": '#include "core/b.hpp"\n',
-        "vulkan/v.hpp": '#include "core/b.hpp"\n#include "trace_bindings.h"\n',
-        "tables/t.cpp": '#include "core/b.hpp"\n#include "glare/g.hpp"\n',
-        "optimizer/o.cpp": '#include "core/b.hpp"\n',
+        "model/b.hpp": '#include "lightsolver/scene.hpp"\n#include <vector>\n#include "b2.hpp"\n',
+        "run/r.hpp": '#include "model/b.hpp"\n#include "estimate/e.hpp"\n',
+        "estimate/e.hpp": '#include "model/b.hpp"\n',
+        "glare/g.hpp": '#include "estimate/e.hpp"\n',
+        "vulkan/v.hpp": '#include "model/b.hpp"\n#include "trace_bindings.h"\n',
+        "tables/t.cpp": '#include "model/b.hpp"\n#include "glare/g.hpp"\n',
+        "optimizer/o.cpp": '#include "run/r.hpp"\n',
         "mpi/m.cpp": "#include <mpi.h>\n",
         "photometry/q.cpp": '#include "photometry_internal.hpp"\n',
-        "glare/h.cpp": '#include "../core/b.hpp"\n#include "./g.hpp"\n',
+        "glare/h.cpp": '#include "../model/b.hpp"\n#include "./g.hpp"\n',
     }
     failures: list[str] = []
     with tempfile.TemporaryDirectory() as tmp:

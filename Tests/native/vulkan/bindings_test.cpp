@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "core/luminaire_types.hpp"
-#include "core/prepared_scene.hpp"
+#include "types/luminaire_types.hpp"
+#include "model/prepared_scene.hpp"
 #include "lightsolver/scene.hpp"
 #include "native/core/scene_builders.hpp"
 #include "vulkan/gpu_layout.hpp"

@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "benchmarks/bench_scenes.hpp"
-#include "core/prepared_scene.hpp"
+#include "model/prepared_scene.hpp"
 #include "embree/embree_scene.hpp"
 #include "lightsolver/rng.hpp"
 #include "vulkan/gpu_bvh.hpp"

@@ -5,8 +5,8 @@
 // every photon is accounted for, none silently vanishes.
 #include <numbers>
 
-#include "core/backend.hpp"
-#include "core/prepared_scene.hpp"
+#include "model/backend.hpp"
+#include "model/prepared_scene.hpp"
 #include "lightsolver/solver.hpp"
 #include "native/core/scene_builders.hpp"
 #include "vulkan_test_util.hpp"

@@ -1,0 +1,64 @@
+#pragma once
+// What a tracing backend (Embree on the CPU, Vulkan compute) does: trace a range of photon
+// paths and add their integer tallies. Because tallies are counts, the sum does not depend on
+// how a backend splits or orders the work.
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "model/groups.hpp"
+#include "model/prepared_scene.hpp"
+#include "lightsolver/statistics.hpp"
+
+namespace lightsolver::detail {
+
+struct TallyBlock {
+  std::vector<Tally> bins;
+  std::uint64_t ray_segments = 0;
+  std::uint64_t capped_paths = 0;   // paths stopped by max_bounces while still alive
+  std::uint64_t cut_paths = 0;      // paths a device's loop limit stopped (lavapipe; not counted)
+  std::uint64_t retried_paths = 0;  // paths traced again after the loop limit cut them (Vulkan)
+
+  explicit TallyBlock(std::size_t n = 0) : bins(n) {}
+  void add(const TallyBlock& o) {
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+      bins[i].sum += o.bins[i].sum;
+      bins[i].sum_sq += o.bins[i].sum_sq;
+    }
+    ray_segments += o.ray_segments;
+    capped_paths += o.capped_paths;
+    cut_paths += o.cut_paths;
+    retried_paths += o.retried_paths;
+  }
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string name() const = 0;
+  /// Traces, for each range, photons [first, first + count) of its group's stream with
+  /// `seed` (PathRng(seed, i, group)), emitted from that group's luminaires, adding into
+  /// `out`: group g's bin b at g * scene bins + b (out.bins.size() == groups x scene bins).
+  /// Runs in the caller's TBB arena.
+  virtual void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed,
+                     TallyBlock& out) = 0;
+  /// PreparedScene::luminaires changed (backends holding copies re-upload them).
+  virtual void luminaires_changed() {}
+  /// Moves a movable mesh; `transform` maps its prepared coordinates to local world space
+  /// (rigid). Backends without instancing refuse.
+  virtual void set_mesh_transform(std::size_t mesh, const glm::mat4& transform) {
+    (void)mesh;
+    (void)transform;
+    throw std::runtime_error("the " + name() + " backend cannot move geometry");
+  }
+};
+
+/// The backend named "auto" or one of the registry's names (lightsolver/backends.hpp) for a
+/// prepared scene; an unknown name is an InputError listing the names built. When "auto" had
+/// to fall back (a GPU that failed to start), the reason is appended to `notes`.
+std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedScene& scene,
+                                      std::vector<std::string>& notes);
+
+}  // namespace lightsolver::detail

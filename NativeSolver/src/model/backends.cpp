@@ -1,0 +1,114 @@
+// The backend registry's queries and make_backend(). Names are looked up in the list that
+// CMake generates from the backend modules built (model/backend_registry.hpp).
+#include "lightsolver/backends.hpp"
+
+#include <stdexcept>
+
+#include "model/backend_registry.hpp"
+#include "lightsolver/error.hpp"
+
+namespace lightsolver {
+namespace {
+
+using detail::Backend;
+using detail::backend_entries;
+using detail::BackendEntry;
+
+// "auto, embree or vulkan"
+std::string spoken_list(const std::vector<std::string>& names) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) text += i + 1 == names.size() ? " or " : ", ";
+    text += names[i];
+  }
+  return text;
+}
+
+// "a real GPU through vulkan when one is usable, else embree", from the entries built.
+std::string auto_description() {
+  std::vector<std::string> gpu, cpu;
+  for (const BackendEntry& e : backend_entries()) (e.gpu ? gpu : cpu).push_back(e.name);
+  std::string cpu_part = cpu.empty() ? "" : cpu.front();
+  if (gpu.empty()) return cpu_part + " (this build has no GPU backend)";
+  return "a real GPU through " + spoken_list(gpu) + " when one is usable" +
+         (cpu.empty() ? "" : ", else " + cpu_part);
+}
+
+// What "auto" takes, in order: GPU backends that find a real GPU, then CPU backends.
+std::vector<const BackendEntry*> auto_candidates() {
+  std::vector<const BackendEntry*> out;
+  for (const bool gpu : {true, false}) {
+    for (const BackendEntry& e : backend_entries()) {
+      if (e.gpu == gpu && e.auto_picks()) out.push_back(&e);
+    }
+  }
+  return out;
+}
+
+// `backend`, with a note in `notes` when GPU backends tried before it failed (`why`).
+std::unique_ptr<Backend> noting_fallback(std::unique_ptr<Backend> backend, const BackendEntry& e,
+                                         const std::string& why, std::vector<std::string>& notes) {
+  if (!why.empty()) {
+    notes.push_back("the GPU could not be used, traced " +
+                    (e.gpu ? "with " + std::string(e.name) : std::string("on the CPU")) +
+                    " instead: " + why);
+  }
+  return backend;
+}
+
+std::unique_ptr<Backend> make_auto(const detail::PreparedScene& scene,
+                                   std::vector<std::string>& notes) {
+  std::string why;  // what the GPU backends tried so far said
+  for (const BackendEntry* e : auto_candidates()) {
+    if (!e->gpu) return noting_fallback(e->make(scene), *e, why, notes);
+    try {
+      return noting_fallback(e->make(scene), *e, why, notes);
+    } catch (const std::runtime_error& error) {
+      why += (why.empty() ? "" : "; ") + std::string(error.what());
+    }
+  }
+  throw std::runtime_error("no tracing backend could start" + (why.empty() ? "" : ": " + why));
+}
+
+}  // namespace
+
+std::vector<BackendInfo> backends() {
+  std::vector<BackendInfo> out{{kAutoBackend, auto_description(), false, std::nullopt}};
+  for (const BackendEntry& e : backend_entries()) {
+    out.push_back({e.name, e.description, e.gpu, std::nullopt});
+  }
+  return out;
+}
+
+std::vector<BackendInfo> available_backends() {
+  std::vector<BackendInfo> out = backends();
+  bool any = false;
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    out[i].available = backend_entries()[i - 1].available();
+    any = any || *out[i].available;
+  }
+  out.front().available = any;
+  return out;
+}
+
+std::vector<std::string> backend_names() {
+  std::vector<std::string> names{kAutoBackend};
+  for (const BackendEntry& e : backend_entries()) names.emplace_back(e.name);
+  return names;
+}
+
+namespace detail {
+
+std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedScene& scene,
+                                      std::vector<std::string>& notes) {
+  if (name == kAutoBackend) return make_auto(scene, notes);
+  for (const BackendEntry& e : backend_entries()) {
+    if (name == e.name) return e.make(scene);
+  }
+  throw InputError(
+      "", "backend",
+      "unknown backend \"" + name + "\" (expected " + spoken_list(backend_names()) + ")");
+}
+
+}  // namespace detail
+}  // namespace lightsolver

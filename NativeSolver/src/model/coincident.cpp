@@ -1,0 +1,473 @@
+#include "model/coincident.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vector_relational.hpp>
+#include <map>
+#include <tuple>
+
+#include "model/coincident_grid.hpp"
+
+namespace lightsolver::detail {
+namespace {
+
+using coincident_grid::Entry;
+using coincident_grid::for_each_cell;
+using coincident_grid::Grid;
+using coincident_grid::kLevelBias;
+using coincident_grid::level_of;
+
+using glm::dvec2;
+using glm::dvec3;
+
+// Normals parallel or antiparallel within 0.01 rad; the plane distance test does the real work.
+const double kCosMaxAngle = std::cos(0.01);
+// Detection tolerance = 2 x the tracer's ray offset; the hidden triangle moves by 2 x that.
+constexpr double kToleranceMargin = 2.0, kMoveFactor = 2.0;
+// Overlaps below this fraction of the smaller triangle are rounding (triangles sharing an edge).
+constexpr double kMinOverlapFraction = 1e-9;
+
+struct Triangle {
+  std::array<dvec3, 3> p;  // re-centred coordinates
+  dvec3 n;                 // unit front normal
+  double area_m2 = 0.0;
+};
+
+// Every triangle of the included meshes under one global index, vertices in re-centred
+// coordinates computed on demand (a million triangles must not cost a million records).
+class SceneTriangles {
+ public:
+  SceneTriangles(const Scene& s, const dvec3& origin, const std::vector<bool>& included)
+      : s_(s), origin_(origin) {
+    first_.push_back(0);
+    for (std::size_t m = 0; m < s.meshes.size(); ++m) {
+      const std::size_t n = included[m] ? s.meshes[m].triangles.size() : 0;
+      mesh_of_.insert(mesh_of_.end(), n, static_cast<std::uint32_t>(m));
+      first_.push_back(first_.back() + n);
+    }
+  }
+  std::size_t size() const { return mesh_of_.size(); }
+  std::uint32_t mesh(std::size_t g) const { return mesh_of_[g]; }
+  std::size_t local(std::size_t g) const { return g - first_[mesh_of_[g]]; }
+  const glm::u32vec3& indices(std::size_t g) const {
+    return s_.meshes[mesh_of_[g]].triangles[local(g)];
+  }
+  dvec3 vertex(std::size_t g, int k) const {
+    return s_.meshes[mesh_of_[g]].vertices[indices(g)[k]] - origin_;
+  }
+  void bounds(std::size_t g, dvec3& lo, dvec3& hi) const {
+    lo = hi = vertex(g, 0);
+    for (int k = 1; k < 3; ++k) {
+      lo = glm::min(lo, vertex(g, k));
+      hi = glm::max(hi, vertex(g, k));
+    }
+  }
+  Triangle get(std::size_t g) const {
+    Triangle t{{vertex(g, 0), vertex(g, 1), vertex(g, 2)}, dvec3(0.0), 0.0};
+    const dvec3 c = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+    t.area_m2 = 0.5 * glm::length(c);
+    t.n = c / (2.0 * t.area_m2);
+    return t;
+  }
+
+ private:
+  const Scene& s_;
+  dvec3 origin_;
+  std::vector<std::uint32_t> mesh_of_;
+  std::vector<std::size_t> first_;
+};
+
+// --- 2-D overlap by Sutherland-Hodgman --------------------------------------------------------
+
+struct Polygon {
+  std::array<dvec2, 24> v;  // a clip at most doubles the count, whatever rounding does
+  int n = 0;
+};
+
+double cross2(const dvec2& a, const dvec2& b) { return a.x * b.y - a.y * b.x; }
+
+double signed_area(const Polygon& p) {
+  double twice = 0.0;
+  for (int i = 0; i < p.n; ++i) twice += cross2(p.v[i], p.v[(i + 1) % p.n]);
+  return 0.5 * twice;
+}
+
+// Keeps the part of `in` left of the directed line a -> b.
+Polygon clip(const Polygon& in, const dvec2& a, const dvec2& b) {
+  Polygon out;
+  const dvec2 e = b - a;
+  for (int i = 0; i < in.n; ++i) {
+    const dvec2 &p = in.v[i], &q = in.v[(i + 1) % in.n];
+    const double sp = cross2(e, p - a), sq = cross2(e, q - a);
+    if (sp >= 0.0) out.v[out.n++] = p;
+    if ((sp >= 0.0) != (sq >= 0.0)) out.v[out.n++] = p + (sp / (sp - sq)) * (q - p);
+  }
+  return out;
+}
+
+// Offset of the tracer, measured along the unit normal n, where coordinates reach `magnitude`
+// per axis: offset_ray_origin shifts coordinate i by n_i times its bound.
+double ray_offset_along(const dvec3& n, const dvec3& magnitude) {
+  double h = 0.0;
+  for (int i = 0; i < 3; ++i) h += std::abs(n[i]) * ray_offset_bound_m(magnitude[i]);
+  return h;
+}
+
+// Area of t and o overlapping within the tolerance of t's plane, or 0. `tol_m` is the largest
+// distance between the planes allowed anywhere in the overlap.
+double coplanar_overlap_m2(const Triangle& t, const Triangle& o, double tol_m) {
+  if (std::abs(glm::dot(t.n, o.n)) < kCosMaxAngle) return 0.0;
+  const dvec3 u = glm::normalize(t.p[1] - t.p[0]), v = glm::cross(t.n, u);
+  auto flat = [&](const dvec3& p) {
+    return dvec2(glm::dot(p - t.p[0], u), glm::dot(p - t.p[0], v));
+  };
+  Polygon poly;
+  for (const dvec3& p : t.p) poly.v[poly.n++] = flat(p);  // counter-clockwise about t.n
+  std::array<dvec2, 3> clipper = {flat(o.p[0]), flat(o.p[1]), flat(o.p[2])};
+  if (glm::dot(t.n, o.n) < 0.0) std::swap(clipper[1], clipper[2]);  // make it counter-clockwise
+  for (int k = 0; k < 3 && poly.n > 0; ++k) poly = clip(poly, clipper[k], clipper[(k + 1) % 3]);
+  if (poly.n < 3) return 0.0;
+  const double area = signed_area(poly);
+  if (!(area > kMinOverlapFraction * std::min(t.area_m2, o.area_m2))) return 0.0;
+  // The gap between the planes is affine over the overlap: its vertices bound it.
+  for (int i = 0; i < poly.n; ++i) {
+    const dvec3 q = t.p[0] + poly.v[i].x * u + poly.v[i].y * v;
+    if (std::abs(glm::dot(q - o.p[0], o.n)) > tol_m) return 0.0;
+  }
+  return area;
+}
+
+// --- the rule ---------------------------------------------------------------------------------
+
+struct Hit {
+  std::size_t gt, go;  // global triangles: the reference (target) one, the other
+  double area_m2, move_m;
+  bool operator<(const Hit& o) const { return std::tie(gt, go) < std::tie(o.gt, o.go); }
+};
+
+struct Move {
+  std::uint32_t mesh, vertex;
+  dvec3 dir;    // unit
+  double dist;  // metres, at least
+};
+
+class Detector {
+ public:
+  Detector(const Scene& s, const dvec3& origin, const std::vector<bool>& is_target,
+           const std::vector<bool>& movable)
+      : s_(s), is_target_(is_target), tris_(s, origin, included(s, movable)) {
+    for (std::size_t g = 0; g < tris_.size(); ++g) {
+      dvec3 lo, hi;
+      tris_.bounds(g, lo, hi);
+      magnitude_ = glm::max(magnitude_, glm::max(glm::abs(lo), glm::abs(hi)));
+    }
+    // Boxes grow by the largest tolerance anywhere, so no coplanar pair is missed.
+    pad_m_ = kToleranceMargin * ray_offset_along(dvec3(1.0), magnitude_);
+  }
+
+  CoincidentGeometry run() {
+    std::vector<Entry> entries;
+    level_.resize(tris_.size());
+    for (std::size_t g = 0; g < tris_.size(); ++g) {
+      dvec3 lo, hi;
+      padded_bounds(g, lo, hi);
+      level_[g] = level_of(lo, hi);
+      for_each_cell(level_[g], lo, hi, [&](std::uint64_t key) {
+        entries.push_back({key, tris_.mesh(g), static_cast<std::uint32_t>(g)});
+      });
+    }
+    const std::vector<std::uint64_t> partner_levels = levels_of_partners();
+    const Grid grid(std::move(entries));
+    struct Local {
+      std::vector<std::uint32_t> seen;  // stamps: g + 1 of the last triangle that met it
+      std::vector<Hit> hits;
+    };
+    tbb::enumerable_thread_specific<Local> locals;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris_.size(), 4096), [&](const auto& r) {
+      Local& local = locals.local();
+      local.seen.resize(tris_.size(), 0);
+      for (std::size_t g = r.begin(); g != r.end(); ++g) {
+        const std::uint64_t levels = partner_levels[tris_.mesh(g)] >> (level_[g] + kLevelBias);
+        if (levels == 0) continue;
+        dvec3 lo, hi;
+        padded_bounds(g, lo, hi);
+        for (int l = 0; l < 64 - level_[g] - kLevelBias; ++l) {
+          if (!(levels >> l & 1)) continue;
+          for_each_cell(level_[g] + l, lo, hi, [&](std::uint64_t key) {
+            visit_cell(grid, key, g, local.seen, local.hits);
+          });
+        }
+      }
+    });
+    std::vector<Hit> hits;
+    for (const Local& local : locals) hits.insert(hits.end(), local.hits.begin(), local.hits.end());
+    // Sorted, the rule sees the pairs in one order whatever the threads did: sums are exact
+    // repeats from run to run.
+    std::sort(hits.begin(), hits.end());
+    for (const Hit& h : hits) apply_rule(h);
+    return finish();
+  }
+
+ private:
+  static std::vector<bool> included(const Scene& s, const std::vector<bool>& movable) {
+    std::vector<bool> in(s.meshes.size());
+    for (std::size_t m = 0; m < in.size(); ++m) in[m] = !movable[m];
+    return in;
+  }
+
+  // Per mesh, the grid levels holding triangles of meshes it is relevant with (bit l: level
+  // l - kLevelBias): a triangle looks only there, so a million triangles of one material
+  // around a few of another cost a few lookups each.
+  std::vector<std::uint64_t> levels_of_partners() const {
+    const std::size_t n = s_.meshes.size();
+    std::vector<std::uint64_t> own(n, 0);
+    for (std::size_t g = 0; g < tris_.size(); ++g)
+      own[tris_.mesh(g)] |= 1ull << (level_[g] + kLevelBias);
+    std::vector<std::array<int, 64>> by_material(s_.materials.size(), std::array<int, 64>{});
+    std::array<int, 64> all{}, targets{}, others{};
+    for (std::size_t m = 0; m < n; ++m) {
+      for (int b = 0; b < 64; ++b) {
+        const int has = own[m] >> b & 1;
+        all[b] += has;
+        (is_target_[m] ? targets : others)[b] += has;
+        if (!is_target_[m]) by_material[s_.meshes[m].material][b] += has;
+      }
+    }
+    std::vector<std::uint64_t> out(n, 0);
+    for (std::size_t m = 0; m < n; ++m) {
+      for (int b = 0; b < 64; ++b) {
+        const int has = own[m] >> b & 1;
+        const bool any =
+            is_target_[m] ? all[b] - has > 0
+                          : targets[b] > 0 || others[b] - by_material[s_.meshes[m].material][b] > 0;
+        if (any) out[m] |= 1ull << b;
+      }
+    }
+    return out;
+  }
+
+  void padded_bounds(std::size_t g, dvec3& lo, dvec3& hi) const {
+    tris_.bounds(g, lo, hi);
+    lo -= pad_m_;
+    hi += pad_m_;
+  }
+
+  // Pairs that can matter: one side is a target, or the materials differ.
+  bool relevant(std::uint32_t a, std::uint32_t b) const {
+    return a != b &&
+           (is_target_[a] || is_target_[b] || s_.meshes[a].material != s_.meshes[b].material);
+  }
+
+  void visit_cell(const Grid& grid, std::uint64_t key, std::size_t g,
+                  std::vector<std::uint32_t>& seen, std::vector<Hit>& hits) const {
+    const std::uint32_t mesh = tris_.mesh(g);
+    auto [i, end] = grid.find(key);
+    while (i < end) {
+      const Entry& e = grid.entry(i);
+      if (!relevant(mesh, e.mesh)) {
+        i = grid.run_end(i);  // skip this mesh's entries in the cell at once
+        continue;
+      }
+      ++i;
+      // Same-level pairs are met from both sides: keep one. Stamps drop a cell's repeats.
+      if ((level_[e.tri] == level_[g] && e.tri <= g) || seen[e.tri] == g + 1) continue;
+      seen[e.tri] = static_cast<std::uint32_t>(g + 1);
+      test_pair(g, e.tri, hits);
+    }
+  }
+
+  void test_pair(std::size_t g1, std::size_t g2, std::vector<Hit>& hits) const {
+    dvec3 lo1, hi1, lo2, hi2;
+    padded_bounds(g1, lo1, hi1);
+    padded_bounds(g2, lo2, hi2);
+    if (glm::any(glm::lessThan(hi1, lo2)) || glm::any(glm::lessThan(hi2, lo1))) return;
+    // The reference triangle t: the target's where there is one, else the lower mesh's.
+    const std::uint32_t m1 = tris_.mesh(g1), m2 = tris_.mesh(g2);
+    const bool t_first = is_target_[m1] != is_target_[m2] ? is_target_[m1] : m1 < m2;
+    const std::size_t gt = t_first ? g1 : g2, go = t_first ? g2 : g1;
+    const Triangle t = tris_.get(gt), o = tris_.get(go);
+    dvec3 magnitude(0.0);
+    for (const dvec3& p : t.p) magnitude = glm::max(magnitude, glm::abs(p));
+    for (const dvec3& p : o.p) magnitude = glm::max(magnitude, glm::abs(p));
+    const double tol_m = kToleranceMargin * ray_offset_along(t.n, magnitude);
+    const double area = coplanar_overlap_m2(t, o, tol_m);
+    if (area > 0.0) hits.push_back({gt, go, area, kMoveFactor * tol_m});
+  }
+
+  // Same-facing: the other triangle steps back behind the target (the lit side, with its grids
+  // and flush luminaires, is untouched). Back to back: the smaller triangle steps toward its own
+  // front, the side the other one hides, so the disturbance stays as local as possible.
+  void apply_rule(const Hit& h) {
+    const Triangle t = tris_.get(h.gt), o = tris_.get(h.go);
+    const std::uint32_t mt = tris_.mesh(h.gt), mo = tris_.mesh(h.go);
+    const bool same_facing = glm::dot(t.n, o.n) > 0.0;
+    using K = Coincidence::Kind;
+    if (!is_target_[mt]) {
+      // Tracing is double-sided and nothing moves: from either side either material is seen.
+      found_[{mt, mo, K::Materials}] += h.area_m2;
+    } else if (is_target_[mo] && same_facing) {
+      found_[{mt, mo, K::TargetsArbitrary}] += h.area_m2;
+    } else {
+      const K kind = !same_facing ? K::Contact : K::TargetOnSurface;
+      found_[{mt, mo, kind}] += h.area_m2;
+      if (same_facing || o.area_m2 < t.area_m2) {
+        add_move(h.go, -t.n, h.move_m);
+      } else {
+        add_move(h.gt, t.n, h.move_m);
+      }
+    }
+  }
+
+  void add_move(std::size_t g, const dvec3& dir, double dist) {
+    for (int k = 0; k < 3; ++k) moves_.push_back({tris_.mesh(g), tris_.indices(g)[k], dir, dist});
+  }
+
+  // Per mesh, the lowest index of the vertices at each position: a mesh whose faces do not
+  // share vertices (STL, one quad per face) must move as if they did, or it would crack open.
+  std::vector<std::uint32_t> weld(std::uint32_t mesh) const {
+    const auto& v = s_.meshes[mesh].vertices;
+    std::vector<std::uint32_t> order(v.size()), canon(v.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto key = [&](std::uint32_t i) { return std::tie(v[i].x, v[i].y, v[i].z); };
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return std::pair(key(a), a) < std::pair(key(b), b);
+    });
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const bool same = i > 0 && v[order[i]] == v[order[i - 1]];
+      canon[order[i]] = same ? canon[order[i - 1]] : order[i];
+    }
+    return canon;
+  }
+
+  // Each moved vertex must end at least `dist` along every `dir` asked of it (a box corner on a
+  // floor and against a wall: two). Projections onto those half-spaces converge at once for
+  // one direction or perpendicular ones, and in a few passes otherwise.
+  static dvec3 displacement(const Move* first, const Move* last) {
+    dvec3 d(0.0);
+    for (int pass = 0; pass < 16; ++pass) {
+      bool done = true;
+      for (const Move* m = first; m != last; ++m) {
+        const double along = glm::dot(d, m->dir);
+        if (along < m->dist) {
+          d += (m->dist - along) * m->dir;
+          done = false;
+        }
+      }
+      if (done) break;
+    }
+    return d;
+  }
+
+  CoincidentGeometry finish() {
+    CoincidentGeometry out;
+    for (const auto& [key, area] : found_) {
+      out.pairs.push_back({std::get<2>(key), std::get<0>(key), std::get<1>(key), area});
+    }
+    out.displacements.resize(s_.meshes.size());
+    std::sort(moves_.begin(), moves_.end(),
+              [](const Move& a, const Move& b) { return a.mesh < b.mesh; });
+    for (std::size_t i = 0; i < moves_.size();) {
+      const std::uint32_t mesh = moves_[i].mesh;
+      std::size_t j = i;
+      while (j < moves_.size() && moves_[j].mesh == mesh) ++j;
+      const std::vector<std::uint32_t> canon = weld(mesh);
+      for (std::size_t k = i; k < j; ++k) moves_[k].vertex = canon[moves_[k].vertex];
+      std::sort(moves_.begin() + i, moves_.begin() + j,
+                [](const Move& a, const Move& b) { return a.vertex < b.vertex; });
+      auto& disp = out.displacements[mesh];
+      disp.assign(canon.size(), dvec3(0.0));
+      for (std::size_t k = i; k < j;) {
+        std::size_t l = k;
+        while (l < j && moves_[l].vertex == moves_[k].vertex) ++l;
+        // data() + l, not &moves_[l]: l may be one past the end.
+        disp[moves_[k].vertex] = displacement(moves_.data() + k, moves_.data() + l);
+        k = l;
+      }
+      for (std::size_t v = 0; v < canon.size(); ++v) disp[v] = disp[canon[v]];
+      i = j;
+    }
+    return out;
+  }
+
+  const Scene& s_;
+  const std::vector<bool>& is_target_;
+  SceneTriangles tris_;
+  dvec3 magnitude_{0.0};
+  double pad_m_ = 0.0;
+  std::vector<int> level_;
+  std::map<std::tuple<std::uint32_t, std::uint32_t, Coincidence::Kind>, double> found_;
+  std::vector<Move> moves_;
+};
+
+std::string format_area(double area_m2) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", area_m2);
+  return std::string(buf) + " m²";
+}
+
+std::string quoted(const std::string& s) { return "\"" + s + "\""; }
+
+}  // namespace
+
+double ray_offset_bound_m(double magnitude_m) {
+  int e = 0;
+  std::frexp(std::max(magnitude_m, 1e-30), &e);  // magnitude < 2^e: float ULP there <= 2^(e-24)
+  return std::max(1.0 / 65536.0, 256.0 * std::ldexp(1.0, e - 24));
+}
+
+CoincidentGeometry find_coincident(const Scene& scene, const glm::dvec3& origin,
+                                   const std::vector<bool>& is_target,
+                                   const std::vector<bool>& movable) {
+  bool any_target = false, mixed_materials = false;
+  int material = -1;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (movable[m]) continue;
+    any_target = any_target || is_target[m];
+    mixed_materials = mixed_materials || (material >= 0 && scene.meshes[m].material != material);
+    material = scene.meshes[m].material;
+  }
+  if (!any_target && !mixed_materials) {  // nothing that could matter: skip the grid
+    return {{}, std::vector<std::vector<glm::dvec3>>(scene.meshes.size())};
+  }
+  return Detector(scene, origin, is_target, movable).run();
+}
+
+Warnings coincidence_warnings(const Scene& scene, const std::vector<Coincidence>& pairs) {
+  Warnings out;
+  for (const Coincidence& c : pairs) {
+    const Mesh &a = scene.meshes[c.a], &b = scene.meshes[c.b];
+    const std::string area = format_area(c.area_m2);
+    switch (c.kind) {
+      case Coincidence::Kind::TargetOnSurface:
+        out.push_back("target mesh " + quoted(a.name) + " lies on mesh " + quoted(b.name) +
+                      " (coplanar, overlapping over " + area +
+                      "): light arriving from the target's front is counted on the target");
+        break;
+      case Coincidence::Kind::Contact:  // an object standing on a surface: nothing to say
+        break;
+      case Coincidence::Kind::TargetsArbitrary:
+        out.push_back("target meshes " + quoted(a.name) + " and " + quoted(b.name) +
+                      " overlap in one plane facing the same way over " + area +
+                      ": the share of the light each receives there is arbitrary");
+        break;
+      case Coincidence::Kind::Materials:
+        out.push_back(
+            "meshes " + quoted(a.name) + " (material " + quoted(scene.materials[a.material].name) +
+            ") and " + quoted(b.name) + " (material " + quoted(scene.materials[b.material].name) +
+            ") overlap in one plane over " + area + ": the material seen there is arbitrary");
+        break;
+    }
+  }
+  return out;
+}
+
+}  // namespace lightsolver::detail

@@ -1,0 +1,125 @@
+// The one scene check (scene_check.hpp): validate() for the errors, then what a run would warn
+// about before tracing, each warning located by the scene field it concerns.
+#include "lightsolver/scene_check.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <exception>
+#include <filesystem>
+
+#include "model/coincident.hpp"
+#include "model/prepared_scene.hpp"
+#include "scene/scene_document.hpp"
+#include "prepare/target_reach.hpp"
+#include "lightsolver/scene_io.hpp"
+
+namespace lightsolver {
+
+namespace {
+
+// Scene warnings start with the path they concern ("settings.confidence: ...",
+// "meshes[2] (\"floor\"): dropped ..."): the leading run of path characters, when one follows.
+std::string leading_path(const std::string& text) {
+  std::size_t n = 0;
+  while (n < text.size() && (std::isalnum(static_cast<unsigned char>(text[n])) || text[n] == '_' ||
+                             text[n] == '.' || text[n] == '[' || text[n] == ']')) {
+    ++n;
+  }
+  if (n == 0 || n == text.size() || (text[n] != ':' && text[n] != ' ')) return "";
+  return text.substr(0, n).find_first_of(".[") == std::string::npos ? "" : text.substr(0, n);
+}
+
+std::string at(const char* list, std::size_t i) {
+  return std::string(list) + "[" + std::to_string(i) + "]";
+}
+
+// What Simulation would add to Results::warnings before the first photon, per field.
+void add_run_warnings(const Scene& scene, SceneCheck& out) {
+  auto warn = [&](std::string field, std::string message) {
+    out.warnings.push_back({scene.source_file, std::move(field), 0, std::move(message)});
+  };
+  // A scene validated before (load_scene's, then check_scene's copy) may repeat a remark.
+  Warnings seen;
+  for (const std::string& w : scene.warnings) {
+    if (std::find(seen.begin(), seen.end(), w) != seen.end()) continue;
+    seen.push_back(w);
+    warn(leading_path(w), w);
+  }
+  for (std::size_t i = 0; i < scene.luminaires.size(); ++i) {
+    for (const std::string& w : photometric_warnings(scene.luminaires[i])) {
+      warn(at("luminaires", i), w);
+    }
+  }
+  // 0 lm is a switched-off luminaire (docs/scene-format.md); only a scene that emits nothing
+  // at all is worth a remark.
+  if (!scene.luminaires.empty() && scene.total_flux_lm() <= 0.0) {
+    warn("luminaires", "all luminaires have zero flux: every result will be 0 lx");
+  }
+  // Coincident surfaces are found by prepare(), as in a run (about linear in the triangles).
+  const detail::PreparedScene prepared = detail::prepare(scene);
+  for (const detail::Coincidence& c : prepared.coincidences) {
+    for (const std::string& w : detail::coincidence_warnings(scene, {c})) {
+      warn(at("meshes", c.a), w);
+    }
+  }
+  // Targets no light can reach (no surface reflects and they face away from every luminaire).
+  for (const detail::DarkTarget& d :
+       detail::dark_targets(scene, prepared, detail::analyse_effects(prepared))) {
+    warn(at("targets", d.target), d.message);
+  }
+}
+
+// Reads the scene (a reading error is the one error), then collects every validation error;
+// a valid scene gets the run's warnings.
+template <class Load>
+SceneCheck check_loaded(Load load) {
+  SceneCheck out;
+  try {
+    Scene scene = load();
+    for (const InputError& e : validation_errors(scene)) out.errors.push_back(issue_from_error(e));
+    if (out.errors.empty()) add_run_warnings(scene, out);
+  } catch (const InputError& e) {
+    out.errors.push_back(issue_from_error(e));
+  } catch (const std::exception& e) {  // unreadable file, out of memory: still one error
+    out.errors.push_back({"", "", 0, e.what()});
+  }
+  return out;
+}
+
+}  // namespace
+
+SceneIssue issue_from_error(const InputError& error) {
+  SceneIssue issue{error.file(), error.where(), 0, error.what()};
+  // The message without the "file: where: " InputError puts in front (file and field are kept
+  // apart here).
+  const std::string& where = error.where();
+  const std::string prefix = (error.file().empty() ? std::string("<scene>") : error.file()) +
+                             (where.empty() ? "" : ": " + where) + ": ";
+  if (issue.message.rfind(prefix, 0) == 0) issue.message.erase(0, prefix.size());
+  if (where.rfind("line ", 0) == 0) {
+    try {
+      issue.line = std::stoi(where.substr(5));
+      issue.field.clear();
+    } catch (const std::exception&) {  // "line" followed by no number: keep it as the field
+    }
+  }
+  return issue;
+}
+
+SceneCheck check_scene(const Scene& scene) {
+  return check_loaded([&] { return scene; });
+}
+
+SceneCheck check_scene_file(const std::string& path) {
+  return check_loaded([&] {
+    return detail::read_unvalidated_scene(detail::read_scene_text(path), path,
+                                          std::filesystem::path(path).parent_path().string());
+  });
+}
+
+SceneCheck check_scene_json(const std::string& text, const std::string& file,
+                            const std::string& base_dir) {
+  return check_loaded([&] { return detail::read_unvalidated_scene(text, file, base_dir); });
+}
+
+}  // namespace lightsolver

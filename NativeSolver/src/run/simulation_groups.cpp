@@ -1,0 +1,141 @@
+// Groups traced apart and combined (docs/optimization.md, "Reused traces"): light is linear in
+// each group's flux and each group has its own photon stream, so a configuration's results are
+// the sum of its groups' traces, each scaled to the group's flux now. The optimizer keeps the
+// traces of groups a configuration did not change, and traces no photon for a flux change.
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "estimate/decide.hpp"
+#include "model/groups.hpp"
+#include "estimate/run_results.hpp"
+#include "run/shared_tracing.hpp"
+#include "run/simulation_state.hpp"
+#include "lightsolver/simulation.hpp"
+
+namespace lightsolver {
+
+std::vector<LuminaireGroup> Simulation::groups() const {
+  std::vector<LuminaireGroup> out;
+  for (const detail::PreparedGroup& g : state_->prepared.groups) {
+    LuminaireGroup l{g.name, {}, g.flux_lm};
+    l.luminaires.assign(g.luminaires.begin(), g.luminaires.end());
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
+void Simulation::fix_photon_shares(const std::vector<double>& weights) {
+  detail::PreparedScene& p = state_->prepared;
+  const std::string& file = state_->scene.source_file;
+  if (!weights.empty() && weights.size() != p.groups.size()) {
+    throw InputError(file, "photon share weights",
+                     std::to_string(weights.size()) + " weights for " +
+                         std::to_string(p.groups.size()) + " luminaire groups");
+  }
+  for (double w : weights) {
+    if (!(std::isfinite(w) && w >= 0.0)) {
+      throw InputError(file, "photon share weights", "must be finite and >= 0");
+    }
+  }
+  p.share_weights = weights;
+  detail::set_photon_shares(p.groups, weights);
+  state_->kept.reset();  // photon i of a group is another photon of the run now
+}
+
+GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
+                                   const std::shared_ptr<ProcessGroup>& processes) {
+  const detail::PreparedScene& p = state_->prepared;
+  const Scene& scene = state_->scene;
+  if (group >= p.groups.size()) {
+    throw InputError(scene.source_file, "group", "no luminaire group " + std::to_string(group));
+  }
+  if (!(p.groups[group].flux_lm > 0.0)) {
+    throw InputError(scene.source_file, "group",
+                     "luminaire group \"" + p.groups[group].name + "\" has no flux to trace");
+  }
+  check_photon_count(run_photons, scene.settings.max_bounces, "", "photons");
+  GroupTrace out;
+  out.group = group;
+  out.run_photons = run_photons;
+  out.photons = detail::group_photons(p.groups, run_photons)[group];
+  out.seed = seed;
+  // The backends write group g's bins at g x bins: a block for every group, one group filled.
+  const std::size_t bins = p.bins.size();
+  detail::TallyBlock block(p.groups.size() * bins);
+  if (out.photons > 0) {
+    tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
+    detail::SharedTracing shared(processes.get(), block.bins.size());
+    shared.trace(0, out.photons, block,
+                 [&](std::uint64_t from, std::uint64_t count, detail::TallyBlock& into) {
+                   const std::vector<detail::GroupRange> range{
+                       {static_cast<std::uint32_t>(group), from, count}};
+                   arena.execute([&] { state_->backend->trace(range, seed, into); });
+                 });
+  }
+  const auto first = block.bins.begin() + static_cast<std::ptrdiff_t>(group * bins);
+  out.bins.assign(first, first + static_cast<std::ptrdiff_t>(bins));
+  out.ray_segments = block.ray_segments;
+  out.capped_paths = block.capped_paths;
+  out.cut_paths = block.cut_paths;
+  return out;
+}
+
+Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
+                            const std::vector<double>& flux_lm, double confidence) const {
+  const detail::PreparedScene& p = state_->prepared;
+  const Scene& scene = state_->scene;
+  const std::size_t groups = p.groups.size(), bins = p.bins.size();
+  if (traces.size() != groups || flux_lm.size() != groups) {
+    throw std::invalid_argument("combine: one trace and one flux per luminaire group");
+  }
+  if (!(confidence > 0.0 && confidence < 1.0)) {
+    throw InputError("", "confidence", "must lie strictly between 0 and 1");
+  }
+  std::vector<Tally> all(groups * bins);
+  detail::GroupedTallies tallies{&all, bins, std::vector<std::uint64_t>(groups, 0), flux_lm};
+  Results r;
+  for (std::size_t g = 0; g < groups; ++g) {
+    if (!(std::isfinite(flux_lm[g]) && flux_lm[g] >= 0.0)) {
+      throw std::invalid_argument("combine: a group's flux must be finite and >= 0");
+    }
+    const GroupTrace* t = traces[g];
+    if (t == nullptr) continue;
+    if (t->group != g || t->bins.size() != bins) {
+      throw std::invalid_argument("combine: trace " + std::to_string(g) + " is not that group's");
+    }
+    std::copy(t->bins.begin(), t->bins.end(), all.begin() + static_cast<std::ptrdiff_t>(g * bins));
+    tallies.photons[g] = t->photons;
+    r.photons += t->photons;
+    r.ray_segments += t->ray_segments;
+    r.capped_paths += t->capped_paths;
+    r.cut_paths += t->cut_paths;
+    if (r.seed == 0) r.seed = t->seed;
+    if (flux_lm[g] > 0.0) r.total_flux_lm += flux_lm[g];
+  }
+  r.photons_requested = r.photons;
+  r.confidence = confidence;
+  r.backend = state_->backend->name();
+  r.judged = detail::judges_requirements(scene, false, false);
+  // Observers rate each luminaire's luminance, which follows its group's flux as combined.
+  std::vector<Luminaire> luminaires = scene.luminaires;
+  for (std::size_t g = 0; g < groups; ++g) {
+    const double traced = p.groups[g].flux_lm;
+    const double factor = traced > 0.0 ? flux_lm[g] / traced : 0.0;
+    for (std::uint32_t l : p.groups[g].luminaires) luminaires[l].flux_lm *= factor;
+  }
+  r.targets = detail::all_targets(scene, p, tallies, confidence, r.judged, false, &luminaires);
+  r.groups = detail::group_results(scene, p, tallies.photons);
+  std::vector<double> dimming(groups, 0.0);
+  for (std::size_t g = 0; g < groups; ++g) {
+    r.groups[g].flux_lm = flux_lm[g];
+    if (p.groups[g].flux_lm > 0.0) dimming[g] = flux_lm[g] / p.groups[g].flux_lm;
+  }
+  r.luminaires = detail::luminaire_results(scene, p, dimming);
+  detail::add_verdicts(r);
+  detail::add_warnings(scene, r);
+  return r;
+}
+
+}  // namespace lightsolver

@@ -1,0 +1,32 @@
+#pragma once
+// What the luminaire types' rows share across their files (luminaire_types.cpp holds the table
+// and the point, spot, area and directional rows; luminaire_photometric.cpp the photometric row).
+#include <glm/vec3.hpp>
+#include <string>
+
+#include "types/luminaire_types.hpp"
+
+namespace lightsolver::detail {
+
+namespace luminaire_rows {
+
+/// Numbers in messages: 6 significant digits, as the validator prints them.
+std::string show(double v);
+/// Where a luminaire with a position is, and moving it there.
+glm::dvec3 at_position(const Luminaire& l);
+void move_position(Luminaire& l, const glm::dvec3& c);
+/// The photometric aim, for an aim design variable.
+glm::dvec3* file_aim(Luminaire& l);
+/// Emission from the prepared luminaire's position within `half_angle_rad` of its axis.
+EmissionSupport from_point(const PreparedLuminaire& l, double half_angle_rad);
+/// Not a glare source, because `why_not`.
+GlareShape no_glare(std::string why_not);
+/// Checks `key` as a direction and makes it unit length.
+void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v);
+
+}  // namespace luminaire_rows
+
+/// The row of luminaire_photometric.cpp.
+LuminaireType photometric_luminaire_type();
+
+}  // namespace lightsolver::detail
