@@ -116,6 +116,31 @@ def test_partial_results_are_refused_unless_asked_for(tmp_path):
     assert build(SCENE, results_dict(), date=DATE).partial is False
 
 
+def test_a_cancelled_run_of_the_cli_is_refused_unless_asked_for(cli, tmp_path, room_scene):
+    # A real cancel: lightsolver run interrupted (SIGINT) writes the photons traced so far,
+    # marked partial (exit status 130).
+    import signal
+    import time
+
+    results = tmp_path / "in" / "cancelled.json"
+    results.parent.mkdir()
+    run = subprocess.Popen([cli, "run", str(room_scene), "--photons", "10000000000000",
+                            "--threads", "1", "-q", "--out", str(results)],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(1.5)
+    run.send_signal(signal.SIGINT)
+    _, err = run.communicate(timeout=120)
+    assert run.returncode == 130 and results.is_file(), err
+    doc = json.loads(results.read_text())
+    assert doc["partial"] is True and doc["stop_reason"] == "cancelled"
+    before = tree(tmp_path)
+    with pytest.raises(ReportError, match="partial results: the run was cancelled after"):
+        render(room_scene, results, tmp_path / "r.pdf", date=DATE)
+    assert tree(tmp_path) == before
+    out = render(room_scene, results, tmp_path / "r.html", date=DATE, allow_partial=True)
+    assert "Partial results" in out.read_text(encoding="utf-8")
+
+
 # --- where it goes ----------------------------------------------------------------------------
 
 @pytest.mark.parametrize("sub", ["nonexistent/x.pdf", "a/b/c/x.html", "nonexistent/x.html"])
