@@ -30,7 +30,9 @@ constexpr const char* kDefaultPython = "/usr/bin/python3";
 
 struct ReportArgs {
   std::string scene, results, out, date, title, save_results, backend = kAutoBackend;
+  std::string project, author, checked_by;  // the sign-off block
   std::optional<std::uint64_t> photons, seed;
+  bool allow_partial = false, allow_unverified = false;
 };
 
 std::string env_or(const char* name, const std::string& fallback) {
@@ -76,6 +78,11 @@ std::vector<std::string> python_arguments(const std::string& python, const Repor
   add("--backend", a.backend);
   if (a.photons) add("--photons", std::to_string(*a.photons));
   if (a.seed) add("--seed", std::to_string(*a.seed));
+  add("--project", a.project);
+  add("--author", a.author);
+  add("--checked-by", a.checked_by);
+  if (a.allow_partial) argv.emplace_back("--allow-partial");
+  if (a.allow_unverified) argv.emplace_back("--allow-unverified");
   argv.insert(argv.end(), {"--", a.scene});  // a scene named "-x.json" is still the scene
   return argv;
 }
@@ -123,6 +130,16 @@ void add_report_command(CLI::App& app) {
   add_backend_option(cmd, args->backend);
   cmd->add_option("--save-results", args->save_results,
                   "When tracing, also write the results JSON here");
+  cmd->add_flag("--allow-partial", args->allow_partial,
+                "Report the results of a cancelled run (refused otherwise); every page then "
+                "says they are partial");
+  cmd->add_flag("--allow-unverified", args->allow_unverified,
+                "Accept results that do not say which scene they were traced from (written "
+                "before the solver recorded it); results shown to be of another scene are "
+                "refused anyway");
+  cmd->add_option("--project", args->project, "Project name for the sign-off block");
+  cmd->add_option("--author", args->author, "Who made the calculation (sign-off block)");
+  cmd->add_option("--checked-by", args->checked_by, "Who checked it (sign-off block)");
   cmd->callback([args] {
     try {
       exec_report(*args);

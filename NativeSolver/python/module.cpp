@@ -446,7 +446,12 @@ PYBIND11_MODULE(lightsolver, m) {
       [](const std::string& path, double spacing_to_height) {
         UgrTableOptions o;
         o.spacing_to_height = spacing_to_height;
-        const UgrTable t = ugr_table(load_photometry(path), o);
+        const UgrTable t = [&] {
+          // Seconds of work without Python objects: other threads run meanwhile (the
+          // workbench writes its report on a worker thread while the GUI stays responsive).
+          py::gil_scoped_release nogil;
+          return ugr_table(load_photometry(path), o);
+        }();
         py::list refl, rows;
         for (const RoomReflectances& r : t.reflectances)
           refl.append(py::make_tuple(r.ceiling, r.walls, r.floor));

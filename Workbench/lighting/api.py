@@ -6,7 +6,7 @@ document's first Lighting analysis is used, and :func:`analyze` creates one with
 settings when the document has none."""
 from __future__ import annotations
 
-from typing import Any, Callable, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from lighting.messages import CheckError, Report
 from lighting.objects import analysis as analysis_mod
@@ -162,19 +162,30 @@ def results(doc: Any, analysis: Any = None) -> Optional[Any]:
 
 
 def report(doc: Any, path: str, analysis: Any = None, date: Optional[str] = None,
-           title: Optional[str] = None) -> str:
+           title: Optional[str] = None, *, allow_stale: bool = False,
+           allow_partial: bool = False, allow_unverified: bool = False,
+           signoff: Optional[Dict[str, Any]] = None, view_png: Optional[str] = None) -> str:
     """Write the calculation report of the stored results (docs/report.md) to ``path``:
-    ``.html`` or ``.pdf``. Cover with the verdicts, luminaire schedule, surfaces, per target
-    Em/Emin/Emax/U0/Ud with their intervals, requirements and verdicts, false-colour plans and
-    value charts of the grids, the run's warnings (and whether the results are stale).
-    ``date`` (YYYY-MM-DD, default today) and ``title`` (default: the document's label) are
-    printed on it. Returns the path written.
+    ``.html`` or ``.pdf``, written whole or not at all, into a folder that exists. Cover with
+    the verdicts, luminaire schedule, surfaces, per target Em/Emin/Emax/U0/Ud with their
+    intervals, requirements and verdicts, false-colour plans and value charts of the grids,
+    the run's warnings. ``date`` (YYYY-MM-DD, default today) and ``title`` (default: the
+    document's label) are printed on it; ``signoff`` ({project, author, checked_by}) overrides
+    what the document says (its label, CreatedBy, Company); ``view_png`` is a picture of the
+    model for the report (the Report command passes the 3D view). Returns the path written.
 
-    Raises CheckError (no results), SolverUnavailableError (no report generator) or
-    LightingError (the report could not be written)."""
+    Refused: results that no longer describe the model unless ``allow_stale`` (then marked
+    stale), a cancelled run's unless ``allow_partial`` (then marked partial on every page),
+    and what the generator refuses (results of another scene unless they cannot tell and
+    ``allow_unverified``; broken or empty results; a missing folder).
+    Raises CheckError (no results), StaleResultsError, PartialResultsError,
+    SolverUnavailableError (no report generator) or LightingError (the report could not be
+    written)."""
     from lighting.reporting import make_report
 
-    return make_report(_analysis(doc, analysis), path, date=date, title=title)
+    return make_report(_analysis(doc, analysis), path, date=date, title=title,
+                       allow_stale=allow_stale, allow_partial=allow_partial,
+                       allow_unverified=allow_unverified, signoff=signoff, view_png=view_png)
 
 
 def exclude(objects: Any, excluded: bool = True) -> List[Any]:

@@ -2,19 +2,41 @@
 """Calculation reports of an analysis (App code, headless): the results stored in the document
 and the scene file they were computed from, rendered by the solver's report generator
 ``lightsolver_report`` (NativeSolver/python/lightsolver_report, docs/report.md) as HTML or PDF.
-The workbench adds nothing of its own to the report but two warnings it alone can give: results
-that no longer describe the model (stale), and a scene file that had to be exported again.
+The report refuses what the generator refuses (broken, empty or cancelled results, results of
+another scene, a missing output folder) and, what only the workbench knows, results that no
+longer describe the model (stale) unless the caller accepts them (``allow_stale``); those are
+then marked stale among the warnings, as is a scene file that had to be exported again.
+
+Two steps, so that the GUI can write on a worker thread (commands/report.py):
+:func:`prepare_report` reads the document (main thread) into a :class:`ReportJob`, whose
+:meth:`ReportJob.write` touches only files and the generator. :func:`make_report` does both.
 (Not ``lighting/report.py``: that submodule would shadow the function ``lighting.report``.)"""
 from __future__ import annotations
 
 import os
 import sys
+from dataclasses import dataclass, field
 from types import ModuleType
-from typing import Any, List, Optional
+from typing import Any, Dict, List, Optional
 
 from lighting.messages import CheckError, LightingError, Report, SolverUnavailableError
 
 PACKAGE = "lightsolver_report"
+
+
+class StaleResultsError(LightingError):
+    """The stored results no longer describe the model; the report is refused unless the
+    caller accepts them (``allow_stale=True``: then marked stale)."""
+
+    def __init__(self, analysis_label: str, state_text: str) -> None:
+        self.state_text = state_text
+        super().__init__(f"Analysis '{analysis_label}': the {state_text}. Run the analysis "
+                         "again before writing the report, or write it marked stale "
+                         "(lighting.report(..., allow_stale=True)).")
+
+
+class PartialResultsError(LightingError):
+    """The stored results are those of a cancelled run; refused unless ``allow_partial``."""
 
 
 def report_module() -> ModuleType:
@@ -52,11 +74,85 @@ def _scene_file(analysis: Any, stored: str, notes: List[str]) -> str:
     return write_scene(result, folder, analysis.MeshStorage)
 
 
-def make_report(analysis: Any, path: str, date: Optional[str] = None,
-                title: Optional[str] = None) -> str:
-    """Write the report of ``analysis``'s stored results to ``path`` (``.html`` or ``.pdf``) and
-    return the path. Raises CheckError without results, SolverUnavailableError without the
-    generator, LightingError when it cannot write the report (the reason in the message)."""
+def signoff_of(doc: Any) -> Dict[str, str]:
+    """The sign-off fields the document knows: the project is its label, the author who
+    created it (FreeCAD's document properties CreatedBy and Company); who checked it no
+    document property says."""
+    created = str(getattr(doc, "CreatedBy", "") or getattr(doc, "LastModifiedBy", "") or "")
+    company = str(getattr(doc, "Company", "") or "")
+    author = ", ".join(part.strip() for part in (created, company) if part.strip())
+    return {"project": str(doc.Label), "author": author, "checked_by": ""}
+
+
+@dataclass
+class ReportJob:
+    """One report to write, read from the document on the main thread. :meth:`write` reads no
+    document object, so it may run on a worker thread (:meth:`start`)."""
+
+    scene_file: str
+    data: Dict[str, Any]
+    path: str
+    date: Optional[str] = None
+    title: Optional[str] = None
+    signoff: Dict[str, str] = field(default_factory=dict)
+    view_png: Optional[str] = None
+    allow_partial: bool = False
+    allow_unverified: bool = False
+    #: Set by :meth:`write`: the path written, or the error (a LightingError) it raised.
+    written: Optional[str] = None
+    error: Optional[BaseException] = None
+    _thread: Any = None
+
+    def write(self) -> str:
+        """Render and write the report; returns the path. Raises LightingError."""
+        module = report_module()
+        try:
+            self.written = str(module.render(
+                self.scene_file, self.data, self.path, date=self.date, title=self.title,
+                view_png=self.view_png, allow_partial=self.allow_partial,
+                signoff=self.signoff, allow_unverified=self.allow_unverified))
+        except module.ReportError as exc:
+            raise LightingError(f"The report cannot be written: {exc}") from exc
+        except OSError as exc:
+            raise LightingError(f"The report cannot be written to '{self.path}': {exc}") from exc
+        return self.written
+
+    # -- worker thread (the GUI polls ``finished``, as for an analysis run) -----------------
+    def start(self) -> None:
+        """Run :meth:`write` on a worker thread; poll :attr:`finished`, then read
+        :attr:`written` or :attr:`error`."""
+        import threading
+
+        def worker() -> None:
+            try:
+                self.write()
+            except BaseException as exc:  # noqa: BLE001 - reported on the main thread
+                self.error = exc
+        self._thread = threading.Thread(target=worker, name="lighting-report", daemon=True)
+        self._thread.start()
+
+    @property
+    def finished(self) -> bool:
+        """True when the worker thread ended (or never started)."""
+        return self._thread is None or not self._thread.is_alive()
+
+    def wait(self, timeout: Optional[float] = None) -> bool:
+        """Join the worker thread; True if it ended."""
+        if self._thread is not None:
+            self._thread.join(timeout)
+        return self.finished
+
+
+def prepare_report(analysis: Any, path: str, date: Optional[str] = None,
+                   title: Optional[str] = None, *, allow_stale: bool = False,
+                   allow_partial: bool = False, allow_unverified: bool = False,
+                   signoff: Optional[Dict[str, Any]] = None,
+                   view_png: Optional[str] = None) -> ReportJob:
+    """Read what the report of ``analysis``' stored results needs (main thread), refusing
+    early what the document alone can tell: no results (CheckError), stale results unless
+    ``allow_stale`` (StaleResultsError), partial results unless ``allow_partial``
+    (PartialResultsError), an output folder that does not exist or a wrong suffix
+    (LightingError). ``signoff`` fields override the document's (:func:`signoff_of`)."""
     from lighting.objects import results as results_obj
     from lighting.solver import store
 
@@ -65,19 +161,38 @@ def make_report(analysis: Any, path: str, date: Optional[str] = None,
     if data is None:
         raise CheckError(Report.one("error", f"Analysis '{analysis.Label}' has no results to "
                                              "report: run the analysis first"))
+    module = report_module()
+    try:
+        module.guard.output_path(path)
+    except module.ReportError as exc:
+        raise LightingError(f"The report cannot be written: {exc}") from exc
+    state = store.results_state(analysis)
+    if state.stale and not allow_stale:
+        raise StaleResultsError(analysis.Label, state.text())
+    if module.guard.is_partial(data) and not allow_partial:
+        raise PartialResultsError(
+            f"Analysis '{analysis.Label}': the results are partial (the run was cancelled "
+            f"after {int(data.get('photons') or 0):,} photons). Run the analysis to the end, or "
+            "write the report marked partial (lighting.report(..., allow_partial=True)).")
     notes: List[str] = []
     scene_file = _scene_file(analysis, obj.SceneFile, notes)
-    state = store.results_state(analysis)
     if state.stale:
         notes.append(f"These {state.text()}: run the analysis again before handing this "
                      "report on.")
-    data = dict(data, warnings=list(data.get("warnings", [])) + notes)
-    module = report_module()
-    try:
-        written = module.render(scene_file, data, path, date=date,
-                                title=title or analysis.Document.Label)
-    except module.ReportError as exc:
-        raise LightingError(f"The report cannot be written: {exc}") from exc
-    except OSError as exc:
-        raise LightingError(f"The report cannot be written to '{path}': {exc}") from exc
-    return str(written)
+    fields = dict(signoff_of(analysis.Document), **{k: v for k, v in (signoff or {}).items()
+                                                    if v is not None})
+    return ReportJob(scene_file=scene_file,
+                     data=dict(data, warnings=list(data.get("warnings", [])) + notes),
+                     path=path, date=date, title=title or analysis.Document.Label,
+                     signoff=fields, view_png=view_png, allow_partial=allow_partial,
+                     allow_unverified=allow_unverified)
+
+
+def make_report(analysis: Any, path: str, date: Optional[str] = None,
+                title: Optional[str] = None, **options: Any) -> str:
+    """Write the report of ``analysis``'s stored results to ``path`` (``.html`` or ``.pdf``) and
+    return the path (:func:`prepare_report`'s refusals and ``options``, then
+    :meth:`ReportJob.write`). Raises CheckError without results, StaleResultsError,
+    PartialResultsError, SolverUnavailableError without the generator, LightingError when it
+    cannot write the report (the reason in the message)."""
+    return prepare_report(analysis, path, date, title, **options).write()

@@ -4,7 +4,10 @@
 Works from the solver boundary only: the scene JSON (docs/scene-format.md) and the results
 JSON (docs/schemas/results.schema.json, with requirements and verdicts where the solver wrote
 them). The CLI (``lightsolver report``), ``python3 -m lightsolver_report`` and the workbench
-(``lighting.report``) all call :func:`render`. See docs/report.md.
+(``lighting.report``) all call :func:`render`, which refuses what does not belong in a report
+(``guard.py``: results of another scene, broken or empty results, cancelled runs unless asked
+for, a missing output folder) and writes the file whole or not at all. :func:`render_html` and
+:func:`build` are its unchecked building blocks. See docs/report.md.
 
 Libraries: Jinja2 (templates in ``templates/``, autoescaped), matplotlib (SVG pictures inside the
 HTML), WeasyPrint (HTML to PDF). Same inputs, same date: byte-identical HTML."""
@@ -16,20 +19,18 @@ import os
 from pathlib import Path
 from typing import Any, Dict, Optional, Union
 
-from lightsolver_report import fmt
+from lightsolver_report import fmt, guard
+from lightsolver_report.guard import ReportError
 from lightsolver_report.model import Report, build_report
 
-__all__ = ["ReportError", "render", "render_html", "build", "trace", "load_json", "report_date"]
+__all__ = ["ReportError", "render", "render_html", "write_pdf", "build", "trace", "load_json",
+           "report_date"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 TEMPLATES = Path(__file__).resolve().parent / "templates"
 #: Debian packages that provide what the report needs.
 PACKAGES = {"jinja2": "python3-jinja2", "matplotlib": "python3-matplotlib",
             "weasyprint": "weasyprint", "lightsolver": "the lightsolver module (cmake --build)"}
-
-
-class ReportError(Exception):
-    """The report cannot be made (bad input, a missing library); the message says why."""
 
 
 def _require(name: str) -> Any:
@@ -142,8 +143,16 @@ def trace(scene_path: PathLike, photons: Optional[int] = None, seed: Optional[in
 
 def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
           scene_path: Optional[PathLike] = None, date: Union[None, str, datetime.date] = None,
-          title: Optional[str] = None, solver_version: Optional[str] = None) -> Report:
-    """The report's content (:class:`lightsolver_report.model.Report`) with its pictures."""
+          title: Optional[str] = None, solver_version: Optional[str] = None,
+          view_png: Optional[PathLike] = None,
+          signoff: Optional[Dict[str, Any]] = None) -> Report:
+    """The report's content (:class:`lightsolver_report.model.Report`) with its pictures.
+
+    Besides what the scene and results give, the model carries what the caller adds:
+    ``report.view_png`` (a false-colour picture of the model, absolute path, or None),
+    ``report.signoff`` (project, author, checked_by; "" where not given) and
+    ``report.partial`` (the results are a cancelled run's: every page says so). They are set
+    before the pictures are drawn, which may use them."""
     from lightsolver_report import plots
 
     if not isinstance(scene, dict):
@@ -158,6 +167,9 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
         base_dir=base_dir, date=report_date(date), solver_version=solver_version, title=title,
         photometry=solver.photometry_summary if solver else None,
         material_defaults=solver.material_defaults() if solver else None)
+    report.view_png = guard.view_png(view_png)
+    report.signoff = guard.signoff(signoff)
+    report.partial = guard.is_partial(results)
     for i, area in enumerate(report.areas):
         if area.grid is not None and area.grid.lux.size:
             area.plan_svg = plots.plan_svg(area.grid, f"plan{i}")
@@ -168,11 +180,13 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
 def render_html(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
                 scene_path: Optional[PathLike] = None,
                 date: Union[None, str, datetime.date] = None, title: Optional[str] = None,
-                solver_version: Optional[str] = None) -> str:
-    """The report as one self-contained HTML page (styles and SVG pictures inline)."""
+                solver_version: Optional[str] = None, view_png: Optional[PathLike] = None,
+                signoff: Optional[Dict[str, Any]] = None) -> str:
+    """The report as one self-contained HTML page (styles and SVG pictures inline). Unchecked:
+    :func:`render` refuses results that do not belong before it calls this."""
     jinja2 = _require("jinja2")
     report = build(scene, results, scene_path=scene_path, date=date, title=title,
-                   solver_version=solver_version)
+                   solver_version=solver_version, view_png=view_png, signoff=signoff)
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), autoescape=True,
                              undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True, keep_trailing_newline=True)
@@ -194,36 +208,48 @@ def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike
            out_path: PathLike, *, scene_path: Optional[PathLike] = None,
            date: Union[None, str, datetime.date] = None, title: Optional[str] = None,
            solver_version: Optional[str] = None, photons: Optional[int] = None,
-           seed: Optional[int] = None, backend: str = "auto") -> Path:
+           seed: Optional[int] = None, backend: str = "auto",
+           view_png: Optional[PathLike] = None, allow_partial: bool = False,
+           signoff: Optional[Dict[str, Any]] = None, allow_unverified: bool = False) -> Path:
     """Write the report of ``scene`` (a path, or a scene dict with ``scene_path`` naming where
     its relative files lie) to ``out_path``: ``.html``/``.htm`` or ``.pdf``.
 
     ``results``: a results dict or file; None traces the scene first (its settings; ``photons``,
     ``seed``, ``backend`` override them). ``date`` (YYYY-MM-DD) makes the output reproducible.
-    Returns the path written. Raises ReportError."""
-    out = Path(out_path)
-    suffix = out.suffix.lower()
-    if suffix not in (".html", ".htm", ".pdf"):
-        raise ReportError(f"{out}: the report is written as .html or .pdf (got '{suffix}')")
+    ``view_png``: a false-colour picture of the model (PNG) for the report; ``signoff``:
+    {project, author, checked_by} for the sign-off block.
+
+    Refused with ReportError, before anything is written (docs/report.md, "What the report
+    refuses"): an output folder that does not exist (it is never created) or another suffix;
+    results that cannot be read, break the results schema or hold no targets; results of a
+    cancelled run unless ``allow_partial`` (then every page says so); results that do not
+    belong to the scene file (``provenance.check``; ``allow_unverified`` is passed to it). The
+    file is written whole or not at all: an error while writing leaves an old report as it was.
+    Returns the path written."""
+    out = guard.output_path(out_path)
+    signoff = guard.signoff(signoff)
+    view_png = guard.view_png(view_png)
     if not isinstance(scene, dict):
         scene_path = scene
     if results is None:
         if scene_path is None:
             raise ReportError("no results given and no scene file to trace")
-        results = trace(scene_path, photons=photons, seed=seed, backend=backend)
-    elif not isinstance(results, dict):
-        results = load_json(results, "results")
+        where = "the results traced now"
+        results = guard.results_document(
+            trace(scene_path, photons=photons, seed=seed, backend=backend), where)
+    else:  # a file or a dict from elsewhere: does it belong to this scene?
+        where = guard.describe(results)
+        results = guard.results_document(results)
+        guard.check_provenance(scene_path, results, allow_unverified=allow_unverified)
+    if not allow_partial:
+        guard.refuse_partial(results, where)
     html = render_html(scene, results, scene_path=scene_path, date=date, title=title,
-                       solver_version=solver_version)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    temporary = out.with_name(f".{out.name}.tmp")
-    try:  # written whole, then renamed: an interrupted run leaves the old report
-        if suffix == ".pdf":
-            write_pdf(html, temporary)
-        else:
-            temporary.write_text(html, encoding="utf-8")
-        os.replace(temporary, out)
-    finally:
-        if temporary.exists():
-            temporary.unlink()
-    return out
+                       solver_version=solver_version, view_png=view_png, signoff=signoff)
+    if guard.SUFFIXES[out.suffix.lower()] == "pdf":
+        write = lambda temporary: write_pdf(html, temporary)  # noqa: E731
+    else:
+        write = lambda temporary: temporary.write_text(html, encoding="utf-8")  # noqa: E731
+    try:
+        return guard.write_atomically(out, write)
+    except OSError as exc:
+        raise ReportError(f"{out}: cannot write the report: {exc}") from exc

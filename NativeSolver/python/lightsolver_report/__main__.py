@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
+from pathlib import Path
 from typing import List, Optional
 
-from lightsolver_report import ReportError, render, reports_here, trace
+from lightsolver_report import ReportError, guard, render, reports_here, trace
 
 
 def parser() -> argparse.ArgumentParser:
@@ -28,12 +30,28 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--backend", default="auto", help="backend when tracing (default: auto)")
     p.add_argument("--save-results", metavar="R.json",
                    help="when tracing, also write the results here")
+    p.add_argument("--allow-partial", action="store_true",
+                   help="report the results of a cancelled run (refused otherwise); every "
+                        "page then says they are partial")
+    p.add_argument("--allow-unverified", action="store_true",
+                   help="accept results that do not say which scene they were traced from "
+                        "(written before the solver recorded it); results shown to be of "
+                        "another scene are refused anyway")
+    signed = p.add_argument_group("sign-off block")
+    signed.add_argument("--project", help="project name")
+    signed.add_argument("--author", help="who made the calculation")
+    signed.add_argument("--checked-by", help="who checked it")
     return p
 
 
 def main(argv: Optional[List[str]] = None) -> int:
     args = parser().parse_args(argv)
+    signoff = {"project": args.project, "author": args.author, "checked_by": args.checked_by}
     try:
+        guard.output_path(args.out)  # before tracing: an hour's run must not end in a typo
+        if args.save_results and not os.path.isdir(os.path.dirname(
+                os.path.abspath(args.save_results))):
+            raise ReportError(f"{args.save_results}: its folder does not exist")
         results = args.results
         if results is None:
             results = trace(args.scene, photons=args.photons, seed=args.seed,
@@ -41,10 +59,12 @@ def main(argv: Optional[List[str]] = None) -> int:
             if not reports_here():
                 return 0  # an MPI rank other than 0: it traced its share; rank 0 writes
             if args.save_results:
-                with open(args.save_results, "w", encoding="utf-8") as handle:
-                    json.dump(results, handle, indent=1)
-                    handle.write("\n")
-        out = render(args.scene, results, args.out, date=args.date, title=args.title)
+                text = json.dumps(results, indent=1) + "\n"
+                guard.write_atomically(Path(args.save_results),
+                                       lambda temporary: temporary.write_text(text, "utf-8"))
+        out = render(args.scene, results, args.out, date=args.date, title=args.title,
+                     allow_partial=args.allow_partial, signoff=signoff,
+                     allow_unverified=args.allow_unverified)
     except ReportError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 1
