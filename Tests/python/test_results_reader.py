@@ -119,3 +119,86 @@ def test_every_target_type_of_the_solver_is_read(tmp_path, room_scene):
     read = reader.read(doc, strict=False)
     assert any("'daylight_factor' is unknown to this reader" in n for n in read.notes)
     assert read.targets[0].em.value == doc["targets"][0]["mean_lux"]
+
+
+def test_the_run_facts_cells_and_overall_verdict_are_typed():
+    """What the workbench read by hand before (run facts, cells, the overall verdict, whether
+    a rescale is possible) comes from the reader, equal to the document's values."""
+    doc = golden("lamps.embree")
+    read = reader.read(doc)
+    run = read.run
+    assert (run.photons, run.photons_requested, run.partial, run.stop_reason) == (
+        doc["photons"], doc["photons_requested"], doc["partial"], doc["stop_reason"])
+    assert (run.seconds, run.backend, run.confidence, run.seed, run.decide) == (
+        doc["seconds"], doc["backend"], doc["confidence"], doc["seed"], doc["decide"])
+    assert run.warnings == doc["warnings"]
+    assert read.verdict == doc["verdict"] == "fail"
+    assert read.has_contributions
+    grids = 0
+    for t, entry in zip(read.targets, doc["targets"]):
+        cells = entry.get("cells", [])
+        assert len(t.cell_values) == len(cells)
+        for key in ("lux", "ci_low_lux", "ci_high_lux", "hits"):
+            assert getattr(t.cell_values, key) == [c[key] for c in cells]
+        grids += bool(cells)
+        assert t.verdict == entry["verdict"] and not t.estimated
+        for name, verdict in entry["verdicts"].items():
+            assert t.verdict_of(name) == verdict["verdict"]
+        assert t.verdict_of("no such requirement") is None
+    assert grids == 2
+    plain_room = reader.read(golden("room"))
+    assert plain_room.verdict is None and not plain_room.has_contributions
+    assert plain_room.run.decide is False and plain_room.run.photons == golden("room")["photons"]
+
+
+def test_requirements_the_solver_did_not_judge_are_estimated_by_the_migration():
+    """Results without the solver's verdicts (an older solver, or requirements set after the
+    run) with requirements given: each is judged on its point estimate, marked estimated and
+    said in the notes; the migrated document still validates, the caller's is unchanged."""
+    doc = golden("room")
+    desk, grid = doc["targets"][0]["mean_lux"], doc["targets"][1]
+    wanted = {"desk top": {"em_lux": desk, "u0": 0.5},  # at the bound: pass; u0: not a grid's
+              "workplane": {"em_lux": grid["mean_lux"] - 1.0,
+                            "u0": grid["uniformity"] + 0.01, "emin_lux": grid["min_lux"],
+                            "ud": 1.0, "ugr_max": 19.0, "task": "office"},
+              "floor": {}}
+    read = reader.read(doc, requirements=wanted)
+    desk_t, grid_t, floor_t = read.targets
+    assert desk_t.estimated and desk_t.verdict == "pass" and desk_t.requirements == {
+        "em_lux": desk}
+    assert desk_t.verdicts["em"] == {"verdict": "pass", "value": desk, "ci_low": desk,
+                                     "ci_high": desk, "required": desk, "relation": ">="}
+    assert grid_t.estimated and grid_t.verdict == "fail"
+    assert {k: grid_t.verdict_of(k) for k in ("em", "u0", "emin", "ud", "ugr")} == {
+        "em": "pass", "u0": "fail", "emin": "pass", "ud": "fail", "ugr": None}
+    assert floor_t.verdict is None and not floor_t.estimated
+    assert read.verdict is None  # the overall verdict is the solver's alone
+    assert [n for n in read.notes if n.startswith(reader.ESTIMATED_NOTE)] == [
+        reader.ESTIMATED_NOTE + "desk top, workplane"]
+    assert reader.check(read.doc) == []
+    assert doc == golden("room")
+    # Without requirements nothing is estimated (the report's reading is unchanged).
+    assert all(t.verdict is None for t in reader.read(doc).targets)
+
+
+def test_the_solvers_verdicts_are_never_replaced_by_estimates():
+    doc = golden("lamps.embree")
+    wanted = {t["name"]: {"em_lux": 1e9, "u0": 0.99, "ugr_max": 1.0} for t in doc["targets"]}
+    read = reader.read(doc, requirements=wanted)
+    assert not any(n.startswith(reader.ESTIMATED_NOTE) for n in read.notes)
+    for t, entry in zip(read.targets, doc["targets"]):
+        assert not t.estimated and t.verdict == entry["verdict"]
+        assert t.verdicts == entry["verdicts"] and t.requirements == entry["requirements"]
+
+
+def test_a_glare_limit_is_estimated_on_the_ugr():
+    doc = golden("lamps.embree")
+    seated = next(t for t in doc["targets"] if t["name"] == "seated")
+    for key in ("requirements", "verdicts", "verdict"):
+        seated.pop(key)
+    ugr = seated["ugr"]
+    for limit, word in ((ugr + 0.5, "pass"), (ugr - 0.5, "fail")):
+        eye = reader.read(doc, requirements={"seated": {"ugr_max": limit, "em_lux": 1.0}},
+                          strict=False)["seated"]
+        assert eye.estimated and eye.verdict == word and set(eye.verdicts) == {"ugr"}
+        assert eye.verdicts["ugr"]["relation"] == "<="

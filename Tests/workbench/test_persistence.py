@@ -77,7 +77,8 @@ class Persistence(DocTestCase):
                          [300.0 + 5.0 * i for i in range(48)])
         self.assertEqual(results_obj.cells_lux(stored, "NorthWall"), [])
         self.assertEqual(list(stored.CiHighLux), [430.0, 530.0, 145.0])
-        self.assertEqual(lighting.results(doc)["Workplane"].min_ci_lux, (290.0, 310.0))
+        # No Emin interval in results that judged no requirement (docs/statistics.md).
+        self.assertIsNone(lighting.results(doc)["Workplane"].min_ci_lux)
         self.assertEqual(analysis.Status, "done")
         self.assertEqual(list(stored.Warnings), ["a warning"])
         self.assertEqual(stored.Photons, 1234.0)
@@ -160,12 +161,49 @@ class Persistence(DocTestCase):
         grid = AnalysisResult.from_data(data)["Workplane"]
         self.assertEqual((grid.min_lux, grid.max_lux), (300.0, 535.0))
         self.assertAlmostEqual(grid.uniformity, 300.0 / 420.0, places=15)
-        self.assertEqual(grid.min_ci_lux, (290.0, 310.0))  # the lowest cell's own interval
+        # Not the lowest cell's own interval: only the solver's, simultaneous over the cells.
+        self.assertIsNone(grid.min_ci_lux)
+        self.assertIsNone(grid.uniformity_ci)
         self.assertEqual(json.dumps(data, sort_keys=True), before)
         read = reader().read(data, strict=False)
         self.assertEqual(read["Workplane"].emin.value, grid.min_lux)
         self.assertTrue(any("grid statistics derived from the cells" in n for n in read.notes))
         self.assertEqual(reader().__name__, "lightsolver_results")
+
+    def test_results_without_verdicts_show_the_estimates_as_before(self):
+        """Results without the solver's verdicts (older versions; fake_results has none) and
+        the office's requirements (work plane 500 lx, U0 0.60; desk 500 lx; north wall
+        150 lx): the reader judges the point estimates, and the workbench shows the texts it
+        showed when it judged them itself ("(est.)" in the table and the status line,
+        "(estimate)" in the plan view's caption)."""
+        from lighting import plots
+
+        doc = build_office()
+        analysis = doc.getObject("LightingAnalysis")
+        result = store.apply_to_document(analysis, fake_results(doc))
+        checks = [line.split("  ")[-1] for line in result.table().splitlines()[2:5]]
+        self.assertEqual(checks, ["FAIL (est.)", "pass (est.)", "FAIL (est.)"])
+        self.assertEqual([t.verdict_text() for t in result.targets],
+                         ["FAIL (est.)", "pass (est.)", "FAIL (est.)"])
+        self.assertTrue(all(t.estimated for t in result.targets))
+        self.assertIsNone(result.verdict)  # the solver judged nothing
+        self.assertIn("Workplane Em 420 lx U0 0.71 FAIL (est.)", store.summary_line(result))
+        caption = plots.grid_plot_data(analysis, doc.getObject("Workplane")).caption()
+        self.assertIn("required: Em \u2265 500 lx (NOT met (estimate)), "
+                      "U0 \u2265 0.6 (met (estimate))", caption)
+        # The solver's verdicts, when the results carry them, are shown as they are.
+        judged = fake_results(doc)
+        judged["targets"][0].update(requirements={"em_lux": 400.0}, verdict="undecided",
+                                    verdicts={"em": {"verdict": "undecided", "value": 420.0,
+                                                     "ci_low": 410.0, "ci_high": 430.0,
+                                                     "required": 400.0, "relation": ">=",
+                                                     "to_decide": {"photons": None,
+                                                                   "seconds": None}}})
+        result = store.apply_to_document(analysis, judged)
+        self.assertEqual(result["Workplane"].verdict_text(), "undecided")
+        self.assertFalse(result["Workplane"].estimated)
+        caption = plots.grid_plot_data(analysis, doc.getObject("Workplane")).caption()
+        self.assertIn("required: Em \u2265 400 lx (undecided)", caption)  # what was judged
 
     @needs_solver
     def test_solved_results_survive_reopen(self):

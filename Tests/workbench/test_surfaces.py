@@ -62,15 +62,19 @@ class SurfaceRules(unittest.TestCase):
 
         data = plots.GridPlot("W", "Wall", (5.0, 3.0), np.full((2, 2), 100.0), mean_lux=100.0,
                               min_lux=5.0, max_lux=200.0, uniformity=0.05, required_lux=75.0,
-                              required_uniformity=0.1)
+                              required_uniformity=0.1, verdicts={"em": "pass", "u0": "fail"},
+                              estimated=True)
         self.assertIn("Em 100 lx", data.caption())
-        # Without the solver's verdicts (older results): the estimate, said to be one.
+        # The reader's estimates (results without the solver's verdicts), said to be ones.
         self.assertIn("Em \u2265 75 lx (met (estimate))", data.caption())
         self.assertIn("U0 \u2265 0.1 (NOT met (estimate))", data.caption())
-        # With them: the verdict from the interval, whatever the estimate says.
-        data.verdicts = {"em": {"verdict": "undecided"}, "u0": {"verdict": "pass"}}
+        # The solver's: the verdict from the interval.
+        data.verdicts, data.estimated = {"em": "undecided", "u0": "pass"}, False
         self.assertIn("Em \u2265 75 lx (undecided)", data.caption())
         self.assertIn("U0 \u2265 0.1 (pass)", data.caption())
+        data.verdicts = {"em": "fail"}
+        self.assertIn("Em \u2265 75 lx (FAIL)", data.caption())
+        self.assertIn("U0 \u2265 0.1 (not judged)", data.caption())
 
     def test_nice_levels(self):
         self.assertEqual(isolux.nice_levels(80.0, 260.0), [100.0, 150.0, 200.0, 250.0])

@@ -40,16 +40,26 @@ class GridPlot:
     min_lux: float
     max_lux: float
     uniformity: float
+    #: The requirements judged (Em, U0; 0: none), as the verdicts state them.
     required_lux: float = 0.0
     required_uniformity: float = 0.0
     axis_names: Tuple[str, str] = ("u", "v")
     origin_m: Tuple[float, float] = (0.0, 0.0)
-    #: The solver's verdicts by requirement ("em", "u0", ...: {"verdict": ...}), when it
-    #: judged them from the intervals.
-    verdicts: Optional[Dict[str, Dict[str, Any]]] = None
+    #: The verdict by requirement ("em", "u0": "pass", "fail" or "undecided"), as the results
+    #: reader gives it (lightsolver_results.Target.verdict_of).
+    verdicts: Optional[Dict[str, str]] = None
+    #: The verdicts are the reader's point estimates (results without the solver's verdicts
+    #: for this grid), not the solver's from the intervals.
+    estimated: bool = False
 
-    def _judged(self, key: str, met: bool) -> str:
-        return _judged_word(self.verdicts, key, met)
+    def _judged(self, key: str) -> str:
+        """The verdict on one requirement as the caption words it."""
+        found = (self.verdicts or {}).get(key)
+        if found is None:
+            return "not judged"
+        if self.estimated:
+            return "met (estimate)" if found == "pass" else "NOT met (estimate)"
+        return {"pass": "pass", "fail": "FAIL"}.get(found, "undecided")
 
     def caption(self) -> str:
         """Em, Emin, Emax and U0, and the requirement when there is one."""
@@ -57,20 +67,10 @@ class GridPlot:
                 f"Emax {self.max_lux:.0f} lx   U0 {self.uniformity:.2f}")
         needs = []
         if self.required_lux > 0:
-            needs.append(f"Em \u2265 {self.required_lux:g} lx "
-                         f"({self._judged('em', self.mean_lux >= self.required_lux)})")
+            needs.append(f"Em \u2265 {self.required_lux:g} lx ({self._judged('em')})")
         if self.required_uniformity > 0:
-            needs.append(f"U0 \u2265 {self.required_uniformity:g} "
-                         f"({self._judged('u0', self.uniformity >= self.required_uniformity)})")
+            needs.append(f"U0 \u2265 {self.required_uniformity:g} ({self._judged('u0')})")
         return text + (f"\nrequired: {', '.join(needs)}" if needs else "")
-
-
-def _judged_word(verdicts: Optional[Dict[str, Dict[str, Any]]], key: str, met: bool) -> str:
-    """The solver's verdict (from the interval) or, for older results, the estimate's."""
-    found = (verdicts or {}).get(key, {}).get("verdict")
-    if found:
-        return {"pass": "pass", "fail": "FAIL"}.get(found, "undecided")
-    return "met (estimate)" if met else "NOT met (estimate)"
 
 
 def analysis_scale(analysis: Any) -> Scale:
@@ -107,6 +107,10 @@ def grid_plot_data(analysis: Any, target: Any) -> Optional[GridPlot]:
     index = results_mod.index_of(found, target.Name) if found is not None else None
     if index is None or getattr(target, "TargetType", "") != "Grid":
         return None
+    typed = results_mod.read(results_mod.data(found), analysis_mod.requirements(analysis))
+    judged = next((t for t in typed.targets if t.name == target.Name), None) if typed else None
+    if judged is None:
+        return None
     try:
         rect = target_mod.grid_rectangle(target)
     except ValueError:
@@ -123,15 +127,12 @@ def grid_plot_data(analysis: Any, target: Any) -> Optional[GridPlot]:
                     size_m=rect.size_m, lux=np.asarray(cells, float).reshape(rect.nv, rect.nu),
                     mean_lux=float(found.MeanLux[index]), min_lux=float(found.MinLux[index]),
                     max_lux=float(found.MaxLux[index]), uniformity=float(found.Uniformity[index]),
-                    required_lux=float(target.RequiredLux),
-                    required_uniformity=float(target.RequiredUniformity),
-                    axis_names=names, origin_m=origin, verdicts=_verdicts_of(found, index))
-
-
-def _verdicts_of(found: Any, index: int) -> Optional[Dict[str, Dict[str, Any]]]:
-    """The stored target's verdicts (None for results without them)."""
-    targets = (results_mod.data(found) or {}).get("targets", [])
-    return targets[index].get("verdicts") if index < len(targets) else None
+                    required_lux=float(judged.requirements.get("em_lux", 0.0)),
+                    required_uniformity=float(judged.requirements.get("u0", 0.0)),
+                    axis_names=names, origin_m=origin,
+                    verdicts={key: word for key in ("em", "u0")
+                              if (word := judged.verdict_of(key)) is not None},
+                    estimated=judged.estimated)
 
 
 def _colormap(scale: Scale) -> Any:

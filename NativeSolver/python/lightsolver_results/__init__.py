@@ -1,16 +1,19 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """The one Python reader of the solver's results (``lightsolver.results/1``,
 docs/schemas/results.schema.json): the report (``lightsolver_report``) and the FreeCAD
-workbench (``lighting.solver.results``) read results through it instead of parsing by hand.
+workbench (``lighting``) read results through it instead of parsing by hand.
 
 Three steps, each in one place:
 
-* :func:`plain`: the layout without the numpy arrays ``lightsolver.solve()`` adds beside it;
-* :func:`migrate`: results written by older solvers brought to the current layout (every legacy
-  fallback lives here, and each one applied is said in the notes it returns);
+* :func:`plain` (``layout.py``): the layout without the numpy arrays ``lightsolver.solve()``
+  adds beside it;
+* :func:`migrate` (``migration.py``): results written by older solvers brought to the current
+  layout (every legacy fallback lives there, and each one applied is said in the notes it
+  returns), verdicts estimated on request for targets the solver did not judge;
 * :func:`read`: checked against the schema (with ``jsonschema`` where it is installed), migrated,
-  and viewed as :class:`Results` with one :class:`Target` per target: the per-type reading
-  (grid statistics, an observer's UGR, an observer grid's maximum and points) is here once.
+  and viewed as :class:`Results` with the run's facts and one :class:`Target` per target: the
+  per-type reading (grid statistics and cells, an observer's UGR, an observer grid's maximum
+  and points, verdicts) is here once.
 
 Pure Python (the standard library; ``jsonschema`` optional), importable by FreeCAD's embedded
 interpreter: CMake copies this package and the schema beside the ``lightsolver`` module, and
@@ -18,167 +21,19 @@ the source tree's copy finds the schema under ``docs/schemas``."""
 from __future__ import annotations
 
 import json
-import math
 import os
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
-__all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "ResultsError", "Stat", "Target",
-           "LuminaireFlux", "ObserverGridView", "Results", "plain", "schema", "check", "migrate",
+from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, READ_TYPES, ResultsError, check, finite,
+                     plain, schema)
+from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFlux, _migrate,
+                        migrate)
+
+__all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "DERIVED_FLUX_NOTE",
+           "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "Target", "LuminaireFlux",
+           "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
            "read", "load"]
-
-FORMAT = "lightsolver.results/1"
-#: Grid-cell numpy arrays that ``lightsolver.solve()`` adds beside the results layout.
-CELL_ARRAYS = ("cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits")
-#: Target types whose result is a UGR (an observer grid's is its maximum over its points).
-GLARE_KINDS = ("observer", "observer_grid")
-#: The target types :func:`read` knows the results of (the solver's target type rows); of
-#: another type only the illuminance is read, and the notes say so.
-READ_TYPES = ("surface", "grid") + GLARE_KINDS
-#: Said on every page that prints a flux derived from the scene instead of the traced one.
-DERIVED_FLUX_NOTE = ("these results were written before the solver recorded each luminaire's "
-                     "traced flux: the flux shown is derived from the scene, without a "
-                     "photometric TILT table's factor")
-
-#: Derives a luminaire's emitted flux (lm) from its scene entry, for results without
-#: ``luminaires`` (the report passes one that reads the photometric files).
-SceneFlux = Callable[[Dict[str, Any]], float]
-
-
-class ResultsError(ValueError):
-    """The document is no results document this reader understands; the message says where."""
-
-
-# --- the document ---------------------------------------------------------------------------
-
-def plain(raw: Dict[str, Any]) -> Dict[str, Any]:
-    """The results as plain JSON data: ``lightsolver.solve()``'s dict without the numpy cell
-    arrays it adds beside the layout (the CLI's file is already plain)."""
-    out = {key: value for key, value in raw.items() if key != "targets"}
-    out["targets"] = [{k: v for k, v in t.items() if k not in CELL_ARRAYS}
-                      if isinstance(t, dict) else t for t in raw.get("targets") or []]
-    return out
-
-
-def _schema_path() -> Optional[Path]:
-    here = Path(__file__).resolve().parent
-    for path in (here / "results.schema.json",  # copied beside it by CMake
-                 here.parents[2] / "docs" / "schemas" / "results.schema.json"):  # source tree
-        if path.is_file():
-            return path
-    return None
-
-
-_SCHEMA: Optional[Dict[str, Any]] = None
-
-
-def schema() -> Optional[Dict[str, Any]]:
-    """docs/schemas/results.schema.json, or None where neither copy is found."""
-    global _SCHEMA
-    if _SCHEMA is None:
-        path = _schema_path()
-        if path is not None:
-            _SCHEMA = json.loads(path.read_text(encoding="utf-8"))
-    return _SCHEMA
-
-
-def check(doc: Dict[str, Any]) -> List[str]:
-    """What in ``doc`` breaks the results schema ("path: message" each; empty: none). Without
-    ``jsonschema`` or the schema file, only the format and the targets list are checked."""
-    if not isinstance(doc, dict):
-        return ["the results are not a JSON object"]
-    if doc.get("format") != FORMAT:
-        return [f"format: expected {FORMAT!r}, got {doc.get('format')!r}"]
-    if not isinstance(doc.get("targets"), list):
-        return ["targets: missing or not a list"]
-    found = schema()
-    try:
-        import jsonschema
-    except ImportError:
-        return []
-    if found is None:
-        return []
-    validator = jsonschema.Draft202012Validator(found)
-    return [f"{'/'.join(map(str, e.absolute_path)) or '(top)'}: {e.message}"
-            for e in sorted(validator.iter_errors(doc), key=lambda e: list(e.absolute_path))]
-
-
-# --- the migration: older results to the current layout --------------------------------------
-
-def _finite(value: Any) -> Optional[float]:
-    """A finite number, or None (JSON null, absent, not a number)."""
-    if isinstance(value, bool) or value is None:
-        return None
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        return None
-    return number if math.isfinite(number) else None
-
-
-def _migrate_grid(t: Dict[str, Any]) -> bool:
-    """Grid statistics that the oldest solvers left out, from the cells: Emin, Emax and U0.
-    True when something was added."""
-    if t.get("type") != "grid":
-        return False
-    added = False
-    lux = [_finite(c.get("lux")) for c in t.get("cells") or [] if isinstance(c, dict)]
-    lux = [v for v in lux if v is not None]
-    if lux and "min_lux" not in t:
-        t["min_lux"], added = min(lux), True
-    if lux and "max_lux" not in t:
-        t["max_lux"], added = max(lux), True
-    mean = _finite(t.get("mean_lux"))
-    if "uniformity" not in t and "min_lux" in t:
-        t["uniformity"], added = (t["min_lux"] / mean if mean else 0.0), True
-    return added
-
-
-def _scene_luminaires(scene: Dict[str, Any], groups: List[Dict[str, Any]],
-                      scene_flux: SceneFlux) -> List[Dict[str, Any]]:
-    """``luminaires`` derived from the scene: each luminaire's flux by ``scene_flux`` (no TILT:
-    tilt_factor 1), its group from the results' groups, else its scene ``group``, else itself."""
-    group_of = {str(name): str(g.get("name")) for g in groups if isinstance(g, dict)
-                for name in g.get("luminaires", [])}
-    out = []
-    for lum in scene.get("luminaires", []):
-        if not isinstance(lum, dict):
-            continue
-        name = str(lum.get("name", ""))
-        flux = float(scene_flux(lum))
-        out.append({"name": name, "type": str(lum.get("type", "")),
-                    "group": group_of.get(name, str(lum.get("group") or name)),
-                    "flux_lm": flux, "tilt_factor": 1.0, "dimming": 1.0,
-                    "emitted_flux_lm": flux})
-    return out
-
-
-def migrate(doc: Dict[str, Any], scene: Optional[Dict[str, Any]] = None,
-            scene_flux: Optional[SceneFlux] = None) -> Tuple[Dict[str, Any], List[str]]:
-    """A copy of ``doc`` in the current layout, and one note per fallback applied (empty for
-    results of the current solver). The fallbacks, each for results of older solvers:
-
-    * grids without ``min_lux``/``max_lux``/``uniformity``: from the cells;
-    * no ``luminaires``: derived from ``scene`` by ``scene_flux`` (TILT not applied, said in the
-      notes); left out without a scene;
-    * no ``warnings``/``groups``: empty lists."""
-    out = plain(doc)  # new top level and target dicts: the migration adds keys to these only
-    notes: List[str] = []
-    if not isinstance(out.get("targets"), list):
-        out["targets"] = []
-    for key in ("warnings", "groups"):
-        if not isinstance(out.get(key), list):
-            out[key] = []
-    grids = [str(t.get("name", "")) for t in out["targets"] if _migrate_grid(t)]
-    if grids:
-        notes.append("grid statistics derived from the cells (results of an older solver): "
-                     + ", ".join(grids))
-    if "luminaires" not in out and scene is not None and scene_flux is not None:
-        out["luminaires"] = _scene_luminaires(scene, out["groups"], scene_flux)
-        notes.append(DERIVED_FLUX_NOTE)
-    return out, notes
-
 
 # --- the view ---------------------------------------------------------------------------------
 
@@ -197,7 +52,29 @@ class Stat:
 
 
 def _stat(entry: Dict[str, Any], value: str, low: str, high: str) -> Stat:
-    return Stat(_finite(entry.get(value)), _finite(entry.get(low)), _finite(entry.get(high)))
+    return Stat(finite(entry.get(value)), finite(entry.get(low)), finite(entry.get(high)))
+
+
+@dataclass
+class Cells:
+    """A grid's cells row by row (index = iv * nu + iu): each one's illuminance, interval and
+    photon hits (None where the results lack one)."""
+
+    lux: List[Optional[float]] = field(default_factory=list)
+    ci_low_lux: List[Optional[float]] = field(default_factory=list)
+    ci_high_lux: List[Optional[float]] = field(default_factory=list)
+    hits: List[Optional[int]] = field(default_factory=list)
+
+    def __len__(self) -> int:
+        return len(self.lux)
+
+
+def _cells(cells: List[Dict[str, Any]]) -> Cells:
+    hits = [finite(c.get("hits")) for c in cells]
+    return Cells(lux=[finite(c.get("lux")) for c in cells],
+                 ci_low_lux=[finite(c.get("ci_low_lux")) for c in cells],
+                 ci_high_lux=[finite(c.get("ci_high_lux")) for c in cells],
+                 hits=[None if h is None else int(h) for h in hits])
 
 
 @dataclass
@@ -232,15 +109,18 @@ def _observer_grid(entry: Dict[str, Any]) -> Optional[ObserverGridView]:
     return ObserverGridView(
         positions=[vec(p) for p in grid.get("positions", [])],
         view_directions=[vec(d) for d in grid.get("view_directions", [])],
-        ugr=[[_finite(v) for v in row] for row in grid.get("ugr", [])],
+        ugr=[[finite(v) for v in row] for row in grid.get("ugr", [])],
         max_at=(int(at["position"]), int(at["direction"])) if isinstance(at, dict) else None)
 
 
 @dataclass
 class Target:
     """One target's results. Every target has ``em`` (its mean illuminance with interval);
-    grids add the cells and Emin, Emax, U0, Ud (intervals where the run judged requirements);
-    observers the UGR with interval; observer grids their maximum UGR and ``observer_grid``."""
+    grids add the cells (``cells`` as entries, ``cell_values`` as lists) and Emin, Emax, U0,
+    Ud (intervals where the run judged requirements); observers the UGR with interval;
+    observer grids their maximum UGR and ``observer_grid``. A target with requirements has
+    their ``verdicts`` and the overall ``verdict``: the solver's, judged from the intervals, or
+    where ``estimated`` the migration's from the point estimates (:func:`migrate`)."""
 
     name: str
     type: str
@@ -251,6 +131,7 @@ class Target:
     sigma_lux: Optional[float] = None
     cells_uv: Optional[Tuple[int, int]] = None
     cells: List[Dict[str, Any]] = field(default_factory=list)
+    cell_values: Cells = field(default_factory=Cells)
     emin: Optional[Stat] = None
     emax: Optional[Stat] = None
     u0: Optional[Stat] = None
@@ -260,6 +141,13 @@ class Target:
     requirements: Dict[str, Any] = field(default_factory=dict)
     verdicts: Dict[str, Dict[str, Any]] = field(default_factory=dict)
     verdict: Optional[str] = None  # pass, fail, undecided; None when nothing was judged
+    estimated: bool = False  # the verdicts are point estimates (never undecided), not judged
+
+    def verdict_of(self, name: str) -> Optional[str]:
+        """The verdict on one requirement ("em", "u0", "emin", "ud", "ugr"), or None when it
+        was not judged."""
+        found = self.verdicts.get(name, {}).get("verdict")
+        return str(found) if found in ("pass", "fail", "undecided") else None
 
     @property
     def is_grid(self) -> bool:
@@ -270,18 +158,19 @@ class Target:
         return self.type in GLARE_KINDS
 
 
-def _target(entry: Dict[str, Any]) -> Target:
+def _target(entry: Dict[str, Any], estimated: bool = False) -> Target:
     """The per-type reading, once: what each target type's results hold."""
     hits = entry.get("hits")
     t = Target(name=str(entry.get("name", "")), type=str(entry.get("type", "surface")),
-               entry=entry, area_m2=_finite(entry.get("area_m2")),
-               hits=int(hits) if _finite(hits) is not None else None,
+               entry=entry, area_m2=finite(entry.get("area_m2")),
+               hits=int(hits) if finite(hits) is not None else None,
                em=_stat(entry, "mean_lux", "ci_low_lux", "ci_high_lux"),
-               sigma_lux=_finite(entry.get("sigma_lux")))
+               sigma_lux=finite(entry.get("sigma_lux")))
     if t.type == "grid":
         uv = entry.get("cells_uv")
         t.cells = [c for c in entry.get("cells") or [] if isinstance(c, dict)]
         t.cells_uv = (int(uv[0]), int(uv[1])) if uv else (len(t.cells), 1)
+        t.cell_values = _cells(t.cells)
         t.emin = _stat(entry, "min_lux", "min_ci_low_lux", "min_ci_high_lux")
         t.emax = _stat(entry, "max_lux", "max_ci_low_lux", "max_ci_high_lux")
         t.u0 = _stat(entry, "uniformity", "uniformity_ci_low", "uniformity_ci_high")
@@ -300,6 +189,7 @@ def _target(entry: Dict[str, Any]) -> Target:
         t.verdict = str(entry["verdict"])
         t.verdicts = {k: v for k, v in (entry.get("verdicts") or {}).items()
                       if isinstance(v, dict)}
+        t.estimated = estimated
     return t
 
 
@@ -318,14 +208,59 @@ class LuminaireFlux:
 
 
 @dataclass
+class RunFacts:
+    """What the run did (the results' top level): photons traced and asked for, whether it was
+    cancelled (``partial``) and why it stopped, time, backend, the intervals' confidence and the
+    seed, its warnings, and whether it traced until every verdict was decided (``decide``)."""
+
+    photons: int = 0
+    photons_requested: Optional[int] = None
+    partial: bool = False
+    stop_reason: Optional[str] = None
+    seconds: float = 0.0
+    backend: str = ""
+    confidence: Optional[float] = None
+    seed: Optional[int] = None
+    warnings: List[str] = field(default_factory=list)
+    decide: bool = False
+    accuracy_met: Optional[bool] = None
+
+
+def _run(doc: Dict[str, Any]) -> RunFacts:
+    count = lambda key: None if finite(doc.get(key)) is None else int(doc[key])  # noqa: E731
+    met = doc.get("accuracy_met")
+    return RunFacts(photons=count("photons") or 0, photons_requested=count("photons_requested"),
+                    partial=doc.get("partial") is True,
+                    stop_reason=str(doc["stop_reason"]) if doc.get("stop_reason") else None,
+                    seconds=finite(doc.get("seconds")) or 0.0,
+                    backend=str(doc.get("backend") or ""),
+                    confidence=finite(doc.get("confidence")), seed=count("seed"),
+                    warnings=[str(w) for w in doc.get("warnings") or []],
+                    decide=doc.get("decide") is True,
+                    accuracy_met=met if isinstance(met, bool) else None)
+
+
+@dataclass
 class Results:
-    """A results document in the current layout (``doc``) and its view."""
+    """A results document in the current layout (``doc``) and its view: the run's facts, one
+    :class:`Target` per target, the traced luminaires and the overall verdict."""
 
     doc: Dict[str, Any]
     targets: List[Target]
     luminaires: List[LuminaireFlux]
     #: The migration's notes: which fallbacks older results needed (empty: none).
     notes: List[str] = field(default_factory=list)
+    run: RunFacts = field(default_factory=RunFacts)
+    #: The solver's verdict over every target it judged (fail if any fails, else undecided if
+    #: any is, else pass); None when it judged none. Estimated verdicts never enter it.
+    verdict: Optional[str] = None
+
+    @property
+    def has_contributions(self) -> bool:
+        """Each control group's part is in the results (groups and every target's
+        contributions): what a rescale to other dimming levels needs."""
+        return bool(self.doc.get("groups")) and any(
+            "contributions" in t.entry for t in self.targets)
 
     @property
     def traced_flux(self) -> bool:
@@ -344,16 +279,19 @@ class Results:
 
 def read(source: Union[Dict[str, Any], str, "os.PathLike[str]"],
          scene: Optional[Dict[str, Any]] = None, scene_flux: Optional[SceneFlux] = None, *,
-         strict: bool = True, check_schema: bool = True) -> Results:
+         strict: bool = True, check_schema: bool = True,
+         requirements: Optional[Requirements] = None) -> Results:
     """The results of ``source`` (a results dict or file), migrated to the current layout and
     viewed. Checked against the schema after the migration (``check_schema``): with ``strict``
     a document that breaks it raises ResultsError naming the first problems, otherwise they are
-    kept in ``notes``. Another ``format`` is always an error."""
+    kept in ``notes``. Another ``format`` is always an error. ``requirements`` (by target name,
+    scene-file keys): judged on the point estimates of the targets the solver did not judge
+    (:func:`migrate`; their ``estimated`` is set)."""
     doc = load(source) if not isinstance(source, dict) else source
     if not isinstance(doc, dict) or doc.get("format", None if strict else FORMAT) != FORMAT:
         found = doc.get("format") if isinstance(doc, dict) else type(doc).__name__
         raise ResultsError(f"not a {FORMAT} document (format: {found!r})")
-    current, notes = migrate(doc, scene, scene_flux)
+    current, notes, estimated = _migrate(doc, scene, scene_flux, requirements)
     problems = check(dict(current, format=FORMAT)) if check_schema else []
     if problems and strict:
         raise ResultsError("the results break docs/schemas/results.schema.json: "
@@ -366,9 +304,12 @@ def read(source: Union[Dict[str, Any], str, "os.PathLike[str]"],
                                 float(lum["flux_lm"]), float(lum["tilt_factor"]),
                                 float(lum["dimming"]), float(lum["emitted_flux_lm"]))
                   for lum in current.get("luminaires", []) if isinstance(lum, dict)]
-    return Results(doc=current, targets=[_target(t) for t in current["targets"]
-                                         if isinstance(t, dict)],
-                   luminaires=luminaires, notes=notes)
+    targets = [_target(t, str(t.get("name", "")) in estimated) for t in current["targets"]
+               if isinstance(t, dict)]
+    verdict = current.get("verdict")
+    return Results(doc=current, targets=targets, luminaires=luminaires, notes=notes,
+                   run=_run(current),
+                   verdict=str(verdict) if verdict in ("pass", "fail", "undecided") else None)
 
 
 def load(path: Union[str, "os.PathLike[str]"]) -> Dict[str, Any]:

@@ -133,11 +133,9 @@ class Analysis(BaseProxy):
         restore the state their results are in."""
         super().onDocumentRestored(obj)
         if obj.Status in TRANSIENT_STATUS:
-            from lighting.objects.results import data, of_analysis
+            from lighting.objects.results import data, of_analysis, status_of
 
-            found = data(of_analysis(obj))
-            obj.Status = "not run" if found is None else (
-                "partial results (cancelled)" if found.get("partial") else "done")
+            obj.Status = status_of(data(of_analysis(obj)))
 
 
 def backend_choices(current: Optional[str] = None) -> List[str]:
@@ -173,6 +171,15 @@ def luminaires(analysis: Any) -> List[Any]:
 def targets(analysis: Any) -> List[Any]:
     """Targets used by the analysis."""
     return members(analysis, target.TYPE)
+
+
+def requirements(analysis: Any) -> Dict[str, Dict[str, float]]:
+    """The requirements of the analysis' targets as the document holds them now (their scene
+    entries' ``requirements``, objects/target.py), by target name: what the results reader
+    judges on the point estimates of targets whose results carry no verdicts of the solver
+    (results of older versions, requirements set after the run)."""
+    return {t.Name: dict(target.requirements_entry(t).get("requirements", {}))
+            for t in targets(analysis)}
 
 
 def observers(analysis: Any) -> List[Any]:

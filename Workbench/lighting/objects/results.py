@@ -27,7 +27,7 @@ _RO = READ_ONLY
 PER_TARGET = {"MeanLux": ("em", "value"), "CiLowLux": ("em", "low"),
               "CiHighLux": ("em", "high"), "MinLux": ("emin", "value"),
               "MaxLux": ("emax", "value"), "Uniformity": ("u0", "value")}
-#: Grid cell values, all targets concatenated (property -> cells[] key).
+#: Grid cell values, all targets concatenated (property -> lightsolver_results.Cells list).
 CELL_VALUES = {"CellsLux": "lux", "CellsCiLowLux": "ci_low_lux",
                "CellsCiHighLux": "ci_high_lux"}
 
@@ -135,8 +135,8 @@ def shown(obj: Any) -> Tuple[Optional[Dict[str, Any]], str]:
     scene = light_scene.active(analysis) if analysis is not None else None
     if scene is None:
         return found, ""
-    if not found.get("groups") or not any("contributions" in t for t in found.get("targets", [])
-                                          if isinstance(t, dict)):
+    typed = read(found)
+    if typed is None or not typed.has_contributions:
         return found, (f"'{scene.Label}' not shown: these results were traced without "
                        "contributions; run again")
     try:
@@ -168,31 +168,49 @@ class _NONE:  # a statistic the target type does not have: every part absent (0 
     value = low = high = None
 
 
+def read(found: Optional[Dict[str, Any]],
+         requirements: Optional[Dict[str, Dict[str, float]]] = None) -> Optional[Any]:
+    """A results document (``data()``, ``traced()``) as the reader's typed
+    ``lightsolver_results.Results`` (solver/results.py ``read``: as the report reads it, older
+    layouts migrated, ``requirements`` judged on the estimates of targets the solver did not
+    judge), or None for none or no results document."""
+    from lighting.solver.results import read as read_results
+
+    if not found:
+        return None
+    try:
+        return read_results(found, requirements)
+    except ValueError:  # lightsolver_results.ResultsError: no results document
+        return None
+
+
+def status_of(found: Optional[Dict[str, Any]]) -> str:
+    """The analysis' Status for the results document ``found`` (None: none): "not run",
+    "done" or "partial results (cancelled)"."""
+    typed = read(found)
+    if typed is None:
+        return "not run"
+    return "partial results (cancelled)" if typed.run.partial else "done"
+
+
 def derive(obj: Any) -> None:
     """Set the derived properties from ResultsJson (all empty when there is none)."""
-    from lighting.solver.results import reader
-
     found, note = shown(obj)
-    # Read as the report reads it (lightsolver_results): each target type once, older layouts
-    # migrated; not schema-checked here (documents of older versions must open).
-    try:
-        read = reader().read(found, strict=False, check_schema=False) if found else None
-    except ValueError:  # lightsolver_results.ResultsError: no results document
-        read = None
-    doc = read.doc if read is not None else {}
-    targets = read.targets if read is not None else []
+    typed = read(found)
+    targets = typed.targets if typed is not None else []
     _set(obj, "TargetNames", [t.name for t in targets])
     for name, (stat, part) in PER_TARGET.items():
         _set(obj, name, [_num(getattr(getattr(t, stat) or _NONE, part)) for t in targets])
-    cells: List[List[Dict[str, Any]]] = [list(t.entry.get("cells") or []) for t in targets]
+    cells = [t.cell_values for t in targets]
     _set(obj, "CellCounts", [len(c) for c in cells])
     for name, key in CELL_VALUES.items():
-        _set(obj, name, [_num(c.get(key)) for group in cells for c in group])
-    _set(obj, "Photons", _num(doc.get("photons")))
-    _set(obj, "Seconds", _num(doc.get("seconds")))
-    _set(obj, "Partial", bool(doc.get("partial", False)))
-    _set(obj, "Backend", str(doc.get("backend", "")))
-    _set(obj, "Warnings", [str(w) for w in doc.get("warnings", [])])
+        _set(obj, name, [_num(v) for group in cells for v in getattr(group, key)])
+    run = typed.run if typed is not None else None
+    _set(obj, "Photons", _num(run.photons) if run else 0.0)
+    _set(obj, "Seconds", _num(run.seconds) if run else 0.0)
+    _set(obj, "Partial", bool(run and run.partial))
+    _set(obj, "Backend", run.backend if run else "")
+    _set(obj, "Warnings", list(run.warnings) if run else [])
     _set(obj, "LightScene", note)
 
 

@@ -58,6 +58,8 @@ class LiveFrame:
     path: str  #: how the scene was brought up to date: "export" or "luminaires"
     seconds_since_change: float  #: from the change (or the start) to this frame
     result: Optional[results_mod.AnalysisResult] = field(default=None, repr=False)
+    #: ``data`` as the results reader reads it (lightsolver_results.Results)
+    typed: Any = field(default=None, repr=False)
 
 
 @dataclass
@@ -82,30 +84,31 @@ class _Furniture:
     local: str
 
 
-def worst_cell_relative(data: Dict[str, Any]) -> float:
-    """The largest relative CI half-width over grid cells and targets, the number shown as
-    "worst cell +-%": a cell darker than 1 % of its grid's mean is judged against that 1 %, as
-    the solver's per-cell accuracy goal does (docs/accuracy.md); infinity while a target has no
-    light yet."""
+def worst_cell_relative(found: Any) -> float:
+    """The largest relative CI half-width over grid cells and targets of ``found`` (the
+    reader's ``lightsolver_results.Results``), the number shown as "worst cell +-%": a cell
+    darker than 1 % of its grid's mean is judged against that 1 %, as the solver's per-cell
+    accuracy goal does (docs/accuracy.md); infinity while a target has no light yet."""
     worst = 0.0
-    for tgt in data.get("targets", []):
-        target_mean = float(tgt.get("mean_lux", 0.0))
-        rows = [(c.get("lux", 0.0), c.get("ci_low_lux"), c.get("ci_high_lux"))
-                for c in tgt.get("cells", [])]
-        rows.append((target_mean, tgt.get("ci_low_lux"), tgt.get("ci_high_lux")))
+    for tgt in found.targets:
+        target_mean = tgt.em.value or 0.0
+        cells = tgt.cell_values
+        rows = list(zip(cells.lux, cells.ci_low_lux, cells.ci_high_lux))
+        rows.append((target_mean, tgt.em.low, tgt.em.high))
         for mean, low, high in rows:
             if low is None or high is None:
                 continue
-            floor = max(float(mean), 0.01 * target_mean)
+            floor = max(mean or 0.0, 0.01 * target_mean)
             if floor <= 0.0:
                 return math.inf
-            worst = max(worst, 0.5 * (float(high) - float(low)) / floor)
+            worst = max(worst, 0.5 * (high - low) / floor)
     return worst
 
 
-def undecided_count(data: Dict[str, Any]) -> int:
-    """Targets whose requirements the solver could not yet judge pass or fail."""
-    return sum(1 for t in data.get("targets", []) if t.get("verdict") == "undecided")
+def undecided_count(found: Any) -> int:
+    """Targets of ``found`` (lightsolver_results.Results) whose requirements the solver could
+    not yet judge pass or fail."""
+    return sum(1 for t in found.targets if t.verdict == "undecided")
 
 
 def _furniture(analysis: Any, export: Any) -> Dict[str, _Furniture]:
@@ -327,7 +330,7 @@ class LiveSession:
                     return None
                 continue
             if frame.revision == self.revision:  # an older one is stale: never delivered
-                frame.result = results_mod.AnalysisResult.from_data(frame.data)
+                frame.result = results_mod.AnalysisResult.from_read(frame.typed, data=frame.data)
                 self.latest = frame
                 return frame
         return None
@@ -347,7 +350,7 @@ class LiveSession:
             if frame.revision == self.revision:
                 newest = frame
         if newest is not None:
-            newest.result = results_mod.AnalysisResult.from_data(newest.data)
+            newest.result = results_mod.AnalysisResult.from_read(newest.typed, data=newest.data)
             self.latest = newest
         return newest
 
@@ -453,16 +456,17 @@ class LiveSession:
                 self.error = SolverError(f"Live solve: {exc}")
                 finished = True
                 continue
-            if raw.get("partial"):
-                continue  # cancelled for a change (or stop): the next command starts again
             data = results_mod.normalise(raw)
-            undecided = undecided_count(data)
-            finished = (int(data["photons"]) >= goal["photons"]
-                        or data.get("stop_reason") == "accuracy"
+            found = results_mod.read(data)
+            if found.run.partial:
+                continue  # cancelled for a change (or stop): the next command starts again
+            undecided = undecided_count(found)
+            finished = (found.run.photons >= goal["photons"]
+                        or found.run.stop_reason == "accuracy"
                         or (goal["decide"] and undecided == 0))
-            frame = LiveFrame(command.revision, data, int(data["photons"]),
-                              worst_cell_relative(data), undecided, finished, command.path,
-                              time.monotonic() - command.changed_at)
+            frame = LiveFrame(command.revision, data, found.run.photons,
+                              worst_cell_relative(found), undecided, finished, command.path,
+                              time.monotonic() - command.changed_at, typed=found)
             with self._cond:
                 if self._command is None and command.revision == self.revision:
                     self._frames.put(frame)

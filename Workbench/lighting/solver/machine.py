@@ -142,11 +142,12 @@ class AnalysisRun:
         photons = s["max_photons"] if accuracy else s["photons"]
         self.total = photons
         data = self._solve_once(photons, 0, progress, accuracy)
-        if accuracy and not data.get("partial"):
-            self.log("info", f"Target accuracy {accuracy:g}: traced {int(data['photons'])} "
+        facts = results_mod.read(data).run
+        if accuracy and not facts.partial:
+            self.log("info", f"Target accuracy {accuracy:g}: traced {facts.photons} "
                              f"photons (at most {photons})")
-            self._rewrite_photons(int(data["photons"]))
-        if self._cancelled and float(data.get("photons", 0)) <= 0:
+            self._rewrite_photons(facts.photons)
+        if self._cancelled and facts.photons <= 0:
             raise CancelledError("The analysis was cancelled before any photon was traced")
         self.data = data
         try:

@@ -2,8 +2,11 @@
 """Results: the solver's layout as plain data, kept in the document, formatted as a table.
 
 Read through the solver's one Python results reader, ``lightsolver_results``
-(NativeSolver/python/lightsolver_results): its per-type reading of each target and its
-migration of older results (grid statistics from the cells) are the report's too."""
+(NativeSolver/python/lightsolver_results): its per-type reading of each target, its run facts
+and its migration of older results (grid statistics from the cells; verdicts on the point
+estimates, marked "(est.)", for targets the solver did not judge) are the report's too. No
+workbench module reads a results document's keys itself (Tests/python/test_workbench_sources.py
+checks it): they read the reader's typed objects, through :func:`read` or the tables here."""
 from __future__ import annotations
 
 import importlib
@@ -49,12 +52,6 @@ def _float(value: Any, default: float = 0.0) -> float:
     return number if math.isfinite(number) else default
 
 
-#: Grid-cell numpy arrays that ``lightsolver.solve()`` adds beside the results layout.
-CELL_ARRAYS = ("cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits")
-#: Target types whose result is a UGR (an observer grid's is its maximum).
-GLARE_KINDS = ("observer", "observer_grid")
-
-
 def normalise(raw: Dict[str, Any]) -> Dict[str, Any]:
     """The solver's results as plain JSON data in the ``lightsolver.results/1`` layout.
 
@@ -64,9 +61,30 @@ def normalise(raw: Dict[str, Any]) -> Dict[str, Any]:
     return reader().plain(raw)
 
 
+#: Requirements by target name with the scene file's keys (``em_lux``, ``u0``): what the
+#: reader judges on the point estimates of targets its results did not judge.
+Requirements = Dict[str, Dict[str, float]]
+
+
+def read(data: Dict[str, Any], requirements: Optional[Requirements] = None) -> Any:
+    """``data`` (a results document) read by ``lightsolver_results``: its typed
+    ``Results``, older layouts migrated, and with ``requirements`` the targets the solver did
+    not judge judged on their point estimates (``Target.estimated``). Not schema-checked: live
+    frames arrive many times a second, and documents saved by older versions must open; the
+    solver wrote what it checks. Raises ValueError (``ResultsError``) for no results document."""
+    return reader().read(data, strict=False, check_schema=False, requirements=requirements)
+
+
+def _pair(stat: Any) -> Optional[Tuple[float, float]]:
+    """A statistic's interval, or None where the solver gave none."""
+    return (float(stat.low), float(stat.high)) if stat is not None and stat.has_interval \
+        else None
+
+
 @dataclass
 class TargetResult:
-    """Illuminance on one target (lux); grids add Emin, Emax, U0 and the cells."""
+    """Illuminance on one target (lux); grids add Emin, Emax, U0 and the cells. A table row of
+    the reader's ``lightsolver_results.Target``: intervals only where the solver gave them."""
 
     name: str
     label: str
@@ -80,22 +98,28 @@ class TargetResult:
     min_lux: Optional[float] = None
     max_lux: Optional[float] = None
     uniformity: Optional[float] = None
-    min_ci_lux: Tuple[float, float] = (0.0, 0.0)
-    max_ci_lux: Tuple[float, float] = (0.0, 0.0)
+    #: The solver's intervals of Emin, Emax and U0 (honest for a minimum over noisy cells,
+    #: docs/statistics.md): given in runs that judge requirements, else None.
+    min_ci_lux: Optional[Tuple[float, float]] = None
+    max_ci_lux: Optional[Tuple[float, float]] = None
+    uniformity_ci: Optional[Tuple[float, float]] = None
     cells_uv: Optional[Tuple[int, int]] = None
     cells_lux: List[float] = field(default_factory=list)
     cells_ci_low_lux: List[float] = field(default_factory=list)
     cells_ci_high_lux: List[float] = field(default_factory=list)
     cells_hits: List[float] = field(default_factory=list)
+    #: The requirements judged (Em and U0; 0 where none), as the verdicts state them.
     required_lux: float = 0.0
     required_uniformity: float = 0.0
-    #: The solver's overall verdict on the target's requirements ("pass", "fail",
-    #: "undecided"), judged from the intervals; None when it judged none.
+    #: The overall verdict on the target's requirements ("pass", "fail", "undecided"); None
+    #: when none was judged.
     verdict: Optional[str] = None
-    #: The solver's verdict per requirement (docs/scene-format.md, "Requirements and verdicts").
+    #: The verdict per requirement (docs/scene-format.md, "Requirements and verdicts").
     verdicts: Dict[str, Dict[str, Any]] = field(default_factory=dict)
-    #: The solver's U0 interval (honest for a minimum over noisy cells), when it gave one.
-    solver_uniformity_ci: Optional[Tuple[float, float]] = None
+    #: The verdicts are the reader's point estimates (results without the solver's verdicts
+    #: for this target), not the solver's from the intervals.
+    estimated: bool = False
+    is_glare: bool = False
     #: Observers: the UGR (None when no luminaire counts or no reflected light reached the
     #: eye) and its interval (an end None when unbounded), from the traced background
     #: luminance (docs/glare.md).
@@ -110,84 +134,44 @@ class TargetResult:
         name = "max UGR" if self.kind == "observer_grid" else "UGR"
         return (f"{name} {show(self.ugr)}", f"{show(self.ugr_ci[0])}-{show(self.ugr_ci[1])}")
 
-    @property
-    def uniformity_ci(self) -> Tuple[float, float]:
-        """The solver's U0 interval when it judged requirements; otherwise a conservative one
-        from the intervals of Emin and Em."""
-        if self.solver_uniformity_ci is not None:
-            return self.solver_uniformity_ci
-        if self.uniformity is None or self.ci_high_lux <= 0.0:
-            return (0.0, 0.0)
-        low = self.min_ci_lux[0] / self.ci_high_lux
-        high = self.min_ci_lux[1] / self.ci_low_lux if self.ci_low_lux > 0 else float("inf")
-        return (low, high)
-
     def verdict_text(self) -> str:
-        """"pass", "FAIL" or "undecided" as the solver judged the intervals; for results of
-        older versions (no verdicts) the point estimate against the requirement, marked "(est.)";
-        "" without requirements."""
-        if self.verdict is not None:
-            return {"pass": "pass", "fail": "FAIL"}.get(self.verdict, "undecided")
-        passed = self.passes()
-        return "" if passed is None else ("pass (est.)" if passed else "FAIL (est.)")
-
-    def passes(self) -> Optional[bool]:
-        """True/False against RequiredLux/RequiredUniformity from the point estimates; None when
-        none is set (the solver's verdicts, from the intervals, are ``verdict``)."""
-        checks = []
-        if self.required_lux > 0.0:
-            checks.append(self.mean_lux >= self.required_lux)
-        if self.required_uniformity > 0.0 and self.uniformity is not None:
-            checks.append(self.uniformity >= self.required_uniformity)
-        return all(checks) if checks else None
+        """"pass", "FAIL" or "undecided" as the solver judged the intervals; for results without
+        the solver's verdicts the point estimate against the requirement, marked "(est.)"; ""
+        without requirements."""
+        if self.verdict is None:
+            return ""
+        word = {"pass": "pass", "fail": "FAIL"}.get(self.verdict, "undecided")
+        return f"{word} (est.)" if self.estimated else word
 
     @classmethod
-    def from_target(cls, target: Any, label: str = "",
-                    required: Tuple[float, float] = (0.0, 0.0)) -> "TargetResult":
+    def from_target(cls, target: Any, label: str = "") -> "TargetResult":
         """From a ``lightsolver_results.Target`` (the reader's per-type reading of a migrated
         ``targets[]`` entry)."""
         value = lambda s: _float(s.value) if s is not None else 0.0  # noqa: E731
+        wanted = target.requirements
         result = cls(name=target.name, label=label or target.name, kind=target.type,
                      mean_lux=value(target.em), ci_low_lux=_float(target.em.low),
                      ci_high_lux=_float(target.em.high), sigma_lux=_float(target.sigma_lux),
                      hits=_float(target.hits), area_m2=_float(target.area_m2),
-                     required_lux=required[0], required_uniformity=required[1])
+                     required_lux=_float(wanted.get("em_lux")),
+                     required_uniformity=_float(wanted.get("u0")), verdict=target.verdict,
+                     verdicts=dict(target.verdicts), estimated=target.estimated,
+                     is_glare=target.is_glare)
         if target.is_glare:  # an observer grid's: the maximum's
             result.ugr = target.ugr.value
             result.ugr_ci = (target.ugr.low, target.ugr.high)
         if target.is_grid:
-            cells = target.cells
+            cells = target.cell_values
             result.cells_uv = target.cells_uv
-            result.cells_lux = [_float(c.get("lux")) for c in cells]
-            result.cells_ci_low_lux = [_float(c.get("ci_low_lux")) for c in cells]
-            result.cells_ci_high_lux = [_float(c.get("ci_high_lux")) for c in cells]
-            result.cells_hits = [_float(c.get("hits")) for c in cells]
+            result.cells_lux = [_float(v) for v in cells.lux]
+            result.cells_ci_low_lux = [_float(v) for v in cells.ci_low_lux]
+            result.cells_ci_high_lux = [_float(v) for v in cells.ci_high_lux]
+            result.cells_hits = [_float(v) for v in cells.hits]
             result.min_lux, result.max_lux = value(target.emin), value(target.emax)
             result.uniformity = value(target.u0)
-            if result.cells_lux:  # the extreme cells' own intervals, until the solver's below
-                lux, low, high = result.cells_lux, result.cells_ci_low_lux, result.cells_ci_high_lux
-                i_min = min(range(len(lux)), key=lux.__getitem__)
-                i_max = max(range(len(lux)), key=lux.__getitem__)
-                result.min_ci_lux = (low[i_min], high[i_min])
-                result.max_ci_lux = (low[i_max], high[i_max])
-            if target.emin.has_interval:  # simultaneous over the cells: docs/statistics.md
-                result.min_ci_lux = (target.emin.low, target.emin.high)
-            if target.emax.has_interval:
-                result.max_ci_lux = (target.emax.low, target.emax.high)
-            if target.u0.has_interval:
-                result.solver_uniformity_ci = (target.u0.low, target.u0.high)
-        if target.verdict is not None:
-            result.verdict = target.verdict
-            result.verdicts = dict(target.verdicts)
+            result.min_ci_lux, result.max_ci_lux = _pair(target.emin), _pair(target.emax)
+            result.uniformity_ci = _pair(target.u0)
         return result
-
-    @classmethod
-    def from_entry(cls, entry: Dict[str, Any], label: str = "",
-                   required: Tuple[float, float] = (0.0, 0.0)) -> "TargetResult":
-        """From one ``targets[]`` entry (migrated alone, as the reader does a whole document)."""
-        doc = {"format": reader().FORMAT, "targets": [entry]}
-        return cls.from_target(reader().read(doc, strict=False, check_schema=False).targets[0],
-                               label, required)
 
 
 @dataclass
@@ -204,6 +188,10 @@ class AnalysisResult:
     scene_file: str = ""
     results_file: str = ""
     data: Dict[str, Any] = field(default_factory=dict)
+    #: Why the run stopped ("photons", "accuracy", "decided", ...; "" when not said).
+    stop_reason: str = ""
+    #: The solver's overall verdict over the targets it judged; None when it judged none.
+    verdict: Optional[str] = None
 
     def __getitem__(self, key: str) -> TargetResult:
         """The target with this object name or label."""
@@ -218,31 +206,42 @@ class AnalysisResult:
 
     @classmethod
     def from_data(cls, data: Dict[str, Any], labels: Optional[Dict[str, str]] = None,
-                  required: Optional[Dict[str, Tuple[float, float]]] = None,
-                  scene_file: str = "", results_file: str = "") -> "AnalysisResult":
-        """From a normalised results dictionary."""
+                  requirements: Optional[Requirements] = None, scene_file: str = "",
+                  results_file: str = "") -> "AnalysisResult":
+        """From a normalised results dictionary, read by the reader (:func:`read`):
+        ``requirements`` are judged on the estimates of the targets the solver did not judge."""
+        return cls.from_read(read(data, requirements), labels, scene_file, results_file,
+                             data)
+
+    @classmethod
+    def from_read(cls, found: Any, labels: Optional[Dict[str, str]] = None,
+                  scene_file: str = "", results_file: str = "",
+                  data: Optional[Dict[str, Any]] = None) -> "AnalysisResult":
+        """From the reader's ``lightsolver_results.Results``; ``data``: the document as stored
+        (default: the migrated one)."""
         labels = labels or {}
-        required = required or {}
-        # Not schema-checked here: live frames arrive many times a second, and documents
-        # saved by older versions must open; the solver wrote what it checks.
-        read = reader().read(data, strict=False, check_schema=False)
-        targets = [TargetResult.from_target(t, labels.get(t.name, ""),
-                                            required.get(t.name, (0.0, 0.0)))
-                   for t in read.targets]
-        return cls(targets=targets, photons=_float(data.get("photons")),
-                   partial=bool(data.get("partial", False)), seconds=_float(data.get("seconds")),
-                   backend=str(data.get("backend", "")),
-                   confidence=_float(data.get("confidence"), 0.95),
-                   warnings=[str(w) for w in data.get("warnings", [])],
-                   scene_file=scene_file, results_file=results_file, data=data)
+        run = found.run
+        return cls(targets=[TargetResult.from_target(t, labels.get(t.name, ""))
+                            for t in found.targets],
+                   photons=float(run.photons), partial=run.partial, seconds=run.seconds,
+                   backend=run.backend,
+                   confidence=run.confidence if run.confidence is not None else 0.95,
+                   warnings=list(run.warnings), scene_file=scene_file,
+                   results_file=results_file, data=data if data is not None else found.doc,
+                   stop_reason=run.stop_reason or "", verdict=found.verdict)
 
     def to_json(self) -> str:
         """The results in the CLI's JSON layout."""
         return json.dumps(self.data, indent=1)
 
 
-def _ci(low: float, high: float) -> str:
-    return f"{low:.1f}-{high:.1f}"
+def interval_text(pair: Optional[Tuple[float, float]], digits: int = 1, dash: str = "-") -> str:
+    """An interval as "low-high"; "-" where the solver gave none (a run without requirements
+    has no Emin, Emax and U0 intervals: docs/statistics.md, "Emin over noisy cells")."""
+    return "-" if pair is None else f"{pair[0]:.{digits}f}{dash}{pair[1]:.{digits}f}"
+
+
+_ci = interval_text
 
 
 def format_table(result: AnalysisResult) -> str:
@@ -253,17 +252,16 @@ def format_table(result: AnalysisResult) -> str:
     rows = [header]
     for t in result.targets:
         verdict = t.verdict_text()
+        em_ci = _ci((t.ci_low_lux, t.ci_high_lux))
         if t.kind == "grid":
-            u_lo, u_hi = t.uniformity_ci
-            rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", _ci(t.ci_low_lux, t.ci_high_lux),
-                         f"{t.min_lux:.1f}", _ci(*t.min_ci_lux), f"{t.max_lux:.1f}",
-                         _ci(*t.max_ci_lux), f"{t.uniformity:.2f}", f"{u_lo:.2f}-{u_hi:.2f}",
-                         verdict))
-        elif t.kind in GLARE_KINDS:
+            rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", em_ci, f"{t.min_lux:.1f}",
+                         _ci(t.min_ci_lux), f"{t.max_lux:.1f}", _ci(t.max_ci_lux),
+                         f"{t.uniformity:.2f}", _ci(t.uniformity_ci, 2), verdict))
+        elif t.is_glare:
             rows.append((t.label, t.kind, *t.ugr_text(), "-", "-", "-", "-", "-", "-", verdict))
         else:
-            rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", _ci(t.ci_low_lux, t.ci_high_lux),
-                         "-", "-", "-", "-", "-", "-", verdict))
+            rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", em_ci, "-", "-", "-", "-", "-",
+                         "-", verdict))
     widths = [max(len(str(r[i])) for r in rows) for i in range(len(header))]
     lines = ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
     lines.insert(1, "  ".join("-" * w for w in widths))

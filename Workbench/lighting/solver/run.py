@@ -158,7 +158,9 @@ def solve_file(scene_file: str, photons: int, seed: int, confidence: float, thre
         raise SolverError(f"The solver failed: {exc}") from exc
     except Exception as exc:  # noqa: BLE001
         raise SolverError(f"The solver failed: {exc}") from exc
-    if not isinstance(results, dict) or "targets" not in results:
+    from lighting.solver.results import reader
+
+    if not isinstance(results, dict) or results.get("format") != reader().FORMAT:
         raise SolverError(f"The solver returned no results (got {type(results).__name__})")
     return results
 

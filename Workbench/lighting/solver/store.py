@@ -17,7 +17,7 @@ import FreeCAD
 from lighting.export import fingerprint as fingerprint_mod
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import results as results_obj
-from lighting.solver.results import GLARE_KINDS, AnalysisResult
+from lighting.solver.results import AnalysisResult
 
 #: Properties that older versions wrote onto the analysis and onto its targets (migrate()).
 LEGACY_ANALYSIS = ("ResultsJson", "ResultsFile", "PhotonsTraced", "SolveSeconds", "Partial",
@@ -117,10 +117,7 @@ def results_state(analysis: Any) -> ResultsState:
 
 def settled_status(analysis: Any) -> str:
     """The Status that describes the analysis' stored results."""
-    data = results_obj.data(results_obj.of_analysis(analysis))
-    if data is None:
-        return "not run"
-    return "partial results (cancelled)" if data.get("partial") else "done"
+    return results_obj.status_of(results_obj.data(results_obj.of_analysis(analysis)))
 
 
 def _same_results(old: Optional[Dict[str, Any]], new: Dict[str, Any]) -> bool:
@@ -135,7 +132,7 @@ def summary_line(result: AnalysisResult, limit: int = 3) -> str:
     Desk top 612 lx; 200000 photons, 1.2 s"."""
     parts = []
     for t in result.targets[:limit]:
-        text = (f"{t.label} {t.ugr_text()[0]}" if t.kind in GLARE_KINDS
+        text = (f"{t.label} {t.ugr_text()[0]}" if t.is_glare
                 else f"{t.label} Em {t.mean_lux:.0f} lx")
         if t.kind == "grid":
             text += f" U0 {t.uniformity:.2f}"
@@ -147,11 +144,6 @@ def summary_line(result: AnalysisResult, limit: int = 3) -> str:
         parts.append(f"+{len(result.targets) - limit} more")
     state = "partial results" if result.partial else "done"
     return f"{state}: {', '.join(parts)}; {result.photons:.0f} photons, {result.seconds:.1f} s"
-
-
-def _required(analysis: Any) -> Dict[str, Tuple[float, float]]:
-    return {t.Name: (float(t.RequiredLux), float(t.RequiredUniformity))
-            for t in analysis_mod.targets(analysis)}
 
 
 def _labels(analysis: Any) -> Dict[str, str]:
@@ -191,7 +183,7 @@ def apply_to_document(analysis: Any, data: Dict[str, Any], scene_file: str = "",
     migrate(analysis)
     prints = fingerprint_mod.dumps(fingerprint if fingerprint is not None
                                    else fingerprint_mod.of_analysis(analysis))
-    status = "partial results (cancelled)" if data.get("partial") else "done"
+    status = results_obj.status_of(data)
     existing = results_obj.of_analysis(analysis)
     if existing is not None and existing.InputsFingerprint == prints and \
             existing.SceneFile == scene_file and _same_results(results_obj.traced(existing), data):
@@ -249,8 +241,8 @@ def load_from_document(analysis: Any) -> Optional[AnalysisResult]:
     data = results_obj.data(obj)
     if data is None:
         return None
-    return AnalysisResult.from_data(data, _labels(analysis), _required(analysis), obj.SceneFile,
-                                    obj.ResultsFile)
+    return AnalysisResult.from_data(data, _labels(analysis), analysis_mod.requirements(analysis),
+                                    obj.SceneFile, obj.ResultsFile)
 
 
 def clear(analysis: Any) -> None:

@@ -9,7 +9,7 @@ the solver runs on a worker thread that a QTimer polls, so the GUI stays respons
 Cancel works. Results are applied on the GUI thread in one undo step."""
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import FreeCAD
 import FreeCADGui
@@ -61,18 +61,20 @@ def panel_of(analysis: Any) -> Optional["AnalysisTaskPanel"]:
 VERDICT_COLOURS = {"pass": (0, 130, 0), "FAIL": (200, 0, 0), "undecided": (190, 110, 0)}
 
 
+def _ci(pair: Optional[Tuple[float, float]], digits: int = 1) -> str:
+    return results_mod.interval_text(pair, digits, " - ")
+
+
 def _rows(result: results_mod.AnalysisResult) -> List[List[str]]:
     rows = []
     for t in result.targets:
         verdict = t.verdict_text()
-        ci = f"{t.ci_low_lux:.1f} - {t.ci_high_lux:.1f}"
+        ci = _ci((t.ci_low_lux, t.ci_high_lux))
         if t.kind == "grid":
-            u_lo, u_hi = t.uniformity_ci
             rows.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci, f"{t.min_lux:.1f}",
-                         f"{t.min_ci_lux[0]:.1f} - {t.min_ci_lux[1]:.1f}", f"{t.max_lux:.1f}",
-                         f"{t.max_ci_lux[0]:.1f} - {t.max_ci_lux[1]:.1f}",
-                         f"{t.uniformity:.2f}", f"{u_lo:.2f} - {u_hi:.2f}", verdict])
-        elif t.kind in results_mod.GLARE_KINDS:  # the Em columns show its (max) UGR
+                         _ci(t.min_ci_lux), f"{t.max_lux:.1f}", _ci(t.max_ci_lux),
+                         f"{t.uniformity:.2f}", _ci(t.uniformity_ci, 2), verdict])
+        elif t.is_glare:  # the Em columns show its (max) UGR
             rows.append([t.label, t.kind, *t.ugr_text()] + ["-"] * 6 + [verdict])
         else:
             rows.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci] + ["-"] * 6 + [verdict])
@@ -390,7 +392,7 @@ class AnalysisTaskPanel(ModelessPanel):
                  f"{result.confidence * 100:g} % confidence intervals")
         if result.partial:
             facts += " - PARTIAL (cancelled)"
-        elif result.data.get("stop_reason") == "decided":
+        elif result.stop_reason == "decided":
             facts += " - every requirement decided"
         self.facts.setText(facts)
 

@@ -213,12 +213,12 @@ class ViewProviderAnalysis(ViewProviderBase):
             from lighting.objects import results as results_obj
 
             found = results_obj.of_analysis(self.Object)
-            stored = results_obj.data(found) or {}
+            typed = results_obj.read(results_obj.data(found))
             scene = str(getattr(found, "LightScene", "") or "") if found is not None else ""
         except Exception:  # noqa: BLE001 - never break the legend
-            stored, scene = {}, ""
+            typed, scene = None, ""
         word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
-            stored.get("verdict", ""))
+            typed.verdict if typed is not None else None)
         title = "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
         # The light scene shown (rescaled), so a screenshot says which one it is.
         if scene and "not shown" not in scene:
@@ -228,21 +228,21 @@ class ViewProviderAnalysis(ViewProviderBase):
 
     def verdict_lines(self) -> List[Tuple[str, str]]:
         """(label, pass/FAIL/undecided) of every target the solver judged, for the markers
-        under the legend."""
+        under the legend (results without the solver's verdicts show none)."""
         try:
             from lighting.objects import results as results_obj
 
-            stored = results_obj.data(results_obj.of_analysis(self.Object)) or {}
+            typed = results_obj.read(results_obj.data(results_obj.of_analysis(self.Object)))
             doc = self.Object.Document
         except Exception:  # noqa: BLE001 - never break the legend
             return []
         lines = []
-        for target in stored.get("targets", []):
+        for target in typed.targets if typed is not None else []:
             word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
-                target.get("verdict", ""))
+                target.verdict or "")
             if word:
-                obj = doc.getObject(str(target.get("name", "")))
-                lines.append((obj.Label if obj is not None else str(target["name"]), word))
+                obj = doc.getObject(target.name)
+                lines.append((obj.Label if obj is not None else target.name, word))
         return lines
 
     def results_stale(self) -> bool:
