@@ -144,7 +144,7 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
           scene_path: Optional[PathLike] = None, date: Union[None, str, datetime.date] = None,
           title: Optional[str] = None, solver_version: Optional[str] = None) -> Report:
     """The report's content (:class:`lightsolver_report.model.Report`) with its pictures."""
-    from lightsolver_report import plots
+    from lightsolver_report import pictures, plots
 
     if not isinstance(scene, dict):
         scene_path = scene
@@ -162,6 +162,7 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
         if area.grid is not None and area.grid.lux.size:
             area.plan_svg = plots.plan_svg(area.grid, f"plan{i}")
             area.chart_svg, area.chart_note = plots.chart_svg(area.grid, f"chart{i}")
+    pictures.attach(report, scene, base_dir)
     return report
 
 
