@@ -26,7 +26,7 @@ SCALES = (10, 20, 25, 50, 75, 100, 125, 150, 200, 250, 300, 400, 500, 750, 1000,
 #: The largest drawing on the page (A4 portrait within the report's margins), mm.
 MAX_W_MM, MAX_H_MM = 156.0, 170.0
 #: Around the drawing: tick labels left, ticks + scale bar + north arrow below, mm.
-LEFT_MM, RIGHT_MM, TOP_MM, BOTTOM_MM = 9.0, 3.0, 2.0, 17.0
+LEFT_MM, RIGHT_MM, TOP_MM, BOTTOM_MM = 9.0, 3.0, 2.0, 19.0
 MM = 1.0 / 25.4  # inches per millimetre
 LABEL_PT = 6.5
 #: Above this many faces and edges below the section, they are one raster image in the SVG
@@ -230,12 +230,12 @@ def _draw_targets(ax, items: PlanItems, labels: _Labels) -> None:
     from matplotlib.collections import LineCollection
     from matplotlib.patches import Polygon
 
-    for grid in items.grids:
+    for i, grid in enumerate(items.grids):
         xy = grid.corners[:, :2]
         ax.add_patch(Polygon(xy, closed=True, facecolor=GRID, alpha=0.07, edgecolor="none",
                              zorder=3))
         ax.add_patch(Polygon(xy, closed=True, fill=False, edgecolor=GRID, linewidth=0.8,
-                             linestyle=(0, (4, 2)), zorder=3.1))
+                             linestyle=(0, (4, 2)), zorder=3.1, gid=f"grid{i}"))
     for surface in items.surfaces:
         if len(surface.edges):
             ax.add_collection(LineCollection(surface.edges[:, :, :2], colors=GRID,
@@ -255,12 +255,12 @@ def _draw_targets(ax, items: PlanItems, labels: _Labels) -> None:
                          0.8, GRID)
 
 
-def _arrow(ax, start, end, colour: str, width: float, zorder: float) -> None:
+def _arrow(ax, start, end, colour: str, width: float, zorder: float, gid: str) -> None:
     from matplotlib.patches import FancyArrowPatch
 
     ax.add_patch(FancyArrowPatch(tuple(start), tuple(end), arrowstyle="-|>", mutation_scale=7,
                                  color=colour, linewidth=width, shrinkA=0, shrinkB=0,
-                                 zorder=zorder))
+                                 zorder=zorder, gid=gid))
 
 
 def arrow_end(start: np.ndarray, direction: np.ndarray, length: float,
@@ -328,7 +328,7 @@ def _draw_luminaires(ax, items: PlanItems, floor_z: float, box, labels: _Labels)
         labels.block(x, y, *_half_size_mm(mark, labels.k))
         tip = aim_tip(mark, floor_z, 12.0 / labels.k, box)
         if tip is not None:
-            _arrow(ax, (x, y), tip, AIM, 0.8, 7)
+            _arrow(ax, (x, y), tip, AIM, 0.8, 7, f"aim{mark.number}")
             ax.plot([tip[0]], [tip[1]], marker="x", markersize=3.5, markeredgewidth=0.8,
                     color=AIM, zorder=7)
 
@@ -356,11 +356,11 @@ def observer_arrows(mark: ObserverMark, length: float, box) -> List[Tuple[np.nda
 def _draw_observers(ax, items: PlanItems, box, labels: _Labels) -> None:
     """Eyes as dots, lines of sight as arrows (an observer grid's shorter; none where an
     observer grid has more than 48 of them)."""
-    for mark in items.observers:
+    for i, mark in enumerate(items.observers):
         many = len(mark.positions) * len(mark.directions) > 48
         length = (3.5 if mark.grid else 9.0) / labels.k
-        for start, tip in ([] if many else observer_arrows(mark, length, box)):
-            _arrow(ax, start, tip, OBSERVER, 0.7 if mark.grid else 0.9, 8)
+        for j, (start, tip) in enumerate([] if many else observer_arrows(mark, length, box)):
+            _arrow(ax, start, tip, OBSERVER, 0.7 if mark.grid else 0.9, 8, f"sight{i}-{j}")
         ax.plot(mark.positions[:, 0], mark.positions[:, 1], linestyle="none", marker="o",
                 markersize=2.4 if mark.grid else 3.6, color=OBSERVER, zorder=8.1)
         for p in mark.positions:
@@ -398,23 +398,28 @@ def _scale_bar(fig, ax, length_m: float, scale: int, bottom_in: float) -> None:
             fontsize=7, clip_on=False)
 
 
-def _north_arrow(fig, north_deg: float, right_in: float, bottom_in: float) -> None:
-    """A north arrow at the drawing's lower right (``north_deg``: true north from +y,
-    counter-clockwise)."""
-    from matplotlib.patches import FancyArrowPatch
+def _north_arrow(fig, north_deg: float, centre_in: Tuple[float, float]) -> None:
+    """A compass: a circle with an arrow across it to north and an N beyond its tip
+    (``north_deg``: true north from +y, counter-clockwise)."""
+    from matplotlib.patches import Circle, FancyArrowPatch
 
     a = math.radians(north_deg)
     d = np.array([-math.sin(a), math.cos(a)])
-    size = 4.5 * MM
-    cx, cy = right_in - size, bottom_in + size
-    width, height = fig.get_size_inches()
-    start = ((cx - d[0] * size) / width, (cy - d[1] * size) / height)
-    tip = ((cx + d[0] * size) / width, (cy + d[1] * size) / height)
-    fig.add_artist(FancyArrowPatch(start, tip, transform=fig.transFigure, arrowstyle="-|>",
-                                   mutation_scale=9, color="black", linewidth=0.9,
-                                   gid="north"))
-    fig.text((cx + d[0] * size * 1.55) / width, (cy + d[1] * size * 1.55) / height, "N",
-             ha="center", va="center", fontsize=8, fontweight="bold")
+    r = 4.0 * MM
+    cx, cy = centre_in
+    inches = fig.dpi_scale_trans
+
+    def at(k: float) -> Tuple[float, float]:
+        return (cx + d[0] * r * k, cy + d[1] * r * k)
+
+    fig.add_artist(Circle((cx, cy), r, transform=inches, fill=False, edgecolor="black",
+                          linewidth=0.5))
+    fig.add_artist(FancyArrowPatch(at(-1.0), at(1.0), transform=inches, arrowstyle="-|>",
+                                   mutation_scale=8, color="black", linewidth=0.8, shrinkA=0,
+                                   shrinkB=0, gid="north"))
+    x, y = at(1.5)
+    fig.text(x, y, "N", transform=inches, ha="center", va="center", fontsize=7.5,
+             fontweight="bold")
 
 
 def draw(section: Section, items: PlanItems, box: Tuple[float, float, float, float],
@@ -452,7 +457,7 @@ def draw(section: Section, items: PlanItems, box: Tuple[float, float, float, flo
         _label_luminaires(items, labels, numbered)
         _label_observers(items, labels)
         bar = bar_length(x1 - x0)
-        _scale_bar(fig, ax, bar, scale, 5.5 * MM)
+        _scale_bar(fig, ax, bar, scale, 7.0 * MM)
         if north_deg is not None:
-            _north_arrow(fig, north_deg, width - RIGHT_MM * MM, 1.0 * MM)
+            _north_arrow(fig, north_deg, (width - RIGHT_MM * MM - 6.0 * MM, 7.5 * MM))
     return plots._svg(fig, salt, dpi=RASTER_DPI)

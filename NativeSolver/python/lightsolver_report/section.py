@@ -426,13 +426,22 @@ def section(meshes: Sequence[Mesh], level: Level) -> Section:
     out.layers.sort(key=lambda l: l.top_z)
     highest = max([min(top, level.top_z) for _, _, _, top in cuts], default=level.cut_z)
     wall_top = level.floor_z + WALL_SHARE * (highest - level.floor_z)
-    groups: Dict[str, List[Tuple[np.ndarray, np.ndarray]]] = {
-        "walls": [], "furniture": [], "glass": []}
+    groups: Dict[str, List[Polyline]] = {"walls": [], "furniture": [], "glass": []}
     for mesh, segs, normals, top in cuts:
         kind = "glass" if mesh.kind == "glass" else "walls" if top >= wall_top else "furniture"
-        groups[kind].append((segs, normals))
-    out.walls, out.furniture, out.glass = (
-        chain(np.concatenate([g[0] for g in groups[k]]),
-              np.concatenate([g[1] for g in groups[k]])) if groups[k] else []
-        for k in ("walls", "furniture", "glass"))
+        groups[kind].extend(chain(segs, normals))
+    out.walls, out.furniture, out.glass = (_join(groups[k]) for k in
+                                           ("walls", "furniture", "glass"))
     return out
+
+
+def _join(lines: List[Polyline]) -> List[Polyline]:
+    """Each mesh's closed outlines as they are; the open chains of all meshes chained again
+    together (a wall whose inner face is a separate target mesh closes then), so that bodies
+    touching each other (two wall boxes at a corner) keep their own closed outlines."""
+    closed = [l for l in lines if l.closed]
+    loose = [l for l in lines if not l.closed]
+    if not loose:
+        return closed
+    return closed + chain(np.concatenate([l.segments for l in loose]),
+                          np.concatenate([l.normals for l in loose]))
