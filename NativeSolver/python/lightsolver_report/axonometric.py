@@ -328,8 +328,7 @@ class ModelPicture:
         if self.view_png:
             return ("The model in the 3D view of the design software, surfaces in false "
                     "colours by their illuminance.")
-        side = _side(self.north_deg)
-        return (f"Axonometric view of the model from above its {side} corner; the ceiling "
+        return (f"Axonometric view of the model from above {_side(self.north_deg)}; the ceiling "
                 "and the walls nearest the viewer are left out. Calculation grids (cell by "
                 "cell) and calculation surfaces (their mean) in false colours by their "
                 "illuminance; other surfaces in grey, lighter for a higher reflectance; "
@@ -373,14 +372,14 @@ class ModelPicture:
 
 
 def _side(north_deg: Optional[float]) -> str:
-    """The compass name of the viewer's side (south-west, ...) when north is known, else
-    where it is on the plan."""
+    """Where the viewer is: "its south-west corner" (...) when north is known, else the plan's
+    corner."""
     if north_deg is None:
-        return "lower left (plan: lowest x and y)"
+        return "the lower left corner of the plan"
     bearing = (90.0 - AZIMUTH_DEG + north_deg) % 360.0  # clockwise from north
     names = ("north", "north-east", "east", "south-east", "south", "south-west", "west",
              "north-west")
-    return names[int(((bearing + 22.5) % 360.0) // 45.0)]
+    return f"its {names[int(((bearing + 22.5) % 360.0) // 45.0)]} corner"
 
 
 def _results(report: Any) -> Tuple[Dict[str, float], Dict[str, np.ndarray]]:
