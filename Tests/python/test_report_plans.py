@@ -16,7 +16,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import lightsolver_report
 from lightsolver_report import ReportError, build, pictures, render_html
 from lightsolver_report.floorplan import (MAX_H_MM, MAX_W_MM, arrow_end, bar_length,
                                           choose_scale, observer_arrows)
@@ -347,7 +346,8 @@ def test_a_mesh_file_that_cannot_be_read_is_said_without_its_name(tmp_path):
     scene["metadata"]["labels"] = {"cupboard": "Tall cupboard"}
     report = fake_report()
     pictures.attach(report, scene, str(tmp_path))
-    assert report.picture_notes == ["“Tall cupboard” is not drawn: its geometry could not be read"]
+    assert report.picture_notes == [
+        "“Tall cupboard” is not drawn: its geometry could not be read"]
     assert len(report.plans) == 1
 
 
@@ -389,11 +389,32 @@ def test_ply_and_obj_files_draw_like_inline_geometry(tmp_path):
 # --- the picture of the model -----------------------------------------------------------------
 
 def test_the_picture_colours_grids_and_surfaces_by_their_results():
-    scene = json.loads((FIXTURES / "room.scene.json").read_text())
     results = json.loads((FIXTURES / "room.results.json").read_text())
     report = build(FIXTURES / "room.scene.json", results, date=DATE)
     picture = report.model_picture
     assert picture.shown and not picture.view_png and "Axonometric" in picture.caption
+    painting, norm, cmap = picture.painting()
+    targets = {t["name"]: t for t in results["targets"]}
+    # the workplane's cells on its plane (the only cut at 0.8 m), each in its value's colour
+    (plane,) = [p for h, p in zip(painting.cuts, painting.planes) if abs(h - 0.8) < 1e-9]
+    (quads, rgba), = plane
+    lux = [c["lux"] for c in targets["workplane"]["cells"]]
+    assert len(quads) == len(lux) == 63
+    assert np.allclose(rgba, cmap(norm(np.array(lux))))
+    assert np.allclose(quads[:, :, 2], 0.8)
+    # the colour scale spans every value shown, surfaces' means included
+    shown = lux + [targets["floor"]["mean_lux"], targets["desk top"]["mean_lux"]]
+    assert norm.vmin <= min(shown) and norm.vmax >= max(shown)
+    # surfaces with results in their mean's colour, the others grey
+    colours = np.concatenate([c for slab in painting.slabs for _, c in slab])
+    floor_colour = cmap(norm(targets["floor"]["mean_lux"]))
+    desk_colour = cmap(norm(targets["desk top"]["mean_lux"]))
+    coloured = np.all(np.isclose(colours, floor_colour), axis=1) | np.all(
+        np.isclose(colours, desk_colour), axis=1)
+    assert coloured.any()
+    grey = colours[~coloured]
+    assert len(grey) and np.allclose(grey[:, 0], grey[:, 1]) and np.allclose(grey[:, 1],
+                                                                             grey[:, 2])
     svg = picture.svg
     assert "<image" in svg and "E [lx]" in svg  # the painting is one raster, the legend text
     assert svg == report.model_picture.svg  # made once

@@ -350,24 +350,32 @@ class ModelPicture:
             self._svg = self._draw() if self.shown else ""
         return self._svg
 
-    def _draw(self) -> str:
+    def painting(self) -> Tuple[Painting, Any, Any]:
+        """What the drawing paints, with its colour scale (``norm``) and map."""
+        from matplotlib.colors import Normalize
+
         surface_lux, grid_lux = _results(self.report)
         names = {s.name for s in self.items.surfaces} | {g.name for g in self.items.grids}
         values = [v for k, v in surface_lux.items() if k in names]
         for k, lux in grid_lux.items():
             if k in names:
                 values.extend(np.asarray(lux, dtype=float).ravel().tolist())
-        from matplotlib.colors import Normalize
-
         norm = Normalize(*plots.colour_range(np.asarray(values, dtype=float)))
         cmap = plots.colormap()
-        x0, x1, y0, y1 = self.box
-        right, up, toward = view_axes()
-        longest = max(x1 - x0, y1 - y0) / 16.0
+        _, _, toward = view_axes()
         painting = paint_scene(self.meshes, self.items, self.level, surface_lux, grid_lux,
-                               self.box, toward, longest, cmap, norm)
+                               self.box, toward, self._longest(), cmap, norm)
         painting.values = values
-        return draw(painting, _luminaire_polys(self.items, longest / 3.0), norm, cmap,
+        return painting, norm, cmap
+
+    def _longest(self) -> float:
+        """Triangles are split until no edge is longer: a sixteenth of the plan's size."""
+        x0, x1, y0, y1 = self.box
+        return max(x1 - x0, y1 - y0) / 16.0
+
+    def _draw(self) -> str:
+        painting, norm, cmap = self.painting()
+        return draw(painting, _luminaire_polys(self.items, self._longest() / 3.0), norm, cmap,
                     self.salt)
 
 

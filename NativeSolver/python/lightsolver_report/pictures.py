@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import base64
 import math
-import os
 from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
@@ -79,8 +78,8 @@ def build_plans(scene: Dict[str, Any], meshes: Sequence[Mesh], items: PlanItems,
             luminaires=[luminaire_row(m, level.floor_z, north) for m in mine.luminaires],
             observers=[observer_row(o, level.floor_z, north) for o in mine.observers],
             areas=[g.label for g in mine.grids] + [s.label for s in mine.surfaces],
-            numbered=numbered, aimed=any(m.aimed for m in mine.luminaires), bar_m=floorplan.bar_length(box[1] - box[0]), extent=box,
-            level=level, items=mine))
+            numbered=numbered, aimed=any(m.aimed for m in mine.luminaires),
+            bar_m=floorplan.bar_length(box[1] - box[0]), extent=box, level=level, items=mine))
     return plans
 
 
