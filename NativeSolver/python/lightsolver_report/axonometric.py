@@ -62,6 +62,17 @@ def split(corners: np.ndarray, longest: float, budget: int = MAX_TRIANGLES) -> n
     return corners
 
 
+def largest(corners: np.ndarray, count: int) -> np.ndarray:
+    """The ``count`` largest triangles, in their order (a huge mesh is painted by its larger
+    triangles: the small ones left out are below the picture's resolution)."""
+    if len(corners) <= count:
+        return corners
+    size = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]),
+                          axis=1)
+    keep = np.sort(np.argsort(-size, kind="stable")[:count])
+    return corners[keep]
+
+
 def _grid_cells(corners: np.ndarray, lux: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """A grid's cells as quads (k, 4, 3) with their lux (k,), in blocks of cells (their mean)
     when the grid has more than MAX_CELLS."""
@@ -209,7 +220,8 @@ def paint_scene(meshes: Sequence[Mesh], items: PlanItems, level: Level,
             continue
         enclosing = float(corners[:, :, 2].max()) > level.floor_z + ENCLOSING_M
         corners = corners[_visible(corners, level, box, toward, enclosing)]
-        share = max(len(corners), int(MAX_TRIANGLES * len(mesh.triangles) / total))
+        share = max(1000, int(MAX_TRIANGLES * len(mesh.triangles) / total))
+        corners = largest(corners, share)
         for slab, part in enumerate(out.slab_parts(corners)):
             part = split(part, longest, max(len(part), share))
             if mesh.name in mesh_lux:

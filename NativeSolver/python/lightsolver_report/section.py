@@ -25,6 +25,8 @@ WALL_SHARE = 0.9
 #: A closed cut outline whose area over perimeter is below this is a wall's or a column's (when
 #: the faces' normals do not tell).
 THIN_M = 0.3
+#: At most this many triangles of one mesh are drawn in the top view (the largest).
+TOP_VIEW_MAX = 100000
 #: Floors of two calculation grids closer than this belong to one storey.
 STOREY_MIN_M = 1.5
 
@@ -391,6 +393,8 @@ def _distinct_2d(edges: np.ndarray) -> np.ndarray:
 
 
 def _layer(mesh: Mesh, level: Level) -> Optional[Layer]:
+    """The mesh's triangles below the section and above the floor, projected, lowest first,
+    with its drawn edges."""
     corners = mesh.corners
     if not len(corners):
         return None
@@ -398,14 +402,15 @@ def _layer(mesh: Mesh, level: Level) -> Optional[Layer]:
     below = (high <= level.cut_z) & (low >= level.floor_z - 0.05)
     if not np.any(below):
         return None
-    corners = corners[below]
-    edges = drawn_edges(corners)
-    edges = _distinct_2d(edges[:, :, :2])
+    corners, high = corners[below], high[below]
+    if len(corners) > TOP_VIEW_MAX:  # a huge mesh: its larger faces (the rest is too small
+        keep = np.sort(np.argsort(-areas(corners), kind="stable")[:TOP_VIEW_MAX])  # to see)
+        corners, high = corners[keep], high[keep]
+    edges = _distinct_2d(drawn_edges(corners)[:, :, :2])
     seen = np.abs(unit_normals(corners)[:, 2]) > 0.05  # vertical faces have no area in plan
-    tops = high[below][seen]
+    tops = high[seen]
     order = np.argsort(tops, kind="stable")
-    return Layer(mesh, corners[seen][order][:, :, :2], tops[order], edges,
-                 float(high[below].max()))
+    return Layer(mesh, corners[seen][order][:, :, :2], tops[order], edges, float(high.max()))
 
 
 def section(meshes: Sequence[Mesh], level: Level) -> Section:
