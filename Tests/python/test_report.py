@@ -114,7 +114,8 @@ def test_svg_ids_are_unique_and_the_html_has_no_date_or_absolute_path():
     assert ids and len(ids) == len(set(ids))
     assert "<dc:date>" not in html and "Matplotlib v" not in html
     assert str(SOURCE_DIR) not in html and str(FIXTURES) not in html
-    assert html.count("<svg") == 2  # the workplane's plan and value chart
+    # the floor plan, the picture of the model, the workplane's plan and value chart
+    assert html.count("<svg") == 4
 
 
 def test_results_without_the_new_fields_still_render():

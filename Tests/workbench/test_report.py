@@ -33,7 +33,8 @@ class ReportTest(DocTestCase):
             self.assertIn(label, html)
         for target in results.targets:
             self.assertIn(fmt.lux(target.mean_lux), html)
-        self.assertEqual(html.count("<svg"), 2)  # the workplane's plan and value chart
+        # the floor plan, the picture of the model, the workplane's plan and value chart
+        self.assertEqual(html.count("<svg"), 4)
         self.assertIn("0.80", html)  # the luminaires' maintenance factor
         self.assertNotIn("out of date", html)
         # The same stored results give the same page again.

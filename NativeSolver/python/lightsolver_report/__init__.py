@@ -153,7 +153,7 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
     ``report.signoff`` (project, author, checked_by; "" where not given) and
     ``report.partial`` (the results are a cancelled run's: every page says so). They are set
     before the pictures are drawn, which may use them."""
-    from lightsolver_report import plots
+    from lightsolver_report import pictures, plots
 
     if not isinstance(scene, dict):
         scene_path = scene
@@ -174,6 +174,7 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
         if area.grid is not None and area.grid.lux.size:
             area.plan_svg = plots.plan_svg(area.grid, f"plan{i}")
             area.chart_svg, area.chart_note = plots.chart_svg(area.grid, f"chart{i}")
+    pictures.attach(report, scene, base_dir)
     return report
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import io
 import re
-from typing import Dict, List, Tuple
+from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -34,13 +34,15 @@ def _rc(salt: str) -> Dict[str, object]:
             "path.simplify": False}
 
 
-def _svg(fig, salt: str) -> str:
-    """The figure as an inline ``<svg>`` element (no XML prolog, no date)."""
+def _svg(fig, salt: str, dpi: Optional[float] = None) -> str:
+    """The figure as an inline ``<svg>`` element (no XML prolog, no date); ``dpi`` is the
+    resolution of its rasterized parts (default: the figure's)."""
     import matplotlib
 
     buffer = io.StringIO()
     with matplotlib.rc_context(_rc(salt)):
-        fig.savefig(buffer, format="svg", metadata={"Date": None, "Creator": None})
+        fig.savefig(buffer, format="svg", dpi=dpi or "figure",
+                    metadata={"Date": None, "Creator": None})
     text = buffer.getvalue()
     text = _FONT_SHORTHAND.sub(_font_longhand, text[text.index("<svg"):].strip())
     return _prefix_ids(text, salt)
