@@ -47,6 +47,7 @@ vec3 sample_spot(LuminaireGpu l) {
   return cone_direction(g_spot_sample.x, g_spot_sample.y, l.axis);
 }
 
+// The spot's emission (its entry in LS_LUMINAIRE_TYPES names it): from its position.
 LS_EMISSION(emit_spot) {
   origin = l.position;
   dir = sample_spot(l);

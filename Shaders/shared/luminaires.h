@@ -1,5 +1,5 @@
 // The luminaire types as the GPU sees them, one text for the shaders (trace_layout.glsl,
-// emit.glsl) and the C++ (vulkan/gpu_layout.hpp, vulkan/gpu_scene.cpp, types/luminaire_types.cpp):
+// emit.glsl) and the C++ (vulkan/gpu_layout.hpp, vulkan/gpu_scene.cpp, types/luminaire_rows.hpp):
 // the packed record every luminaire becomes, the list of types, and each type's emission where
 // both backends run the same text. Written in the subset of prelude.h.
 //
