@@ -1,12 +1,14 @@
-// Photon emission, drawing as the C++ emitters (types/luminaire_types.cpp) draw for draw. Shared
-// with them: the spot profile (shared/spot.h; float here, double there), the cone direction, the
-// parallelogram point and the sphere and cosine sampling (shared/sampling.h). The spot's
-// rejection loop stays here: theta comes from atan (acos is imprecise near 1 on some drivers)
-// and the accepted sample lives in a private global (lavapipe, below).
+// Photon emission, drawing as the C++ emitters (types/luminaire_types.cpp) draw for draw: the
+// luminaire choice, then emit(), one branch per type generated from LS_LUMINAIRE_TYPES. The
+// point, area and directional emissions are shared/luminaires.h, which the CPU runs too; the spot
+// profile is shared/spot.h (float here, double there). The spot's rejection loop stays here:
+// theta comes from atan (acos is imprecise near 1 on some drivers) and the accepted sample lives
+// in a private global (lavapipe, below). The photometric emission is photometric.glsl.
 #ifndef LIGHTSOLVER_EMIT_GLSL
 #define LIGHTSOLVER_EMIT_GLSL
 
 #include "photometric.glsl"
+#include "shared/luminaires.h"
 #include "shared/spot.h"
 
 // upper_bound over the group's cumulative flux, on integers so the pick equals the CPU's double
@@ -37,7 +39,7 @@ vec3 sample_spot(LuminaireGpu l) {
     // acos() is imprecise near 1 on some drivers; atan2 of the cancellation-free sine is not.
     const float w = 1.0 - clamp(cos_t, -1.0, 1.0);
     const float theta = atan(sqrt(max(0.0, w * (2.0 - w))), 1.0 - w);
-    if (rng_uniform() < spot_profile(theta, l.half_beam, l.half_field)) {
+    if (rng_uniform() < spot_profile(theta, l.half_beam_rad, l.half_field_rad)) {
       g_spot_sample = vec2(cos_t, phi);
       accepted = true;
     }
@@ -45,28 +47,23 @@ vec3 sample_spot(LuminaireGpu l) {
   return cone_direction(g_spot_sample.x, g_spot_sample.y, l.axis);
 }
 
-// One branch per luminaire type, each behind its HAS_* switch (vulkan/gpu_scene.cpp's row of
-// the type sets it), so a scene's pipeline keeps only the emitters it uses.
+// The spot's emission (its entry in LS_LUMINAIRE_TYPES names it): from its position.
+LS_EMISSION(emit_spot) {
+  origin = l.position;
+  dir = sample_spot(l);
+}
+
+// One branch per luminaire type, each behind its HAS_* switch (on when the scene has the type:
+// vulkan/gpu_scene.cpp), so a scene's pipeline keeps only the emitters it uses. Generated from
+// the list: `if (HAS_POINT && l.type == 0) emit_point(l, origin, dir); else ...`.
+#define LS_EMIT_BRANCH(name, code, has, emission) \
+  if (has && l.type == code) emission(l, origin, dir); else
 void emit(LuminaireGpu l, out vec3 origin, out vec3 dir) {
-  if (HAS_POINT && l.type == kPoint) {
-    origin = l.position;
-    dir = sample_sphere();
-  } else if (HAS_SPOT && l.type == kSpot) {
-    origin = l.position;
-    dir = sample_spot(l);
-  } else if (HAS_AREA && l.type == kArea) {
-    // Pushed off the opening's plane: not blocked by the ceiling it sits in.
-    origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2), l.axis);
-    dir = sample_cosine(l.axis);
-  } else if (HAS_PHOTOMETRIC && l.type == kPhotometric) {
-    emit_photometric(l, origin, dir);
-  } else if (HAS_DIRECTIONAL && l.type == kDirectional) {
-    origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2), l.axis);
-    dir = l.axis;
-  } else {  // no such type: packing rejects it (gpu_luminaire_type)
+  LS_LUMINAIRE_TYPES(LS_EMIT_BRANCH) {  // no such type: packing rejects it (gpu_luminaire_type)
     origin = l.position;
     dir = l.axis;
   }
 }
+#undef LS_EMIT_BRANCH
 
 #endif

@@ -67,8 +67,9 @@ vec3 photometric_direction(PhotoGpu p) {
   return cos(t) * p.pole + sin(t) * (cos(a) * p.zero + sin(a) * p.ninety);
 }
 
-// emitters.cpp emit_photometric: origin on the opening pushed off its plane, then direction.
-void emit_photometric(LuminaireGpu l, out vec3 origin, out vec3 dir) {
+// types/luminaire_photometric.cpp emit_photometric: origin on the opening pushed off its plane,
+// then direction.
+LS_EMISSION(emit_photometric) {
   const PhotoGpu p = photometrics[l.photometric];
   const vec3 o = photo_to_world(photometric_origin(p), l.axis, p.c0);
   const vec3 d = photo_to_world(photometric_direction(p), l.axis, p.c0);

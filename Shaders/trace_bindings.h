@@ -1,7 +1,8 @@
 // The one table of trace.comp's interface numbers: descriptor bindings (set 0) and
-// specialisation constant ids. Both sides include this file: the GLSL (scene_layout.glsl,
-// trace_layout.glsl, trace.comp) and the C++ host (NativeSolver/src/vulkan/gpu_layout.hpp, whose
-// kBuffers / kSpecConstants tables add the GLSL names). Plain #defines only: the one syntax the
+// specialisation constant ids (the luminaire types' follow from shared/luminaires.h). Both sides
+// include this file: the GLSL (scene_layout.glsl, trace_layout.glsl, trace.comp) and the C++
+// host (NativeSolver/src/vulkan/gpu_layout.hpp, whose kBuffers / kSpecConstants tables add the
+// GLSL names). Plain #defines only: the one syntax the
 // C++ and GLSL preprocessors share. Tests/native/vulkan/bindings_test.cpp reflects the compiled
 // SPIR-V and fails when a number or name disagrees with the C++ tables.
 #ifndef LIGHTSOLVER_TRACE_BINDINGS_H
@@ -31,24 +32,16 @@
 #define LS_SPEC_HAS_MIRROR 2        // HAS_MIRROR
 #define LS_SPEC_HAS_GLASS 3         // HAS_GLASS
 #define LS_SPEC_HAS_GLOSSY 4        // HAS_GLOSSY
-#define LS_SPEC_HAS_POINT 5         // HAS_POINT
-#define LS_SPEC_HAS_SPOT 6          // HAS_SPOT
-#define LS_SPEC_HAS_AREA 7          // HAS_AREA
-#define LS_SPEC_HAS_DIRECTIONAL 8   // HAS_DIRECTIONAL
-#define LS_SPEC_HAS_GRIDS 9         // HAS_GRIDS
-#define LS_SPEC_HAS_SURFACE_BINS 10 // HAS_SURFACE_BINS
-#define LS_SPEC_MANY_LUMINAIRES 11  // MANY_LUMINAIRES
-#define LS_SPEC_HAS_PHOTOMETRIC 12  // HAS_PHOTOMETRIC
-#define LS_SPEC_HAS_INSTANCES 13    // HAS_INSTANCES: movable meshes
-#define LS_SPEC_COUNT 14
+#define LS_SPEC_HAS_GRIDS 5         // HAS_GRIDS
+#define LS_SPEC_HAS_SURFACE_BINS 6  // HAS_SURFACE_BINS
+#define LS_SPEC_MANY_LUMINAIRES 7   // MANY_LUMINAIRES
+#define LS_SPEC_HAS_INSTANCES 8     // HAS_INSTANCES: movable meshes
+// Then one per luminaire type, the last ids: LS_SPEC_FIRST_LUMINAIRE + the type's code, named
+// by its entry in LS_LUMINAIRE_TYPES (shared/luminaires.h), which lists the codes.
+#define LS_SPEC_FIRST_LUMINAIRE 9
 
-// Type codes in the packed structs (Luminaire::Type and Material::Type values; the C++ side
-// asserts they agree, vulkan/gpu_scene.cpp).
-#define LS_LUMINAIRE_POINT 0
-#define LS_LUMINAIRE_SPOT 1
-#define LS_LUMINAIRE_AREA 2
-#define LS_LUMINAIRE_DIRECTIONAL 3
-#define LS_LUMINAIRE_PHOTOMETRIC 4
+// Type codes in the packed materials (Material::Type values; the C++ side asserts they agree,
+// vulkan/gpu_scene.cpp). The luminaires' are in shared/luminaires.h.
 #define LS_MATERIAL_DIFFUSE 0
 #define LS_MATERIAL_MIRROR 1
 #define LS_MATERIAL_GLASS 2

@@ -1,10 +1,12 @@
 // Bindings, push constants and specialisation constants of trace.comp. Structs and push
 // constants must match NativeSolver/src/vulkan/gpu_layout.hpp (sizes asserted there); binding
-// numbers and constant ids come from trace_bindings.h, which the C++ side includes too.
+// numbers and constant ids come from trace_bindings.h, which the C++ side includes too, and the
+// luminaire record and types from shared/luminaires.h, which it includes as well.
 #ifndef LIGHTSOLVER_TRACE_LAYOUT_GLSL
 #define LIGHTSOLVER_TRACE_LAYOUT_GLSL
 
 #include "scene_layout.glsl"
+#include "shared/luminaires.h"
 #include "trace_bindings.h"
 
 // Feature switches: the pipeline is specialised per scene so that a scene only pays for the
@@ -13,20 +15,18 @@ layout(constant_id = LS_SPEC_HAS_DIFFUSE) const bool HAS_DIFFUSE = true;
 layout(constant_id = LS_SPEC_HAS_MIRROR) const bool HAS_MIRROR = true;
 layout(constant_id = LS_SPEC_HAS_GLASS) const bool HAS_GLASS = true;
 layout(constant_id = LS_SPEC_HAS_GLOSSY) const bool HAS_GLOSSY = true;
-layout(constant_id = LS_SPEC_HAS_POINT) const bool HAS_POINT = true;
-layout(constant_id = LS_SPEC_HAS_SPOT) const bool HAS_SPOT = true;
-layout(constant_id = LS_SPEC_HAS_AREA) const bool HAS_AREA = true;
-layout(constant_id = LS_SPEC_HAS_DIRECTIONAL) const bool HAS_DIRECTIONAL = true;
 layout(constant_id = LS_SPEC_HAS_GRIDS) const bool HAS_GRIDS = true;
 layout(constant_id = LS_SPEC_HAS_SURFACE_BINS) const bool HAS_SURFACE_BINS = true;
 layout(constant_id = LS_SPEC_MANY_LUMINAIRES) const bool MANY_LUMINAIRES = true;
-layout(constant_id = LS_SPEC_HAS_PHOTOMETRIC) const bool HAS_PHOTOMETRIC = true;
 layout(constant_id = LS_SPEC_HAS_INSTANCES) const bool HAS_INSTANCES = true;  // movable meshes
+// One per luminaire type (HAS_POINT ...), keeping its branch of emit() (emit.glsl).
+#define LS_LUMINAIRE_SWITCH(name, code, has, emission) \
+  layout(constant_id = LS_SPEC_FIRST_LUMINAIRE + code) const bool has = true;
+LS_LUMINAIRE_TYPES(LS_LUMINAIRE_SWITCH)
+#undef LS_LUMINAIRE_SWITCH
 
 const uint kDiffuse = LS_MATERIAL_DIFFUSE, kMirror = LS_MATERIAL_MIRROR;
 const uint kGlass = LS_MATERIAL_GLASS, kGlossy = LS_MATERIAL_GLOSSY;
-const uint kPoint = LS_LUMINAIRE_POINT, kSpot = LS_LUMINAIRE_SPOT, kArea = LS_LUMINAIRE_AREA;
-const uint kDirectional = LS_LUMINAIRE_DIRECTIONAL, kPhotometric = LS_LUMINAIRE_PHOTOMETRIC;
 
 struct MeshInfo {
   uint material;
@@ -42,14 +42,6 @@ struct MaterialGpu {
   uint p_second;  // glossy: reflectance + specular
   uint thin;
   float ior, tau, alpha, pad;
-};
-
-struct LuminaireGpu {
-  vec3 position; uint type;
-  vec3 axis; float half_beam;
-  vec3 corner; float half_field;
-  vec3 edge1; float cos_half_field;
-  vec3 edge2; uint photometric;  // index into photometrics[] (photometric type only)
 };
 
 // A photometric luminaire's sampler (lightsolver::SamplerTables): offsets into photo_floats[]

@@ -4,6 +4,7 @@
 #include <glm/vec3.hpp>
 #include <string>
 
+#include "shared/luminaires.h"
 #include "types/luminaire_types.hpp"
 
 namespace lightsolver::detail {
@@ -23,6 +24,15 @@ EmissionSupport from_point(const PreparedLuminaire& l, double half_angle_rad);
 GlareShape no_glare(std::string why_not);
 /// Checks `key` as a direction and makes it unit length.
 void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v);
+
+/// The emit hook of a type whose emission both backends run from one text: an LS_EMISSION of
+/// Shaders/shared/luminaires.h, e.g. `shared_emission<shared::emit_point>`.
+template <void (*Emission)(const PreparedLuminaire&, vec3&, vec3&, PathRng&)>
+EmittedRay shared_emission(const PreparedLuminaire& l, PathRng& rng) {
+  EmittedRay ray;
+  Emission(l, ray.origin, ray.direction, rng);
+  return ray;
+}
 
 }  // namespace luminaire_rows
 

@@ -1,5 +1,6 @@
 // The luminaire types, one section each: scene-file keys, value checks, emission parameters and
-// the CPU emission itself. Numbers and messages are those the reader, validator, prepare() and
+// the CPU emission itself (the point's, area's and directional's are Shaders/shared/luminaires.h,
+// the text the GPU runs too). Numbers and messages are those the reader, validator, prepare() and
 // emitter had before the table; the golden results (Tests/golden) pin that nothing moved.
 #include "types/luminaire_types.hpp"
 
@@ -94,10 +95,6 @@ GlareShape small_source_glare(const Luminaire&) {
       "small-source rating is not implemented)");
 }
 
-vec3 point_on_parallelogram(const PreparedLuminaire& l, PathRng& rng) {
-  return shared::point_on_parallelogram(l.corner, l.edge1, l.edge2, rng);
-}
-
 // --- point: isotropic ---------------------------------------------------------------------
 
 constexpr const char* kPointKeys[] = {"name", "type", "flux_lm", "position"};
@@ -114,10 +111,6 @@ void check_point(const LuminaireChecks& c, Luminaire& l) {
 }
 
 void prepare_point(const Luminaire& l, PreparedLuminaire& p) { p.axis = vec3(l.direction); }
-
-EmittedRay emit_point(const PreparedLuminaire& l, PathRng& rng) {
-  return {l.position, sample_sphere(rng)};
-}
 
 EmissionSupport support_point(const PreparedLuminaire& l) {
   return from_point(l, std::numbers::pi);
@@ -199,12 +192,6 @@ void prepare_area(const Luminaire& l, PreparedLuminaire& p) {
   p.axis = vec3(glm::normalize(glm::cross(l.edge1, l.edge2)));
 }
 
-// Offset so an emitter flush with a ceiling is not blocked by the ceiling itself.
-EmittedRay emit_area(const PreparedLuminaire& l, PathRng& rng) {
-  const vec3 p = offset_ray_origin(point_on_parallelogram(l, rng), l.axis);
-  return {p, sample_cosine(l.axis, rng)};
-}
-
 EmissionSupport support_area(const PreparedLuminaire& l) {
   return from_parallelogram(l, 0.5 * std::numbers::pi);
 }
@@ -256,10 +243,6 @@ void check_directional(const LuminaireChecks& c, Luminaire& l) {
 
 void prepare_directional(const Luminaire& l, PreparedLuminaire& p) { p.axis = vec3(l.direction); }
 
-EmittedRay emit_directional(const PreparedLuminaire& l, PathRng& rng) {
-  return {offset_ray_origin(point_on_parallelogram(l, rng), l.axis), l.axis};
-}
-
 EmissionSupport support_directional(const PreparedLuminaire& l) {
   return from_parallelogram(l, 0.0);
 }
@@ -277,7 +260,7 @@ const auto kTypes = std::to_array<LuminaireType>({
      .read = read_point,
      .check = check_point,
      .prepare = prepare_point,
-     .emit = emit_point,
+     .emit = shared_emission<shared::emit_point>,
      .emitted_flux = own_flux,
      .support = support_point,
      .glare_kind = G::None,
@@ -311,7 +294,7 @@ const auto kTypes = std::to_array<LuminaireType>({
      .read = read_area,
      .check = check_area,
      .prepare = prepare_area,
-     .emit = emit_area,
+     .emit = shared_emission<shared::emit_area>,
      .emitted_flux = own_flux,
      .support = support_area,
      .glare_kind = G::LambertianArea,
@@ -328,7 +311,7 @@ const auto kTypes = std::to_array<LuminaireType>({
      .read = read_directional,
      .check = check_directional,
      .prepare = prepare_directional,
-     .emit = emit_directional,
+     .emit = shared_emission<shared::emit_directional>,
      .emitted_flux = own_flux,
      .support = support_directional,
      .glare_kind = G::None,

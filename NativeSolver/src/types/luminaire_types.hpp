@@ -5,7 +5,8 @@
 // the validator (scene.cpp), prepare() (prepared_scene.cpp), the CPU emitter (emitters.hpp),
 // the reach check (target_reach.cpp), the effects (scene_effects.cpp) and the glare terms
 // (glare/glare_terms.cpp) look the type up here instead of switching over Luminaire::Type.
-// The GPU has its own row per type (vulkan/gpu_scene.cpp, Shaders/emit.glsl): docs/solver.md,
+// The GPU's side of a type is its entry in Shaders/shared/luminaires.h (code, switch, emission;
+// the point, area and directional emissions there are also these rows' emit): docs/solver.md,
 // "Adding a luminaire type".
 #include <cstddef>
 #include <glm/vec3.hpp>

@@ -2,11 +2,15 @@
 // C++ twins of the std430 structs in Shaders/scene_layout.glsl and Shaders/trace_layout.glsl.
 // Every struct is a multiple of 16 bytes of 4-byte fields, so both sides agree byte for byte.
 // Binding numbers and specialisation constant ids come from Shaders/trace_bindings.h, which the
-// GLSL includes too; the tables at the end add the GLSL names.
+// GLSL includes too; the tables at the end add the GLSL names. The luminaire record is not a
+// twin: both sides compile the one in Shaders/shared/luminaires.h.
+#include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <type_traits>
 
-#include "trace_bindings.h"  // Shaders/, on the include path of every target embedding shaders
+#include "shared/luminaires.h"  // Shaders/, on lightsolver_lib's public include path
+#include "trace_bindings.h"     // Shaders/, on the include path of every target embedding shaders
 
 namespace lightsolver::detail::gpu {
 
@@ -46,18 +50,8 @@ struct Material {
   float ior, tau, alpha, pad;
 };
 
-struct Luminaire {
-  float position[3];
-  std::uint32_t type;  // Luminaire::Type
-  float axis[3];
-  float half_beam;
-  float corner[3];
-  float half_field;
-  float edge1[3];
-  float cos_half_field;
-  float edge2[3];
-  std::uint32_t photometric;  // index into the Photometric records (photometric type only)
-};
+/// A luminaire as trace.comp reads it: the shared record (Shaders/shared/luminaires.h).
+using Luminaire = shared::LuminaireGpu;
 
 struct Photometric {  // one photometric luminaire's sampler tables, as offsets
   float pole[3];
@@ -116,25 +110,40 @@ static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16)
 static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
 static_assert(sizeof(TracePush) == 64);
+// The shared record in C++ (glm::vec3 is three packed floats) at std430's offsets in GLSL, where
+// a vec3 is 16-byte aligned and the 4-byte field after it fills its last word.
+static_assert(std::is_trivially_copyable_v<Luminaire> && alignof(Luminaire) == 4);
+static_assert(offsetof(Luminaire, position) == 0 && offsetof(Luminaire, type) == 12 &&
+              offsetof(Luminaire, axis) == 16 && offsetof(Luminaire, half_beam_rad) == 28 &&
+              offsetof(Luminaire, corner) == 32 && offsetof(Luminaire, half_field_rad) == 44 &&
+              offsetof(Luminaire, edge1) == 48 && offsetof(Luminaire, cos_half_field) == 60 &&
+              offsetof(Luminaire, edge2) == 64 && offsetof(Luminaire, photometric) == 76);
+
+/// The number of luminaire types the GPU has (entries of LS_LUMINAIRE_TYPES).
+#define LS_COUNT_TYPE(name, code, has, emission) +1
+inline constexpr std::uint32_t kGpuLuminaireTypeCount = 0 LS_LUMINAIRE_TYPES(LS_COUNT_TYPE);
+#undef LS_COUNT_TYPE
 
 /// Specialisation constant ids of trace.comp; the numbers come from Shaders/trace_bindings.h.
+/// The luminaire types' switches follow kFirstLuminaireSwitch, one per code (luminaire_switch).
 enum SpecId : std::uint32_t {
   kWorkgroupSize = LS_SPEC_WORKGROUP_SIZE,
   kHasDiffuse = LS_SPEC_HAS_DIFFUSE,
   kHasMirror = LS_SPEC_HAS_MIRROR,
   kHasGlass = LS_SPEC_HAS_GLASS,
   kHasGlossy = LS_SPEC_HAS_GLOSSY,
-  kHasPoint = LS_SPEC_HAS_POINT,
-  kHasSpot = LS_SPEC_HAS_SPOT,
-  kHasArea = LS_SPEC_HAS_AREA,
-  kHasDirectional = LS_SPEC_HAS_DIRECTIONAL,
   kHasGrids = LS_SPEC_HAS_GRIDS,
   kHasSurfaceBins = LS_SPEC_HAS_SURFACE_BINS,
   kManyLuminaires = LS_SPEC_MANY_LUMINAIRES,
-  kHasPhotometric = LS_SPEC_HAS_PHOTOMETRIC,
   kHasInstances = LS_SPEC_HAS_INSTANCES,
-  kSpecCount = LS_SPEC_COUNT
+  kFirstLuminaireSwitch = LS_SPEC_FIRST_LUMINAIRE,
+  kSpecCount = LS_SPEC_FIRST_LUMINAIRE + kGpuLuminaireTypeCount
 };
+
+/// The switch of the luminaire type with GPU code `code` (its HAS_* constant).
+constexpr SpecId luminaire_switch(std::uint32_t code) {
+  return static_cast<SpecId>(kFirstLuminaireSwitch + code);
+}
 
 /// Storage-buffer bindings (descriptor set 0) of trace.comp; the numbers come from
 /// Shaders/trace_bindings.h.
@@ -193,26 +202,29 @@ struct SpecInfo {
   const char* name;
 };
 
-/// Every specialisation constant, in id order (checked against the shader by bindings_test).
+/// Every specialisation constant, in id order (checked against the shader by bindings_test); the
+/// luminaire types' rows are generated from their list.
+// Unformatted: clang-format would indent the rows under the brace for the #define among them.
+// clang-format off
 inline constexpr SpecInfo kSpecConstants[] = {
     {kWorkgroupSize, "local_size_x"},
     {kHasDiffuse, "HAS_DIFFUSE"},
     {kHasMirror, "HAS_MIRROR"},
     {kHasGlass, "HAS_GLASS"},
     {kHasGlossy, "HAS_GLOSSY"},
-    {kHasPoint, "HAS_POINT"},
-    {kHasSpot, "HAS_SPOT"},
-    {kHasArea, "HAS_AREA"},
-    {kHasDirectional, "HAS_DIRECTIONAL"},
     {kHasGrids, "HAS_GRIDS"},
     {kHasSurfaceBins, "HAS_SURFACE_BINS"},
     {kManyLuminaires, "MANY_LUMINAIRES"},
-    {kHasPhotometric, "HAS_PHOTOMETRIC"},
     {kHasInstances, "HAS_INSTANCES"},
+#define LS_SPEC_ROW(name, code, has, emission) {luminaire_switch(code), #has},
+    LS_LUMINAIRE_TYPES(LS_SPEC_ROW)
+#undef LS_SPEC_ROW
 };
+// clang-format on
 
 // Row i must be number i: no gap, no duplicate, no row missing (trace_bindings.h numbers them
-// 0..count-1, and the descriptor set layout binds buffers_[i] at binding i).
+// 0..count-1, and the descriptor set layout binds buffers_[i] at binding i). For the luminaire
+// switches this holds LS_LUMINAIRE_TYPES's codes to 0, 1, 2, ... in order.
 constexpr bool numbered_in_order() {
   for (std::uint32_t i = 0; i < std::size(kBuffers); ++i) {
     if (kBuffers[i].binding != i) return false;

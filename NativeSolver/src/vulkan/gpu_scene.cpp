@@ -33,19 +33,21 @@ gpu::Material pack_material(const Material& m) {
   return g;
 }
 
-using L = Luminaire::Type;
 using M = Material::Type;
 
-// The GPU's row of each luminaire type: its code in the packed struct and the switch that keeps
-// its branch of emit.glsl. One row per type of core's table (luminaire_types.cpp), checked by
-// gpu_luminaire_type() and vulkan_tests' GpuLuminaireTypes.
-const GpuLuminaireType kGpuLuminaireTypes[] = {
-    {L::Point, LS_LUMINAIRE_POINT, gpu::kHasPoint},
-    {L::Spot, LS_LUMINAIRE_SPOT, gpu::kHasSpot},
-    {L::Area, LS_LUMINAIRE_AREA, gpu::kHasArea},
-    {L::Directional, LS_LUMINAIRE_DIRECTIONAL, gpu::kHasDirectional},
-    {L::Photometric, LS_LUMINAIRE_PHOTOMETRIC, gpu::kHasPhotometric},
-};
+// The GPU's row of each luminaire type: its code in the packed record and the switch that keeps
+// its branch of emit.glsl, generated from LS_LUMINAIRE_TYPES (Shaders/shared/luminaires.h). Each
+// code must be its Luminaire::Type value; gpu_luminaire_type() and vulkan_tests'
+// GpuLuminaireTypes check that every row of core's table (luminaire_types.cpp) has one.
+#define LS_GPU_ROW(name, code, has, emission) \
+  {Luminaire::Type::name, code, gpu::luminaire_switch(code)},
+const GpuLuminaireType kGpuLuminaireTypes[] = {LS_LUMINAIRE_TYPES(LS_GPU_ROW)};
+#undef LS_GPU_ROW
+#define LS_SAME_CODE(name, code, has, emission)                  \
+  static_assert(static_cast<int>(Luminaire::Type::name) == code, \
+                "LS_LUMINAIRE_TYPES: " #name "'s code is not its Luminaire::Type value");
+LS_LUMINAIRE_TYPES(LS_SAME_CODE)
+#undef LS_SAME_CODE
 
 // Materials are packed by their enum value; the shader's codes come from trace_bindings.h.
 static_assert(static_cast<int>(M::Diffuse) == LS_MATERIAL_DIFFUSE &&
@@ -53,18 +55,21 @@ static_assert(static_cast<int>(M::Diffuse) == LS_MATERIAL_DIFFUSE &&
               static_cast<int>(M::Glass) == LS_MATERIAL_GLASS &&
               static_cast<int>(M::Glossy) == LS_MATERIAL_GLOSSY);
 
+// The record holds what the type's prepare hook left in the prepared luminaire, field for field
+// whatever the type (the record's fields carry PreparedLuminaire's names): a type whose
+// emission reads only these fields needs no packing of its own.
 gpu::Luminaire pack_luminaire(const PreparedLuminaire& l) {
   gpu::Luminaire g{};
-  put(g.position, l.position);
+  g.position = l.position;
   g.type = gpu_luminaire_type(l.type).code;
-  put(g.axis, l.axis);
-  g.half_beam = l.half_beam_rad;
-  put(g.corner, l.corner);
-  g.half_field = l.half_field_rad;
-  put(g.edge1, l.edge1);
+  g.axis = l.axis;
+  g.half_beam_rad = l.half_beam_rad;
+  g.corner = l.corner;
+  g.half_field_rad = l.half_field_rad;
+  g.edge1 = l.edge1;
   g.cos_half_field = l.cos_half_field;
-  put(g.edge2, l.edge2);
-  return g;
+  g.edge2 = l.edge2;
+  return g;  // photometric: pack_luminaires sets it for a photometric luminaire
 }
 
 gpu::Grid pack_grid(const PreparedGrid& p) {

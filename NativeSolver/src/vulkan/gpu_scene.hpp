@@ -27,11 +27,12 @@ struct GpuSceneData {
   std::vector<std::uint64_t> photo_cdf53;       // their cell thresholds
   std::vector<GpuInstanceRoot> instance_roots;  // one per movable mesh
   std::vector<gpu::Instance> instances;         // their current placement
-  std::vector<vkw::SpecConstant> features;      // ids kHasDiffuse .. kHasInstances
+  std::vector<vkw::SpecConstant> features;      // every id of kSpecConstants but the workgroup's
 };
 
-/// The GPU side of a luminaire type: its code in gpu::Luminaire::type (LS_LUMINAIRE_* of
-/// Shaders/trace_bindings.h) and the specialisation constant that keeps its emit.glsl branch.
+/// The GPU side of a luminaire type, generated from its entry in LS_LUMINAIRE_TYPES
+/// (Shaders/shared/luminaires.h): its code in gpu::Luminaire::type and the specialisation
+/// constant that keeps its branch of emit() (emit.glsl).
 struct GpuLuminaireType {
   Luminaire::Type type;
   std::uint32_t code;

@@ -3,7 +3,8 @@
 // does not handle, fails: emission and its flux, reach (support and the target's record), glare
 // shape, the effect and its name in the results schema, the bin layout that results,
 // contributions and rescale read, and the type's name and result fields in the results schema.
-// The GPU's rows are held by vulkan_tests (GpuLuminaireTypes); Python layers (workbench export,
+// The GPU's rows (LS_LUMINAIRE_TYPES, Shaders/shared/luminaires.h) are held by vulkan_tests
+// (GpuLuminaireTypes, Bindings.EmbeddedShaderHasEveryBinding); Python layers (workbench export,
 // report) by Tests/python/test_type_tables.py.
 #include <gtest/gtest.h>
 

@@ -5,6 +5,7 @@
 // checked on the optimised SPIR-V the backend loads too. No device needed.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -211,8 +212,9 @@ TEST(Bindings, EmbeddedShaderHasEveryBinding) {
   }
 }
 
-// Every luminaire type of core's table has a GPU row, with its own code and its own switch, and
-// the code is the enum value the CPU side uses (the shader's LS_LUMINAIRE_* constants).
+// Every luminaire type of core's table has a GPU row (generated from LS_LUMINAIRE_TYPES,
+// Shaders/shared/luminaires.h), with its own code and its own switch, and the code is the enum
+// value the CPU side uses; the GPU has no row core does not have.
 TEST(GpuLuminaireTypes, OneRowPerCoreType) {
   std::set<std::uint32_t> codes, features;
   for (const auto& type : detail::luminaire_types()) {
@@ -221,7 +223,22 @@ TEST(GpuLuminaireTypes, OneRowPerCoreType) {
     EXPECT_EQ(row.code, static_cast<std::uint32_t>(type.type)) << type.name;
     EXPECT_TRUE(codes.insert(row.code).second) << type.name;
     EXPECT_TRUE(features.insert(row.feature).second) << type.name;
+    EXPECT_EQ(row.feature, detail::gpu::luminaire_switch(row.code)) << type.name;
     EXPECT_TRUE(host_specs().count(row.feature)) << type.name;
+  }
+  EXPECT_EQ(detail::gpu::kGpuLuminaireTypeCount, detail::luminaire_types().size());
+}
+
+// The switch names the list gives are the shader's: the non-optimised SPIR-V declares HAS_<TYPE>
+// at each type's id, for the type the scene file names <type>.
+TEST(GpuLuminaireTypes, SwitchesAreNamedAfterTheirTypes) {
+  const Interface shader = reflect(kTraceNamedSpirv);
+  for (const auto& type : detail::luminaire_types()) {
+    std::string expected = "HAS_";
+    for (const char* c = type.name; *c; ++c) expected += static_cast<char>(std::toupper(*c));
+    const auto it = shader.specs.find(detail::gpu_luminaire_type(type.type).feature);
+    ASSERT_NE(it, shader.specs.end()) << type.name;
+    EXPECT_EQ(it->second, expected) << type.name;
   }
 }
 
@@ -256,8 +273,8 @@ TEST(Bindings, FeaturesAreTheSceneAnalysis) {
   EXPECT_EQ(on[g::kHasSurfaceBins], 1u);
   EXPECT_EQ(on[g::kManyLuminaires], 0u);
   EXPECT_EQ(on[g::kHasInstances], 0u);
-  EXPECT_EQ(on[g::kHasSpot], 1u);
-  EXPECT_EQ(on[g::kHasPoint], 0u);
+  EXPECT_EQ(on[detail::gpu_luminaire_type(Luminaire::Type::Spot).feature], 1u);
+  EXPECT_EQ(on[detail::gpu_luminaire_type(Luminaire::Type::Point).feature], 0u);
 }
 
 }  // namespace

@@ -1,0 +1,86 @@
+// The luminaire types as the GPU sees them, one text for the shaders (trace_layout.glsl,
+// emit.glsl) and the C++ (vulkan/gpu_layout.hpp, vulkan/gpu_scene.cpp, types/luminaire_rows.hpp):
+// the packed record every luminaire becomes, the list of types, and each type's emission where
+// both backends run the same text. Written in the subset of prelude.h.
+//
+// A type whose emission reads only the record's fields is one entry of LS_LUMINAIRE_TYPES and
+// one LS_EMISSION function here; everything else of the GPU (its specialisation constant, its
+// branch of emit(), its code check, its row in the host's tables) is generated from the entry
+// (docs/solver.md, "Adding a luminaire type").
+#ifndef LIGHTSOLVER_SHARED_LUMINAIRES_H
+#define LIGHTSOLVER_SHARED_LUMINAIRES_H
+
+#include "sampling.h"
+
+// One entry per luminaire type: X(name, code, switch, emission).
+// - name: its Luminaire::Type enumerator (C++ asserts code == the enumerator's value);
+// - code: LuminaireGpu::type, 0, 1, 2, ... in order; its specialisation constant's id is
+//   LS_SPEC_FIRST_LUMINAIRE + code (trace_bindings.h);
+// - switch: the GLSL name of that constant (on when the scene has the type's emission effect);
+// - emission: the GLSL function emit() calls, of the LS_EMISSION signature. Here for the types
+//   both backends emit alike; the spot's (emit.glsl) and the photometric's (photometric.glsl)
+//   differ from the CPU's on purpose (docs/solver.md, "Physics written once").
+// Function-like macros are the one form of code generation glslc's preprocessor and C++'s share.
+#define LS_LUMINAIRE_TYPES(X)                          \
+  X(Point, 0, HAS_POINT, emit_point)                   \
+  X(Spot, 1, HAS_SPOT, emit_spot)                      \
+  X(Area, 2, HAS_AREA, emit_area)                      \
+  X(Directional, 3, HAS_DIRECTIONAL, emit_directional) \
+  X(Photometric, 4, HAS_PHOTOMETRIC, emit_photometric)
+
+#ifdef __cplusplus
+namespace lightsolver::shared {
+#endif
+
+// A luminaire as trace.comp reads it (std430: each vec3 is followed by a 4-byte field, so C++'s
+// glm::vec3 lands on the same offsets; vulkan/gpu_layout.hpp asserts them). The fields carry
+// PreparedLuminaire's names, so an emission below reads either the same way; packing copies
+// them whatever the type (vulkan/gpu_scene.cpp).
+struct LuminaireGpu {
+  vec3 position;
+  uint type;  // its code in LS_LUMINAIRE_TYPES
+  vec3 axis;
+  float half_beam_rad;
+  vec3 corner;
+  float half_field_rad;
+  vec3 edge1;
+  float cos_half_field;
+  vec3 edge2;
+  uint photometric;  // index into photometrics[] (the photometric type only)
+};
+
+// Every emission has this signature: from luminaire l, a photon's origin and direction, drawn
+// from the path's stream. In C++ it takes any luminaire with the record's fields (the CPU's
+// PreparedLuminaire); in GLSL the record.
+#ifdef __cplusplus
+#define LS_EMISSION(name) \
+  template <class Lum>    \
+  inline void name(const Lum& l, vec3& origin, vec3& dir, PathRng& rng)
+#else
+#define LS_EMISSION(name) void name(LuminaireGpu l, out vec3 origin, out vec3 dir)
+#endif
+
+// Isotropic from a point.
+LS_EMISSION(emit_point) {
+  origin = l.position;
+  dir = sample_sphere(LS_RNG_ONLY_ARG);
+}
+
+// Lambertian from a parallelogram (axis: edge1 x edge2, normalised), pushed off the opening's
+// plane so that an emitter flush with a ceiling is not blocked by the ceiling itself.
+LS_EMISSION(emit_area) {
+  origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2 LS_RNG_ARG), l.axis);
+  dir = sample_cosine(l.axis LS_RNG_ARG);
+}
+
+// A parallel beam (sunlight) along the axis through a parallelogram opening.
+LS_EMISSION(emit_directional) {
+  origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2 LS_RNG_ARG), l.axis);
+  dir = l.axis;
+}
+
+#ifdef __cplusplus
+}  // namespace lightsolver::shared
+#endif
+
+#endif
