@@ -170,6 +170,9 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
     per_lum = meta.get("luminaires") if isinstance(meta.get("luminaires"), dict) else {}
     by_name = {lum.name: lum for lum in traced}
     rows: Dict[Tuple[Any, ...], LuminaireRow] = {}
+    # The UGR table of each file content, computed once (the workbench copies one file per
+    # luminaire; the table takes seconds).
+    tables: Dict[Optional[str], Optional[UgrTableView]] = {}
     for lum in scene.get("luminaires", []):
         name = str(lum.get("name", ""))
         extra = per_lum.get(name) if isinstance(per_lum.get(name), dict) else {}
@@ -197,10 +200,13 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
             row.file_watts = finite(summary.get("input_watts")) or None
             if row.power_w is None and row.file_watts:
                 row.power_w, row.power_from_file = row.file_watts, True
-            row.ugr_table = ugr_table_view(file if os.path.isabs(file) else
-                                           os.path.join(files.base_dir, file))
-            row.ugr_4h8h = row.ugr_table.headline() if row.ugr_table else None
         same_file = _content_key(file, files.base_dir)
+        if summary is not None:
+            if same_file not in tables:
+                tables[same_file] = ugr_table_view(file if os.path.isabs(file) else
+                                                   os.path.join(files.base_dir, file))
+            row.ugr_table = tables[same_file]
+            row.ugr_4h8h = row.ugr_table.headline() if row.ugr_table else None
         key = (row.kind, same_file, row.flux_lm, row.rated_flux_lm, row.tilt_factor,
                row.dimming, row.maintenance_factor, row.power_w, row.power_from_file)
         entry = rows.setdefault(key, row)

@@ -59,8 +59,20 @@ class Provenance:
 def content_sha256(results: Dict[str, Any]) -> str:
     """SHA-256 of the results' content as canonical JSON (keys sorted, no spaces, UTF-8):
     the same for the same results whatever their file's layout."""
-    text = json.dumps(results, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+    import lightsolver_results
+
+    # solve()'s and rescale()'s dicts carry numpy cell arrays beside the layout: the file's
+    # content is the layout alone.
+    text = json.dumps(lightsolver_results.plain(results), sort_keys=True, separators=(",", ":"),
+                      ensure_ascii=False, default=_listed)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _listed(value: Any) -> Any:
+    """A numpy array (or scalar) left inside the results, as JSON would hold it."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise TypeError(f"not JSON data: {type(value).__name__}")
 
 
 def _text(value: Any) -> Optional[str]:
