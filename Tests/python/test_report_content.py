@@ -156,6 +156,10 @@ def test_results_that_are_a_light_scene_say_so_and_rescale_from_it():
     evening = lightsolver.rescale(results, {"Window row": 0.5})
     shown = build(scene, evening, date=DATE)
     assert shown.shown_scene == "light scene Evening (Window row 50 %)"
+    # The cover states the installation at full output, whatever the results show.
+    assert shown.installed_flux_lm == pytest.approx(results["total_flux_lm"], rel=1e-12)
+    assert shown.total_flux_lm == pytest.approx(evening["total_flux_lm"], rel=1e-12)
+    assert shown.total_flux_lm < 0.8 * shown.installed_flux_lm
     for mine, theirs in zip(shown.light_scenes, traced.light_scenes):
         for a, b in zip(mine.areas, theirs.areas):
             assert a.em.value == pytest.approx(b.em.value, rel=1e-12)

@@ -112,6 +112,12 @@ class Report:
         return sum(r.total_flux_lm for r in self.luminaires)
 
     @property
+    def installed_flux_lm(self) -> float:
+        """The installation's flux at full output (TILT applied, no light scene's dimming):
+        what the cover states whatever the results show."""
+        return sum(r.rated_flux_lm * r.tilt_factor * r.count for r in self.luminaires)
+
+    @property
     def tilted(self) -> bool:
         """Some luminaire's flux has a TILT table's factor other than 1 in it."""
         return any(r.tilt_factor != 1.0 for r in self.luminaires)
