@@ -293,3 +293,27 @@ def test_every_grid_prints_its_intervals_without_requirements():
                             ("uniformity_ci_low", "uniformity_ci_high", fmt.ratio),
                             ("ud_ci_low", "ud_ci_high", fmt.ratio)):
         assert f"[{show(grid[low])}, {show(grid[high])}]" in glance
+
+
+def test_an_observer_grid_with_many_lines_of_sight_lists_each_positions_largest(tmp_path):
+    """Every 15 degrees (24 lines of sight) does not fit a column each: each eye position's
+    largest UGR and where it looks."""
+    scene = json.loads((FIXTURES / "workbench.scene.json").read_text())
+    grid = next(t for t in scene["targets"] if t["type"] == "observer_grid")
+    grid["view_step_deg"] = 15
+    scene["settings"].update(photons=20_000, decide=False)
+    shutil.copytree(FIXTURES / "photometry", tmp_path / "photometry")
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    results = lightsolver_report.trace(path)
+    entry = next(t for t in results["targets"] if t["type"] == "observer_grid")
+    area = next(a for a in build(path, results, date=DATE).areas if a.type == "observer_grid")
+    assert len(area.observer_directions) == 24
+    for (position, top, direction), row in zip(area.point_maxima, entry["observer_grid"]["ugr"]):
+        known = [u for u in row if u is not None]
+        assert top == (max(known) if known else None)
+        if top is not None:
+            assert direction == tuple(entry["observer_grid"]["view_directions"][row.index(top)])
+    html = render_html(path, results, date=DATE)
+    assert "largest UGR at each eye position over its 24 lines of sight" in html
+    assert "<th class=\"r\">15°</th>" not in html  # no column per line of sight

@@ -130,6 +130,18 @@ class Area:
         return max(known, key=lambda v: v.to_decide_photons) if known else None
 
     @property
+    def point_maxima(self) -> List[Tuple[Vec, Optional[float], Optional[Vec]]]:
+        """An observer grid's positions with the largest UGR over its lines of sight and the
+        line of sight it is seen in (None: no glare there), for grids with too many lines of
+        sight for one column each."""
+        out = []
+        for position, row in zip(self.observer_positions, self.observer_ugr):
+            known = [(u, d) for u, d in zip(row, self.observer_directions) if u is not None]
+            top = max(known, key=lambda ud: ud[0]) if known else (None, None)
+            out.append((position, top[0], top[1]))
+        return out
+
+    @property
     def stats(self) -> List[Tuple[str, Stat]]:
         """(key, statistic) of the illuminance statistics this area has, in print order."""
         found = [("em", self.em), ("emin", self.emin), ("emax", self.emax), ("u0", self.u0),
