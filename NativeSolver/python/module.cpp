@@ -96,7 +96,7 @@ py::dict photometry_summary_dict(const std::string& path) {
   d["field_angle_deg"] = py::make_tuple(angle(f.field_angle_deg[0]), angle(f.field_angle_deg[1]));
   d["warnings"] = data.warnings;
   d["keywords"] = data.keywords;        // what the file says of itself: MANUFAC, LUMCAT, LAMP...
-  d["input_watts"] = data.input_watts;  // IES input watts (0 when the file gives none)
+  d["input_watts"] = data.input_watts;  // IES input watts, LDT wattage (0 when not given)
   d["text"] = photometry_summary(data);
   return d;
 }

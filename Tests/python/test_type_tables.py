@@ -15,7 +15,7 @@ from conftest import SOURCE_DIR
 
 SCHEMA = json.loads((SOURCE_DIR / "docs" / "schemas" / "results.schema.json").read_text())
 WORKBENCH = SOURCE_DIR / "Workbench" / "lighting"
-REPORT_MODEL = SOURCE_DIR / "NativeSolver" / "python" / "lightsolver_report" / "model.py"
+REPORT_MODEL = SOURCE_DIR / "NativeSolver" / "python" / "lightsolver_report" / "areas.py"
 
 #: Solver luminaire types the workbench offers no object for, and why.
 NOT_IN_WORKBENCH: Dict[str, str] = {

@@ -63,6 +63,20 @@ class ControlGroups(DocTestCase):
         self.assertTrue(analysis.Contributions)
         self.assertTrue(analysis_mod.settings(analysis)["contributions"])
 
+    def test_light_scenes_are_exported_for_the_report(self):
+        """The scene's metadata.light_scenes (docs/scene-format.md, Metadata): each light
+        scene's levels, which the report shows rescaled; a scene whose levels do not pair up
+        is left out (Check names it)."""
+        doc, analysis = _group_office()
+        lighting.make_light_scene(analysis, "Evening", {"Back row": 0.5})
+        broken = lighting.make_light_scene(analysis, "Broken")
+        broken.Levels = [1.0]
+        from lighting.export.scene import build_scene
+
+        scene = build_scene(analysis).scene
+        self.assertEqual(scene["metadata"]["light_scenes"],
+                         [{"name": "Evening", "levels": {"Window row": 1.0, "Back row": 0.5}}])
+
 
 class LightScenes(DocTestCase):
     def test_a_new_scene_has_every_group_at_full_and_is_shown(self):

@@ -95,7 +95,7 @@ struct PhotometricData {
   double ballast_factor = 1.0;
   double ballast_lamp_factor = 1.0;   ///< applied for LM-63-1986..1995 only
   double file_generation_type = 0.0;  ///< LM-63-2019 field (0 when absent)
-  double input_watts = 0.0;
+  double input_watts = 0.0;  ///< IES input watts; EULUMDAT the lamp sets' wattage incl. ballast
   double light_output_ratio_percent = 0.0;      ///< EULUMDAT LORL (0 when unknown)
   double downward_flux_fraction_percent = 0.0;  ///< EULUMDAT DFF (0 when unknown)
 

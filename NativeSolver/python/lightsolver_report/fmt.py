@@ -123,5 +123,27 @@ def ugr(value: Optional[float]) -> str:
     return "–" if value is None else f"{value:.1f}"
 
 
+def azimuth(direction: Any) -> Optional[float]:
+    """A line of sight seen from above, in degrees from +x toward +y (0 … 360); None for a
+    vertical or missing one."""
+    try:
+        x, y = float(direction[0]), float(direction[1])
+    except (TypeError, ValueError, IndexError):
+        return None
+    if not (math.isfinite(x) and math.isfinite(y)) or (x == 0 and y == 0):
+        return None
+    # Rounded first: a direction one ulp off an axis (the workbench's 2.2e-16) reads 90°.
+    angle = round(math.degrees(math.atan2(y, x)), 6) % 360.0
+    return angle + 0.0  # no "-0"
+
+
+def stopped(reason: Optional[str]) -> str:
+    """How the calculation ended, for a client (the results' ``stop_reason``)."""
+    from lightsolver_report.wording import stopped as worded
+
+    return worded(reason)
+
+
 FILTERS = {"ugr": ugr, "lux": lux, "ratio": ratio, "ratio2": ratio2, "number": number, "sci": sci,
-           "count": count, "seconds": seconds, "percent": percent, "metres": metres}
+           "count": count, "seconds": seconds, "percent": percent, "metres": metres,
+           "azimuth": azimuth, "stopped": stopped}

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The luminaire schedule and the materials table of the report, from the scene, what the
-photometric files say of themselves (``lightsolver.photometry_summary``) and the flux each
-luminaire emitted as the solver traced it (the results' ``luminaires``, read by
-``lightsolver_results``)."""
+"""The luminaire schedule of the report, from the scene, what the photometric files say of
+themselves (``lightsolver.photometry_summary``) and the flux each luminaire emitted as the
+solver traced it (the results' ``luminaires``, read by ``lightsolver_results``). Power is the
+scene's ``power_w``, else the photometric file's input watts (said so on the page). The
+materials table moved to ``surfaces.py`` (listed by surface)."""
 from __future__ import annotations
 
 import hashlib
@@ -51,6 +52,13 @@ class LuminaireRow:
     dimming: float = 1.0  # its group's factor in rescaled results
     maintenance_factor: Optional[float] = None
     power_w: Optional[float] = None
+    #: The power is the photometric file's input watts (the scene gives no ``power_w``).
+    power_from_file: bool = False
+
+    @property
+    def title(self) -> str:
+        """What the client reads as the luminaire: the file's product name, else its kind."""
+        return self.product or self.kind
 
     @property
     def initial_flux_lm(self) -> Optional[float]:
@@ -71,22 +79,10 @@ class LuminaireRow:
 
     @property
     def efficacy_lm_w(self) -> Optional[float]:
-        return self.flux_lm / self.power_w if self.power_w else None
-
-
-@dataclass
-class MaterialRow:
-    """A material and the surfaces that use it."""
-
-    name: str
-    type: str
-    reflectance: Optional[float] = None
-    specular: Optional[float] = None
-    roughness: Optional[float] = None
-    transmittance: Optional[float] = None
-    ior: Optional[float] = None
-    thin: Optional[bool] = None
-    used_by: List[str] = field(default_factory=list)
+        """Luminaire efficacy at full output: the initial flux (before maintenance, TILT and
+        dimming) per watt."""
+        flux = self.initial_flux_lm or self.rated_flux_lm
+        return flux / self.power_w if self.power_w else None
 
 
 def _keywords(summary: Dict[str, Any]) -> Dict[str, str]:
@@ -174,6 +170,9 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
     per_lum = meta.get("luminaires") if isinstance(meta.get("luminaires"), dict) else {}
     by_name = {lum.name: lum for lum in traced}
     rows: Dict[Tuple[Any, ...], LuminaireRow] = {}
+    # The UGR table of each file content, computed once (the workbench copies one file per
+    # luminaire; the table takes seconds).
+    tables: Dict[Optional[str], Optional[UgrTableView]] = {}
     for lum in scene.get("luminaires", []):
         name = str(lum.get("name", ""))
         extra = per_lum.get(name) if isinstance(per_lum.get(name), dict) else {}
@@ -199,12 +198,17 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
                               f"{summary.get('format_version', '')}".strip()
             row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
             row.file_watts = finite(summary.get("input_watts")) or None
-            row.ugr_table = ugr_table_view(file if os.path.isabs(file) else
-                                           os.path.join(files.base_dir, file))
-            row.ugr_4h8h = row.ugr_table.headline() if row.ugr_table else None
+            if row.power_w is None and row.file_watts:
+                row.power_w, row.power_from_file = row.file_watts, True
         same_file = _content_key(file, files.base_dir)
+        if summary is not None:
+            if same_file not in tables:
+                tables[same_file] = ugr_table_view(file if os.path.isabs(file) else
+                                                   os.path.join(files.base_dir, file))
+            row.ugr_table = tables[same_file]
+            row.ugr_4h8h = row.ugr_table.headline() if row.ugr_table else None
         key = (row.kind, same_file, row.flux_lm, row.rated_flux_lm, row.tilt_factor,
-               row.dimming, row.maintenance_factor, row.power_w)
+               row.dimming, row.maintenance_factor, row.power_w, row.power_from_file)
         entry = rows.setdefault(key, row)
         entry.names.append(str(labels.get(name, name)))
         if file is not None and file not in entry.files:
@@ -310,34 +314,3 @@ def _summary(file: str, base_dir: str, photometry: Optional[PhotometryFn],
         return None
     warnings.extend(f"{file}: {str(w).replace(path, file)}" for w in summary.get("warnings", []))
     return summary
-
-
-# --- materials --------------------------------------------------------------------------------
-
-def build_materials(scene: Dict[str, Any],
-                    defaults: Optional[Dict[str, Dict[str, Any]]]) -> List[MaterialRow]:
-    """Each material with its factors (the solver's defaults filled in) and the surfaces using
-    it, named by their labels (a mesh ``Object.part`` is named after ``Object``)."""
-    meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
-    labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
-    used: Dict[str, List[str]] = {}
-    for mesh in scene.get("meshes", []):
-        name = str(mesh.get("name", ""))
-        obj = name.split(".", 1)[0]
-        label = str(labels.get(name, labels.get(obj, name)))
-        users = used.setdefault(str(mesh.get("material", "")), [])
-        if label not in users:
-            users.append(label)
-    rows = []
-    for name, mat in scene.get("materials", {}).items():
-        kind = str(mat.get("type", "diffuse"))
-        values = dict((defaults or {}).get(kind, {}))
-        values.update({k: v for k, v in mat.items() if k != "type"})
-        rows.append(MaterialRow(name=name, type=kind, reflectance=finite(values.get("reflectance")),
-                                specular=finite(values.get("specular")),
-                                roughness=finite(values.get("roughness")),
-                                transmittance=finite(values.get("transmittance")),
-                                ior=finite(values.get("ior")),
-                                thin=values.get("thin") if kind == "glass" else None,
-                                used_by=used.get(name, [])))
-    return rows

@@ -78,6 +78,7 @@ struct LampSets {
   int lamps = 0;
   std::string types;
   int flux_line = 0;
+  double watts = 0.0;  ///< sum of the sets' wattage including ballast (0: not stated)
 };
 
 // Field 26 and its n-line groups 26a..26f (grouped by field: all counts, then all types...).
@@ -98,7 +99,9 @@ LampSets read_lamp_sets(LineReader& in) {
   }
   for (long i = 0; i < n; ++i) in.text("colour temperature");
   for (long i = 0; i < n; ++i) in.text("colour rendering index");
-  for (long i = 0; i < n; ++i) in.number("lamp wattage");
+  // Field 26f, "wattage including ballast" per set: the luminaire's input power (the report
+  // prints it where the scene gives no power_w). A negative one is no power at all.
+  for (long i = 0; i < n; ++i) sets.watts += std::max(0.0, in.number("lamp wattage"));
   return sets;
 }
 
@@ -213,6 +216,7 @@ PhotometricData parse_ldt(std::string_view text, const std::string& source_name)
   data.absolute_photometry = lamps.absolute;
   data.rated_lumens_lm = lamps.flux_lm;
   data.lamp_count = lamps.lamps;
+  data.input_watts = lamps.watts;
   if (!(lamps.flux_lm > 0.0))
     fail(source_name, lamps.flux_line, "lamp flux must be > 0 to turn cd/klm into candela");
   for (int i = 0; i < 10; ++i) in.number("direct ratio");

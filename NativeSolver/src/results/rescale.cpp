@@ -204,9 +204,9 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
   }
   for (std::size_t i = 0; i < scene_targets.size(); ++i) {
     const auto grid = eyes.find(i);
-    TargetResult t =
-        detail::make_target(scene_targets[i], bins, tallies, layout[i], r.confidence, r.judged,
-                            nullptr, grid == eyes.end() ? nullptr : grid->second.get());
+    TargetResult t = detail::make_target(scene_targets[i], bins, tallies, layout[i], r.confidence,
+                                         /*grid_intervals=*/true, nullptr,
+                                         grid == eyes.end() ? nullptr : grid->second.get());
     if (t.is_observer && !t.observer_grid) {
       t.glare = glare.observer(in.targets[i].glare.value(), luminaire_factor, t.name, t.estimate,
                                source, at(i));

@@ -401,8 +401,10 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
-  r.targets = detail::all_targets(scene, prepared, tallies, r.photons, r.confidence, r.judged,
-                                  r.contributions);
+  // The final results give every grid its Emin/Emax/U0/Ud intervals, judged or not (a report
+  // prints them always); the batch looks above compute them only when they judge.
+  r.targets = detail::all_targets(scene, prepared, tallies, r.photons, r.confidence,
+                                  /*grid_intervals=*/true, r.contributions);
   r.groups = detail::group_results(
       scene, prepared,
       detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));

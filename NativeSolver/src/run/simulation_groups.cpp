@@ -125,7 +125,8 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
     const double factor = traced > 0.0 ? flux_lm[g] / traced : 0.0;
     for (std::uint32_t l : p.groups[g].luminaires) luminaires[l].flux_lm *= factor;
   }
-  r.targets = detail::all_targets(scene, p, tallies, confidence, r.judged, false, &luminaires);
+  r.targets = detail::all_targets(scene, p, tallies, confidence, /*grid_intervals=*/true, false,
+                                  &luminaires);
   r.groups = detail::group_results(scene, p, tallies.photons);
   std::vector<double> dimming(groups, 0.0);
   for (std::size_t g = 0; g < groups; ++g) {

@@ -207,7 +207,7 @@ void grid_result(const TargetTallies& tt, TargetResult& r) {
 using T = Target::Type;
 constexpr unsigned kIlluminance = kRequireEm | kRequireU0 | kRequireEmin | kRequireUd;
 // The results-file keys each type's result adds (results_io.cpp's target_json, add_glare,
-// add_grid_intervals: the intervals only when requirements are judged).
+// add_grid_intervals: the intervals whenever make_target computed them, as final results do).
 constexpr const char* kGridFields[] = {"cells_uv",
                                        "cells",
                                        "min_lux",

@@ -66,7 +66,9 @@ struct TargetTallies {
   const GroupedTallies& tallies;     ///< the run's tallies, its groups combined (groups.hpp)
   const PreparedTarget& layout;      ///< where its bins are (PreparedScene::targets)
   double confidence;
-  bool judged;  ///< the run judges requirements (grids then need their intervals)
+  /// A grid gets its Emin/Emax/U0/Ud intervals: always in final results; in a run's batch
+  /// looks only when the run judges requirements (they cost a pass over the cells).
+  bool judged;
   /// The scene's luminaires, for glare; null when results are rebuilt without the scene
   /// (rescale.cpp rescales an observer's glare itself).
   const std::vector<Luminaire>* luminaires;

@@ -232,7 +232,7 @@ TEST(Decide, AlphaIsSpentOverTheLooks) {
   EXPECT_GT(spent, 0.0499);
 }
 
-TEST(Decide, ResultsWithoutRequirementsKeepTheirLayout) {
+TEST(Decide, ResultsWithoutRequirementsHaveNoVerdictsButEveryGridsIntervals) {
   PointOverGrid setup;
   setup.scene.targets[0].requirements = {};
   SolveOptions o;
@@ -240,10 +240,19 @@ TEST(Decide, ResultsWithoutRequirementsKeepTheirLayout) {
   o.backend = "embree";
   const Results r = solve(setup.scene, o);
   EXPECT_FALSE(r.judged);
-  EXPECT_FALSE(r.targets[0].intervals);
+  // A report prints Emin, Emax, U0 and Ud with their intervals, judged or not (issue 24).
+  ASSERT_TRUE(r.targets[0].intervals);
+  const GridIntervals& g = *r.targets[0].intervals;
+  EXPECT_LE(g.min_low, r.targets[0].min_lux);
+  EXPECT_GE(g.min_high, r.targets[0].min_lux);
+  EXPECT_LE(g.u0_low, r.targets[0].uniformity);
+  EXPECT_GE(g.u0_high, r.targets[0].uniformity);
   const std::string json = results_to_json(r);
-  for (const char* key : {"verdict", "decide", "requirements", "min_ci_low_lux", "ud"}) {
+  for (const char* key : {"verdict", "decide", "requirements", "verdicts"}) {
     EXPECT_EQ(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
+  }
+  for (const char* key : {"min_ci_low_lux", "max_ci_high_lux", "uniformity_ci_low", "ud_ci_high"}) {
+    EXPECT_NE(json.find(std::string("\"") + key + "\""), std::string::npos) << key;
   }
 }
 

@@ -93,6 +93,7 @@ TEST(ParseLdt, SampleFilesCarryTheirHeader) {
   EXPECT_EQ(d.symmetry, PhotometricSymmetry::Quadrant);
   EXPECT_DOUBLE_EQ(d.rated_lumens_lm, 3600.0);
   EXPECT_EQ(d.lamp_count, 4);
+  EXPECT_DOUBLE_EQ(d.input_watts, 36.0);  // field 26f, wattage including ballast
   EXPECT_EQ(d.opening_shape, OpeningShape::Rectangle);
   bool found = false;
   for (const auto& [k, v] : d.keywords) found = found || (k == "LUMINAIRE" && v.find("LS-BW") == 0);
@@ -114,6 +115,7 @@ TEST(ParseLdt, MultipleLampSetsAddTheirFlux) {
   const auto d = parse_ldt(test::join_lines(lines), "sets.ldt");
   EXPECT_DOUBLE_EQ(d.rated_lumens_lm, 1500.0);
   EXPECT_EQ(d.lamp_count, 3);
+  EXPECT_DOUBLE_EQ(d.input_watts, 20.0);  // each set's wattage, summed
   EXPECT_DOUBLE_EQ(d.candela_at(0, 0), 100.0 * 1.5);
 }
 

@@ -301,7 +301,21 @@ class SceneBuilder:
             "luminaire_layouts": {layout.Name: [m.Name for m in lums
                                                 if getattr(m, "layout", None) is layout]
                                   for layout in layout_mod.layouts(self.analysis)},
+            # The analysis' light scenes, for the report's light-scene pages (docs/report.md);
+            # a scene whose levels do not pair up is left out (Check names it).
+            "light_scenes": self._light_scenes(),
         }
+
+    def _light_scenes(self) -> List[Dict[str, Any]]:
+        from lighting.objects import light_scene
+
+        found = []
+        for scene in light_scene.scenes(self.analysis):
+            try:
+                found.append({"name": scene.Label, "levels": light_scene.levels(scene)})
+            except ValueError:
+                continue
+        return found
 
 
 def build_scene(analysis: Any, progress: Progress = None) -> ExportResult:
