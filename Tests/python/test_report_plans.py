@@ -28,6 +28,8 @@ from conftest import SOURCE_DIR
 FIXTURES = Path(__file__).resolve().parent / "fixtures" / "report"
 LAMPS = SOURCE_DIR / "Tests" / "golden" / "scenes" / "lamps.json"
 DATE = "2026-01-01"
+#: The plans section's heading, numbered among the report's sections.
+PLANS_HEADING = r"<h2>\d+ Plans and view of the model</h2>"
 PT_PER_MM = 72.0 / 25.4
 
 
@@ -221,7 +223,7 @@ def test_every_luminaire_appears_with_the_name_the_user_gave():
     html = render_html(scene, json.loads(
         (SOURCE_DIR / "Tests" / "golden" / "lamps.embree.results.json").read_text()),
         scene_path=LAMPS, date=DATE)
-    plans_html = html[html.index("<h2>Plans and view of the model</h2>"):]
+    plans_html = html[re.search(PLANS_HEADING, html).start():]
     assert "Pendant bulb &amp; shade" in plans_html and ">bulb<" not in plans_html
 
 
@@ -455,8 +457,8 @@ def test_plans_are_byte_reproducible_across_processes():
 
 def test_the_page_holds_the_plans_section_once():
     html = (FIXTURES / "office.report.html").read_text(encoding="utf-8")
-    assert html.count("<h2>Plans and view of the model</h2>") == 1
-    section_html = html[html.index("<h2>Plans and view of the model</h2>"):]
+    assert len(re.findall(PLANS_HEADING, html)) == 1
+    section_html = html[re.search(PLANS_HEADING, html).start():]
     section_html = section_html[:section_html.index("</section>")]
     for name in ("Luminaire01", "Luminaire02", "Luminaire03", "Luminaire04", "Workplane"):
         assert f">{name}<" in section_html
