@@ -17,9 +17,13 @@ namespace lightsolver::shared {
 LS_FN float grid_reach(float t_max) { return t_max * (1.0f + 1e-5f) + 1e-6f; }
 
 // True when o + t d, 0 <= t <= t_end, crosses the grid (corner, unit normal, dual vectors du and
-// dv of its edges, nu x nv cells) from its front; `cell` is then iv * nu + iu.
-LS_FN bool grid_crossing(vec3 o, vec3 d, float t_end, vec3 corner, vec3 normal, vec3 du, vec3 dv,
-                         uint nu, uint nv, LS_OUT(uint) cell) {
+// dv of its edges, nu x nv cells) from its front; `cell` is then iv * nu + iu. The vectors are
+// LS_IN: by reference, the C++ loop over grids reads a grid's corner and edges only once its
+// normal faces the segment (by value, every grid's 12 floats were loaded for every segment:
+// docs/BENCHMARKS.md, issue 23).
+LS_FN bool grid_crossing(LS_IN(vec3) o, LS_IN(vec3) d, float t_end, LS_IN(vec3) corner,
+                         LS_IN(vec3) normal, LS_IN(vec3) du, LS_IN(vec3) dv, uint nu, uint nv,
+                         LS_OUT(uint) cell) {
   const float denom = dot(d, normal);
   if (!(denom < 0.0f)) return false;  // parallel, or crossing from behind
   const float t = dot(corner - o, normal) / denom;

@@ -8,6 +8,9 @@
 // - Float literals always carry `f` (GLSL 4.x accepts it; in C++ an unsuffixed literal is a double
 //   and would change the result). A formula generic in its precision writes Real(0.5).
 // - Parameters: plain values, LS_OUT(T) / LS_INOUT(T) for results (out/inout in GLSL, T& in C++).
+//   LS_IN(T) (in T in GLSL, const T& in C++; the same value either way) for vectors a hot loop
+//   reads from memory into a function with an early exit: GCC copies a by-value vec3 argument at
+//   the call, loading every component before the first test even when inlined (grid_crossing).
 // - Random numbers: LS_UNIFORM() is the next uniform float of the path's stream (PathRng in C++, a
 //   private global stream in GLSL, Shaders/philox.glsl). A function that draws takes
 //   LS_RNG_PARAM (after other parameters) or LS_RNG_ONLY (alone), and passes the stream on with
@@ -28,6 +31,7 @@
 #include <glm/vec4.hpp>
 
 #define LS_FN inline
+#define LS_IN(T) const T&
 #define LS_OUT(T) T&
 #define LS_INOUT(T) T&
 #define LS_RNG_PARAM , PathRng& rng
@@ -65,6 +69,7 @@ using std::sqrt;
 #else  // GLSL
 
 #define LS_FN
+#define LS_IN(T) in T
 #define LS_OUT(T) out T
 #define LS_INOUT(T) inout T
 #define LS_RNG_PARAM

@@ -6,6 +6,7 @@
 /// shaders include too, so a seed means the same thing on every backend. Random123's
 /// r123::Philox4x32 is the reference it is tested against (Tests/native/core/rng_test.cpp).
 
+#include <array>
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec4.hpp>
@@ -43,14 +44,17 @@ class PathRng {
 
  private:
   void refill() {
-    block_ = shared::philox4x32_10(ctr_, key_);
+    const glm::uvec4 b = shared::philox4x32_10(ctr_, key_);
+    block_ = {b.x, b.y, b.z, b.w};
     ++ctr_.z;  // word 2 counts blocks within the path; 2^32 blocks is far beyond any path
     index_ = 0;
   }
 
   glm::uvec2 key_;  // (seed lo, seed hi)
   glm::uvec4 ctr_;  // (path id lo, path id hi, block, stream)
-  glm::uvec4 block_{0u};
+  // A plain array, not a glm::uvec4: glm's operator[] is a switch over the index, a branch that
+  // mispredicts every few words drawn (docs/BENCHMARKS.md, issue 23); an array is one load.
+  std::array<std::uint32_t, 4> block_{};
   unsigned index_ = 4;
 };
 
