@@ -8,6 +8,7 @@
 #include "core/effects_io.hpp"
 #include "core/groups_io.hpp"
 #include "core/observer_grid_io.hpp"
+#include "core/provenance.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/run_options.hpp"
 #include "lightsolver/solver.hpp"
@@ -233,6 +234,7 @@ std::string results_to_json(const Results& r) {
   for (const auto& t : r.targets) targets.push_back(target_json(t));
   j["targets"] = std::move(targets);
   detail::add_groups_json(r, j);
+  if (r.provenance) j["provenance"] = detail::provenance_json(*r.provenance);
   return j.dump(2) + "\n";
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/json_reader.hpp"
 #include "core/luminaire_types.hpp"
+#include "core/provenance.hpp"
 #include "core/requirements_table.hpp"
 #include "core/scene_document.hpp"
 #include "core/target_types.hpp"
@@ -249,6 +250,8 @@ SceneDocument read_scene_document(const std::string& text, const std::string& fi
   SceneDocument d;
   d.json = parse_json_text(text, file);
   d.scene = read_scene(d.json, file, base_dir);
+  // After reading: the files are known to exist, and a scene that does not load costs no hash.
+  d.scene.source = scene_source(d.json, base_dir, file, true);
   return d;
 }
 
