@@ -17,6 +17,7 @@
 #include "lightsolver/glare.hpp"
 #include "lightsolver/mpi.hpp"
 #include "lightsolver/photometry.hpp"
+#include "lightsolver/provenance.hpp"
 #include "lightsolver/rescale.hpp"
 #include "lightsolver/scene_check.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -296,6 +297,7 @@ PYBIND11_MODULE(lightsolver, m) {
               if (!value.is_none()) entry[py::str(key).cast<std::string>()] = to_json(value, where);
             }
             s.materials.push_back(material_from_json(name, entry, where));
+            s.source.reset();  // no longer the file's content (provenance)
           },
           py::arg("name"), py::arg("type") = "diffuse",
           "A material of any type: the keyword arguments are the type's keys of a scene file's "
@@ -310,6 +312,7 @@ PYBIND11_MODULE(lightsolver, m) {
             if (mat < 0) throw py::value_error("unknown material \"" + material + "\"");
             if (s.find_mesh(name) >= 0) throw py::value_error("duplicate mesh " + name);
             s.meshes.push_back(mesh_from_numpy(name, mat, vertices, triangles));
+            s.source.reset();
           },
           py::arg("name"), py::arg("vertices"), py::arg("triangles"), py::arg("material"))
       .def(
@@ -318,6 +321,7 @@ PYBIND11_MODULE(lightsolver, m) {
             const std::string where = "add_light(\"" + name + "\")";
             s.luminaires.push_back(
                 luminaire_from_json(entry_json(name, type, fields, where), where, ""));
+            s.source.reset();
           },
           py::arg("name"), py::arg("type"),
           "A luminaire of any type: the keyword arguments are the type's keys of a scene file's "
@@ -330,6 +334,7 @@ PYBIND11_MODULE(lightsolver, m) {
           [](Scene& s, const std::string& name, const std::string& type, py::kwargs fields) {
             const std::string where = "add_target(\"" + name + "\")";
             s.targets.push_back(target_from_json(entry_json(name, type, fields, where), where, s));
+            s.source.reset();
           },
           py::arg("name"), py::arg("type"),
           "A target of any type: the keyword arguments are the type's keys of a scene file's "
@@ -424,6 +429,20 @@ PYBIND11_MODULE(lightsolver, m) {
         return check_dict(check_scene_json(text, "<string>", base_dir));
       },
       py::arg("text"), py::arg("base_dir") = ".", "check_scene for scene JSON text");
+  m.def(
+      "verify_results",
+      [](const std::string& scene_path, const py::dict& results) {
+        const py::object p = results.attr("get")("provenance");
+        const std::string text = py::str(py::module_::import("json").attr("dumps")(p));
+        return verify_provenance(scene_path, provenance_from_json(text, "results"));
+      },
+      py::arg("scene_path"), py::arg("results"),
+      "Why `results` (a results dict) do not belong to the scene file `scene_path`, one sentence "
+      "per difference: the scene's content changed, a file it reads (mesh, photometric file, "
+      "requirements table) changed, is missing, new or no longer read; results without "
+      "provenance, or traced from a scene built in memory, 'cannot be verified'. Empty: they "
+      "belong together (`lightsolver verify`). Raises InputError for a scene file that cannot "
+      "be read or parsed, or a malformed provenance.");
   m.def(
       "write_polar_plot",
       [](const std::string& path, const std::string& png_path) {

@@ -25,8 +25,8 @@ from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 __all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "ResultsError", "Stat", "Target",
-           "LuminaireFlux", "ObserverGridView", "Results", "plain", "schema", "check", "migrate",
-           "read", "load"]
+           "LuminaireFlux", "ObserverGridView", "Provenance", "SourceFile", "Results", "plain",
+           "schema", "check", "migrate", "read", "load"]
 
 FORMAT = "lightsolver.results/1"
 #: Grid-cell numpy arrays that ``lightsolver.solve()`` adds beside the results layout.
@@ -162,7 +162,9 @@ def migrate(doc: Dict[str, Any], scene: Optional[Dict[str, Any]] = None,
     * grids without ``min_lux``/``max_lux``/``uniformity``: from the cells;
     * no ``luminaires``: derived from ``scene`` by ``scene_flux`` (TILT not applied, said in the
       notes); left out without a scene;
-    * no ``warnings``/``groups``: empty lists."""
+    * no ``warnings``/``groups``: empty lists;
+    * no ``provenance``: left out (the view's ``provenance`` is None; such results cannot be
+      verified against a scene)."""
     out = plain(doc)  # new top level and target dicts: the migration adds keys to these only
     notes: List[str] = []
     if not isinstance(out.get("targets"), list):
@@ -318,6 +320,54 @@ class LuminaireFlux:
 
 
 @dataclass
+class SourceFile:
+    """A file the traced scene read (a mesh, a photometric file, the requirements table)."""
+
+    path: str  # as the scene writes it; the requirements table: its file name
+    kind: str  # mesh, photometric, requirements table, file
+    sha256: str
+
+
+@dataclass
+class Provenance:
+    """Where the results come from (results ``provenance``, docs/scene-format.md): the scene's
+    content hash (None: a scene built in memory) and files, the solver, build, machine, options
+    and time of the run. ``lightsolver.verify_results`` compares it with a scene file."""
+
+    scene_sha256: Optional[str]
+    files: List[SourceFile]
+    solver_version: str
+    source_commit: str
+    build_type: str
+    backend: str
+    device: str
+    mpi_ranks: int
+    threads: int
+    options: Dict[str, Any]
+    started_utc: str
+    finished_utc: str
+    host: str
+    command: str
+
+
+def _provenance(doc: Dict[str, Any]) -> Optional[Provenance]:
+    """The document's provenance; None for results written before the solver recorded it."""
+    p = doc.get("provenance")
+    if not isinstance(p, dict):
+        return None
+    text = lambda key: str(p.get(key, ""))  # noqa: E731
+    return Provenance(
+        scene_sha256=str(p["scene_sha256"]) if p.get("scene_sha256") else None,
+        files=[SourceFile(str(f.get("path", "")), str(f.get("kind", "")), str(f.get("sha256", "")))
+               for f in p.get("files") or [] if isinstance(f, dict)],
+        solver_version=text("solver_version"), source_commit=text("source_commit"),
+        build_type=text("build_type"), backend=text("backend"), device=text("device"),
+        mpi_ranks=int(p.get("mpi_ranks") or 1), threads=int(p.get("threads") or 0),
+        options=dict(p.get("options") or {}), started_utc=text("started_utc"),
+        finished_utc=text("finished_utc"), host=text("host"), command=text("command"))
+
+
+@dataclass
 class Results:
     """A results document in the current layout (``doc``) and its view."""
 
@@ -326,6 +376,8 @@ class Results:
     luminaires: List[LuminaireFlux]
     #: The migration's notes: which fallbacks older results needed (empty: none).
     notes: List[str] = field(default_factory=list)
+    #: Where they come from; None for results written before provenance was recorded.
+    provenance: Optional[Provenance] = None
 
     @property
     def traced_flux(self) -> bool:
@@ -368,7 +420,7 @@ def read(source: Union[Dict[str, Any], str, "os.PathLike[str]"],
                   for lum in current.get("luminaires", []) if isinstance(lum, dict)]
     return Results(doc=current, targets=[_target(t) for t in current["targets"]
                                          if isinstance(t, dict)],
-                   luminaires=luminaires, notes=notes)
+                   luminaires=luminaires, notes=notes, provenance=_provenance(current))
 
 
 def load(path: Union[str, "os.PathLike[str]"]) -> Dict[str, Any]:
