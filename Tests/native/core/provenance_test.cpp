@@ -4,12 +4,14 @@
 #include "lightsolver/provenance.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
 
 #include "core/provenance.hpp"
 #include "lightsolver/results_io.hpp"
@@ -39,9 +41,9 @@ std::string read(const fs::path& p) {
 class SceneFolder : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("provenance_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    // One folder per test and process: suites of two builds may run at the same time.
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = fs::temp_directory_path() / ("provenance_" + test + "_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "ies");
     const std::string src = LIGHTSOLVER_SOURCE_DIR;
