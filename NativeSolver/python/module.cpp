@@ -17,13 +17,13 @@
 #include "lightsolver/glare.hpp"
 #include "lightsolver/mpi.hpp"
 #include "lightsolver/photometry.hpp"
-#include "lightsolver/provenance.hpp"
 #include "lightsolver/rescale.hpp"
 #include "lightsolver/scene_check.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "lightsolver/study.hpp"
 #include "optimize_bindings.hpp"
+#include "provenance_bindings.hpp"
 #include "run_option_keywords.hpp"
 #include "simulation_bindings.hpp"
 #include "types_bindings.hpp"
@@ -430,20 +430,6 @@ PYBIND11_MODULE(lightsolver, m) {
       },
       py::arg("text"), py::arg("base_dir") = ".", "check_scene for scene JSON text");
   m.def(
-      "verify_results",
-      [](const std::string& scene_path, const py::dict& results) {
-        const py::object p = results.attr("get")("provenance");
-        const std::string text = py::str(py::module_::import("json").attr("dumps")(p));
-        return verify_provenance(scene_path, provenance_from_json(text, "results"));
-      },
-      py::arg("scene_path"), py::arg("results"),
-      "Why `results` (a results dict) do not belong to the scene file `scene_path`, one sentence "
-      "per difference: the scene's content changed, a file it reads (mesh, photometric file, "
-      "requirements table) changed, is missing, new or no longer read; results without "
-      "provenance, or traced from a scene built in memory, 'cannot be verified'. Empty: they "
-      "belong together (`lightsolver verify`). Raises InputError for a scene file that cannot "
-      "be read or parsed, or a malformed provenance.");
-  m.def(
       "write_polar_plot",
       [](const std::string& path, const std::string& png_path) {
         write_polar_plot_png(load_photometry(path), png_path);
@@ -565,4 +551,5 @@ PYBIND11_MODULE(lightsolver, m) {
   bind_optimizer(m);   // lightsolver.optimize
   bind_simulation(m);  // lightsolver.Simulation
   bind_types(m);       // lightsolver.luminaire_types(), target_types()
+  bind_provenance(m);  // lightsolver.verify_results
 }
