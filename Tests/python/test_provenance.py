@@ -95,6 +95,10 @@ def test_thread_counts_and_python_agree_on_what_matters(cli, lit_room, tmp_path)
                            backend="embree", threads=1)
     assert py["provenance"]["command"].startswith("python: lightsolver.solve")
     assert same(py) == same(one)
+    # Scene content given as a dict (JSON text): hashed the same way, files from base_dir.
+    doc = json.loads(lit_room.read_text())
+    text = lightsolver.scene_from_json(json.dumps(doc), str(lit_room.parent))
+    assert same(lightsolver.solve(text, photons=20000, seed=4, backend="embree")) == same(one)
 
 
 def test_a_scene_built_in_memory_has_no_hash(room_scene):
