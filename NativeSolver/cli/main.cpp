@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "command_line.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/cost.hpp"
 #include "lightsolver/glare.hpp"
@@ -26,6 +27,7 @@
 #include "rescale_command.hpp"
 #include "run_option_flags.hpp"
 #include "study_command.hpp"
+#include "verify_command.hpp"
 
 namespace {
 
@@ -88,6 +90,7 @@ lightsolver::SolveOptions options_from(const RunArgs& a) {
   lightsolver::SolveOptions opt = a.options;
   opt.cancel = &g_interrupted;
   opt.processes = lightsolver::cli::processes();
+  opt.command = lightsolver::cli::command_line();
   return opt;
 }
 
@@ -275,6 +278,8 @@ int run_command_line(int argc, char** argv) {
   lightsolver::cli::add_study_command(app);     // runs from its own callback
   lightsolver::cli::add_rescale_command(app);   // runs from its own callback
   lightsolver::cli::add_report_command(app);    // execs python3 -m lightsolver_report
+  lightsolver::cli::add_verify_command(app);    // runs from its own callback
+  lightsolver::cli::add_check_command(app);     // runs from its own callback
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);
@@ -312,6 +317,7 @@ int main(int argc, char** argv) {
       if (std::freopen("/dev/null", "w", stdout) == nullptr) std::fclose(stdout);
     }
   }
+  lightsolver::cli::command_line() = lightsolver::cli::quoted_command_line(argc, argv);
   const int rc = run_command_line(argc, argv);
   if (session && rc == 1) session->abort("ending every process after the error above", rc);
   return rc;

@@ -16,6 +16,7 @@
 #include <iostream>
 #include <memory>
 
+#include "command_line.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/study.hpp"
@@ -149,6 +150,7 @@ int run_study_command(const StudyArgs& a) {
   o.solve = a.solve;
   o.solve.cancel = &g_stop;
   o.solve.processes = processes();
+  o.solve.command = command_line();
   o.max_photons = a.max_photons;
   o.reference_file = a.reference;
   const bool reference = !a.reference.empty();

@@ -23,6 +23,7 @@
 #include "lightsolver/solver.hpp"
 #include "lightsolver/study.hpp"
 #include "optimize_bindings.hpp"
+#include "provenance_bindings.hpp"
 #include "run_option_keywords.hpp"
 #include "simulation_bindings.hpp"
 #include "types_bindings.hpp"
@@ -296,6 +297,7 @@ PYBIND11_MODULE(lightsolver, m) {
               if (!value.is_none()) entry[py::str(key).cast<std::string>()] = to_json(value, where);
             }
             s.materials.push_back(material_from_json(name, entry, where));
+            s.source.reset();  // no longer the file's content (provenance)
           },
           py::arg("name"), py::arg("type") = "diffuse",
           "A material of any type: the keyword arguments are the type's keys of a scene file's "
@@ -310,6 +312,7 @@ PYBIND11_MODULE(lightsolver, m) {
             if (mat < 0) throw py::value_error("unknown material \"" + material + "\"");
             if (s.find_mesh(name) >= 0) throw py::value_error("duplicate mesh " + name);
             s.meshes.push_back(mesh_from_numpy(name, mat, vertices, triangles));
+            s.source.reset();
           },
           py::arg("name"), py::arg("vertices"), py::arg("triangles"), py::arg("material"))
       .def(
@@ -318,6 +321,7 @@ PYBIND11_MODULE(lightsolver, m) {
             const std::string where = "add_light(\"" + name + "\")";
             s.luminaires.push_back(
                 luminaire_from_json(entry_json(name, type, fields, where), where, ""));
+            s.source.reset();
           },
           py::arg("name"), py::arg("type"),
           "A luminaire of any type: the keyword arguments are the type's keys of a scene file's "
@@ -330,6 +334,7 @@ PYBIND11_MODULE(lightsolver, m) {
           [](Scene& s, const std::string& name, const std::string& type, py::kwargs fields) {
             const std::string where = "add_target(\"" + name + "\")";
             s.targets.push_back(target_from_json(entry_json(name, type, fields, where), where, s));
+            s.source.reset();
           },
           py::arg("name"), py::arg("type"),
           "A target of any type: the keyword arguments are the type's keys of a scene file's "
@@ -551,4 +556,5 @@ PYBIND11_MODULE(lightsolver, m) {
   bind_optimizer(m);   // lightsolver.optimize
   bind_simulation(m);  // lightsolver.Simulation
   bind_types(m);       // lightsolver.luminaire_types(), target_types()
+  bind_provenance(m);  // lightsolver.verify_results
 }

@@ -66,8 +66,23 @@ bool listed(const char* name, std::initializer_list<const char*> names) {
 
 }  // namespace
 
+std::string python_command(const char* function) {
+  const bool simulation = std::strcmp(function, "run") == 0 || std::strcmp(function, "refine") == 0;
+  std::string text =
+      std::string("python: lightsolver.") + (simulation ? "Simulation." : "") + function;
+  // The script that called it, where Python knows one (FreeCAD's embedded interpreter may not).
+  const py::module_ sys = py::module_::import("sys");
+  if (!py::hasattr(sys, "argv")) return text;
+  std::string argv;
+  for (const py::handle a : sys.attr("argv")) {
+    argv += (argv.empty() ? "" : " ") + std::string(py::str(a));
+  }
+  return argv.empty() ? text : text + " in " + argv;
+}
+
 void set_run_options(const py::kwargs& keywords, SolveOptions& options, const KeywordFilter& take,
                      std::initializer_list<const char*> own, const char* function) {
+  options.command = python_command(function);
   for (const auto& [key, value] : keywords) {
     const std::string name = py::str(key);
     if (listed(name.c_str(), own)) continue;

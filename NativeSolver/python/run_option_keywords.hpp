@@ -19,10 +19,15 @@ bool per_run_keyword(const lightsolver::RunOptionInfo& row);
 /// The rows cost() and study() take (seed, confidence, threads, backend).
 bool checkpointed_keyword(const lightsolver::RunOptionInfo& row);
 
+/// How a Python call started a run, for the results' provenance: "python: lightsolver.solve"
+/// ("Simulation.run" for `run` and `refine`), then " in " and sys.argv where it is not empty.
+std::string python_command(const char* function);
+
 /// Sets `options` from the keywords of a call: each must be a row `take` accepts or one of
 /// `own` (the caller's own, skipped here); None leaves the option at its default. A value out
 /// of the row's range raises InputError naming the keyword with the scene reader's message;
 /// an unknown keyword raises TypeError as Python does.
+/// Also sets `options.command` to python_command(function).
 void set_run_options(const pybind11::kwargs& keywords, lightsolver::SolveOptions& options,
                      const KeywordFilter& take, std::initializer_list<const char*> own,
                      const char* function);

@@ -1,7 +1,10 @@
 """Golden results (Tests/golden/README.md): the CLI commands in Tests/golden/commands.json give
 bit-identical numbers to the committed results files. Only the timing fields listed there are
-skipped; every other number, string and list is compared exactly (Python's float parsing of
-the JSON round-trips the doubles the CLI wrote, so == on them is == on the bits).
+skipped, and in the results' provenance the facts of the run and the build listed there (time,
+host, command line, device, threads, source commit, build type); every other number, string
+and list is compared exactly (Python's float parsing of the JSON round-trips the doubles the CLI
+wrote, so == on them is == on the bits): the scene's hash, its files' hashes, the solver
+version, backend, MPI ranks and every resolved option.
 
 The manifest's `per_backend` goldens (every luminaire, material and target type, a rescale,
 verdicts near their bounds) are recorded once per tracing backend and each run is compared with
@@ -20,6 +23,8 @@ from conftest import SOURCE_DIR
 GOLDEN = SOURCE_DIR / "Tests" / "golden"
 MANIFEST = json.loads((GOLDEN / "commands.json").read_text())
 TIMING_FIELDS = frozenset(MANIFEST["timing_fields"])
+#: Skipped in the top-level "provenance" object only: they differ between machines and runs.
+PROVENANCE_RUN_FIELDS = frozenset(MANIFEST["provenance_run_fields"])
 PER_BACKEND = MANIFEST["per_backend"]
 #: (name, backend) of every per-backend golden, in manifest order.
 BACKEND_GOLDENS = [(name, backend) for backend in PER_BACKEND["backends"]
@@ -53,11 +58,12 @@ def backend_available(cli, backend):
 
 
 def differences(expected, actual, path="", found=None):
-    """Paths where `actual` differs from `expected` (timing fields skipped), with both values."""
+    """Paths where `actual` differs from `expected` (timing fields skipped, and the provenance's
+    run facts), with both values."""
     found = [] if found is None else found
     if isinstance(expected, dict) and isinstance(actual, dict):
         for key in sorted(set(expected) | set(actual)):
-            if key in TIMING_FIELDS:
+            if key in TIMING_FIELDS or (path == ".provenance" and key in PROVENANCE_RUN_FIELDS):
                 continue
             if key not in expected or key not in actual:
                 found.append(f"{path}.{key}: only in {'golden' if key in expected else 'new'}")
@@ -192,6 +198,30 @@ def test_timing_fields_are_the_only_ones_skipped():
     assert TIMING_FIELDS <= present
     assert all(f.endswith("seconds") for f in TIMING_FIELDS)
     assert "max_seconds" not in TIMING_FIELDS  # a setting, not a timing
+
+
+def test_provenance_skips_only_run_facts():
+    # The run facts skipped are in every golden a run wrote, and what makes results belong to
+    # a scene (its hash and files) or reproducible (options, version, backend) is compared.
+    for path in all_golden_files():
+        doc = json.loads(path.read_text())
+        if doc.get("format") == "lightsolver.results/1":
+            assert PROVENANCE_RUN_FIELDS < set(doc["provenance"]), path.name
+    assert not PROVENANCE_RUN_FIELDS & {"scene_sha256", "files", "options", "solver_version",
+                                        "backend", "mpi_ranks"}
+    golden = json.loads(golden_path("lamps", "embree").read_text())
+    for key, value in [("scene_sha256", "0" * 64), ("options", {}), ("mpi_ranks", 2)]:
+        changed = json.loads(json.dumps(golden))
+        changed["provenance"][key] = value
+        diff = differences(golden, changed)
+        assert diff and all(d.startswith(f".provenance.{key}") for d in diff), diff
+    changed = json.loads(json.dumps(golden))
+    changed["provenance"]["files"][0]["sha256"] = "0" * 64
+    assert differences(golden, changed)
+    for key in PROVENANCE_RUN_FIELDS:
+        changed = json.loads(json.dumps(golden))
+        changed["provenance"][key] = "elsewhere"
+        assert differences(golden, changed) == []
 
 
 def test_a_changed_number_is_caught(cli, tmp_path):

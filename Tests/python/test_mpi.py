@@ -12,6 +12,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import without_run_facts
+
 lightsolver = pytest.importorskip("lightsolver")
 
 MPIRUN = shutil.which("mpirun")
@@ -29,10 +31,16 @@ def mpirun(k: int, *args: str, env: dict = None) -> subprocess.CompletedProcess:
 
 
 def results(path: Path) -> dict:
+    """The results without what differs between runs: timings, and the provenance's run facts,
+    MPI ranks and rank 0's threads (the scene's hash, files and options must agree)."""
     data = json.loads(path.read_text())
     for key in RUN_FACTS:
         data.pop(key, None)
-    return data
+    return without_run_facts(data, also=("mpi_ranks", "threads"))
+
+
+def ranks(path: Path) -> int:
+    return json.loads(path.read_text())["provenance"]["mpi_ranks"]
 
 
 @pytest.fixture(scope="module")
@@ -61,6 +69,7 @@ def test_cli_run_is_bit_identical_for_any_process_count(cli, room_scene, decided
         done = mpirun(k, cli, "run", scene, "-q", "--seed", "3", "--out", str(shared), *extra)
         assert done.returncode == 0, done.stderr
         assert results(shared) == results(alone), f"-np {k} differs from one process"
+        assert (ranks(shared), ranks(alone)) == (k, 1)
     if "--decide" in extra:
         assert results(alone)["stop_reason"] in ("decided", "photons")
 

@@ -8,7 +8,7 @@ import jsonschema
 import pytest
 
 import lightsolver
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, without_run_facts
 
 SCHEMA = json.loads((SOURCE_DIR / "docs" / "schemas" / "results.schema.json").read_text())
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)
@@ -50,7 +50,10 @@ def test_cli_file_and_solve_agree_field_by_field(cli, room_scene, tmp_path, phot
     for doc in (from_cli, from_py):
         for key in TIMINGS:
             doc.pop(key)
-    assert from_py == from_cli  # every number to the bit, every key, every warning
+    assert from_cli["provenance"]["command"].split()[1:3] == ["run", str(room_scene)]
+    assert from_py["provenance"]["command"].startswith("python: lightsolver.solve")
+    # every number to the bit, every key, every warning, the provenance but when and how it ran
+    assert without_run_facts(from_py) == without_run_facts(from_cli)
 
 
 def test_python_grids_carry_the_layout_and_numpy_beside_it(room_scene):
@@ -115,7 +118,7 @@ def test_verdicts_follow_the_contract_in_cli_and_solve(cli, room_scene, tmp_path
         for target in doc["targets"]:
             for verdict in target.get("verdicts", {}).values():
                 verdict.get("to_decide", {}).pop("seconds", None)
-    assert from_py == from_cli
+    assert without_run_facts(from_py) == without_run_facts(from_cli)
     assert from_cli["decide"] is decide
     desk, grid, floor = from_cli["targets"]
     assert set(desk["verdicts"]) == {"em"}

@@ -15,6 +15,7 @@
 #include "lightsolver/compliance.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
+#include "lightsolver/provenance.hpp"
 
 namespace lightsolver {
 
@@ -146,6 +147,10 @@ struct Scene {
   std::vector<Target> targets;
   Settings settings;
   Warnings warnings;  ///< remarks made while loading (dropped triangles…)
+  /// What the scene was read from (its content hash and the files it reads), for the results'
+  /// provenance; absent for a scene built in memory. Changes in memory (Python's add_*,
+  /// Simulation::set_luminaire) clear it: the scene is no longer the file's.
+  std::optional<SceneSource> source;
 
   int find_material(const std::string& name) const;  ///< -1 when absent
   int find_mesh(const std::string& name) const;      ///< -1 when absent

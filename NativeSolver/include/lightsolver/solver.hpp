@@ -14,6 +14,7 @@
 #include "lightsolver/compliance.hpp"
 #include "lightsolver/glare.hpp"
 #include "lightsolver/process_group.hpp"
+#include "lightsolver/provenance.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/statistics.hpp"
 
@@ -116,6 +117,9 @@ struct SolveOptions {
   /// are summed exactly, so every process gets the results a lone process would, bit for bit.
   /// Batch sizes, time limits and cancel are rank 0's (its callbacks and flag count).
   std::shared_ptr<ProcessGroup> processes;
+  /// How the run was started, for the results' provenance: the CLI's command line, "python:
+  /// lightsolver.solve" ... ("" : "library call").
+  std::string command;
 };
 
 /// Called between batches with photons traced so far and the total; return false to cancel.
@@ -288,6 +292,9 @@ struct Results {
   std::vector<std::pair<std::string, double>> rescaled;
   /// Every luminaire, in scene order, as traced: the flux it emitted in the calculation.
   std::vector<LuminaireResult> luminaires;
+  /// Where the results come from (provenance.hpp): set by every run; absent in results read
+  /// from files written before it, and in results combined from group traces.
+  std::optional<Provenance> provenance;
 };
 
 /// Runs the photon tracer. Deterministic: same scene, seed and photons give bit-identical

@@ -27,13 +27,14 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, READ_TYPES, ResultsError, check, finite,
                      plain, schema)
+from .provenance import Provenance, SourceFile, read_provenance
 from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFlux, _migrate,
                         migrate)
 
 __all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "DERIVED_FLUX_NOTE",
            "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "Target", "LuminaireFlux",
            "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
-           "read", "load"]
+           "read", "load", "Provenance", "SourceFile"]
 
 # --- the view ---------------------------------------------------------------------------------
 
@@ -254,6 +255,8 @@ class Results:
     #: The solver's verdict over every target it judged (fail if any fails, else undecided if
     #: any is, else pass); None when it judged none. Estimated verdicts never enter it.
     verdict: Optional[str] = None
+    #: Where they come from; None for results written before provenance was recorded.
+    provenance: Optional[Provenance] = None
 
     @property
     def has_contributions(self) -> bool:
@@ -308,7 +311,7 @@ def read(source: Union[Dict[str, Any], str, "os.PathLike[str]"],
                if isinstance(t, dict)]
     verdict = current.get("verdict")
     return Results(doc=current, targets=targets, luminaires=luminaires, notes=notes,
-                   run=_run(current),
+                   run=_run(current), provenance=read_provenance(current),
                    verdict=str(verdict) if verdict in ("pass", "fail", "undecided") else None)
 
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <fstream>
 #include <glm/mat3x3.hpp>
 #include <limits>
 #include <stdexcept>
@@ -27,6 +28,20 @@
 namespace lightsolver::detail {
 namespace {
 
+// "CPU: <model name> (Embree 3.13.5)": the processor as Linux names it (/proc/cpuinfo).
+std::string cpu_device() {
+  std::string model = "CPU";
+  std::ifstream info("/proc/cpuinfo");
+  for (std::string line; std::getline(info, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const auto colon = line.find(':');
+    if (colon != std::string::npos && colon + 2 <= line.size())
+      model = "CPU: " + line.substr(colon + 2);
+    break;
+  }
+  return model + " (Embree " RTC_VERSION_STRING ")";
+}
+
 class EmbreeBackend final : public Backend {
  public:
   EmbreeBackend(const PreparedScene& s, EmbreeKernel kernel)
@@ -37,6 +52,11 @@ class EmbreeBackend final : public Backend {
   }
 
   std::string name() const override { return "embree"; }
+
+  std::string device() const override {
+    static const std::string device = cpu_device();  // the same for every run of a process
+    return device;
+  }
 
   KernelFeatures kernel() const { return kernel_; }
 

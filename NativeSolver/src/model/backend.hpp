@@ -38,6 +38,9 @@ class Backend {
  public:
   virtual ~Backend() = default;
   virtual std::string name() const = 0;
+  /// What it traces on, for the results' provenance ("CPU: <model> (Embree 3.13.5)", the
+  /// Vulkan device's name and driver).
+  virtual std::string device() const { return name(); }
   /// Traces, for each range, photons [first, first + count) of its group's stream with
   /// `seed` (PathRng(seed, i, group)), emitted from that group's luminaires, adding into
   /// `out`: group g's bin b at g * scene bins + b (out.bins.size() == groups x scene bins).

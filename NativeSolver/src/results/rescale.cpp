@@ -85,6 +85,7 @@ void copy_run(const Results& in, Results& r) {
   r.accuracy_per_cell = in.accuracy_per_cell;
   r.judged = in.judged;
   r.decide = in.decide;
+  r.provenance = in.provenance;  // the same trace of the same scene, other group fluxes
 }
 
 // Every luminaire as traced (absent from results older than the field), dimmed by its

@@ -5,9 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "results/groups_io.hpp"
 #include "io/json_reader.hpp"
+#include "results/groups_io.hpp"
 #include "results/observer_grid_io.hpp"
+#include "scene/provenance.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/results_io.hpp"
 
@@ -264,6 +265,8 @@ Results results_from_json(const std::string& text, const std::string& source) {
   }
   read_effects(root, r);
   detail::read_groups_json(root, r);
+  // Results written before provenance was recorded have none (null is not written).
+  if (root.has("provenance")) r.provenance = detail::read_provenance(root.at("provenance"));
   const JsonNode targets = root.at("targets");
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
     r.targets.push_back(read_target(targets[i], r.groups));

@@ -8,6 +8,7 @@
 #include "results/effects_io.hpp"
 #include "results/groups_io.hpp"
 #include "results/observer_grid_io.hpp"
+#include "scene/provenance.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/run_options.hpp"
 #include "lightsolver/solver.hpp"
@@ -233,6 +234,7 @@ std::string results_to_json(const Results& r) {
   for (const auto& t : r.targets) targets.push_back(target_json(t));
   j["targets"] = std::move(targets);
   detail::add_groups_json(r, j);
+  if (r.provenance) j["provenance"] = detail::provenance_json(*r.provenance);
   return j.dump(2) + "\n";
 }
 

@@ -15,16 +15,17 @@
 #include <limits>
 #include <optional>
 
-#include "model/backend.hpp"
 #include "estimate/cell_accuracy.hpp"
 #include "estimate/decide.hpp"
-#include "model/groups.hpp"
 #include "estimate/run_results.hpp"
+#include "estimate/target_results.hpp"
+#include "model/backend.hpp"
+#include "model/groups.hpp"
+#include "prepare/target_reach.hpp"
 #include "run/shared_tracing.hpp"
 #include "run/simulation_state.hpp"
 #include "run/stop_policies.hpp"
-#include "prepare/target_reach.hpp"
-#include "estimate/target_results.hpp"
+#include "scene/provenance.hpp"
 #include "types/target_types.hpp"
 #include "lightsolver/run_options.hpp"
 
@@ -311,6 +312,7 @@ void Simulation::set_luminaire(std::size_t index, const Luminaire& luminaire) {
     s.luminaires[index] = previous;  // a rejected change leaves the simulation as it was
     throw;
   }
+  s.source.reset();  // no longer the scene file's content: results cannot name its hash
   detail::prepare_luminaires(s, state_->prepared);
   state_->backend->luminaires_changed();
   state_->kept.reset();
@@ -333,6 +335,7 @@ void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
   glm::dmat4 local = world;
   local[3] = glm::dvec4(glm::dvec3(world * glm::dvec4(p.origin, 1.0)) - p.origin, 1.0);
   p.meshes[mesh].transform = glm::mat4(local);
+  state_->scene.source.reset();  // no longer the scene file's geometry
   state_->backend->set_mesh_transform(mesh, p.meshes[mesh].transform);
   state_->kept.reset();
   state_->pending_update_seconds += seconds_since(start);
@@ -356,6 +359,7 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
 
 Results Simulation::run_from(const SolveOptions& options, const ProgressFn& progress, bool resume) {
   const auto start = Clock::now();
+  const auto started = std::chrono::system_clock::now();
   const Scene& scene = state_->scene;
   const detail::PreparedScene& prepared = state_->prepared;
   Results r;
@@ -426,6 +430,10 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
   r.seconds = seconds_since(start);
+  const int threads =
+      state_->threads > 0 ? state_->threads : tbb::this_task_arena::max_concurrency();
+  r.provenance = detail::run_provenance(scene, options, r, threads, state_->backend->device(),
+                                        started, std::chrono::system_clock::now());
   return r;
 }
 

@@ -10,9 +10,10 @@
 #include <vector>
 
 #include "io/json_reader.hpp"
-#include "types/luminaire_types.hpp"
+#include "scene/provenance.hpp"
 #include "scene/requirements_table.hpp"
 #include "scene/scene_document.hpp"
+#include "types/luminaire_types.hpp"
 #include "types/target_types.hpp"
 #include "lightsolver/run_options.hpp"
 #include "lightsolver/scene_io.hpp"
@@ -249,6 +250,8 @@ SceneDocument read_scene_document(const std::string& text, const std::string& fi
   SceneDocument d;
   d.json = parse_json_text(text, file);
   d.scene = read_scene(d.json, file, base_dir);
+  // After reading: the files are known to exist, and a scene that does not load costs no hash.
+  d.scene.source = scene_source(d.json, base_dir, file, true);
   return d;
 }
 

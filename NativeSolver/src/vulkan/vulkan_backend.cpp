@@ -118,6 +118,8 @@ class VulkanBackend final : public Backend {
 
   std::string name() const override { return "vulkan"; }
 
+  std::string device() const override { return ctx_.device_name(); }
+
   // Tallies reach `out` only after the whole range succeeded, so a caller may retry the same
   // range on another backend after an exception.
   // Each group's range is its own dispatches: its stream, luminaires and tallies are push

@@ -38,7 +38,7 @@ LAYERS: dict[str, set[str]] = {
     "prepare": {"io", "model", "types", "scene"},
     "estimate": {"io", "model", "types"},
     "run": {"io", "model", "types", "scene", "prepare", "estimate"},
-    "results": {"io", "model", "types", "estimate"},
+    "results": {"io", "model", "types", "scene", "estimate"},
     "glare": {"io", "model", "types", "estimate", "results"},
     "embree": {"io", "model", "types", "prepare"},
     "vulkan": {"io", "model", "types", "prepare"},

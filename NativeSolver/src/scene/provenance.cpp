@@ -1,0 +1,256 @@
+// Provenance of results: the scene's content hash and the files it reads, and what a run
+// records about itself (lightsolver/provenance.hpp). JSON both ways and verification:
+// provenance_io.cpp.
+#include "scene/provenance.hpp"
+
+#include <openssl/evp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "scene/requirements_table.hpp"
+#include "lightsolver/run_options.hpp"
+
+#ifndef LIGHTSOLVER_BUILD_TYPE
+#define LIGHTSOLVER_BUILD_TYPE ""
+#endif
+
+namespace lightsolver::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DigestDeleter {
+  void operator()(EVP_MD_CTX* c) const { EVP_MD_CTX_free(c); }
+};
+using Digest = std::unique_ptr<EVP_MD_CTX, DigestDeleter>;
+
+Digest new_sha256() {
+  Digest d(EVP_MD_CTX_new());
+  if (!d || EVP_DigestInit_ex(d.get(), EVP_sha256(), nullptr) != 1) {
+    throw std::runtime_error("SHA-256 is not available (OpenSSL libcrypto)");
+  }
+  return d;
+}
+
+void update(EVP_MD_CTX* d, const char* data, std::size_t n) {
+  if (EVP_DigestUpdate(d, data, n) != 1) throw std::runtime_error("SHA-256 update failed");
+}
+
+std::string hex_of(EVP_MD_CTX* d) {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int n = 0;
+  if (EVP_DigestFinal_ex(d, digest, &n) != 1) throw std::runtime_error("SHA-256 failed");
+  static const char* kHex = "0123456789abcdef";
+  std::string out;
+  for (unsigned int i = 0; i < n; ++i) {
+    out += kHex[digest[i] >> 4];
+    out += kHex[digest[i] & 15];
+  }
+  return out;
+}
+
+// Integral values below 2^53 become integers, so the text does not depend on how the number
+// was spelled (1, 1.0, 1e0); everything else is kept as parsed.
+nlohmann::json normalized(const nlohmann::json& j) {
+  if (j.is_object()) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, value] : j.items()) out[key] = normalized(value);
+    return out;
+  }
+  if (j.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& value : j) out.push_back(normalized(value));
+    return out;
+  }
+  if (j.is_number_float()) {
+    const double v = j.get<double>();
+    constexpr double kExact = 9007199254740992.0;  // 2^53
+    if (std::isfinite(v) && std::trunc(v) == v && std::abs(v) < kExact) {
+      return v < 0 ? nlohmann::json(static_cast<std::int64_t>(v))
+                   : nlohmann::json(static_cast<std::uint64_t>(v));
+    }
+  }
+  if (j.is_number_integer() && !j.is_number_unsigned() && j.get<std::int64_t>() >= 0) {
+    return j.get<std::uint64_t>();  // a Python int and a parsed one: the same kind
+  }
+  return j;
+}
+
+// Files in the order the scene names them, each path once.
+class FileList {
+ public:
+  FileList(const std::string& base_dir, const std::string& scene_file, bool strict)
+      : base_dir_(base_dir), scene_file_(scene_file), strict_(strict) {}
+
+  void add(const std::string& written, const std::string& resolved, const std::string& kind,
+           const std::string& where) {
+    for (const SourceFile& f : files_) {
+      if (f.path == written) return;
+    }
+    std::optional<std::string> sha = file_sha256(resolved);
+    if (!sha && strict_) {
+      throw InputError(scene_file_, where, "cannot read \"" + resolved + "\" to record its hash");
+    }
+    files_.push_back({written, kind, sha.value_or("")});
+  }
+
+  // Every string "file" in the entries of list `key`.
+  void add_entries(const nlohmann::json& doc, const char* key, const char* default_kind) {
+    if (!doc.contains(key) || !doc[key].is_array()) return;
+    const nlohmann::json& list = doc[key];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const nlohmann::json& e = list[i];
+      if (!e.is_object() || !e.contains("file") || !e["file"].is_string()) continue;
+      const std::string written = e["file"].get<std::string>();
+      const bool photometric = e.contains("type") && e["type"] == "photometric";
+      add(written, (fs::path(base_dir_) / written).lexically_normal().string(),
+          photometric ? "photometric" : default_kind,
+          std::string(key) + "[" + std::to_string(i) + "].file");
+    }
+  }
+
+  // The requirements table, when a target names a task: found by search (requirements_table.hpp),
+  // so it is listed by its file name.
+  void add_requirements_table(const nlohmann::json& doc) {
+    if (!doc.contains("targets") || !doc["targets"].is_array()) return;
+    const auto& targets = doc["targets"];
+    const bool tasks = std::any_of(targets.begin(), targets.end(), [](const nlohmann::json& t) {
+      return t.is_object() && t.contains("task");
+    });
+    if (!tasks) return;
+    const std::string path = requirements_table_path(base_dir_);
+    if (path.empty()) {
+      if (strict_) throw InputError(scene_file_, "targets", "no requirements table found");
+      files_.push_back({"en12464-1.json", "requirements table", ""});
+      return;
+    }
+    add(fs::path(path).filename().string(), path, "requirements table", "targets");
+  }
+
+  std::vector<SourceFile> take() { return std::move(files_); }
+
+ private:
+  std::string base_dir_, scene_file_;
+  bool strict_;
+  std::vector<SourceFile> files_;
+};
+
+// Resolved value of run option `name` in a run that produced `r`. Every row of the table is
+// named here (a new row without a line fails every run's provenance, so it cannot be missed).
+OptionValue resolved_option(std::string_view name, const Results& r, const Scene& scene) {
+  const auto optional = [](const std::optional<double>& v) {
+    return v ? OptionValue(*v) : OptionValue();
+  };
+  if (name == "photons") return r.photons_requested;
+  if (name == "seed") return r.seed;
+  if (name == "confidence") return r.confidence;
+  if (name == "target_accuracy") return optional(r.target_accuracy);
+  if (name == "accuracy_per_cell") return r.accuracy_per_cell;
+  if (name == "max_seconds") return optional(r.max_seconds);
+  if (name == "decide") return r.decide;
+  if (name == "contributions") return r.contributions;
+  if (name == "max_bounces") return std::uint64_t{scene.settings.max_bounces};
+  throw std::logic_error("provenance: run option \"" + std::string(name) +
+                         "\" has no resolved value (provenance.cpp)");
+}
+
+std::string host_name() {
+  char name[HOST_NAME_MAX + 1] = {};
+  if (gethostname(name, sizeof name - 1) != 0 || !name[0]) return "unknown";
+  return name;
+}
+
+}  // namespace
+
+std::string sha256_hex(std::string_view bytes) {
+  Digest d = new_sha256();
+  update(d.get(), bytes.data(), bytes.size());
+  return hex_of(d.get());
+}
+
+std::optional<std::string> file_sha256(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  Digest d = new_sha256();
+  std::vector<char> buffer(1 << 20);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    update(d.get(), buffer.data(), static_cast<std::size_t>(in.gcount()));
+  }
+  if (in.bad()) return std::nullopt;
+  return hex_of(d.get());
+}
+
+std::string canonical_json(const nlohmann::json& doc) { return normalized(doc).dump(); }
+
+SceneSource scene_source(const nlohmann::json& doc, const std::string& base_dir,
+                         const std::string& scene_file, bool strict) {
+  FileList files(base_dir, scene_file, strict);
+  files.add_entries(doc, "meshes", "mesh");
+  files.add_entries(doc, "luminaires", "file");
+  files.add_entries(doc, "targets", "file");
+  files.add_requirements_table(doc);
+  return {sha256_hex(canonical_json(doc)), files.take()};
+}
+
+std::string utc_text(std::chrono::system_clock::time_point t) {
+  const std::time_t s = std::chrono::system_clock::to_time_t(t);
+  std::tm tm{};
+  gmtime_r(&s, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
+}
+
+Provenance run_provenance(const Scene& scene, const SolveOptions& options, const Results& r,
+                          int threads, const std::string& device,
+                          std::chrono::system_clock::time_point started,
+                          std::chrono::system_clock::time_point finished) {
+  Provenance p;
+  if (scene.source) {
+    p.scene_sha256 = scene.source->sha256;
+    p.files = scene.source->files;
+  }
+  const BuildInfo build = build_info();
+  p.solver_version = build.solver_version;
+  p.source_commit = build.source_commit;
+  p.build_type = build.build_type;
+  p.backend = r.backend;
+  p.device = device;
+  p.mpi_ranks = options.processes ? options.processes->size() : 1;
+  p.threads = threads;
+  for_each_run_option([&](const auto& row) {
+    const std::string_view name = row.info.name;
+    if (name == "threads" || name == "backend") return;  // fields of their own
+    p.options.emplace_back(row.info.name, resolved_option(name, r, scene));
+  });
+  std::sort(p.options.begin(), p.options.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  p.started_utc = utc_text(started);
+  p.finished_utc = utc_text(finished);
+  p.host = host_name();
+  p.command = options.command.empty() ? "library call" : options.command;
+  return p;
+}
+
+}  // namespace lightsolver::detail
+
+namespace lightsolver {
+
+BuildInfo build_info() {
+  const std::string type = LIGHTSOLVER_BUILD_TYPE;
+  return {version(), detail::source_commit(), type.empty() ? "unspecified" : type};
+}
+
+}  // namespace lightsolver
