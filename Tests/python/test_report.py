@@ -167,7 +167,8 @@ def test_pdf_is_typeset_non_blank_and_holds_verdicts_and_values(name, tmp_path):
     if not (shutil.which("pdftoppm") and shutil.which("pdftotext")):
         pytest.skip("poppler-utils (pdftoppm, pdftotext) not installed")
     scene, results = fixture(name)
-    pdf = render(scene, results, tmp_path / f"{name}.pdf", date=DATE)
+    # The room and office fixtures are results no solver wrote (make_fixtures.py): unverified.
+    pdf = render(scene, results, tmp_path / f"{name}.pdf", date=DATE, allow_unverified=True)
     assert pdf.read_bytes().startswith(b"%PDF")
     subprocess.run(["pdftoppm", "-r", "40", "-gray", "-f", "1", "-l", "3", str(pdf),
                     str(tmp_path / "page")], check=True)
@@ -210,7 +211,8 @@ def test_traces_with_the_scenes_settings_when_no_results_are_given(tmp_path, roo
     out = render(room_scene, None, tmp_path / "room.html", date=DATE, backend="embree")
     golden = json.loads((SOURCE_DIR / "Tests" / "golden" / "room.results.json").read_text())
     expected = render_html(room_scene, golden, date=DATE)
-    timed = re.compile(r'<td class="run-seconds">[^<]*</td>|<code>[0-9a-f]{64}</code>')
+    timed = re.compile(r'<td class="run-seconds">[^<]*</td>|<code>[0-9a-f]{64}</code>'
+                       r'|\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ|commit [0-9a-f]+')
     assert timed.sub("", out.read_text(encoding="utf-8")) == timed.sub("", expected)
 
 
@@ -341,7 +343,8 @@ def test_missing_jinja2_is_named_with_its_package(tmp_path):
     code = ("import sys; sys.modules['jinja2'] = None\n"
             "from lightsolver_report.__main__ import main\n"
             f"sys.exit(main([{str(scene)!r}, '--results', "
-            f"{str(FIXTURES / 'room.results.json')!r}, '--out', {str(tmp_path / 'r.html')!r}]))")
+            f"{str(FIXTURES / 'room.results.json')!r}, '--allow-unverified', '--out', "
+            f"{str(tmp_path / 'r.html')!r}]))")
     r = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, text=True,
                        env={**os.environ, "PYTHONPATH": os.pathsep.join(_pythonpath())})
     assert r.returncode == 1 and "python3-jinja2" in r.stderr, r.stderr
@@ -362,7 +365,8 @@ def run_cli(cli, *args, env=None):
 def test_cli_report_gives_the_golden_html(cli, tmp_path):
     out = tmp_path / "room.html"
     r = run_cli(cli, str(FIXTURES / "room.scene.json"), "--results",
-                str(FIXTURES / "room.results.json"), "--date", DATE, "--out", str(out))
+                str(FIXTURES / "room.results.json"), "--allow-unverified", "--date", DATE,
+                "--out", str(out))
     assert r.returncode == 0, r.stderr
     assert out.read_text(encoding="utf-8") == (FIXTURES / "room.report.html").read_text(
         encoding="utf-8")

@@ -5,6 +5,7 @@ fields, a picture that is no PNG. Each is refused with a message naming the file
 leaves nothing behind: no file, no folder, no temporary file. The same scene and results are
 accepted, by the library and by both command lines; a failure while writing leaves the old
 report as it was."""
+import functools
 import json
 import os
 import subprocess
@@ -15,7 +16,12 @@ import lightsolver
 import pytest
 
 import lightsolver_report
-from lightsolver_report import ReportError, build, guard, render, render_html
+from lightsolver_report import ReportError, build, guard, render_html
+
+# The room fixture is results no solver wrote (make_fixtures.py: no provenance), so every
+# render() here allows unverified results; results of another scene stay refused
+# (test_provenance.py), and the other refusals do not depend on it.
+render = functools.partial(lightsolver_report.render, allow_unverified=True)
 
 FIXTURES = Path(__file__).resolve().parent / "fixtures" / "report"
 DATE = "2026-01-01"
@@ -204,10 +210,10 @@ def test_render_asks_the_provenance_check_and_refuses_what_it_refuses(tmp_path, 
 
     monkeypatch.setattr(guard, "_provenance_check", lambda: check)
     other = dict(results_dict(), seed=99)
-    refused(tmp_path, other, "another scene")
+    refused(tmp_path, other, "another scene", allow_unverified=False)
     refused(tmp_path, other, "another scene", allow_unverified=True)
     assert calls == [(str(SCENE), 99, False), (str(SCENE), 99, True)]
-    assert render(SCENE, RESULTS, tmp_path / "ok.html", date=DATE).is_file()
+    assert lightsolver_report.render(SCENE, RESULTS, tmp_path / "ok.html", date=DATE).is_file()
 
 
 def test_without_a_provenance_module_nothing_is_compared():
@@ -314,14 +320,15 @@ def test_python_m_refuses_and_accepts(tmp_path):
     assert r.returncode == 1 and "no targets" in r.stderr and str(empty) in r.stderr, r.stderr
     r = python_m(SCENE, "--results", RESULTS, "--out", tmp_path / "gone" / "r.pdf")
     assert r.returncode == 1 and "does not exist" in r.stderr, r.stderr
-    r = python_m(SCENE, "--results", partial, "--out", tmp_path / "r.html")
+    r = python_m(SCENE, "--results", partial, "--allow-unverified", "--out", tmp_path / "r.html")
     assert r.returncode == 1 and "--allow-partial" in r.stderr, r.stderr
     # --save-results into a missing folder: refused before tracing.
     r = python_m(SCENE, "--save-results", tmp_path / "gone" / "r.json", "--out",
                  tmp_path / "r.html")
     assert r.returncode == 1 and "does not exist" in r.stderr, r.stderr
     assert tree(tmp_path) == before
-    r = python_m(SCENE, "--results", partial, "--allow-partial", "--date", DATE, "--project",
+    r = python_m(SCENE, "--results", partial, "--allow-partial", "--allow-unverified",
+                 "--date", DATE, "--project",
                  "Office 3", "--author", "A. Writer", "--checked-by", "K. Lux", "--out",
                  tmp_path / "r.html")
     assert r.returncode == 0, r.stderr

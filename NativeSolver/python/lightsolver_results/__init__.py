@@ -27,14 +27,14 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, READ_TYPES, ResultsError, check, finite,
                      plain, schema)
-from .provenance import Provenance, SourceFile, read_provenance
+from .provenance import Provenance, SourceFile, read_provenance, without_run_facts
 from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFlux, _migrate,
                         migrate)
 
 __all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "DERIVED_FLUX_NOTE",
            "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "Target", "LuminaireFlux",
            "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
-           "read", "load", "Provenance", "SourceFile"]
+           "read", "load", "Provenance", "SourceFile", "without_run_facts"]
 
 # --- the view ---------------------------------------------------------------------------------
 

@@ -55,3 +55,18 @@ def read_provenance(doc: Dict[str, Any]) -> Optional[Provenance]:
         mpi_ranks=int(p.get("mpi_ranks") or 1), threads=int(p.get("threads") or 0),
         options=dict(p.get("options") or {}), started_utc=text("started_utc"),
         finished_utc=text("finished_utc"), host=text("host"), command=text("command"))
+
+
+#: Provenance fields that say when, where and how a run was started, not what it computed:
+#: two runs of the same scene and options differ only in these (and in the tracing time).
+RUN_FACT_FIELDS = ("started_utc", "finished_utc", "host", "command", "threads")
+
+
+def without_run_facts(doc: Dict[str, Any], top_level: tuple = ("seconds",)) -> Dict[str, Any]:
+    """The results without what differs between two runs of the same scene and options: the
+    top-level ``top_level`` keys and the provenance's :data:`RUN_FACT_FIELDS`."""
+    out = {k: v for k, v in doc.items() if k not in top_level}
+    if isinstance(out.get("provenance"), dict):
+        out["provenance"] = {k: v for k, v in out["provenance"].items()
+                             if k not in RUN_FACT_FIELDS}
+    return out

@@ -30,9 +30,6 @@ LEGACY_TARGET = ("MeanLux", "CiLowLux", "CiHighLux", "SigmaLux", "MinLux", "MaxL
 
 #: Results fields that differ between two runs of the same scene and seed.
 RUN_FACTS = ("seconds",)
-#: Within the results' provenance: when, where and how the run was started (the scene's hash,
-#: files and options stay compared).
-PROVENANCE_RUN_FACTS = ("started_utc", "finished_utc", "host", "command", "threads")
 
 
 @contextmanager
@@ -124,16 +121,13 @@ def settled_status(analysis: Any) -> str:
 
 
 def _same_results(old: Optional[Dict[str, Any]], new: Dict[str, Any]) -> bool:
+    """The two results agree but for when, where and how the runs were started."""
     if old is None:
         return False
-    def strip(d: Dict[str, Any]) -> Dict[str, Any]:
-        out = {k: v for k, v in d.items() if k not in RUN_FACTS}
-        if isinstance(out.get("provenance"), dict):
-            out["provenance"] = {k: v for k, v in out["provenance"].items()
-                                 if k not in PROVENANCE_RUN_FACTS}
-        return out
+    from lighting.solver.results import reader
 
-    return strip(old) == strip(json.loads(json.dumps(new)))
+    strip = reader().without_run_facts
+    return strip(old, RUN_FACTS) == strip(json.loads(json.dumps(new)), RUN_FACTS)
 
 
 def summary_line(result: AnalysisResult, limit: int = 3) -> str:
