@@ -7,6 +7,7 @@ accepted, by the library and by both command lines; a failure while writing leav
 report as it was."""
 import functools
 import json
+import shutil
 import os
 import subprocess
 import sys
@@ -374,3 +375,20 @@ def test_lightsolver_report_refuses_a_missing_folder_and_empty_results(cli, tmp_
     assert (tmp_path / "r.html").read_text(encoding="utf-8") == render_html(
         SCENE, partial_results(), date=DATE,
         signoff={"project": "Office 3", "author": "A. Writer", "checked_by": "K. Lux"})
+
+
+def test_stale_results_of_a_changed_model_are_refused_unless_allowed_and_then_said(tmp_path):
+    """Results traced from the workbench fixture's scene, the scene changed since: refused;
+    with allow_stale (the workbench, the user asked) written, what differs on the page."""
+    shutil.copytree(FIXTURES / "photometry", tmp_path / "photometry")
+    scene = json.loads((FIXTURES / "workbench.scene.json").read_text())
+    scene["luminaires"][0]["flux_lm"] = scene["luminaires"][0]["flux_lm"] * 1.1
+    changed = tmp_path / "workbench.scene.json"
+    changed.write_text(json.dumps(scene, indent=1))
+    results = json.loads((FIXTURES / "workbench.results.json").read_text())
+    with pytest.raises(ReportError, match="scene's content differs"):
+        lightsolver_report.render(changed, results, tmp_path / "r.html", date=DATE)
+    assert not (tmp_path / "r.html").exists()
+    out = lightsolver_report.render(changed, results, tmp_path / "r.html", date=DATE,
+                                    allow_stale=True)
+    assert "earlier state of the model" in out.read_text(encoding="utf-8")

@@ -98,6 +98,8 @@ class ReportJob:
     view_png: Optional[str] = None
     allow_partial: bool = False
     allow_unverified: bool = False
+    #: The user asked for stale results: what differs from the scene file goes on the page.
+    allow_stale: bool = False
     #: Set by :meth:`write`: the path written, or the error (a LightingError) it raised.
     written: Optional[str] = None
     error: Optional[BaseException] = None
@@ -110,7 +112,8 @@ class ReportJob:
             self.written = str(module.render(
                 self.scene_file, self.data, self.path, date=self.date, title=self.title,
                 view_png=self.view_png, allow_partial=self.allow_partial,
-                signoff=self.signoff, allow_unverified=self.allow_unverified))
+                signoff=self.signoff, allow_unverified=self.allow_unverified,
+                allow_stale=self.allow_stale))
         except module.ReportError as exc:
             raise LightingError(f"The report cannot be written: {exc}") from exc
         except OSError as exc:
@@ -185,7 +188,7 @@ def prepare_report(analysis: Any, path: str, date: Optional[str] = None,
                      data=dict(data, warnings=list(data.get("warnings", [])) + notes),
                      path=path, date=date, title=title or analysis.Document.Label,
                      signoff=fields, view_png=view_png, allow_partial=allow_partial,
-                     allow_unverified=allow_unverified)
+                     allow_unverified=allow_unverified, allow_stale=allow_stale)
 
 
 def make_report(analysis: Any, path: str, date: Optional[str] = None,

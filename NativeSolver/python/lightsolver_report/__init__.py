@@ -211,7 +211,8 @@ def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike
            solver_version: Optional[str] = None, photons: Optional[int] = None,
            seed: Optional[int] = None, backend: str = "auto",
            view_png: Optional[PathLike] = None, allow_partial: bool = False,
-           signoff: Optional[Dict[str, Any]] = None, allow_unverified: bool = False) -> Path:
+           signoff: Optional[Dict[str, Any]] = None, allow_unverified: bool = False,
+           allow_stale: bool = False) -> Path:
     """Write the report of ``scene`` (a path, or a scene dict with ``scene_path`` naming where
     its relative files lie) to ``out_path``: ``.html``/``.htm`` or ``.pdf``.
 
@@ -224,7 +225,9 @@ def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike
     refuses"): an output folder that does not exist (it is never created) or another suffix;
     results that cannot be read, break the results schema or hold no targets; results of a
     cancelled run unless ``allow_partial`` (then every page says so); results that do not
-    belong to the scene file (``provenance.check``; ``allow_unverified`` is passed to it). The
+    belong to the scene file (``provenance.check``; ``allow_unverified`` is passed to it;
+    ``allow_stale``: results the caller knows to be of an earlier state of the model, written
+    with what differs among the page's warnings instead of refused). The
     file is written whole or not at all: an error while writing leaves an old report as it was.
     Returns the path written."""
     out = guard.output_path(out_path)
@@ -241,7 +244,10 @@ def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike
     else:  # a file or a dict from elsewhere: does it belong to this scene?
         where = guard.describe(results)
         results = guard.results_document(results)
-        guard.check_provenance(scene_path, results, allow_unverified=allow_unverified)
+        differs = guard.check_provenance(scene_path, results, allow_unverified=allow_unverified,
+                                         allow_stale=allow_stale)
+        if differs:
+            results = dict(results, warnings=list(results.get("warnings") or []) + [differs])
     if not allow_partial:
         guard.refuse_partial(results, where)
     html = render_html(scene, results, scene_path=scene_path, date=date, title=title,

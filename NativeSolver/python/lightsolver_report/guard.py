@@ -127,14 +127,23 @@ def _provenance_check() -> Optional[Callable[..., None]]:
 
 
 def check_provenance(scene_path: Optional[PathLike], results: Dict[str, Any],
-                     allow_unverified: bool = False) -> None:
+                     allow_unverified: bool = False, allow_stale: bool = False) -> Optional[str]:
     """Refuse results that do not belong to the scene file (another scene, changed input
     files): ``provenance.check`` raises ReportError naming what differs. Without a scene file
-    (a scene given as a dict only) there is nothing to compare with."""
+    (a scene given as a dict only) there is nothing to compare with. ``allow_stale``: the
+    caller knows the results describe an earlier state of the model (the workbench's stale
+    results, written anyway at the user's request): what differs is returned, for the page,
+    instead of raised."""
     check = _provenance_check()
     if check is None or scene_path is None:
-        return
-    check(scene_path, results, allow_unverified=allow_unverified)
+        return None
+    try:
+        check(scene_path, results, allow_unverified=allow_unverified)
+    except ReportError as exc:
+        if not allow_stale:
+            raise
+        return f"These results describe an earlier state of the model: {exc}"
+    return None
 
 
 # --- what the caller adds ----------------------------------------------------------------------

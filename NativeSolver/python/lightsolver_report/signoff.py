@@ -24,6 +24,7 @@ class InputFile:
 
     role: str
     sha256: str
+    copies: int = 1  # files with the same content and role (six luminaires, one IES file)
 
 
 @dataclass
@@ -110,7 +111,12 @@ def build_provenance(results: Dict[str, Any], roles: Dict[str, str],
         if isinstance(entry, dict) and _text(entry.get("sha256")):
             path = str(entry.get("path", ""))
             role = roles.get(path) or by_name.get(os.path.basename(path)) or _role(path)
-            prov.files.append(InputFile(role, str(entry["sha256"])))
+            same = next((f for f in prov.files
+                         if (f.role, f.sha256) == (role, str(entry["sha256"]))), None)
+            if same:  # the client sees no file names: one line per content
+                same.copies += 1
+            else:
+                prov.files.append(InputFile(role, str(entry["sha256"])))
     return prov
 
 
