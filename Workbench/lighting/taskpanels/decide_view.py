@@ -59,16 +59,13 @@ def undecided(result: Optional[results_mod.AnalysisResult]) -> List[Undecided]:
     for t in result.targets if result is not None else []:
         if t.estimated:  # point estimates are never undecided, and carry no forecast
             continue
-        for key, verdict in t.verdicts.items():
-            if verdict.get("verdict") != "undecided":
-                continue
-            cost = verdict.get("to_decide") or {}
-            photons, seconds = cost.get("photons"), cost.get("seconds")
+        for key in t.undecided:
+            verdict = t.verdicts[key]
+            photons, seconds = t.to_decide.get(key, (None, None))
             out.append(Undecided(t.label, NAMES.get(key, key), verdict.get("value"),
                                  float(verdict.get("required", 0.0)),
                                  "<=" if verdict.get("relation") == "<=" else ">=",
-                                 int(photons) if photons is not None else None,
-                                 float(seconds) if seconds is not None else None))
+                                 photons, seconds))
     return out
 
 

@@ -53,8 +53,7 @@ def seconds_text(seconds: float) -> str:
 def undecided_count(result: results_mod.AnalysisResult) -> int:
     """How many requirements of the shown results (a light scene's rescaled ones included)
     are undecided."""
-    return sum(1 for t in result.targets for v in t.verdicts.values()
-               if v.get("verdict") == "undecided" and not t.estimated)
+    return sum(len(t.undecided) for t in result.targets if not t.estimated)
 
 
 def facts_text(result: results_mod.AnalysisResult, budget: Optional[int] = None,
@@ -70,8 +69,7 @@ def facts_text(result: results_mod.AnalysisResult, budget: Optional[int] = None,
     seconds = wall_seconds if wall_seconds is not None else result.seconds
     text += f" in {seconds_text(seconds)}, {result.confidence * 100:g} % confidence intervals"
     undecided = undecided_count(result)
-    judged = any(v.get("verdict") for t in result.targets if not t.estimated
-                 for v in t.verdicts.values())
+    judged = any(t.verdict is not None for t in result.targets if not t.estimated)
     if result.partial:
         text += " - PARTIAL (cancelled)"
     elif undecided:
