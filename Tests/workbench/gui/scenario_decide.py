@@ -60,7 +60,7 @@ def body() -> None:
     lock_text = panel.display_view.lock.text()
     expect(lock_text.startswith("Locked"), f"the scale is not locked: {lock_text}")
     show_section(panel, "undecided")
-    grab_window("decide_before")
+    grab_window("decide_before", docs_name="decide-undecided.png")
     if not view.buttons:
         return
     budget = int(view.buttons[0].text().split("(")[1].split(" photons")[0].replace("\u202f", ""))
