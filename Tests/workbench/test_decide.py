@@ -24,6 +24,28 @@ class RequirementScale(unittest.TestCase):
         self.assertIsNone(colormap.requirement_scale([float("nan")]))
 
 
+class Facts(unittest.TestCase):
+    def test_decided_is_said_only_when_no_row_shown_is_undecided(self):
+        from lighting.solver.results import AnalysisResult, TargetResult
+        from lighting.taskpanels import results_table
+
+        row = TargetResult("Workplane", "Workplane", "grid", 502.0, 498.0, 506.0,
+                           verdict="undecided", undecided=["em"])
+        # A light scene's rescaled results keep the traced run's stop reason "decided".
+        shown = AnalysisResult([row], photons=16384, seconds=0.034, stop_reason="decided",
+                               photons_requested=200000, verdict="undecided")
+        text = results_table.facts_text(shown)
+        self.assertNotIn("every requirement decided", text)
+        self.assertIn("1 requirement(s) undecided", text)
+        self.assertIn("in 34 ms", text)  # never "0.00 s"
+        self.assertIn("budget 200", text)
+        row.verdict, row.undecided = "pass", []
+        self.assertIn("every requirement decided, so the run stopped before its budget",
+                      results_table.facts_text(shown))
+        self.assertEqual(results_table.seconds_text(0.0), "1 ms")
+        self.assertEqual(results_table.seconds_text(75.0), "1 min 15 s")
+
+
 class Decide(DocTestCase):
     def test_a_new_analysis_scale_is_locked_to_its_requirements(self):
         doc = build_office()
@@ -66,6 +88,8 @@ class Decide(DocTestCase):
         self.assertEqual(again["Workplane"].undecided, [])
         self.assertIn(again["Workplane"].verdict, ("pass", "fail"))
         self.assertLessEqual(again.photons, 4 * photons)
+        self.assertEqual(again.photons_requested, 4 * photons)  # the budget, in the results
+        self.assertEqual(result.photons_requested, 16384)
 
 
 if __name__ == "__main__":

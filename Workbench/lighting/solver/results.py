@@ -202,6 +202,9 @@ class AnalysisResult:
     stop_reason: str = ""
     #: The solver's overall verdict over the targets it judged; None when it judged none.
     verdict: Optional[str] = None
+    #: The photons the run was allowed (its budget: a decide run or an accuracy goal may
+    #: stop before it); 0 when the results do not say.
+    photons_requested: float = 0.0
 
     def __getitem__(self, key: str) -> TargetResult:
         """The target with this object name or label."""
@@ -238,7 +241,8 @@ class AnalysisResult:
                    confidence=run.confidence if run.confidence is not None else 0.95,
                    warnings=list(run.warnings), scene_file=scene_file,
                    results_file=results_file, data=data if data is not None else found.doc,
-                   stop_reason=run.stop_reason or "", verdict=found.verdict)
+                   stop_reason=run.stop_reason or "", verdict=found.verdict,
+                   photons_requested=_float(run.photons_requested))
 
     def to_json(self) -> str:
         """The results in the CLI's JSON layout."""

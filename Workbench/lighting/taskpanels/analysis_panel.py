@@ -18,7 +18,6 @@ import FreeCADGui
 from PySide import QtCore, QtGui
 
 from lighting.messages import CheckError, LightingError
-from lighting.objects import analysis as analysis_mod
 from lighting.solver import machine, store
 from lighting.taskpanels import light_scene_view, plan_view, study_view
 from lighting.taskpanels.decide_view import DecideView
@@ -324,16 +323,9 @@ class AnalysisTaskPanel(ModelessPanel):
         self.scene_view.refresh()
         self.display_view.refresh(result is not None)
         self.show_state()
-        facts = facts_text(result, self._budget()) if result is not None else ""
+        facts = facts_text(result) if result is not None else ""
         self.results_view.show_result(result, facts)
         self.decide_view.refresh(result, running=self.is_busy())
-
-    def _budget(self) -> Optional[int]:
-        """The photon budget of a run that may stop early (Decide, an accuracy goal)."""
-        a = self.analysis
-        if float(a.TargetAccuracy) > 0.0:
-            return int(a.MaxPhotons)
-        return int(a.Photons) if analysis_mod.decides(a) else None
 
     def _pump(self, text: str) -> None:
         self._set_status(text)

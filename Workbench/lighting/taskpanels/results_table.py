@@ -56,14 +56,14 @@ def undecided_count(result: results_mod.AnalysisResult) -> int:
     return sum(len(t.undecided) for t in result.targets if not t.estimated)
 
 
-def facts_text(result: results_mod.AnalysisResult, budget: Optional[int] = None,
-               wall_seconds: Optional[float] = None) -> str:
-    """The run's facts: the photons traced (of the budget, when a goal stopped it earlier), the
-    time the tracing took (the wall time of the run when this panel ran it), the confidence
+def facts_text(result: results_mod.AnalysisResult, wall_seconds: Optional[float] = None) -> str:
+    """The run's facts, all from the results: the photons traced (of the run's budget, when a
+    goal stopped it earlier), the time the tracing took (or ``wall_seconds``), the confidence
     level and why it stopped. "every requirement decided" only when none shown is undecided:
     a light scene's rescaled row can be undecided after a run that decided the traced one."""
     traced = f"{result.photons:,.0f}".replace(",", "\u202f")
     text = f"{traced} photons traced"
+    budget = int(result.photons_requested)
     if budget and budget > result.photons:
         text += f" (budget {budget:,})".replace(",", "\u202f")
     seconds = wall_seconds if wall_seconds is not None else result.seconds
