@@ -11,7 +11,7 @@ the solver runs on a worker thread that a QTimer polls, so the GUI stays respons
 Cancel works. Results are applied on the GUI thread in one undo step."""
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, Optional
 
 import FreeCAD
 import FreeCADGui

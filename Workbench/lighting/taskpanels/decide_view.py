@@ -11,7 +11,7 @@ requirement is decided, so the margin costs photons only when they are needed.""
 from __future__ import annotations
 
 import math
-from typing import Any, Callable, List, NamedTuple, Optional
+from typing import Callable, List, NamedTuple, Optional
 
 from PySide import QtGui
 
