@@ -1,6 +1,7 @@
 """The one Python results reader (NativeSolver/python/lightsolver_results): schema-checked, the
 legacy fallbacks in one migration step that says what it did, each target type read once; found
 by FreeCAD's /usr/bin/python3 from the build folder and from the source tree."""
+import copy
 import json
 import os
 import subprocess
@@ -147,11 +148,29 @@ def test_the_run_facts_cells_and_overall_verdict_are_typed():
         assert t.verdict == entry["verdict"] and not t.estimated
         for name, verdict in entry["verdicts"].items():
             assert t.verdict_of(name) == verdict["verdict"]
+            cost = verdict.get("to_decide") or {}
+            assert t.to_decide(name) == (cost.get("photons"), cost.get("seconds"))
         assert t.verdict_of("no such requirement") is None
+        assert t.to_decide("no such requirement") == (None, None)
     assert grids == 2
     plain_room = reader.read(golden("room"))
     assert plain_room.verdict is None and not plain_room.has_contributions
     assert plain_room.run.decide is False and plain_room.run.photons == golden("room")["photons"]
+
+
+def test_what_deciding_an_undecided_requirement_costs_is_typed():
+    """to_decide: (photons, seconds) of an undecided verdict; None where the solver gave null
+    (the value on the bound); (None, None) for a decided one."""
+    doc = golden("lamps.embree")
+    entry = copy.deepcopy(doc["targets"][0])
+    name = next(iter(entry["verdicts"]))
+    entry["verdicts"][name].update(verdict="undecided",
+                                   to_decide={"photons": 253821, "seconds": 0.14})
+    t = reader.read(dict(doc, targets=[entry]), strict=False).targets[0]
+    assert t.verdict_of(name) == "undecided" and t.to_decide(name) == (253821, 0.14)
+    entry["verdicts"][name]["to_decide"] = {"photons": None, "seconds": None}
+    t = reader.read(dict(doc, targets=[entry]), strict=False).targets[0]
+    assert t.to_decide(name) == (None, None)
 
 
 def test_requirements_the_solver_did_not_judge_are_estimated_by_the_migration():

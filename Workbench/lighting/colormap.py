@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import Iterable, List, Sequence, Tuple
+from typing import Iterable, List, Optional, Sequence, Tuple
 
 RGB = Tuple[float, float, float]
 
@@ -49,6 +49,20 @@ def auto_scale(values: Iterable[float]) -> Tuple[float, float]:
     """(0, a round maximum) covering all values."""
     top = max((v for v in values if math.isfinite(v)), default=0.0)
     return 0.0, nice_max(top)
+
+
+#: The top of a scale set from the requirements: this times the highest required Em, rounded
+#: up (nice_max), so a target that just meets its requirement sits at two thirds of the scale.
+REQUIREMENT_HEADROOM = 1.5
+
+
+def requirement_scale(required_lux: Iterable[float]) -> Optional[Tuple[float, float]]:
+    """(0, a round 1.5 x the highest required Em) or None without any positive requirement: a
+    scale that stays the same from run to run, so a darker result always looks darker."""
+    top = max((v for v in required_lux if math.isfinite(v) and v > 0.0), default=0.0)
+    if top <= 0.0:
+        return None
+    return 0.0, nice_max(REQUIREMENT_HEADROOM * top)
 
 
 class Scale:

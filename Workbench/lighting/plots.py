@@ -18,7 +18,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from lighting import isolux
-from lighting.colormap import Scale, auto_scale, colour
+from lighting.colormap import Scale, auto_scale, colour, requirement_scale
 from lighting.objects import analysis as analysis_mod
 from lighting.objects import results as results_mod
 from lighting.objects.base import objects_of_type
@@ -73,11 +73,29 @@ class GridPlot:
         return text + (f"\nrequired: {', '.join(needs)}" if needs else "")
 
 
+def required_lux(analysis: Any) -> List[float]:
+    """The Em requirements (lx) of the analysis' targets as the document holds them now."""
+    return [float(entry.get("em_lux", 0.0))
+            for entry in analysis_mod.requirements(analysis).values()]
+
+
+def requirement_range(analysis: Any) -> Optional[Tuple[float, float]]:
+    """The scale of ScaleMode "Requirements": 0 to a round 1.5 x the highest required Em
+    (colormap.requirement_scale); None when no target has an Em requirement."""
+    return requirement_scale(required_lux(analysis))
+
+
 def analysis_scale(analysis: Any) -> Scale:
-    """The colour scale of an analysis (Auto: 0 to a round maximum over its targets' means and
-    cells; Fixed: ScaleMinLux..ScaleMaxLux), as the 3D view and its legend use it."""
+    """The colour scale of an analysis (Requirements: 0 to 1.5 x the highest required Em, the
+    same for every run; Fixed: ScaleMinLux..ScaleMaxLux; Auto, and Requirements without any
+    requirement: 0 to a round maximum over its targets' means and cells), as the 3D view and
+    its legend use it."""
     if analysis.ScaleMode == "Fixed":
         return Scale(float(analysis.ScaleMinLux), float(analysis.ScaleMaxLux), analysis.ColorMap)
+    if analysis.ScaleMode == "Requirements":
+        fixed = requirement_range(analysis)
+        if fixed is not None:
+            return Scale(fixed[0], fixed[1], analysis.ColorMap)
     values: List[float] = []
     found = results_mod.of_analysis(analysis)
     if found is not None:
@@ -88,6 +106,23 @@ def analysis_scale(analysis: Any) -> Scale:
                 values.extend(results_mod.cells_lux(found, tgt.Name))
     low, high = auto_scale(values)
     return Scale(low, high, analysis.ColorMap)
+
+
+def scale_note(analysis: Any) -> Tuple[bool, str]:
+    """(locked, text) for the legend: whether the scale stays the same from run to run, and
+    where it comes from, in the user's words."""
+    mode = analysis.ScaleMode
+    if mode == "Fixed":
+        return True, (f"Locked: {float(analysis.ScaleMinLux):.0f}-"
+                      f"{float(analysis.ScaleMaxLux):.0f} lx, set by you")
+    if mode == "Requirements":
+        top = max(required_lux(analysis), default=0.0)
+        fixed = requirement_range(analysis)
+        if fixed is not None:
+            return True, (f"Locked: 0-{fixed[1]:.0f} lx, from the requirements "
+                          f"(1.5 x {top:.0f} lx required, rounded up)")
+        return False, "Follows each run: no target has an Em requirement to set it from"
+    return False, "Follows each run (Auto): colours of two runs are not comparable"
 
 
 def _axis(direction: Any, origin_mm: float) -> Tuple[str, float]:

@@ -150,6 +150,14 @@ class Target:
         found = self.verdicts.get(name, {}).get("verdict")
         return str(found) if found in ("pass", "fail", "undecided") else None
 
+    def to_decide(self, name: str) -> Tuple[Optional[int], Optional[float]]:
+        """What deciding an undecided requirement would cost: (photons of a whole run, tracing
+        seconds), an element None when unknown (the value on the bound: no run decides it);
+        (None, None) for a requirement that is not undecided (docs/statistics.md)."""
+        cost = self.verdicts.get(name, {}).get("to_decide") or {}
+        photons, seconds = finite(cost.get("photons")), finite(cost.get("seconds"))
+        return (int(photons) if photons is not None else None, seconds)
+
     @property
     def is_grid(self) -> bool:
         return self.type == "grid"

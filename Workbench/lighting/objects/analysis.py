@@ -17,7 +17,7 @@ TYPE = "Lighting::Analysis"
 #: otherwise they come from the solver's registry (backend_choices).
 FALLBACK_BACKENDS = ("auto", "embree", "vulkan")
 COLOR_MAPS = ("Rainbow", "Heat", "Grey")
-SCALE_MODES = ("Auto", "Fixed")
+SCALE_MODES = ("Requirements", "Auto", "Fixed")
 MESH_STORAGE = ("Auto", "Inline", "PLY")
 #: Bookkeeping properties: NoModify, so writing them neither marks the document modified nor
 #: lands in a pending undo transaction (a Check must not add an undo step).
@@ -83,8 +83,10 @@ class Analysis(BaseProxy):
         "ColorMap": Prop("App::PropertyEnumeration", "Display", "False-colour map",
                          "Rainbow", items=COLOR_MAPS),
         "ScaleMode": Prop("App::PropertyEnumeration", "Display",
-                          "Auto: scale from 0 to the largest result; Fixed: ScaleMin..ScaleMax",
-                          "Auto", items=SCALE_MODES),
+                          "Requirements: 0 to 1.5 x the highest required Em, the same for "
+                          "every run (Auto without any requirement); Auto: 0 to the largest "
+                          "result of this run; Fixed: ScaleMin..ScaleMax",
+                          "Requirements", items=SCALE_MODES),
         "ScaleMinLux": Prop("App::PropertyFloat", "Display", "Illuminance at the bottom of the "
                             "scale, lx (Fixed)", 0.0),
         "ScaleMaxLux": Prop("App::PropertyFloat", "Display", "Illuminance at the top of the "

@@ -143,11 +143,14 @@ def make_grid_target(doc: Any, base: Any, face: Optional[str] = None, height_m: 
 
 
 def make_observer(doc: Any, position_m: Vec = (0.0, 0.0, 1.2), view: Vec = (1.0, 0.0, 0.0),
-                  ugr_max: float = 0.0, posture: str = "Seated", name: str = "Observer",
-                  analysis: Optional[Any] = None) -> Any:
+                  ugr_max: Optional[float] = None, posture: str = "Seated",
+                  name: str = "Observer", analysis: Optional[Any] = None) -> Any:
     """Create an observer (an eye for UGR) at ``position_m`` looking along ``view`` (level:
-    its z is dropped), with the UGR limit ``ugr_max`` (0: none)."""
-    from lighting.objects.observer import LOCAL_VIEW, Observer
+    its z is dropped), with the UGR limit ``ugr_max`` (0: none); None: the limit of the
+    analysis' activity (the strictest EN 12464-1 preset of its targets, observer.activity_of),
+    else none."""
+    from lighting.objects.analysis import find_analysis
+    from lighting.objects.observer import LOCAL_VIEW, Observer, activity_of
 
     level = FreeCAD.Vector(view[0], view[1], 0.0)
     if level.Length == 0.0:
@@ -157,7 +160,10 @@ def make_observer(doc: Any, position_m: Vec = (0.0, 0.0, 1.2), view: Vec = (1.0,
     obj.Placement = FreeCAD.Placement(
         FreeCAD.Vector(*(c * M_TO_MM for c in position_m)),
         FreeCAD.Rotation(LOCAL_VIEW, level.normalize()))
-    obj.UgrMax = float(ugr_max)
+    if ugr_max is None:
+        obj.Activity = activity_of(analysis or find_analysis(doc))  # fills UgrMax
+    else:
+        obj.UgrMax = float(ugr_max)
     obj.Posture = posture
     _add_to_analysis(obj, analysis)
     return obj

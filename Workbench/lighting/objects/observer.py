@@ -15,6 +15,7 @@ the Placement and spanning its local +X and +Y, each looking every ``ViewStep`` 
 interval that holds for the maximum, and where it is."""
 from __future__ import annotations
 
+import math
 from typing import Any, Dict, List
 
 import FreeCAD
@@ -93,6 +94,22 @@ class Observer(BaseProxy):
         elif prop == "UgrMax" and task is not None and float(obj.UgrMax) != float(
                 task.ugr_limit or 0.0):
             obj.Activity = standards.CUSTOM
+
+
+def activity_of(analysis: Any) -> str:
+    """The activity a new observer of ``analysis`` takes: the EN 12464-1 preset of its targets
+    with the strictest UGR limit (UGR_L), so its verdict states the limit their task has;
+    ``standards.CUSTOM`` (no limit: the results say "no limit set") when no target has a
+    preset with a UGR limit."""
+    from lighting.objects import analysis as analysis_mod
+
+    best, limit = standards.CUSTOM, math.inf
+    for target in analysis_mod.targets(analysis) if analysis is not None else []:
+        activity = getattr(target, "Activity", standards.CUSTOM)
+        task = standards.task_of(activity)
+        if task is not None and task.ugr_limit and float(task.ugr_limit) < limit:
+            best, limit = activity, float(task.ugr_limit)
+    return best
 
 
 def view_direction(obj: Any) -> FreeCAD.Vector:

@@ -55,6 +55,12 @@ class AnalysisRun:
         self.done = 0
         self.total = 0
         self.started = 0.0
+        #: When the run was made (its Check starts right after) and when its results were
+        #: stored: wall_seconds() is the whole run as the user waited for it.
+        self.created = time.monotonic()
+        self.ended: Optional[float] = None
+        #: The photons the solver was allowed (Photons, or MaxPhotons with an accuracy goal).
+        self.budget = 0
         self._cancelled = False
         self._token: Optional[Any] = None
         self._thread: Optional[threading.Thread] = None
@@ -140,13 +146,16 @@ class AnalysisRun:
         self._token = run.make_cancel_token()
         accuracy = s["accuracy"] if s["accuracy"] > 0.0 else None
         photons = s["max_photons"] if accuracy else s["photons"]
-        self.total = photons
+        self.total = self.budget = photons
         data = self._solve_once(photons, 0, progress, accuracy)
         facts = results_mod.read(data).run
         if accuracy and not facts.partial:
             self.log("info", f"Target accuracy {accuracy:g}: traced {facts.photons} "
                              f"photons (at most {photons})")
             self._rewrite_photons(facts.photons)
+        elif facts.stop_reason == "decided" and facts.photons < photons:
+            self.log("info", f"Decide: every requirement decided after {facts.photons:,} of "
+                             f"at most {photons:,} photons")
         if self._cancelled and facts.photons <= 0:
             raise CancelledError("The analysis was cancelled before any photon was traced")
         self.data = data
@@ -173,6 +182,7 @@ class AnalysisRun:
         for warning in result.warnings:
             self.log("warning", f"Solver: {warning}")
         self.stage = "cancelled" if result.partial else "done"
+        self.ended = time.monotonic()
         return result
 
     # -- worker thread -------------------------------------------------------------------
@@ -186,6 +196,10 @@ class AnalysisRun:
         self.stage = "solve"
         self._thread = threading.Thread(target=worker, name="lightsolver", daemon=True)
         self._thread.start()
+
+    def wall_seconds(self) -> float:
+        """Seconds from the run's start (Check) to its results stored (or now)."""
+        return (self.ended if self.ended is not None else time.monotonic()) - self.created
 
     @property
     def finished(self) -> bool:

@@ -119,6 +119,12 @@ class TargetResult:
     #: The verdicts are the reader's point estimates (results without the solver's verdicts
     #: for this target), not the solver's from the intervals.
     estimated: bool = False
+    #: The requirements ("em", "u0", ...) the solver left undecided (their ``verdicts`` entry
+    #: holds ``to_decide``: what deciding would cost).
+    undecided: List[str] = field(default_factory=list)
+    #: What deciding each undecided requirement would cost: (photons, seconds), None where
+    #: unknown (the reader's ``Target.to_decide``).
+    to_decide: Dict[str, Tuple[Optional[int], Optional[float]]] = field(default_factory=dict)
     is_glare: bool = False
     #: Observers: the UGR (None when no luminaire counts or no reflected light reached the
     #: eye) and its interval (an end None when unbounded), from the traced background
@@ -156,6 +162,10 @@ class TargetResult:
                      required_lux=_float(wanted.get("em_lux")),
                      required_uniformity=_float(wanted.get("u0")), verdict=target.verdict,
                      verdicts=dict(target.verdicts), estimated=target.estimated,
+                     undecided=[k for k in target.verdicts
+                                if target.verdict_of(k) == "undecided"],
+                     to_decide={k: target.to_decide(k) for k in target.verdicts
+                                if target.verdict_of(k) == "undecided"},
                      is_glare=target.is_glare)
         if target.is_glare:  # an observer grid's: the maximum's
             result.ugr = target.ugr.value
@@ -192,6 +202,9 @@ class AnalysisResult:
     stop_reason: str = ""
     #: The solver's overall verdict over the targets it judged; None when it judged none.
     verdict: Optional[str] = None
+    #: The photons the run was allowed (its budget: a decide run or an accuracy goal may
+    #: stop before it); 0 when the results do not say.
+    photons_requested: float = 0.0
 
     def __getitem__(self, key: str) -> TargetResult:
         """The target with this object name or label."""
@@ -228,7 +241,8 @@ class AnalysisResult:
                    confidence=run.confidence if run.confidence is not None else 0.95,
                    warnings=list(run.warnings), scene_file=scene_file,
                    results_file=results_file, data=data if data is not None else found.doc,
-                   stop_reason=run.stop_reason or "", verdict=found.verdict)
+                   stop_reason=run.stop_reason or "", verdict=found.verdict,
+                   photons_requested=_float(run.photons_requested))
 
     def to_json(self) -> str:
         """The results in the CLI's JSON layout."""

@@ -146,7 +146,10 @@ def summary_line(result: AnalysisResult, limit: int = 3) -> str:
     if len(result.targets) > limit:
         parts.append(f"+{len(result.targets) - limit} more")
     state = "partial results" if result.partial else "done"
-    return f"{state}: {', '.join(parts)}; {result.photons:.0f} photons, {result.seconds:.1f} s"
+    # Tracing time as traced: a decided run of 16 384 photons takes milliseconds, not "0.0 s".
+    seconds = (f"{result.seconds * 1000.0:.0f} ms" if result.seconds < 1.0
+               else f"{result.seconds:.1f} s")
+    return f"{state}: {', '.join(parts)}; {result.photons:.0f} photons traced in {seconds}"
 
 
 def _labels(analysis: Any) -> Dict[str, str]:

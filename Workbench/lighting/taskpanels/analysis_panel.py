@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Task panel of an analysis: Check / Export / Run / Cancel with a progress bar, the colour
-scale, the results table (Em, Emin, Emax, U0 with CIs) and a log. It fits FreeCAD's default
+"""Task panel of an analysis: Check / Export / Run / Cancel with a progress bar, the results
+table (taskpanels/results_table.py), what deciding the undecided requirements costs with a
+one-click Decide (decide_view.py), the light scenes, the colour scale (display_view.py), the
+plan view, accuracy vs time and a log. It fits FreeCAD's default
 combo view (about 264 px): a fixed header with the buttons, sections that scroll below it
 (``add_section``); it is modeless, so the toolbars stay usable while it is open.
 
@@ -9,26 +11,24 @@ the solver runs on a worker thread that a QTimer polls, so the GUI stays respons
 Cancel works. Results are applied on the GUI thread in one undo step."""
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, Optional
 
 import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
 from lighting.messages import CheckError, LightingError
-from lighting.objects.analysis import COLOR_MAPS, SCALE_MODES
-from lighting.solver import machine, results as results_mod, store
+from lighting.solver import machine, store
 from lighting.taskpanels import light_scene_view, plan_view, study_view
-from lighting.taskpanels.legend_widget import LegendWidget
+from lighting.taskpanels.decide_view import DecideView
+from lighting.taskpanels.display_view import DisplayView, stacked_form
 from lighting.taskpanels.modeless import ModelessPanel
-from lighting.viewproviders import coloring
+from lighting.taskpanels.results_table import COLUMNS, ESSENTIAL_COLUMNS  # noqa: F401 (API)
+from lighting.taskpanels.results_table import VERDICT_COLOURS  # noqa: F401 (API)
+from lighting.taskpanels.results_table import ResultsTable, facts_text, rows, seconds_text
 from lighting.viewproviders.base import icon_path
 
 POLL_MS = 100
-COLUMNS = ("Target", "Type", "Em lx", "Em CI", "Emin lx", "Emin CI", "Emax lx", "Emax CI",
-           "U0", "U0 CI", "Check")
-#: The columns shown in the narrow default panel (the others: "All columns", tooltips).
-ESSENTIAL_COLUMNS = ("Target", "Em lx", "U0", "Check")
 
 _last_run: Optional[machine.AnalysisRun] = None
 _last_panel: Optional["AnalysisTaskPanel"] = None
@@ -57,36 +57,8 @@ def panel_of(analysis: Any) -> Optional["AnalysisTaskPanel"]:
     return None
 
 
-#: Text colours of the verdict column: pass green, FAIL red, undecided amber.
-VERDICT_COLOURS = {"pass": (0, 130, 0), "FAIL": (200, 0, 0), "undecided": (190, 110, 0)}
-
-
-def _ci(pair: Optional[Tuple[float, float]], digits: int = 1) -> str:
-    return results_mod.interval_text(pair, digits, " - ")
-
-
-def _rows(result: results_mod.AnalysisResult) -> List[List[str]]:
-    rows = []
-    for t in result.targets:
-        verdict = t.verdict_text()
-        ci = _ci((t.ci_low_lux, t.ci_high_lux))
-        if t.kind == "grid":
-            rows.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci, f"{t.min_lux:.1f}",
-                         _ci(t.min_ci_lux), f"{t.max_lux:.1f}", _ci(t.max_ci_lux),
-                         f"{t.uniformity:.2f}", _ci(t.uniformity_ci, 2), verdict])
-        elif t.is_glare:  # the Em columns show its (max) UGR
-            rows.append([t.label, t.kind, *t.ugr_text()] + ["-"] * 6 + [verdict])
-        else:
-            rows.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci] + ["-"] * 6 + [verdict])
-    return rows
-
-
-def _stacked_form() -> QtGui.QFormLayout:
-    """A form whose rows put the label above the field when the panel is narrow."""
-    form = QtGui.QFormLayout()
-    form.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)
-    form.setFieldGrowthPolicy(QtGui.QFormLayout.AllNonFixedFieldsGrow)
-    return form
+#: The table's rows of a result (taskpanels/results_table.py; kept for scripts).
+_rows = rows
 
 
 class AnalysisTaskPanel(ModelessPanel):
@@ -107,7 +79,7 @@ class AnalysisTaskPanel(ModelessPanel):
         self.timer = QtCore.QTimer()
         self.timer.setInterval(POLL_MS)
         self.timer.timeout.connect(self._poll)
-        self._show_stored_results()
+        self.refresh()
         if autostart:
             QtCore.QTimer.singleShot(0, self.run)
 
@@ -134,6 +106,10 @@ class AnalysisTaskPanel(ModelessPanel):
         outer.addWidget(self.scroll, 1)
         self.add_section("settings", "Run settings", self._build_settings())
         self.add_section("results", "Results (maintained illuminance)", self._build_results())
+        self.decide_view = DecideView(self.decide_now)
+        undecided = QtGui.QVBoxLayout()
+        undecided.addWidget(self.decide_view)
+        self.add_section("undecided", "Undecided: what deciding costs", undecided)
         self.scene_view = light_scene_view.LightSceneView(self.analysis,
                                                           self._show_stored_results)
         scenes = QtGui.QVBoxLayout()
@@ -202,7 +178,7 @@ class AnalysisTaskPanel(ModelessPanel):
         return header
 
     def _build_settings(self) -> QtGui.QLayout:
-        form = _stacked_form()
+        form = stacked_form()
         self.photons = QtGui.QSpinBox()
         self.photons.setRange(1, 2_000_000_000)
         self.photons.setSingleStep(100000)
@@ -220,60 +196,43 @@ class AnalysisTaskPanel(ModelessPanel):
         self.decide.setToolTip("Trace until every requirement is pass or fail from its interval "
                                "(Photons is then the budget; undecided ones say what deciding "
                                "would cost)")
-        form.addRow("Photons", self.photons)
+        # With Decide on the field is a budget, not what is traced: its label says so.
+        self.photons_label = QtGui.QLabel("Photons")
+        form.addRow(self.photons_label, self.photons)
         form.addRow("Target accuracy", self.accuracy)
         form.addRow(self.decide)
+        self.decide.toggled.connect(self._label_photons)
+        self.accuracy.valueChanged.connect(self._label_photons)
+        self._label_photons()
         return form
 
+    def _label_photons(self, *args: Any) -> None:
+        budget = self.decide.isChecked() and self.accuracy.value() <= 0.0
+        self.photons_label.setText("Photon budget" if budget else "Photons")
+        self.photons.setToolTip("At most this many photons: the run stops as soon as every "
+                                "requirement is decided" if budget else
+                                "Photons traced (exactly)")
+
     def _build_results(self) -> QtGui.QLayout:
-        """The essentials (target, Em, U0, verdict) fit the narrow panel; the confidence
-        intervals, Emin and Emax are in each row's tooltip and behind "All columns"."""
+        """The table, "All columns" and the run's facts (taskpanels/results_table.py)."""
         layout = QtGui.QVBoxLayout()
-        self.table = QtGui.QTableWidget(0, len(COLUMNS))
-        self.table.setHorizontalHeaderLabels(list(COLUMNS))
-        self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
-        self.table.verticalHeader().setVisible(False)
-        self.table.setTextElideMode(QtCore.Qt.ElideRight)
-        self.table.setWordWrap(False)
-        self.table.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
-        layout.addWidget(self.table)
-        self.all_columns = QtGui.QCheckBox("All columns")
-        self.all_columns.setToolTip("Show the confidence intervals, Emin and Emax too")
-        self.all_columns.toggled.connect(self._layout_table)
-        layout.addWidget(self.all_columns)
-        self.facts = QtGui.QLabel("")
-        self.facts.setWordWrap(True)
-        layout.addWidget(self.facts)
-        self._layout_table()
+        self.results_view = ResultsTable()
+        layout.addWidget(self.results_view)
+        # The widgets by their former names: scripts and the GUI scenarios use them.
+        self.table = self.results_view.table
+        self.all_columns = self.results_view.all_columns
+        self.facts = self.results_view.facts
         return layout
 
     def _build_display(self) -> QtGui.QLayout:
-        form = _stacked_form()
-        self.colour_map = QtGui.QComboBox()
-        self.colour_map.addItems(list(COLOR_MAPS))
-        self.colour_map.setCurrentText(self.analysis.ColorMap)
-        self.scale_mode = QtGui.QComboBox()
-        self.scale_mode.addItems(list(SCALE_MODES))
-        self.scale_mode.setCurrentText(self.analysis.ScaleMode)
-        self.scale_min = QtGui.QDoubleSpinBox()
-        self.scale_max = QtGui.QDoubleSpinBox()
-        for box, value in ((self.scale_min, self.analysis.ScaleMinLux),
-                           (self.scale_max, self.analysis.ScaleMaxLux)):
-            box.setRange(0.0, 1.0e7)
-            box.setDecimals(0)
-            box.setSuffix(" lx")
-            box.setValue(float(value))
-        form.addRow("Map", self.colour_map)
-        form.addRow("Scale", self.scale_mode)
-        form.addRow("Fixed min", self.scale_min)
-        form.addRow("Fixed max", self.scale_max)
-        self.legend = LegendWidget()
-        form.addRow(self.legend)
-        for widget in (self.colour_map, self.scale_mode):
-            widget.currentIndexChanged.connect(self._display_changed)
-        for widget in (self.scale_min, self.scale_max):
-            widget.valueChanged.connect(self._display_changed)
-        return form
+        """Map, scale, legend and whether the scale is locked (taskpanels/display_view.py)."""
+        layout = QtGui.QVBoxLayout()
+        self.display_view = DisplayView(self.analysis, self._display_changed)
+        layout.addWidget(self.display_view)
+        view = self.display_view
+        self.colour_map, self.scale_mode = view.colour_map, view.scale_mode
+        self.scale_min, self.scale_max, self.legend = view.scale_min, view.scale_max, view.legend
+        return layout
 
     def _build_log(self) -> QtGui.QLayout:
         layout = QtGui.QVBoxLayout()
@@ -286,24 +245,7 @@ class AnalysisTaskPanel(ModelessPanel):
         return layout
 
     def _layout_table(self, *args: Any) -> None:
-        """Show the essential columns (or all), the target column taking the spare width,
-        and make the table as tall as its rows: the panel scrolls, not the table."""
-        table = self.table
-        every = self.all_columns.isChecked()
-        header = table.horizontalHeader()
-        for column, name in enumerate(COLUMNS):
-            table.setColumnHidden(column, not every and name not in ESSENTIAL_COLUMNS)
-            header.setSectionResizeMode(column, QtGui.QHeaderView.ResizeToContents)
-        if not every:
-            header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
-        table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAsNeeded if every
-                                           else QtCore.Qt.ScrollBarAlwaysOff)
-        table.resizeRowsToContents()
-        height = header.height() + 2 * table.frameWidth()
-        height += sum(table.rowHeight(r) for r in range(table.rowCount()))
-        if every:
-            height += table.horizontalScrollBar().sizeHint().height()
-        table.setFixedHeight(max(height, header.height() + 2 * table.frameWidth() + 4))
+        self.results_view.layout_table()
 
     # -- helpers -------------------------------------------------------------------------
     def log(self, level: str, text: str) -> None:
@@ -324,6 +266,7 @@ class AnalysisTaskPanel(ModelessPanel):
         for name in ("check", "export", "run"):
             self.buttons[name].setEnabled(not running)
         self.buttons["cancel"].setEnabled(running)
+        self.decide_view.set_running(running)
 
     def _write_settings(self) -> None:
         # One "Lighting settings" undo step only when a value really changes.
@@ -349,52 +292,40 @@ class AnalysisTaskPanel(ModelessPanel):
         except Exception:  # noqa: BLE001 - the panel was closed or the analysis deleted
             pass
 
-    def _display_changed(self, *args: Any) -> None:
-        a = self.analysis
-        a.ColorMap = self.colour_map.currentText()
-        a.ScaleMode = self.scale_mode.currentText()
-        a.ScaleMinLux = self.scale_min.value()
-        a.ScaleMaxLux = self.scale_max.value()
-        fixed = a.ScaleMode == "Fixed"
-        self.scale_min.setEnabled(fixed)
-        self.scale_max.setEnabled(fixed)
-        self.legend.set_scale(coloring.scale_for(a))
-        coloring.refresh(a)
+    def _display_changed(self) -> None:
+        """The user changed the map or the scale (the document and 3D view already follow)."""
         self.plan_view.render()
+
+    def refresh(self) -> None:
+        """Show the document's state: settings, results, verdicts, costs, scale (called on any
+        document change by the Lighting document observer, and after a run)."""
+        try:
+            self._show_settings()
+            self._show_stored_results()
+        except Exception:  # noqa: BLE001 - the panel was closed or the analysis deleted
+            pass
+
+    def _show_settings(self) -> None:
+        a = self.analysis
+        for box, value in ((self.photons, int(a.Photons)),
+                           (self.accuracy, float(a.TargetAccuracy) * 100.0)):
+            if box.value() != value:
+                box.blockSignals(True)
+                box.setValue(value)
+                box.blockSignals(False)
+        if self.decide.isChecked() != bool(getattr(a, "Decide", False)):
+            self.decide.setChecked(bool(getattr(a, "Decide", False)))
+        self._label_photons()
 
     def _show_stored_results(self) -> None:
         result = store.load_from_document(self.analysis)
         self.plan_view.refresh()
         self.scene_view.refresh()
-        fixed = self.analysis.ScaleMode == "Fixed"
-        self.scale_min.setEnabled(fixed)
-        self.scale_max.setEnabled(fixed)
-        self.legend.set_scale(coloring.scale_for(self.analysis) if result else None)
-        self.table.setRowCount(0)
+        self.display_view.refresh(result is not None)
         self.show_state()
-        if result is None:
-            self._layout_table()
-            self.facts.setText("No results yet: press Run.")
-            return
-        for row, values in enumerate(_rows(result)):
-            self.table.insertRow(row)
-            tip = "\n".join(f"{name}: {value}" for name, value in zip(COLUMNS, values))
-            for column, value in enumerate(values):
-                item = QtGui.QTableWidgetItem(value)
-                item.setToolTip(tip)
-                colour = VERDICT_COLOURS.get(value.split(" ")[0]) if column == len(values) - 1 \
-                    else None
-                if colour is not None:
-                    item.setForeground(QtGui.QBrush(QtGui.QColor(*colour)))
-                self.table.setItem(row, column, item)
-        self._layout_table()
-        facts = (f"{result.photons:.0f} photons, {result.seconds:.2f} s, "
-                 f"{result.confidence * 100:g} % confidence intervals")
-        if result.partial:
-            facts += " - PARTIAL (cancelled)"
-        elif result.stop_reason == "decided":
-            facts += " - every requirement decided"
-        self.facts.setText(facts)
+        facts = facts_text(result) if result is not None else ""
+        self.results_view.show_result(result, facts)
+        self.decide_view.refresh(result, running=self.is_busy())
 
     def _pump(self, text: str) -> None:
         self._set_status(text)
@@ -458,6 +389,17 @@ class AnalysisTaskPanel(ModelessPanel):
         self._set_status("solving...")
         self.timer.start()
 
+    def decide_now(self, budget: int) -> None:
+        """One click on Decide: Decide on, no accuracy goal, ``budget`` photons at most, run."""
+        if self.is_busy():
+            return
+        self.photons.setValue(int(budget))
+        self.accuracy.setValue(0.0)
+        self.decide.setChecked(True)
+        self.log("info", f"Decide: tracing until every requirement is decided, at most "
+                         f"{budget:,} photons")
+        self.run()
+
     def cancel(self) -> None:
         """Ask the solver to stop; partial results are kept."""
         if self.job is not None and not self.job.finished:
@@ -489,7 +431,9 @@ class AnalysisTaskPanel(ModelessPanel):
             self.log("error", message)
             return
         self.progress.setValue(1000)
-        self._set_status(self.analysis.Status)
+        # What was traced and how long the whole run took (check, export, tracing, storing).
+        self._set_status(f"{self.analysis.Status} - {result.photons:,.0f} photons traced, "
+                         f"run took {seconds_text(job.wall_seconds())}")
         self.log("info", "Results:\n" + result.table())
         self.log("info", store.summary_line(result))  # last: the status bar shows this line
         self._show_stored_results()

@@ -220,6 +220,14 @@ class ViewProviderAnalysis(ViewProviderBase):
         word = {"pass": "pass", "fail": "FAIL", "undecided": "undecided"}.get(
             typed.verdict if typed is not None else None)
         title = "Illuminance [lx]" + (f" - requirements: {word}" if word else "")
+        # A scale that stays the same from run to run says so (plots.scale_note).
+        try:
+            from lighting import plots
+
+            if plots.scale_note(self.Object)[0]:
+                title = title.replace("[lx]", "[lx, locked scale]", 1)
+        except Exception:  # noqa: BLE001 - never break the legend
+            pass
         # The light scene shown (rescaled), so a screenshot says which one it is.
         if scene and "not shown" not in scene:
             title += f" - {scene.split(':')[0]}"

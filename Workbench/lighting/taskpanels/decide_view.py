@@ -1,0 +1,146 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The analysis panel's "Undecided" section: per requirement still undecided (its interval
+straddles the required value), what deciding it costs (the solver's ``to_decide`` forecast:
+photons of a whole run and tracing seconds, docs/statistics.md "What deciding would cost") and
+a *Decide* button that runs the analysis with Decide on and a photon budget from that forecast.
+
+The forecast puts the interval's end just on the bound: a run of exactly that many photons
+decides only about half the time (the estimate moves as much as the interval shrinks). The
+button's budget is :data:`MARGIN` times it: a decide run stops at its first look where every
+requirement is decided, so the margin costs photons only when they are needed."""
+from __future__ import annotations
+
+import math
+from typing import Callable, List, NamedTuple, Optional
+
+from PySide import QtGui
+
+from lighting.solver import results as results_mod
+from lighting.taskpanels.results_table import seconds_text
+
+#: Budget of a Decide click over the forecast photons (see the module doc).
+MARGIN = 4
+#: Names of the requirements in the user's words.
+NAMES = {"em": "Em", "u0": "U0", "emin": "Emin", "ud": "Ud", "ugr": "UGR"}
+
+
+class Undecided(NamedTuple):
+    """One undecided requirement and what deciding it costs (photons None: never: the value
+    sits on the bound)."""
+
+    target: str
+    name: str
+    value: Optional[float]
+    required: float
+    relation: str
+    photons: Optional[int]
+    seconds: Optional[float]
+
+    def text(self) -> str:
+        """"Workplane Em 502.1 lx, required >= 500: about 1 234 000 photons (0.7 s)"."""
+        unit = " lx" if self.name in ("Em", "Emin") else ""
+        digits = 2 if self.name in ("U0", "Ud") else 1
+        shown = "-" if self.value is None else f"{self.value:.{digits}f}{unit}"
+        head = (f"{self.target} {self.name} {shown}, required {self.relation} "
+                f"{self.required:g}{unit}")
+        if self.photons is None:
+            return head + ": the value sits on the requirement; no run can decide it"
+        seconds = f", {seconds_text(self.seconds)}" if self.seconds is not None else ""
+        return head + f": about {_count(self.photons)} photons{seconds} to decide"
+
+
+def _count(photons: float) -> str:
+    return f"{photons:,.0f}".replace(",", "\u202f")
+
+
+def undecided(result: Optional[results_mod.AnalysisResult]) -> List[Undecided]:
+    """Every undecided requirement of ``result`` with its ``to_decide`` forecast."""
+    out: List[Undecided] = []
+    for t in result.targets if result is not None else []:
+        if t.estimated:  # point estimates are never undecided, and carry no forecast
+            continue
+        for key in t.undecided:
+            verdict = t.verdicts[key]
+            photons, seconds = t.to_decide.get(key, (None, None))
+            out.append(Undecided(t.label, NAMES.get(key, key), verdict.get("value"),
+                                 float(verdict.get("required", 0.0)),
+                                 "<=" if verdict.get("relation") == "<=" else ">=",
+                                 photons, seconds))
+    return out
+
+
+def budget(item: Undecided, traced: float) -> int:
+    """The photon budget of a Decide click: MARGIN x the forecast (a run of the whole
+    forecast decides about half the time), at least twice what was traced, rounded up to a
+    thousand."""
+    wanted = max(MARGIN * float(item.photons or 0), 2.0 * traced)
+    return int(math.ceil(wanted / 1000.0) * 1000)
+
+
+class DecideView(QtGui.QWidget):
+    """The rows of undecided requirements, each with its cost and a Decide button that calls
+    ``decide(budget)``."""
+
+    def __init__(self, decide: Callable[[int], None],
+                 parent: Optional[QtGui.QWidget] = None) -> None:
+        super().__init__(parent)
+        self._decide = decide
+        self.layout_ = QtGui.QVBoxLayout(self)
+        self.layout_.setContentsMargins(0, 0, 0, 0)
+        self.summary = QtGui.QLabel("")
+        self.summary.setWordWrap(True)
+        self.layout_.addWidget(self.summary)
+        #: The Decide buttons shown, in row order (for tests and keyboard users).
+        self.buttons: List[QtGui.QPushButton] = []
+        self.items: List[Undecided] = []
+        self._rows: List[QtGui.QWidget] = []
+
+    def refresh(self, result: Optional[results_mod.AnalysisResult],
+                running: bool = False) -> None:
+        """Show the undecided requirements of ``result`` (the results the panel shows)."""
+        for row in self._rows:
+            self.layout_.removeWidget(row)
+            row.deleteLater()
+        self._rows, self.buttons = [], []
+        self.items = undecided(result)
+        if result is None:
+            self.summary.setText("No results yet.")
+        elif not self.items:
+            self.summary.setText("Every requirement is decided (pass or FAIL from its "
+                                 "interval)." if result.verdict else
+                                 "No requirement was judged: set a target's required Em or "
+                                 "an observer's UGR limit.")
+        else:
+            self.summary.setText(
+                f"{len(self.items)} requirement(s) undecided after {_count(result.photons)} "
+                "photons: the interval still holds the required value. Decide traces until "
+                "each is pass or FAIL (it stops as soon as they are).")
+        for item in self.items:
+            self._add_row(item, result, running)
+
+    def set_running(self, running: bool) -> None:
+        """No Decide while a run is in progress."""
+        for button in self.buttons:
+            button.setEnabled(not running)
+
+    def _add_row(self, item: Undecided, result: results_mod.AnalysisResult,
+                 running: bool) -> None:
+        row = QtGui.QWidget()
+        layout = QtGui.QVBoxLayout(row)
+        layout.setContentsMargins(0, 2, 0, 2)
+        label = QtGui.QLabel(item.text())
+        label.setWordWrap(True)
+        layout.addWidget(label)
+        if item.photons is not None:
+            photons = budget(item, result.photons)
+            button = QtGui.QPushButton(f"Decide ({_count(photons)} photons at most)")
+            button.setToolTip(
+                f"Run with Decide on and a budget of {_count(photons)} photons ({MARGIN} x the "
+                "forecast, which decides only about half the time); the run stops at the first "
+                "look where every requirement is decided")
+            button.setEnabled(not running)
+            button.clicked.connect(lambda checked=False, n=photons: self._decide(n))
+            layout.addWidget(button)
+            self.buttons.append(button)
+        self.layout_.addWidget(row)
+        self._rows.append(row)
