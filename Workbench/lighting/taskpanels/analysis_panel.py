@@ -107,6 +107,7 @@ class AnalysisTaskPanel(ModelessPanel):
         self.timer = QtCore.QTimer()
         self.timer.setInterval(POLL_MS)
         self.timer.timeout.connect(self._poll)
+        self._seen = self._document_fields()  # what refresh() compares against
         self._show_stored_results()
         if autostart:
             QtCore.QTimer.singleShot(0, self.run)
@@ -348,6 +349,42 @@ class AnalysisTaskPanel(ModelessPanel):
             self.state_label.setStyleSheet("color: #c62828; font-weight: bold;" if stale else "")
         except Exception:  # noqa: BLE001 - the panel was closed or the analysis deleted
             pass
+
+    def refresh(self) -> None:
+        """Show the document's state again: taskpanels/sync.py calls this after any change of
+        the document, Undo and Redo included. The fields the document changed, Status, and
+        the table, legend and verdicts from the results object."""
+        if not self.is_busy():
+            self._set_status(self.analysis.Status)
+        self._follow_fields()
+        self._show_stored_results()
+
+    def _document_fields(self) -> Dict[str, Any]:
+        a = self.analysis
+        return {"Photons": int(a.Photons), "TargetAccuracy": float(a.TargetAccuracy),
+                "Decide": bool(getattr(a, "Decide", False)), "ColorMap": a.ColorMap,
+                "ScaleMode": a.ScaleMode, "ScaleMinLux": float(a.ScaleMinLux),
+                "ScaleMaxLux": float(a.ScaleMaxLux)}
+
+    def _follow_fields(self) -> None:
+        """Set the fields whose document value changed since the last look (an Undo of
+        "Lighting settings"); a value the user is typing survives unrelated changes."""
+        now = self._document_fields()
+        setters = {"Photons": (self.photons, lambda v: self.photons.setValue(v)),
+                   "TargetAccuracy": (self.accuracy,
+                                      lambda v: self.accuracy.setValue(v * 100.0)),
+                   "Decide": (self.decide, self.decide.setChecked),
+                   "ColorMap": (self.colour_map, self.colour_map.setCurrentText),
+                   "ScaleMode": (self.scale_mode, self.scale_mode.setCurrentText),
+                   "ScaleMinLux": (self.scale_min, self.scale_min.setValue),
+                   "ScaleMaxLux": (self.scale_max, self.scale_max.setValue)}
+        for name, value in now.items():
+            if self._seen.get(name) != value:
+                widget, setter = setters[name]
+                widget.blockSignals(True)  # showing the document must not write it back
+                setter(value)
+                widget.blockSignals(False)
+        self._seen = now
 
     def _display_changed(self, *args: Any) -> None:
         a = self.analysis
