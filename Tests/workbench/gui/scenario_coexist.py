@@ -16,6 +16,19 @@ from guilib import (OUT, STATUS, expect, grab_window, log, main_window, pump, sc
 sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
 
 
+def shown(panel) -> bool:
+    """Whether the panel's widgets are in the task view (FreeCAD sets a closed dialog's
+    ``form`` to None and deletes its widgets)."""
+    import FreeCADGui
+
+    form = getattr(panel, "form", None) if panel is not None else None
+    try:
+        return form is not None and FreeCADGui.Control.activeDialog() \
+            and form.parentWidget() is not None
+    except RuntimeError:
+        return False
+
+
 def answer_dialogs() -> object:
     """Answer a modal question (Delete's dependency check) with Yes, noting its text."""
     from PySide import QtCore, QtGui
@@ -281,19 +294,19 @@ def check_wheel_everywhere(doc, objects) -> None:
 def check_run_with_optimize(analysis, analysis_panel) -> None:
     import FreeCADGui
 
-    from lighting.taskpanels import optimize_panel, sync
+    from lighting.taskpanels import optimize_panel
 
     FreeCADGui.runCommand("Lighting_Optimize")
     pump(1.0)
-    expect(sync.is_shown(optimize_panel.last_panel()), "the Optimize panel did not open")
+    expect(shown(optimize_panel.last_panel()), "the Optimize panel did not open")
     previous = analysis_panel.last_run()
     old_panel = analysis_panel.last_panel()
     FreeCADGui.runCommand("Lighting_Run")  # used to fail: 'NoneType' ... 'parentWidget'
     pump(0.5)
     panel = analysis_panel.last_panel()
-    expect(panel is not old_panel and sync.is_shown(panel),
+    expect(panel is not old_panel and shown(panel),
            "Run analysis did not open the analysis panel over Optimize")
-    expect(not sync.is_shown(optimize_panel.last_panel()), "the Optimize panel is still open")
+    expect(not shown(optimize_panel.last_panel()), "the Optimize panel is still open")
     wait_for_run(analysis_panel, previous)
     grab_window("coexist_run_over_optimize")
 
@@ -302,12 +315,11 @@ def check_delete(doc, analysis, analysis_panel) -> None:
     import FreeCADGui
 
     from lighting.objects import results
-    from lighting.taskpanels import sync
 
     analysis.ViewObject.Proxy.doubleClicked(analysis.ViewObject)  # a double-click in the tree
     pump(1.0)
     panel = analysis_panel.last_panel()
-    expect(sync.is_shown(panel), "double-click did not open the analysis panel")
+    expect(shown(panel), "double-click did not open the analysis panel")
     STATUS["in_edit_after_double_click"] = str(FreeCADGui.ActiveDocument.getInEdit())
     found = results.of_analysis(analysis)
     expect(found is not None, "no results to delete")
@@ -318,7 +330,7 @@ def check_delete(doc, analysis, analysis_panel) -> None:
     FreeCADGui.runCommand("Std_Delete")  # Edit > Delete
     pump(1.0)
     expect(doc.getObject(results_name) is None, "Delete did not delete the results")
-    expect(sync.is_shown(panel) and panel.table.rowCount() == 0,
+    expect(shown(panel) and panel.table.rowCount() == 0,
            f"the panel does not follow the deleted results: {panel.table.rowCount()} rows")
     grab_window("coexist_delete_results")
     members = [o.Name for o in analysis.Group]
@@ -328,7 +340,7 @@ def check_delete(doc, analysis, analysis_panel) -> None:
     pump(1.0)
     timer.stop()
     expect(doc.getObject(name) is None, "Delete did not delete the analysis with its panel open")
-    expect(not sync.is_shown(panel), "the deleted analysis' panel is still open")
+    expect(not shown(panel), "the deleted analysis' panel is still open")
     expect(all(doc.getObject(m) is not None for m in members), "the analysis' members were lost")
     grab_window("coexist_delete_analysis")
     FreeCADGui.runCommand("Std_Undo")  # the analysis comes back
