@@ -211,34 +211,24 @@ class CommandPlacementDomain(BaseCommand):
 
 
 def _open_analysis_panel() -> Optional[Any]:
-    """The analysis panel shown in the task view now, else None."""
-    from lighting.taskpanels import analysis_panel
+    """The analysis panel shown in the task view now, else None (also when another Lighting
+    panel, e.g. Optimize, replaced it: FreeCAD then deleted its widgets and set its ``form``
+    to None)."""
+    from lighting.taskpanels import analysis_panel, sync
 
     panel = analysis_panel.last_panel()
-    if panel is None or not FreeCADGui.Control.activeDialog():
-        return None
-    try:  # shown in the task view, maybe behind the Model tab
-        return panel if panel.form.parentWidget() is not None else None
-    except RuntimeError:  # its widgets were deleted with its dialog
-        return None
+    return panel if sync.is_shown(panel) else None
 
 
 def _show_panel(make_panel: Any, analysis: Any, **options: Any) -> Optional[Any]:
     """Closes the open task dialog and opens ``make_panel(analysis, **options)``; returns it.
-    An analysis panel that is still solving is kept (None returned): closing it would
-    cancel the run the user is waiting for."""
-    current = _open_analysis_panel()
-    if current is not None and current.is_busy():
-        text = "an analysis is running: wait for it or press Cancel in its panel first"
-        FreeCAD.Console.PrintWarning(f"Lighting: {text}\n")
-        FreeCADGui.getMainWindow().statusBar().showMessage(f"Lighting: {text}", 8000)
+    A Lighting panel that is still solving or searching is kept (None returned, the user told
+    why): closing it would cancel the work the user is waiting for."""
+    from lighting.taskpanels import sync
+
+    if not sync.close_current():
         return None
-    if current is not None:
-        current.reject()  # stops its timer and closes the dialog
-    FreeCADGui.Control.closeDialog()
-    panel = make_panel(analysis, **options)
-    FreeCADGui.Control.showDialog(panel)
-    return panel
+    return sync.show(make_panel(analysis, **options))
 
 
 def _show_analysis_panel(analysis: Any, **options: Any) -> Optional[Any]:

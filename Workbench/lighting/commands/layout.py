@@ -85,10 +85,11 @@ class CommandLuminaireLayout(BaseCommand):
         where = (f"over {face[0].Label} {face[1]}" if face is not None
                  else "over a 4 x 3 m rectangle (no ceiling face selected or found)")
         FreeCAD.Console.PrintMessage(f"Lighting: luminaire layout '{layout.Label}' {where}\n")
+        from lighting.taskpanels import sync
         from lighting.taskpanels.layout_panel import LayoutTaskPanel
 
         FreeCADGui.Control.closeDialog()
-        FreeCADGui.Control.showDialog(LayoutTaskPanel(layout, transaction_open=True))
+        sync.show(LayoutTaskPanel(layout, transaction_open=True))
 
     @staticmethod
     def _place_rectangle(doc: Any, layout: Any) -> None:

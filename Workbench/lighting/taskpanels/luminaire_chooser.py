@@ -455,7 +455,7 @@ def _summary_html(entry: library.LibraryEntry) -> str:
 
 def show(luminaire: Any = None) -> LuminaireChooserPanel:
     """Open the chooser in the task view (closing any other task dialog)."""
+    from lighting.taskpanels import sync
+
     FreeCADGui.Control.closeDialog()
-    panel = LuminaireChooserPanel(luminaire)
-    FreeCADGui.Control.showDialog(panel)
-    return panel
+    return sync.show(LuminaireChooserPanel(luminaire))

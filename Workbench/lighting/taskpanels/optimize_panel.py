@@ -221,6 +221,32 @@ class OptimizeTaskPanel(ModelessPanel):
             self.min_u0.setValue(u0)
         self._goal_changed()
 
+    def refresh(self) -> None:
+        """The document changed (taskpanels/sync.py): the target list follows the analysis'
+        targets (one added, deleted, renamed, an Undo); the chosen target stays chosen."""
+        targets = analysis_mod.targets(self.analysis)
+        try:
+            shown = [(t.Name, t.Label) for t in self.targets]
+            chosen = self.targets[self.target.currentIndex()].Name if self.targets and \
+                self.target.currentIndex() >= 0 else None
+        except Exception:  # noqa: BLE001 - a shown target was deleted
+            shown, chosen = [], None
+        if [(t.Name, t.Label) for t in targets] == shown:
+            return
+        self.targets = targets
+        names = [t.Name for t in targets]
+        self.target.blockSignals(True)  # the user's intention stays unless the target changes
+        self.target.clear()
+        self.target.addItems([t.Label for t in targets])
+        self.target.setCurrentIndex(names.index(chosen) if chosen in names else 0)
+        self.target.blockSignals(False)
+        if chosen not in names:
+            self._target_changed()
+
+    def is_busy(self) -> bool:
+        """True while a search of this panel is running."""
+        return self.job is not None and not self.job.finished
+
     def _goal_changed(self, *args: Any) -> None:
         goal = self.goal.currentData()
         self.min_lux.setEnabled(goal in ("maximize_uniformity", "minimize_installed_flux"))

@@ -148,6 +148,7 @@ class ViewProviderAnalysis(ViewProviderBase):
     """Analysis group: opens the run/results task panel; draws the legend."""
 
     ICON = "Lighting_Analysis"
+    MODELESS = True
 
     def __init__(self, vobj: Any) -> None:
         super().__init__(vobj)
@@ -277,6 +278,11 @@ class ViewProviderAnalysis(ViewProviderBase):
 
         analysis = vobj.Object
         FreeCAD.Console.PrintLog(f"Lighting: deleting analysis {analysis.Name}\n")
+        from lighting.taskpanels import analysis_panel
+
+        panel = analysis_panel.panel_of(analysis)
+        if panel is not None:  # its panel goes first (a run of it is cancelled)
+            panel.reject()
         found = results.of_analysis(analysis)
         if found is not None:
             analysis.removeObject(found)

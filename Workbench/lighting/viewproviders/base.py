@@ -38,28 +38,58 @@ class ViewProviderBase:
         """The task panel to edit the object, or None for the property editor only."""
         return None
 
+    #: True when ``task_panel`` is modeless (taskpanels/modeless.py): it opens without edit
+    #: mode, because FreeCAD hands Edit > Delete of an object in edit mode to that object's
+    #: sub-elements (nothing is deleted) and the panel works on the model as it is anyway.
+    MODELESS = False
+
     def setEdit(self, vobj: Any, mode: int = 0) -> bool:  # noqa: N802
         if mode != 0:
+            return False
+        if self.MODELESS:  # the context menu's Edit: the panel, outside edit mode
+            from PySide import QtCore
+
+            QtCore.QTimer.singleShot(0, lambda: self.open_panel(vobj))
             return False
         panel = self.task_panel(vobj)
         if panel is None:
             return False
+        from lighting.taskpanels import sync
+
         FreeCADGui.Control.closeDialog()
-        FreeCADGui.Control.showDialog(panel)
+        sync.show(panel)
         return True
 
     def unsetEdit(self, vobj: Any, mode: int = 0) -> bool:  # noqa: N802
         FreeCADGui.Control.closeDialog()
         return True
 
+    def open_panel(self, vobj: Any) -> Optional[Any]:
+        """Open the object's modeless panel (after closing the open one, unless that one is
+        busy: the user is told why); returns it or None."""
+        from lighting.taskpanels import sync
+
+        try:
+            if not sync.close_current():
+                return None
+            panel = self.task_panel(vobj)
+        except Exception as exc:  # noqa: BLE001 - e.g. the object was deleted meanwhile
+            FreeCAD.Console.PrintWarning(f"Lighting: cannot open the panel: {exc}\n")
+            return None
+        return sync.show(panel) if panel is not None else None
+
     def doubleClicked(self, vobj: Any) -> bool:  # noqa: N802
         # Asks whether the class has a panel without building one: a panel built only to be
         # dropped would be collected later, at any moment, taking its Qt widgets along.
         if type(self).task_panel is ViewProviderBase.task_panel:
             return False
-        if FreeCADGui.Control.activeDialog():
-            FreeCADGui.Control.closeDialog()
-        vobj.Document.setEdit(vobj.Object.Name)
+        if self.MODELESS:
+            self.open_panel(vobj)
+            return True
+        from lighting.taskpanels import sync
+
+        if sync.close_current():
+            vobj.Document.setEdit(vobj.Object.Name)
         return True
 
     # No state: the view provider is rebuilt from the document.

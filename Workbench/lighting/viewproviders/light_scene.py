@@ -12,6 +12,7 @@ class ViewProviderLightScene(ViewProviderBase):
     """A light scene in the tree."""
 
     ICON = "Lighting_LightScene"
+    MODELESS = True
 
     def task_panel(self, vobj: Any) -> Optional[Any]:
         from lighting.objects import light_scene

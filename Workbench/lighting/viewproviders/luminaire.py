@@ -11,6 +11,7 @@ class ViewProviderLuminaire(ViewProviderBase):
     """Luminaire symbol (sphere, cone or panel) in warm yellow."""
 
     ICON = "Lighting_Luminaire"
+    MODELESS = True
 
     def __init__(self, vobj: Any) -> None:
         super().__init__(vobj)

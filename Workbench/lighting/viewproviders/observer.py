@@ -13,7 +13,9 @@ InitGui.py when the GUI starts, does:
 Results colours come from the view providers' ``updateData`` (see coloring.py). Any change
 of a document with a Lighting analysis (an edit, undo, redo, a deletion) also makes the
 results state be computed again once the changes settle (results.py
-``schedule_state_refresh``): a stale legend and panel follow an edited flux at once."""
+``schedule_state_refresh``): a stale legend and panel follow an edited flux at once; and the
+open Lighting panels show the document again (taskpanels/sync.py ``schedule``): after an Undo
+the analysis panel's table is the document's, not the undone run's."""
 from __future__ import annotations
 
 import importlib
@@ -87,6 +89,7 @@ class LightingObserver:
     """App document observer (FreeCAD.addDocumentObserver) living in the GUI."""
 
     def slotChangedObject(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API)
+        _panels_may_change(obj)
         if prop not in STATE_NEUTRAL:
             _state_may_change(obj)
         if prop != "Proxy" or not proxy_type(obj):
@@ -109,17 +112,34 @@ class LightingObserver:
 
 
     def slotDeletedObject(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        _panels_may_change(obj)
         _state_may_change(obj)
 
     def slotUndoDocument(self, doc: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        _panels_may_change(None, doc)
         _state_may_change(None, doc)
 
     def slotRedoDocument(self, doc: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        _panels_may_change(None, doc)
         _state_may_change(None, doc)
 
 
 #: Property changes that never change a results state (viewing and naming).
 STATE_NEUTRAL = ("Visibility", "Label", "Label2")
+
+
+def _panels_may_change(obj: Any, doc: Any = None) -> None:
+    """Schedule a refresh of the open Lighting panels (taskpanels/sync.py): what they show is
+    the document's state, after any change, Undo and Redo included (debounced)."""
+    try:
+        doc = doc if doc is not None else obj.Document
+        if doc is None or getattr(doc, "Restoring", False):
+            return
+        from lighting.taskpanels import sync
+
+        sync.schedule(doc)
+    except Exception:  # noqa: BLE001 - observers must never break the document
+        pass
 
 
 def _state_may_change(obj: Any, doc: Any = None) -> None:

@@ -29,6 +29,7 @@ class ViewProviderResults(ViewProviderBase):
     """Results of one analysis run, shown as false colours on the analysis' targets."""
 
     ICON = "Lighting_Results"
+    MODELESS = True
 
     def updateData(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
         if prop in REPAINT_ON:
