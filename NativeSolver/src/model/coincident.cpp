@@ -312,8 +312,13 @@ class Detector {
     const bool same_facing = glm::dot(t.n, o.n) > 0.0;
     using K = Coincidence::Kind;
     if (!is_target_[mt]) {
-      // Tracing is double-sided and nothing moves: from either side either material is seen.
-      found_[{mt, mo, K::Materials}] += h.area_m2;
+      // Two closed bodies touching face to face (a wall standing on a slab, a desk on the
+      // floor, a pane in its frame): the shared patch lies inside them, where no light from
+      // the room arrives, so nothing is arbitrary. Otherwise (open sheets back to back, or
+      // one surface over another facing the same way) tracing is double-sided and nothing
+      // moves: from either side either material is seen.
+      const bool contact = !same_facing && closed(mt) && closed(mo);
+      found_[{mt, mo, contact ? K::Contact : K::Materials}] += h.area_m2;
     } else if (is_target_[mo] && same_facing) {
       found_[{mt, mo, K::TargetsArbitrary}] += h.area_m2;
     } else {
@@ -325,6 +330,28 @@ class Detector {
         add_move(h.gt, t.n, h.move_m);
       }
     }
+  }
+
+  // Whether the mesh is closed: with its vertices welded by position, every edge is shared
+  // by an even number of triangles (a solid's tessellation, its faces meshed separately).
+  // Called in apply_rule only, which runs on one thread.
+  bool closed(std::uint32_t mesh) {
+    auto found = closed_.find(mesh);
+    if (found != closed_.end()) return found->second;
+    const std::vector<std::uint32_t> canon = weld(mesh);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    for (const auto& t : s_.meshes[mesh].triangles) {
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t a = canon[t[k]], b = canon[t[(k + 1) % 3]];
+        if (a == b) continue;
+        if (b < a) std::swap(a, b);
+        edges[{a, b}] += 1;
+      }
+    }
+    bool ok = !edges.empty();
+    for (const auto& [edge, count] : edges) ok = ok && count % 2 == 0;
+    closed_[mesh] = ok;
+    return ok;
   }
 
   void add_move(std::size_t g, const dvec3& dir, double dist) {
@@ -406,6 +433,7 @@ class Detector {
   std::vector<int> level_;
   std::map<std::tuple<std::uint32_t, std::uint32_t, Coincidence::Kind>, double> found_;
   std::vector<Move> moves_;
+  std::map<std::uint32_t, bool> closed_;  // closed(mesh), computed once per mesh asked
 };
 
 std::string format_area(double area_m2) {

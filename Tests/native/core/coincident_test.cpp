@@ -254,6 +254,30 @@ TEST(CoincidentDetection, NonTargetMeshesWithDifferentMaterialsAreReported) {
   }
 }
 
+// Two closed bodies of different materials touching face to face (a wall standing on a slab, a
+// cabinet on the floor): the shared patch lies inside them, nothing is arbitrary, nothing is
+// said and nothing moves. The same slab with an open sheet lying on it facing down (its back
+// seen from above) is still reported: from above either material may be met.
+TEST(CoincidentDetection, ClosedBodiesInContactSayNothingOpenSheetsDo) {
+  Scene s;
+  const int grey = add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  const int red = add_material(s, "red", Material::Type::Diffuse, 0.3);
+  s.meshes.push_back(solid_box_mesh("slab", grey, {-2, -2, -0.2}, {2, 2, 0}, 2));
+  s.meshes.push_back(solid_box_mesh("wall", red, {-2, -2, 0}, {2, -1.8, 2.5}));
+  const auto p = prepared(s);
+  EXPECT_TRUE(p.warnings.empty()) << p.warnings[0];
+  EXPECT_NEAR(coincident_area(p, Coincidence::Kind::Contact, 0, 1), 4.0 * 0.2, 1e-9);
+  for (int m = 0; m < 2; ++m) {
+    for (std::size_t k = 0; k < p.meshes[m].vertices.size(); ++k)
+      EXPECT_EQ(p.meshes[m].vertices[k],
+                float(s.meshes[m].vertices[k / 3][k % 3] - p.origin[k % 3]));
+  }
+  s.meshes[1] = quad_mesh("sheet", red, {-1, -1, 0}, {0, 2, 0}, {2, 0, 0});  // front -z
+  const auto q = prepared(s);
+  ASSERT_EQ(q.warnings.size(), 1u);
+  EXPECT_NE(q.warnings[0].find("arbitrary"), std::string::npos) << q.warnings[0];
+}
+
 TEST(CoincidentDetection, SameMaterialSaysNothing) {
   Scene s;
   const int grey = add_material(s, "grey", Material::Type::Diffuse, 0.5);

@@ -1,0 +1,114 @@
+"""GUI scenario: what a first-hour user sees at 1280 x 1024. The main window fills the screen;
+the example is run as the Macro dialog runs it and analysed from the toolbar. The main
+commands (Run analysis, Live results, Optimize placement, Results, Report, Clear results) are
+buttons on screen, not behind a toolbar's overflow arrow; the legend's title lines end left of
+the navigation cube (top-right corner). Then the analysed document is saved, closed and
+reopened: it does not show as modified."""
+import os
+
+from guilib import (OUT, STATUS, expect, grab_window, main_window, pump, run_macro_file,
+                    scenario, visible_in_window)
+from scenario_state_stale import run_from_toolbar
+
+REPO = os.environ.get("LIGHTING_SOURCE_DIR") or os.path.dirname(os.path.dirname(
+    os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+MAIN_COMMANDS = ("Lighting_Run", "Lighting_Live", "Lighting_Optimize", "Lighting_Results",
+                 "Lighting_Report", "Lighting_ClearResults")
+
+
+def on_screen(widget) -> bool:
+    """The widget lies inside the 1280 x 1024 screen (a window wider than the screen would
+    let a button count as shown while the user cannot see it)."""
+    from PySide import QtCore, QtGui
+
+    screen = QtGui.QApplication.desktop().screenGeometry()
+    top_left = widget.mapToGlobal(QtCore.QPoint(0, 0))
+    return screen.contains(QtCore.QRect(top_left, widget.size()))
+
+
+def check_toolbar() -> None:
+    """Each main command has a visible, whole button in the window."""
+    import FreeCADGui
+    from PySide import QtGui
+
+    shown = {}
+    for name in MAIN_COMMANDS:
+        text = FreeCADGui.Command.get(name).getInfo()["menuText"].replace("&", "")
+        button = None
+        for bar in main_window().findChildren(QtGui.QToolBar):
+            for action in bar.actions():
+                if action.text().replace("&", "") == text and bar.isVisible():
+                    button = bar.widgetForAction(action)
+        shown[text] = button is not None and visible_in_window(button) and on_screen(button)
+    STATUS["main_commands_shown"] = shown
+    STATUS["window_after_run"] = [main_window().width(), main_window().height()]
+    expect(all(shown.values()), f"main commands behind the overflow at 1280 px: {shown}")
+
+
+def check_legend_clear_of_cube() -> None:
+    """Every legend title line, drawn from the left edge, ends before the navigation cube."""
+    import FreeCAD
+    from PySide import QtGui
+
+    from lighting.viewproviders import analysis as vp
+
+    view = main_window().findChild(QtGui.QMdiArea).activeSubWindow().widget()
+    params = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/View")
+    cube = params.GetInt("CubeSize", 132) if params.GetBool("ShowNaviCube", True) else 0
+    corner = params.GetInt("CornerNaviCube", 1)  # 0 top left, 1 top right
+    analysis = FreeCAD.ActiveDocument.getObject("LightingAnalysis")
+    proxy = analysis.ViewObject.Proxy
+    lines = vp.title_lines(vp.STALE_TITLE if proxy.results_stale() else proxy.legend_title())
+    lines += vp.title_lines(vp.STALE_TITLE)  # the longest title it can show
+    font = QtGui.QFont()
+    font.setPixelSize(14)  # the legend's SoFont size
+    metrics = QtGui.QFontMetrics(font)
+    left = (vp.X0 + 1.0) / 2.0 * view.width()
+    widest = max(metrics.boundingRect(line).width() for line in lines)
+    right = left + 1.25 * widest  # a margin for Coin's own font
+    STATUS["legend"] = {"lines": lines, "right_px": right, "view_px": view.width(),
+                        "cube_px": cube, "corner": corner}
+    expect(corner == 1 and right < view.width() - cube - 10,
+           f"legend title reaches the navigation cube: {STATUS['legend']}")
+
+
+def check_reopen_unmodified(path: str) -> None:
+    import FreeCAD
+    import FreeCADGui
+
+    doc = FreeCAD.ActiveDocument
+    doc.save()
+    pump(0.3)
+    name = doc.Name
+    FreeCAD.closeDocument(name)
+    pump(0.5)
+    again = FreeCAD.openDocument(path)
+    pump(1.5)
+    touched = [o.Name for o in again.Objects if "Touched" in o.State]
+    modified = FreeCADGui.getDocument(again.Name).Modified
+    STATUS["reopened"] = {"modified": modified, "touched": touched}
+    expect(not modified and not touched, f"the reopened document shows as modified: {touched}")
+
+
+def body() -> None:
+    import FreeCAD
+
+    window = main_window()
+    window.move(0, 0)
+    window.resize(1280, 1024)
+    pump(0.5)
+    STATUS["window_size_used"] = [window.width(), window.height()]
+    out = os.path.join(OUT, "office.FCStd")
+    os.environ.update(LIGHTING_OUT=out, LIGHTING_BUILD_ONLY="1", LIGHTING_PHOTONS="20000")
+    run_macro_file(os.path.join(REPO, "Examples", "office.py"))
+    pump(1.0)
+    expect(FreeCAD.ActiveDocument is not None, "the example did not open")
+    run_from_toolbar(FreeCAD.ActiveDocument)
+    pump(0.5)
+    check_toolbar()
+    check_legend_clear_of_cube()
+    grab_window("toolbar_legend_1280", docs_name="toolbar-legend-1280.png")
+    check_reopen_unmodified(out)
+
+
+scenario(body)
