@@ -14,6 +14,7 @@
 #include <glm/vector_relational.hpp>
 #include <map>
 #include <tuple>
+#include <unordered_map>
 
 #include "model/coincident_grid.hpp"
 
@@ -332,26 +333,46 @@ class Detector {
     }
   }
 
-  // Whether the mesh is closed: with its vertices welded by position, every edge is shared
-  // by an even number of triangles (a solid's tessellation, its faces meshed separately).
-  // Called in apply_rule only, which runs on one thread.
+  // Whether the mesh is part of a closed surface: with the vertices of all meshes welded by
+  // position, every edge of its triangles is shared by an even number of triangles of the
+  // scene. Counted over all meshes because the export splits one body into several (a slab's
+  // top, bottom and sides carry different materials; a target face is cut out of its wall).
+  // Called in apply_rule only, which runs on one thread; the counts are made once, when the
+  // first such pair asks.
   bool closed(std::uint32_t mesh) {
-    auto found = closed_.find(mesh);
-    if (found != closed_.end()) return found->second;
-    const std::vector<std::uint32_t> canon = weld(mesh);
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    if (edge_ids_.empty()) count_edges();
     for (const auto& t : s_.meshes[mesh].triangles) {
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t a = canon[t[k]], b = canon[t[(k + 1) % 3]];
-        if (a == b) continue;
-        if (b < a) std::swap(a, b);
-        edges[{a, b}] += 1;
+        const std::uint64_t key = edge_key(edge_ids_[mesh][t[k]], edge_ids_[mesh][t[(k + 1) % 3]]);
+        if (key != kNoEdge && edge_count_.at(key) % 2 != 0) return false;
       }
     }
-    bool ok = !edges.empty();
-    for (const auto& [edge, count] : edges) ok = ok && count % 2 == 0;
-    closed_[mesh] = ok;
-    return ok;
+    return !s_.meshes[mesh].triangles.empty();
+  }
+
+  static constexpr std::uint64_t kNoEdge = ~std::uint64_t(0);
+
+  static std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    if (a == b) return kNoEdge;  // a degenerate edge
+    if (b < a) std::swap(a, b);
+    return std::uint64_t(a) << 32 | b;
+  }
+
+  void count_edges() {
+    std::map<std::tuple<double, double, double>, std::uint32_t> ids;
+    edge_ids_.resize(s_.meshes.size());
+    for (std::size_t m = 0; m < s_.meshes.size(); ++m) {
+      for (const dvec3& v : s_.meshes[m].vertices) {
+        const auto id = static_cast<std::uint32_t>(ids.size());
+        edge_ids_[m].push_back(ids.emplace(std::tuple(v.x, v.y, v.z), id).first->second);
+      }
+      for (const auto& t : s_.meshes[m].triangles) {
+        for (int k = 0; k < 3; ++k) {
+          const std::uint64_t key = edge_key(edge_ids_[m][t[k]], edge_ids_[m][t[(k + 1) % 3]]);
+          if (key != kNoEdge) ++edge_count_[key];
+        }
+      }
+    }
   }
 
   void add_move(std::size_t g, const dvec3& dir, double dist) {
@@ -433,7 +454,8 @@ class Detector {
   std::vector<int> level_;
   std::map<std::tuple<std::uint32_t, std::uint32_t, Coincidence::Kind>, double> found_;
   std::vector<Move> moves_;
-  std::map<std::uint32_t, bool> closed_;  // closed(mesh), computed once per mesh asked
+  std::vector<std::vector<std::uint32_t>> edge_ids_;  // closed(): per mesh, welded vertex ids
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_count_;  // triangles per welded edge
 };
 
 std::string format_area(double area_m2) {
