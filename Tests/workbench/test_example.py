@@ -58,7 +58,7 @@ class Example(DocTestCase):
                   if "arbitrary" in line or "overlap" in line or "Warning" in line]
         self.assertEqual(warned, [], output[-3000:])
         results = lighting.results(FreeCAD.openDocument(out))
-        self.assertEqual(list(results.run.warnings), [])
+        self.assertEqual(list(results.warnings), [])
         scene = os.path.join(os.path.dirname(out), "office_lighting", "LightingAnalysis",
                              "scene.json")
         self.assertTrue(os.path.exists(scene))
