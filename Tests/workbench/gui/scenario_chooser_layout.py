@@ -69,7 +69,6 @@ def _edit_in_property_editor(doc, layout, template):
 
 
 def body() -> None:
-    import FreeCAD
     import FreeCADGui
 
     doc, layout = _office_with_layout()
