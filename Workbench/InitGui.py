@@ -24,8 +24,8 @@ class LightingWorkbench(Workbench):  # noqa: F821 - FreeCAD provides Workbench h
         from lighting.commands import commands
 
         commands.register()
-        self.appendToolbar("Lighting model", commands.MODEL_COMMANDS)
-        self.appendToolbar("Lighting analysis", commands.RUN_COMMANDS)
+        for title, names in commands.TOOLBARS:
+            self.appendToolbar(title, names)
         self.appendMenu("Lighting", commands.MODEL_COMMANDS + ["Separator"] + commands.RUN_COMMANDS
                         + ["Separator"] + commands.EXCLUSION_COMMANDS)
 

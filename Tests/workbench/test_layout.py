@@ -247,3 +247,38 @@ class Coincident(DocTestCase):
         self.assertEqual(hits, [f"Luminaires 'First' and '{layout.Label} r1c1' are at the same "
                                 "point (0.0 mm apart): one of them is probably placed twice; "
                                 "move or delete it"])
+
+
+class LayoutTypeOnTheLayout(DocTestCase):
+    def test_file_flux_and_mf_edited_on_the_layout_reach_the_template_and_survive_reopening(self):
+        """Issue 25: the layout's file, flux and MF are editable on the layout itself; bad
+        values are refused; saving and reopening keeps both sides and writes nothing."""
+        doc = FreeCAD.newDocument("LayoutType")
+        layout = lighting.add_luminaire_layout(doc, rows=1, columns=2, area_m=(4.0, 3.0),
+                                               flux_lm=3000.0, maintenance_factor=0.8)
+        doc.recompute()
+        template = layout.Template
+        self.assertEqual((layout.FluxLumen, layout.MaintenanceFactor), (3000.0, 0.8))
+        path = os.path.join(REPO, "Resources", "luminaires", "downlight.ies")
+        layout.PhotometricFile = path
+        layout.FluxLumen = 1500.0
+        layout.MaintenanceFactor = 1.5  # refused: MF is in (0, 1]
+        self.assertEqual(template.PhotometricFile, path)
+        self.assertEqual(template.LuminaireType, "Photometric")
+        self.assertEqual(template.FluxLumen, 1500.0)
+        self.assertEqual((template.MaintenanceFactor, layout.MaintenanceFactor), (0.8, 0.8))
+        template.FluxLumen = 1200.0  # a change on the template shows after a recompute
+        doc.recompute()
+        self.assertEqual(layout.FluxLumen, 1200.0)
+        members = layout_mod.members(layout)
+        self.assertEqual({m.FluxLumen for m in members}, {1200.0})
+        out = os.path.join(work_dir("layout-type"), "layout_type.FCStd")
+        doc.saveAs(out)
+        name = layout.Name
+        FreeCAD.closeDocument(doc.Name)
+        again = FreeCAD.openDocument(out)
+        layout = again.getObject(name)
+        self.assertEqual((layout.FluxLumen, layout.Template.FluxLumen), (1200.0, 1200.0))
+        self.assertEqual(layout.PhotometricFile, layout.Template.PhotometricFile)
+        self.assertFalse([o.Name for o in again.Objects if "Touched" in o.State])
+        FreeCAD.closeDocument(again.Name)

@@ -235,3 +235,22 @@ class BackendProperty(DocTestCase):
         self.assertEqual(analysis.Backend, "cuda")
         self.assertEqual(analysis.getEnumerationsOfProperty("Backend"),
                          analysis_mod.backend_choices() + ["cuda"])
+
+
+class CurvedFaceGrid(DocTestCase):
+    def test_a_grid_on_a_curved_face_is_refused_before_anything_is_made(self):
+        """Issue 25: a grid on a cylinder's side face was accepted and then said "no area"."""
+        import FreeCAD
+
+        doc = FreeCAD.newDocument("CurvedGrid")
+        cylinder = doc.addObject("Part::Cylinder", "Column")
+        doc.recompute()
+        before = len(doc.Objects)
+        with self.assertRaises(ValueError) as caught:
+            lighting.make_grid_target(doc, cylinder, face="Face1", surface="Wall")
+        self.assertIn("'Column.Face1' is curved", str(caught.exception))
+        self.assertIn("select a flat face", str(caught.exception))
+        self.assertEqual(len(doc.Objects), before)
+        grid = lighting.make_grid_target(doc, cylinder, face="Face2", surface="Ceiling")
+        self.assertEqual(list(grid.Base[1]), ["Face2"])
+        FreeCAD.closeDocument(doc.Name)

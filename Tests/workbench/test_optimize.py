@@ -264,3 +264,21 @@ class OfficeOptimize(DocTestCase):
         self.assertEqual(sorted(own), sorted(o.Label for o in placed))
         self.assertEqual(len(own), members[0]["count"])
         self.assertGreaterEqual(smallest_gap_mm(after.values()), 599.0)  # none on the others
+
+
+class AppliedCopyLabels(DocTestCase):
+    def test_installed_copies_are_numbered_in_order(self):
+        """The optimum installs candidates 1, 3 and 4: after apply() they read _copy1, _copy2,
+        _copy3 (issue 25: not "copy1, copy3, copy4"); the template keeps its label."""
+        doc = FreeCAD.newDocument("CopyLabels")
+        template = lighting.make_luminaire(doc, (1.0, 1.0, 2.9), name="Lum")
+        placed = [optimize.Placement(template.Name, template, None, template, template.Label)]
+        for k in (1, 3, 4):
+            copy = doc.copyObject(template)
+            copy.Label = f"{template.Label}{optimize.COPY_SUFFIX}{k}"
+            placed.append(optimize.Placement(copy.Name, template, None, copy, copy.Label))
+        placed.append(optimize.Placement("gone", template, None, None, "left out"))
+        optimize._renumber_copies(placed)
+        self.assertEqual([p.obj.Label for p in placed[:4]],
+                         [template.Label] + [f"{template.Label}_copy{k}" for k in (1, 2, 3)])
+        FreeCAD.closeDocument(doc.Name)

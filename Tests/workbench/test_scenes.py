@@ -108,10 +108,28 @@ class LightScenes(DocTestCase):
         scene.Groups = ["Window row", "Corridor"]
         scene.Levels = [1.0, 0.0]
         problems = light_scene.check(scene, ["Window row", "Back row"])
-        self.assertEqual(problems, [("warning", "Light scene 'Broken': no luminaire is in "
-                                                "group(s) Corridor")])
+        self.assertEqual(problems[0], ("warning", "Light scene 'Broken': no luminaire is in "
+                                                  "group(s) Corridor"))
+        # Back row is a group the scene no longer sets: at 100 %, said, not silent.
+        self.assertEqual(len(problems), 2)
+        self.assertIn("does not set group(s) Back row", problems[1][1])
         report = lighting.check(doc, analysis, need_solver=False)
         self.assertTrue(any("Corridor" in m.text for m in report.messages))
+
+    def test_a_group_made_after_the_scene_is_named(self):
+        """A luminaire added after the scene, in a new group, is at 100 % in that scene: Check
+        says so instead of letting it pass silently (issue 25)."""
+        doc, analysis = _group_office()
+        scene = lighting.make_light_scene(analysis, "Evening", {"Back row": 0.0})
+        self.assertEqual(light_scene.check(scene, analysis_mod.control_groups(analysis)), [])
+        lamp = lighting.make_luminaire(doc, (1.0, 1.0, 2.9), name="DeskLamp", analysis=analysis)
+        lamp.ControlGroup = "Desk lamp"
+        doc.recompute()
+        problems = light_scene.check(scene, analysis_mod.control_groups(analysis))
+        self.assertEqual(len(problems), 1, problems)
+        self.assertEqual(problems[0][0], "warning")
+        self.assertIn("'Evening' does not set group(s) Desk lamp", problems[0][1])
+        self.assertIn("100 %", problems[0][1])
 
 
 class RescaledResults(DocTestCase):

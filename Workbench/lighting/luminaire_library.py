@@ -360,15 +360,33 @@ def _in_transaction(doc: Any, title: str, work: Any) -> Any:
     return result
 
 
+def layout_templates(objects: Iterable[Any]) -> List[Any]:
+    """``objects`` with each luminaire layout replaced by its template luminaire (the type
+    every member shares), without duplicates, in order."""
+    from lighting.objects.base import proxy_type
+    from lighting.objects.luminaire_layout import TYPE as LAYOUT
+
+    out: List[Any] = []
+    for obj in objects:
+        if proxy_type(obj) == LAYOUT:
+            if obj.Template is None:
+                raise ValueError(f"Luminaire layout '{obj.Label}' has no template luminaire")
+            obj = obj.Template
+        if all(obj is not o for o in out):
+            out.append(obj)
+    return out
+
+
 def assign(doc: Any, luminaires: Iterable[Any], path: str, keep_flux: bool = False) -> List[Any]:
-    """Make ``luminaires`` photometric with ``path`` in one undo step. Their FluxLumen becomes
+    """Make ``luminaires`` photometric with ``path`` in one undo step (a luminaire layout
+    stands for its template: all its members change). Their FluxLumen becomes
     the file's lamp lumens (0 = the file's own flux for absolute photometry) unless
     ``keep_flux``. A file the parser rejects raises ValueError (file and line) and changes
     nothing."""
     from lighting.objects.base import proxy_type
     from lighting.objects.luminaire import TYPE
 
-    targets = list(luminaires)
+    targets = layout_templates(luminaires)
     for obj in targets:
         if proxy_type(obj) != TYPE:
             raise ValueError(f"'{obj.Label}' is not a Lighting luminaire")

@@ -14,6 +14,7 @@
 #include <glm/vector_relational.hpp>
 #include <map>
 #include <tuple>
+#include <unordered_map>
 
 #include "model/coincident_grid.hpp"
 
@@ -312,8 +313,13 @@ class Detector {
     const bool same_facing = glm::dot(t.n, o.n) > 0.0;
     using K = Coincidence::Kind;
     if (!is_target_[mt]) {
-      // Tracing is double-sided and nothing moves: from either side either material is seen.
-      found_[{mt, mo, K::Materials}] += h.area_m2;
+      // Two closed bodies touching face to face (a wall standing on a slab, a desk on the
+      // floor, a pane in its frame): the shared patch lies inside them, where no light from
+      // the room arrives, so nothing is arbitrary. Otherwise (open sheets back to back, or
+      // one surface over another facing the same way) tracing is double-sided and nothing
+      // moves: from either side either material is seen.
+      const bool contact = !same_facing && closed(mt) && closed(mo);
+      found_[{mt, mo, contact ? K::Contact : K::Materials}] += h.area_m2;
     } else if (is_target_[mo] && same_facing) {
       found_[{mt, mo, K::TargetsArbitrary}] += h.area_m2;
     } else {
@@ -323,6 +329,48 @@ class Detector {
         add_move(h.go, -t.n, h.move_m);
       } else {
         add_move(h.gt, t.n, h.move_m);
+      }
+    }
+  }
+
+  // Whether the mesh is part of a closed surface: with the vertices of all meshes welded by
+  // position, every edge of its triangles is shared by an even number of triangles of the
+  // scene. Counted over all meshes because the export splits one body into several (a slab's
+  // top, bottom and sides carry different materials; a target face is cut out of its wall).
+  // Called in apply_rule only, which runs on one thread; the counts are made once, when the
+  // first such pair asks.
+  bool closed(std::uint32_t mesh) {
+    if (edge_ids_.empty()) count_edges();
+    for (const auto& t : s_.meshes[mesh].triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const std::uint64_t key = edge_key(edge_ids_[mesh][t[k]], edge_ids_[mesh][t[(k + 1) % 3]]);
+        if (key != kNoEdge && edge_count_.at(key) % 2 != 0) return false;
+      }
+    }
+    return !s_.meshes[mesh].triangles.empty();
+  }
+
+  static constexpr std::uint64_t kNoEdge = ~std::uint64_t(0);
+
+  static std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    if (a == b) return kNoEdge;  // a degenerate edge
+    if (b < a) std::swap(a, b);
+    return std::uint64_t(a) << 32 | b;
+  }
+
+  void count_edges() {
+    std::map<std::tuple<double, double, double>, std::uint32_t> ids;
+    edge_ids_.resize(s_.meshes.size());
+    for (std::size_t m = 0; m < s_.meshes.size(); ++m) {
+      for (const dvec3& v : s_.meshes[m].vertices) {
+        const auto id = static_cast<std::uint32_t>(ids.size());
+        edge_ids_[m].push_back(ids.emplace(std::tuple(v.x, v.y, v.z), id).first->second);
+      }
+      for (const auto& t : s_.meshes[m].triangles) {
+        for (int k = 0; k < 3; ++k) {
+          const std::uint64_t key = edge_key(edge_ids_[m][t[k]], edge_ids_[m][t[(k + 1) % 3]]);
+          if (key != kNoEdge) ++edge_count_[key];
+        }
       }
     }
   }
@@ -406,6 +454,8 @@ class Detector {
   std::vector<int> level_;
   std::map<std::tuple<std::uint32_t, std::uint32_t, Coincidence::Kind>, double> found_;
   std::vector<Move> moves_;
+  std::vector<std::vector<std::uint32_t>> edge_ids_;  // closed(): per mesh, welded vertex ids
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_count_;  // triangles per welded edge
 };
 
 std::string format_area(double area_m2) {

@@ -20,7 +20,9 @@ struct Coincidence {
   enum class Kind {
     TargetOnSurface,  ///< `a` is a target mesh, `b` is not: the target gets the light
     /// back to back, at least one a target (furniture standing on a floor target): each side
-    /// keeps the light arriving at its own front; nothing is arbitrary, so it is not warned
+    /// keeps the light arriving at its own front; or two closed non-target meshes touching
+    /// face to face (a wall on a slab): the patch lies inside them. Nothing is arbitrary,
+    /// so it is not warned
     Contact,
     TargetsArbitrary,  ///< two target meshes facing the same way: the share is arbitrary
     Materials,         ///< two non-target meshes with different materials: arbitrary material

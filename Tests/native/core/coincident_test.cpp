@@ -3,6 +3,7 @@
 // overlaps are reported. Direct light only (black materials), so each target has a closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <functional>
@@ -252,6 +253,38 @@ TEST(CoincidentDetection, NonTargetMeshesWithDifferentMaterialsAreReported) {
     for (std::size_t k = 1; k + 1 < p.meshes[m].vertices.size(); k += 3)
       EXPECT_EQ(p.meshes[m].vertices[k], float(0.0 - p.origin.y));
   }
+}
+
+// Two closed bodies of different materials touching face to face (a wall standing on a slab, a
+// cabinet on the floor): the shared patch lies inside them, nothing is arbitrary, nothing is
+// said and nothing moves. The same slab with an open sheet lying on it facing down (its back
+// seen from above) is still reported: from above either material may be met.
+TEST(CoincidentDetection, ClosedBodiesInContactSayNothingOpenSheetsDo) {
+  Scene s;
+  const int grey = add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  const int red = add_material(s, "red", Material::Type::Diffuse, 0.3);
+  s.meshes.push_back(solid_box_mesh("slab", grey, {-2, -2, -0.2}, {2, 2, 0}, 2));
+  s.meshes.push_back(solid_box_mesh("wall", red, {-2, -2, 0}, {2, -1.8, 2.5}));
+  const auto p = prepared(s);
+  EXPECT_TRUE(p.warnings.empty()) << p.warnings[0];
+  EXPECT_NEAR(coincident_area(p, Coincidence::Kind::Contact, 0, 1), 4.0 * 0.2, 1e-9);
+  for (int m = 0; m < 2; ++m) {  // nothing moved: the same coordinates, in whatever order
+    const std::size_t n = 3 * s.meshes[m].vertices.size();  // the prepared array is padded
+    ASSERT_GE(p.meshes[m].vertices.size(), n);
+    std::vector<float> given, kept(p.meshes[m].vertices.begin(), p.meshes[m].vertices.begin() + n);
+    for (const dvec3& v : s.meshes[m].vertices)
+      for (int c = 0; c < 3; ++c) given.push_back(float(v[c] - p.origin[c]));
+    std::sort(given.begin(), given.end());
+    std::sort(kept.begin(), kept.end());
+    ASSERT_EQ(kept.size(), given.size()) << s.meshes[m].name;
+    // Rounding of the re-centring only; a move is at least 4 ray offsets (>= 6e-5 m).
+    for (std::size_t k = 0; k < kept.size(); ++k)
+      EXPECT_NEAR(kept[k], given[k], 1e-6) << s.meshes[m].name << " coordinate " << k;
+  }
+  s.meshes[1] = quad_mesh("sheet", red, {-1, -1, 0}, {0, 2, 0}, {2, 0, 0});  // front -z
+  const auto q = prepared(s);
+  ASSERT_EQ(q.warnings.size(), 1u);
+  EXPECT_NE(q.warnings[0].find("arbitrary"), std::string::npos) << q.warnings[0];
 }
 
 TEST(CoincidentDetection, SameMaterialSaysNothing) {

@@ -333,6 +333,13 @@ MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_ChooseLum
 RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Live",
                 "Lighting_Optimize",
                 "Lighting_Results", "Lighting_Report", "Lighting_ClearResults"]
+#: Toolbars, by role: the main commands first (Qt squeezes the last toolbars of a row behind
+#: their overflow arrows first, and FreeCAD's own toolbars fill most of a 1280 px row), then
+#: the model's objects, then the checks a user runs less often.
+TOOLBARS = (("Lighting analysis", [c for c in RUN_COMMANDS
+                                   if c not in ("Lighting_Check", "Lighting_Export")]),
+            ("Lighting model", MODEL_COMMANDS),
+            ("Lighting check", ["Lighting_Check", "Lighting_Export"]))
 
 
 from lighting.commands import exclusion  # noqa: E402 - "Exclude from lighting" / "Include"

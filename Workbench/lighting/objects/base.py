@@ -74,6 +74,12 @@ class BaseProxy:
                                 PROP_OUTPUT if prop.output or prop.group == RESULTS else 0)
             if prop.type == "App::PropertyEnumeration":
                 current = getattr(obj, name) if not added else None
+                # A restored enumeration with today's items is left alone: writing it again
+                # would mark a document just opened as modified.
+                if (not added and current in prop.items and
+                        list(obj.getEnumerationsOfProperty(name) or []) == list(prop.items)):
+                    obj.setEditorMode(name, prop.mode)
+                    continue
                 setattr(obj, name, list(prop.items))
                 if current in prop.items:
                     setattr(obj, name, current)

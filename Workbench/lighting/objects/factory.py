@@ -104,6 +104,21 @@ def make_face_target(doc: Any, faces: Iterable[Tuple[Any, Union[str, Sequence[st
     return obj
 
 
+def _refuse_curved_face(base: Any, face: str) -> None:
+    """ValueError, before anything is made, for a grid on a curved face (a cylinder's side):
+    a grid is a plane; its bounding box would be accepted and then leave "no area"."""
+    from lighting.geometry import face_index, global_shape, is_planar
+
+    index = face_index(face)
+    faces = global_shape(base).Faces if hasattr(base, "Shape") else []
+    if index is None or index >= len(faces):
+        raise ValueError(f"calculation grid: '{base.Label}' has no face {face!r}")
+    if not is_planar(faces[index]):
+        raise ValueError(f"calculation grid: '{base.Label}.{face}' is curved; a grid lies on a "
+                         "plane: select a flat face (a floor, a wall's inner face, a ceiling's "
+                         "underside) or the floor, slab or Arch space itself")
+
+
 def make_grid_target(doc: Any, base: Any, face: Optional[str] = None, height_m: float = 0.80,
                      wall_band_m: Optional[float] = None, spacing_m: float = 0.0,
                      required_lux: float = 0.0, required_uniformity: float = 0.0,
@@ -123,6 +138,8 @@ def make_grid_target(doc: Any, base: Any, face: Optional[str] = None, height_m: 
         raise ValueError(f"surface must be one of {standards.SURFACE_KINDS} (got {surface!r})")
     if activity is not None and activity not in standards.ACTIVITIES:
         raise ValueError(f"activity must be one of {standards.ACTIVITIES} (got {activity!r})")
+    if face:
+        _refuse_curved_face(base, face)
     band = standards.BORDER_BAND_M[surface] if wall_band_m is None else wall_band_m
     obj = doc.addObject("Part::FeaturePython", name)
     Target(obj)

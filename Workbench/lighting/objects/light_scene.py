@@ -66,11 +66,20 @@ def check(obj: Any, known_groups: List[str]) -> List[tuple]:
         found = levels(obj)
     except ValueError as exc:
         return [("error", str(exc))]
+    problems = []
     unknown = [g for g in found if g not in known_groups]
     if unknown:
-        return [("warning", f"Light scene '{obj.Label}': no luminaire is in group(s) "
-                            f"{', '.join(unknown)}")]
-    return []
+        problems.append(("warning", f"Light scene '{obj.Label}': no luminaire is in group(s) "
+                                    f"{', '.join(unknown)}"))
+    # A luminaire added after the scene was made: its group is at 100 % in this scene, which
+    # the user never chose; say so rather than let it pass silently.
+    unset = [g for g in known_groups if g not in found]
+    if unset:
+        problems.append(("warning", f"Light scene '{obj.Label}' does not set group(s) "
+                                    f"{', '.join(unset)} (made after the scene): they are at "
+                                    "100 %; set their level in the analysis panel's light "
+                                    "scenes"))
+    return problems
 
 
 def scenes(analysis: Any) -> List[Any]:

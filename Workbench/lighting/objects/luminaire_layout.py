@@ -22,6 +22,7 @@ import FreeCAD
 
 from lighting import placement
 from lighting.geometry import face_index, global_shape
+from lighting.objects import layout_type
 from lighting.objects import luminaire as luminaire_mod
 from lighting.objects.base import BaseProxy, Prop, READ_ONLY, objects_of_type
 
@@ -68,12 +69,28 @@ class LuminaireLayout(BaseProxy):
         "AreaWidth": Prop("App::PropertyLength", "Rectangle",
                           "Without a face: the field's size along the Placement's Y", 3000.0),
         "MemberCount": Prop("App::PropertyInteger", "Layout", "Luminaires placed", 0, READ_ONLY),
+        **layout_type.PROPERTIES,
     }
+
+    def __init__(self, obj: Any) -> None:
+        super().__init__(obj)
+        self.ready = True
+
+    def onDocumentRestored(self, obj: Any) -> None:  # noqa: N802 (FreeCAD API name)
+        """Older files gain the type properties, filled from the template."""
+        super().onDocumentRestored(obj)
+        self.ready = True
+        layout_type.pull(obj)
+
+    def onChanged(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
+        """Type properties edited on the layout go to its template (layout_type)."""
+        layout_type.on_changed(obj, prop, getattr(self, "ready", False))
 
     def execute(self, obj: Any) -> None:
         """Markers for the members (the template's symbol at each) and MemberCount."""
         import Part
 
+        layout_type.pull(obj)
         try:
             members = layout_placements(obj)
         except ValueError as exc:

@@ -110,6 +110,7 @@ class PlacementResult:
                 if self.doc.getObject(obj.Name) is not None:
                     self.doc.removeObject(obj.Name)
             self.removed = []
+            _renumber_copies(self.placements)
             self.doc.recompute()
         finally:
             self.doc.commitTransaction()
@@ -131,6 +132,21 @@ def _new_copy(p: Placement) -> Any:
         if isinstance(getattr(parent, "Proxy", None), analysis_mod.Analysis):
             parent.addObject(obj)
     return obj
+
+
+def _renumber_copies(placed: List[Placement]) -> None:
+    """Label each template's installed copies 1, 2, 3 ... (not the candidate numbers the
+    optimum happened to use, "copy1, copy3, copy4"), keeping their order. Ascending, each new
+    label is free: the object that held it was deleted or already renumbered lower."""
+    by_template: Dict[str, List[Placement]] = {}
+    for p in placed:
+        if p.obj is not None and p.obj is not p.template:
+            by_template.setdefault(p.template.Name, []).append(p)
+    for copies in by_template.values():
+        for number, p in enumerate(copies, start=1):
+            label = f"{p.template.Label}{COPY_SUFFIX}{number}"
+            if p.obj.Label != label:
+                p.obj.Label = label
 
 
 def _move_to(obj: Any, position_m: List[float]) -> None:

@@ -80,9 +80,20 @@ class LightSceneView(QtGui.QWidget):
         self.table.setEnabled(scene is not None)
         if scene is None:
             return
-        for row, (group, level) in enumerate(zip(scene.Groups, scene.Levels)):
+        # Groups made after the scene (a luminaire added later) are listed too, at the 100 %
+        # they get, and say so; setting their level adds them to the scene.
+        from lighting.objects import analysis as analysis_mod
+
+        self._missing = [g for g in analysis_mod.control_groups(self.analysis)
+                         if g not in list(scene.Groups)]
+        rows = list(zip(scene.Groups, scene.Levels)) + [(g, 1.0) for g in self._missing]
+        for row, (group, level) in enumerate(rows):
             self.table.insertRow(row)
-            item = QtGui.QTableWidgetItem(group)
+            new = row >= len(scene.Groups)
+            item = QtGui.QTableWidgetItem(f"{group} (new: not in this scene)" if new else group)
+            if new:
+                item.setToolTip(f"Group '{group}' was made after this scene: it is at 100 % "
+                                "until you set its level here")
             item.setFlags(item.flags() & ~QtCore.Qt.ItemIsEditable)
             self.table.setItem(row, 0, item)
             spin = QtGui.QDoubleSpinBox()
@@ -114,9 +125,19 @@ class LightSceneView(QtGui.QWidget):
         from lighting.solver.store import undo_step
 
         scene = light_scene.active(self.analysis)
-        if scene is None or row >= len(scene.Levels):
+        if scene is None:
             return
         values: List[float] = list(scene.Levels)
+        missing = getattr(self, "_missing", [])
+        if row >= len(values):  # a group made after the scene: it joins the scene now
+            extra = row - len(values)
+            if extra >= len(missing):
+                return
+            with undo_step(self.analysis.Document, "Light scene level"):
+                scene.Levels = values + [percent / 100.0]
+                scene.Groups = list(scene.Groups) + [missing[extra]]
+            self._done()
+            return
         if abs(values[row] - percent / 100.0) < 1e-12:
             return
         values[row] = percent / 100.0

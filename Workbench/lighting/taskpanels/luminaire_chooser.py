@@ -2,7 +2,8 @@
 """Task panel "Choose luminaire data": the luminaire library (the shipped photometric files
 and the user's folder, lighting/luminaire_library.py), the chosen file's summary and polar
 diagram, then Assign: the selected Lighting luminaires become photometric with that file in
-one undo step, or a new luminaire is made with it when none is selected.
+one undo step (a selected layout, or any of its luminaires clicked in the 3D view: its
+template, so every member), or a new luminaire is made with it when none is selected.
 
 The panel fits the default combo view (about 264 px): one column, word-wrapped texts, a
 diagram that scales with the width, and the Assign / Close buttons in the task dialog's
@@ -20,6 +21,7 @@ from lighting import luminaire_library as library
 from lighting.objects import analysis as analysis_mod
 from lighting.objects.base import proxy_type
 from lighting.objects.luminaire import TYPE as LUMINAIRE_TYPE
+from lighting.objects.luminaire_layout import TYPE as LAYOUT_TYPE
 from lighting.viewproviders.base import icon_path
 from lighting.taskpanels.modeless import ModelessPanel
 from lighting.taskpanels.ugr_table_dialog import UgrTableDialog
@@ -103,8 +105,18 @@ class _SelectionObserver:
 
 
 def selected_luminaires() -> List[Any]:
-    """The Lighting luminaires among the selected objects."""
-    return [o for o in FreeCADGui.Selection.getSelection() if proxy_type(o) == LUMINAIRE_TYPE]
+    """The Lighting luminaires and luminaire layouts among the selected objects (a layout is
+    selected by clicking any of its luminaires in the 3D view; Assign gives the file to its
+    template, so every member changes)."""
+    return [o for o in FreeCADGui.Selection.getSelection()
+            if proxy_type(o) in (LUMINAIRE_TYPE, LAYOUT_TYPE)]
+
+
+def _target_text(obj: Any) -> str:
+    """How a target is named in the panel: a layout with its member count."""
+    if proxy_type(obj) != LAYOUT_TYPE:
+        return obj.Label
+    return f"{obj.Label} (layout, all {obj.MemberCount} luminaires)"
 
 
 def _selected_face() -> Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]]:
@@ -323,7 +335,7 @@ class LuminaireChooserPanel(ModelessPanel):
     def _update_targets(self) -> None:
         lums = selected_luminaires()
         if lums:
-            names = ", ".join(o.Label for o in lums)
+            names = ", ".join(_target_text(o) for o in lums)
             self.targets.setText(f"Assign to: {names}")
         elif FreeCAD.ActiveDocument is None:
             self.targets.setText("Open a document to assign luminaire data.")
@@ -364,7 +376,7 @@ class LuminaireChooserPanel(ModelessPanel):
             self._set_status(f"Assign failed: {exc}")
             FreeCAD.Console.PrintError(f"Lighting: assigning {entry.name} failed: {exc}\n")
             return []
-        self._set_status(f"Assigned {entry.name} to {', '.join(o.Label for o in done)}.")
+        self._set_status(f"Assigned {entry.name} to {', '.join(_target_text(o) for o in done)}.")
         return done
 
     def _set_status(self, text: str) -> None:

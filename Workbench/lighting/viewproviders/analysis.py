@@ -20,7 +20,11 @@ REPAINT_ON = ("ColorMap", "ScaleMode", "ScaleMinLux", "ScaleMaxLux", "ShowLegend
 LEGEND_STEPS = 32
 LEGEND_TICKS = 6
 # Legend rectangle in the legend camera's coordinates (x, y in -1..1 over the viewport).
-X0, X1, Y0, Y1 = -0.97, -0.92, -0.75, 0.75
+# The bar ends at 0.65 so that up to four title lines fit above it; the title goes one short
+# line per part (title_lines) so that it stays at the left, clear of the navigation cube in
+# the top-right corner.
+X0, X1, Y0, Y1 = -0.97, -0.92, -0.75, 0.65
+TITLE_STEP = 0.05
 
 
 def _coin() -> Any:
@@ -46,7 +50,13 @@ def _skip_bounding_group() -> Any:
 #: Legend of stale results: colours washed towards this grey, and this title.
 STALE_GREY = (0.72, 0.72, 0.72)
 STALE_WASH = 0.7
-STALE_TITLE = "Illuminance [lx] - OUT OF DATE: the model changed, press Run"
+STALE_TITLE = "Illuminance [lx] - OUT OF DATE: the model changed - press Run"
+
+
+def title_lines(title: str) -> List[str]:
+    """The legend title as drawn: one line per " - " part, top first (a long single line
+    ran under the navigation cube)."""
+    return [part.strip() for part in title.split(" - ") if part.strip()]
 
 
 def _washed(rgb: Tuple[float, float, float]) -> Tuple[float, float, float]:
@@ -117,16 +127,20 @@ def build_legend(scale: Scale, title: str = "Illuminance [lx]", stale: bool = Fa
         label.addChild(text)
         text_sep.addChild(label)
     title_sep = coin.SoSeparator()
-    move = coin.SoTranslation()
-    move.translation = (X0, Y1 + 0.05, 0.0)
-    title_sep.addChild(move)
     if stale:  # bright: readable on FreeCAD's dark-blue to light background
         warn_colour = coin.SoBaseColor()
         warn_colour.rgb = (1.0, 0.45, 0.3)
         title_sep.addChild(warn_colour)
-    text = coin.SoText2()
-    text.string = STALE_TITLE if stale else title
-    title_sep.addChild(text)
+    lines = title_lines(STALE_TITLE if stale else title)
+    for row, line_text in enumerate(lines):
+        line = coin.SoSeparator()
+        move = coin.SoTranslation()
+        move.translation = (X0, Y1 + 0.05 + TITLE_STEP * (len(lines) - 1 - row), 0.0)
+        line.addChild(move)
+        text = coin.SoText2()
+        text.string = line_text
+        line.addChild(text)
+        title_sep.addChild(line)
     text_sep.addChild(title_sep)
     for row, (label, word) in enumerate(verdicts):
         line = coin.SoSeparator()
