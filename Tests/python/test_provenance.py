@@ -202,7 +202,15 @@ def test_report_check_refuses_what_does_not_belong(cli, room_scene, lit_room, li
 def test_check_lists_every_error_and_warning(cli, room_scene, tmp_path):
     r = run(cli, "check", room_scene)
     assert r.returncode == 0 and r.stdout.strip().endswith("0 errors, 0 warnings")
-    office = SOURCE_DIR / "Tests" / "golden" / "office_scene.json"
+    # A scene with warnings: every luminaire at zero flux (nothing to trace).
+    scene = json.loads(room_scene.read_text())
+    for lum in scene["luminaires"]:
+        lum["flux_lm"] = 0
+    for mesh in scene["meshes"]:
+        if "file" in mesh:
+            mesh["file"] = str((room_scene.parent / mesh["file"]).resolve())
+    office = tmp_path / "dark.json"
+    office.write_text(json.dumps(scene))
     r = run(cli, "check", office)
     found = lightsolver.check_scene_file(str(office))
     assert r.returncode == 0 and found["warnings"]

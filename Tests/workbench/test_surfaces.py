@@ -180,8 +180,15 @@ class SurfaceGrids(DocTestCase):
         doc = FreeCAD.newDocument("BadSurfaces")
         cylinder = doc.addObject("Part::Cylinder", "Column")
         doc.recompute()
-        curved = lighting.make_grid_target(doc, cylinder, face="Face1", surface="Wall",
+        # A curved face is refused before anything is made (issue 25) ...
+        with self.assertRaisesRegex(ValueError, "'Column.Face1' is curved"):
+            lighting.make_grid_target(doc, cylinder, face="Face1", surface="Wall",
+                                      name="CurvedGrid")
+        self.assertIsNone(doc.getObject("CurvedGrid"))
+        # ... and a grid whose face is changed to a curved one later is named by its check.
+        curved = lighting.make_grid_target(doc, cylinder, face="Face2", surface="Wall",
                                            name="CurvedGrid")
+        curved.Base = (cylinder, ["Face1"])
         whole = lighting.make_grid_target(doc, cylinder, surface="Ceiling", name="NoFaceGrid")
         doc.recompute()
         self.assertRegex(target_mod.check(curved)[0][1], "CurvedGrid.*not planar")
