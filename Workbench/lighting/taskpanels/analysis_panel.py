@@ -300,8 +300,6 @@ class AnalysisTaskPanel(ModelessPanel):
         """Show the document's state: settings, results, verdicts, costs, scale (called on any
         document change by the Lighting document observer, and after a run)."""
         try:
-            if not self.is_busy():
-                self._set_status(self.analysis.Status)
             self._show_settings()
             self._show_stored_results()
         except Exception:  # noqa: BLE001 - the panel was closed or the analysis deleted
