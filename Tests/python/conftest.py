@@ -19,11 +19,10 @@ if "LIGHTSOLVER_CLI" not in os.environ:  # running pytest by hand after a defaul
 def without_run_facts(results: dict, also=()) -> dict:
     """A copy of a results document without its provenance's run facts (and `also`, further
     provenance keys), for comparing two runs that should agree in everything else."""
-    out = dict(results)
-    if isinstance(out.get("provenance"), dict):
-        out["provenance"] = {k: v for k, v in out["provenance"].items()
-                             if k not in PROVENANCE_RUN_FACTS and k not in also}
-    return out
+    import lightsolver_results
+
+    return lightsolver_results.without_run_facts(
+        results, top_level=(), fields=PROVENANCE_RUN_FACTS + tuple(also))
 
 
 @pytest.fixture(scope="session")

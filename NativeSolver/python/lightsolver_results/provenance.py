@@ -62,11 +62,11 @@ def read_provenance(doc: Dict[str, Any]) -> Optional[Provenance]:
 RUN_FACT_FIELDS = ("started_utc", "finished_utc", "host", "command", "threads")
 
 
-def without_run_facts(doc: Dict[str, Any], top_level: tuple = ("seconds",)) -> Dict[str, Any]:
+def without_run_facts(doc: Dict[str, Any], top_level: tuple = ("seconds",),
+                      fields: tuple = RUN_FACT_FIELDS) -> Dict[str, Any]:
     """The results without what differs between two runs of the same scene and options: the
-    top-level ``top_level`` keys and the provenance's :data:`RUN_FACT_FIELDS`."""
+    top-level ``top_level`` keys and the provenance's ``fields`` (:data:`RUN_FACT_FIELDS`)."""
     out = {k: v for k, v in doc.items() if k not in top_level}
     if isinstance(out.get("provenance"), dict):
-        out["provenance"] = {k: v for k, v in out["provenance"].items()
-                             if k not in RUN_FACT_FIELDS}
+        out["provenance"] = {k: v for k, v in out["provenance"].items() if k not in fields}
     return out
