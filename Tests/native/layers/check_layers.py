@@ -26,18 +26,19 @@ from pathlib import Path
 # (the results file and rescale). Glare sits above estimate and results and is never included by
 # them; the backends implement model's Backend over the prepared scene and never see each other;
 # tables assemble the type tables from the rows of types and glare; the optimizer drives runs
-# from above. photometry and mpi stand alone.
+# from above. photometry, daylight (sun position, sky models) and mpi stand alone.
 _CORE = ["io", "model", "types", "scene", "prepare", "estimate", "run", "results"]
 LAYERS: dict[str, set[str]] = {
     "photometry": set(),
+    "daylight": set(),
     "mpi": set(),
     "io": set(),
     "model": {"io"},
-    "types": {"io", "model"},
-    "scene": {"io", "model", "types"},
-    "prepare": {"io", "model", "types", "scene"},
+    "types": {"io", "model", "daylight"},
+    "scene": {"io", "model", "types", "daylight"},
+    "prepare": {"io", "model", "types", "scene", "daylight"},
     "estimate": {"io", "model", "types"},
-    "run": {"io", "model", "types", "scene", "prepare", "estimate"},
+    "run": {"io", "model", "types", "scene", "prepare", "estimate", "daylight"},
     "results": {"io", "model", "types", "scene", "estimate"},
     "glare": {"io", "model", "types", "estimate", "results"},
     "embree": {"io", "model", "types", "prepare"},
