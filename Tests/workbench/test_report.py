@@ -2,10 +2,14 @@
 (docs/report.md): HTML and PDF from the office example, no results, stale results (refused
 unless allow_stale, then said), partial results (refused unless allow_partial), a missing
 scene file, a missing output folder, the sign-off fields, the two-step job the GUI's worker
-thread runs."""
+thread runs; the analysis' report inputs (group "Report": project, sign-off names, date
+policy, LENI inputs) on the page, kept through save and reopen, refused by name when unusable;
+the results as traced with every light scene of the document, whatever scene is shown."""
+import hashlib
 import json
 import os
 
+import FreeCAD
 
 import lighting
 from lighting.messages import CheckError, LightingError
@@ -166,3 +170,173 @@ class ReportTest(DocTestCase):
         with self.assertRaises(CheckError) as caught:
             lighting.report(doc, os.path.join(work_dir("report-none"), "r.html"))
         self.assertIn("run the analysis first", str(caught.exception))
+
+
+def _sha256(path):
+    with open(path, "rb") as stream:
+        return hashlib.sha256(stream.read()).hexdigest()
+
+
+def _read(path):
+    with open(path, encoding="utf-8") as stream:
+        return stream.read()
+
+
+#: The report inputs an architect fills in (objects/report_settings.py).
+INPUTS = {"ProjectName": "Office refurbishment, 3rd floor", "ProjectNumber": "2026-014",
+          "Client": "Müller AG", "PreparedBy": "A. Architect", "CheckedBy": "K. Checker",
+          "ReportDate": "Fixed", "FixedDate": "2026-02-03", "EnergyEstimate": True,
+          "OperatingHoursDay": 2000.0, "OperatingHoursNight": 400.0, "OccupancyFactor": 0.9,
+          "DaylightDependencyFactor": 0.8, "ConstantIlluminanceFactor": 0.95,
+          "ParasiticEnergy": 1.5, "EnergyFloorArea": 15.0}
+
+
+class ReportInputs(DocTestCase):
+    """The analysis' group "Report" reaches the sign-off block, the cover and LENI."""
+
+    def _office_with_power(self, folder):
+        """The office with the batwing IES panels (36 W each, from the file) and a run."""
+        doc = build_office(photons=20000, seed=3)
+        ies = os.path.join(os.environ["LIGHTING_SOURCE_DIR"], "Resources", "luminaires",
+                           "batwing_panel.ies")
+        luminaires = [o for o in doc.Objects if o.Name.startswith("Luminaire0")]
+        lighting.assign_photometry(doc, luminaires, ies)
+        doc.recompute()
+        lighting.analyze(doc, output_dir=folder)
+        return doc, doc.getObject("LightingAnalysis"), len(luminaires)
+
+    @needs_solver
+    def test_inputs_reach_the_page_and_survive_save_and_reopen(self):
+        from lighting.solver import store
+
+        folder = work_dir("report-inputs")
+        doc, analysis, count = self._office_with_power(folder)
+        scene_sha = _sha256(analysis.SceneFile)
+        for name, value in INPUTS.items():
+            setattr(analysis, name, value)
+        # Report inputs are no part of the lighting model: the results stay current.
+        self.assertEqual(store.results_state(analysis).state, "current")
+        path = lighting.report(doc, os.path.join(folder, "inputs.html"))
+        html = _read(path)
+        self.assertEqual(_sha256(analysis.SceneFile), scene_sha)  # the traced scene untouched
+        self.assertIn(f"<h1>{INPUTS['ProjectName']}</h1>", html)
+        self.assertIn("Project no. 2026-014 · Client: Müller AG", html)
+        for caption, who in (("Prepared by", "A. Architect"), ("Checked by", "K. Checker"),
+                             ("Project", INPUTS["ProjectName"])):
+            self.assertIn(f"<tr><th>{caption}</th><td>{who}</td></tr>", html)
+        self.assertIn("2026-02-03", html)
+        # LENI by EN 15193-1's formula from the inputs and 36 W per luminaire (the IES file).
+        power = 36.0 * count
+        lighting_kwh = power * 0.95 * 0.9 * (2000.0 * 0.8 + 400.0) / 1000.0
+        leni = (lighting_kwh + 1.5 * 15.0) / 15.0
+        from lighting.reporting import report_module
+
+        fmt = report_module().fmt
+        self.assertIn(f"<strong>{fmt.number(leni, 3)} kWh/(m²·a)</strong> over "
+                      f"{fmt.number(15.0, 4)} m² (floor area as stated)", html)
+        # Saved and reopened: the same inputs, the same page.
+        saved = os.path.join(folder, "office.FCStd")
+        doc.saveAs(saved)
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(saved)
+        analysis = doc.getObject("LightingAnalysis")
+        for name, value in INPUTS.items():
+            self.assertEqual(getattr(analysis, name), value, name)
+        again = lighting.report(doc, os.path.join(folder, "reopened.html"))
+        self.assertEqual(_read(again), html)
+
+    @needs_solver
+    def test_unusable_inputs_are_refused_by_property_name(self):
+        folder = work_dir("report-inputs-bad")
+        doc, analysis, _ = self._office_with_power(folder)
+        before = sorted(os.listdir(folder))
+        for name, value, said in (("OccupancyFactor", 1.5, "OccupancyFactor"),
+                                  ("OperatingHoursNight", 8000.0, "exceed the 8760 hours"),
+                                  ("FixedDate", "next week", "FixedDate")):
+            for key, good in INPUTS.items():
+                setattr(analysis, key, good)
+            setattr(analysis, name, value)
+            with self.assertRaises(LightingError) as caught:
+                lighting.report(doc, os.path.join(folder, "bad.html"))
+            self.assertIn(said, str(caught.exception))
+            self.assertEqual(sorted(os.listdir(folder)), before)  # nothing written
+        # Energy off: its inputs are not used, so not judged.
+        analysis.FixedDate = "2026-02-03"
+        analysis.EnergyEstimate = False
+        html = _read(lighting.report(doc, os.path.join(folder, "no energy.html")))
+        self.assertNotIn("Energy estimate", html)
+
+    @needs_solver
+    def test_the_date_of_the_calculation(self):
+        from lighting.objects import results as results_obj
+        from lighting.solver import store
+
+        folder = work_dir("report-date")
+        doc = build_office(photons=20000, seed=3)
+        lighting.analyze(doc, output_dir=folder)
+        analysis = doc.getObject("LightingAnalysis")
+        obj = store.results_object(analysis)
+        data = results_obj.traced(obj)
+        # The run's end as stored (apply_to_document would keep the stored results: they
+        # differ in a run fact only).
+        data["provenance"]["finished_utc"] = "2025-03-04T23:59:58Z"
+        obj.ResultsJson = json.dumps(data)
+        self.assertEqual(store.results_state(analysis).state, "current")
+        analysis.ReportDate = "Calculation"
+        html = _read(lighting.report(doc, os.path.join(folder, "dated.html")))
+        self.assertTrue('<td class="date">2025-03-04</td>' in html, "not the run's date")
+        # An explicit date wins over the policy.
+        html = _read(lighting.report(doc, os.path.join(folder, "given.html"), date=DATE))
+        self.assertTrue(f'<td class="date">{DATE}</td>' in html, "not the date given")
+
+
+class ReportLightScenes(DocTestCase):
+    @needs_solver
+    def test_traced_results_and_every_light_scene_whatever_is_shown(self):
+        """The report gets the traced results, not the light scene the view shows, and a
+        table for every light scene the document has now, also one made after the run."""
+        import lightsolver
+        from lighting.objects import results as results_obj
+        from lighting.reporting import prepare_report, report_module
+
+        fmt = report_module().fmt
+        doc = build_office(photons=20000, seed=3)
+        for name, group in (("Luminaire01", "Window row"), ("Luminaire02", "Window row"),
+                            ("Luminaire03", "Back row"), ("Luminaire04", "Back row")):
+            doc.getObject(name).ControlGroup = group
+        analysis = doc.getObject("LightingAnalysis")
+        analysis.Decide = False
+        evening = lighting.make_light_scene(analysis, "Evening",
+                                            {"Window row": 0.5, "Back row": 0.0})
+        doc.recompute()
+        folder = work_dir("report-scenes")
+        lighting.analyze(doc, output_dir=folder)
+        # Made after the run: not in the scene file the run wrote.
+        lighting.make_light_scene(analysis, "Night", {"Window row": 0.0, "Back row": 0.25})
+        lighting.show_light_scene(analysis, evening)  # the 3D view shows the evening
+        obj = results_obj.of_analysis(analysis)
+        traced = results_obj.traced(obj)
+        shown = results_obj.data(obj)
+        em = {t["name"]: t["mean_lux"] for t in traced["targets"]}
+        dimmed = {t["name"]: t["mean_lux"] for t in shown["targets"]}
+        self.assertNotEqual(fmt.lux(em["Workplane"]), fmt.lux(dimmed["Workplane"]))
+
+        job = prepare_report(analysis, os.path.join(folder, "scenes.html"), date=DATE)
+        self.assertEqual({k: v for k, v in job.data.items() if k != "warnings"},
+                         {k: v for k, v in traced.items() if k != "warnings"})
+        self.assertEqual([s["name"] for s in job.metadata["light_scenes"]], ["Evening", "Night"])
+        html = _read(job.write())
+        self.assertNotIn("Results shown", html)  # the cover: results as traced
+        glance = html[html.index("Results at a glance"):]
+        self.assertIn(fmt.lux(em["Workplane"]), glance[:glance.index("</table>")])
+        for name, levels in (("Evening", {"Window row": 0.5, "Back row": 0.0}),
+                             ("Night", {"Window row": 0.0, "Back row": 0.25})):
+            self.assertIn(f"<h3>{name}</h3>", html)
+            section = html[html.index(f"<h3>{name}</h3>"):]
+            table = section[:section.index("</table>")]
+            self.assertNotIn("Not shown", table)
+            rescaled = lightsolver.rescale(traced, levels)
+            workplane = next(t for t in rescaled["targets"] if t["name"] == "Workplane")
+            self.assertIn(fmt.lux(workplane["mean_lux"]), table)
+        # The view still shows the evening: writing the report changed nothing.
+        self.assertIs(analysis.ActiveLightScene, evening)

@@ -7,12 +7,19 @@ another scene, a missing output folder) and, what only the workbench knows, resu
 longer describe the model (stale) unless the caller accepts them (``allow_stale``); those are
 then marked stale among the warnings, as is a scene file that had to be exported again.
 
+The report gets the results **as traced** (every control group at 100 %, whatever light scene
+the 3D view shows) and every light scene of the analysis as the document holds it now, which
+the generator rescales from that one run (a page per scene); the analysis' report inputs
+(objects/report_settings.py: project, sign-off names, date, energy) reach it as the scene's
+``metadata.report``, so the scene file on disk, whose hash the results record, is not changed.
+
 Two steps, so that the GUI can write on a worker thread (commands/report.py):
 :func:`prepare_report` reads the document (main thread) into a :class:`ReportJob`, whose
 :meth:`ReportJob.write` touches only files and the generator. :func:`make_report` does both.
 (Not ``lighting/report.py``: that submodule would shadow the function ``lighting.report``.)"""
 from __future__ import annotations
 
+import json
 import os
 import sys
 from dataclasses import dataclass, field
@@ -92,6 +99,9 @@ class ReportJob:
     scene_file: str
     data: Dict[str, Any]
     path: str
+    #: Keys merged into the scene's ``metadata`` for the report (``report``, ``description``,
+    #: ``light_scenes``); the file itself is left as the run read it.
+    metadata: Dict[str, Any] = field(default_factory=dict)
     date: Optional[str] = None
     title: Optional[str] = None
     signoff: Dict[str, str] = field(default_factory=dict)
@@ -110,7 +120,8 @@ class ReportJob:
         module = report_module()
         try:
             self.written = str(module.render(
-                self.scene_file, self.data, self.path, date=self.date, title=self.title,
+                self.scene(), self.data, self.path, scene_path=self.scene_file,
+                date=self.date, title=self.title,
                 view_png=self.view_png, allow_partial=self.allow_partial,
                 signoff=self.signoff, allow_unverified=self.allow_unverified,
                 allow_stale=self.allow_stale))
@@ -119,6 +130,26 @@ class ReportJob:
         except OSError as exc:
             raise LightingError(f"The report cannot be written to '{self.path}': {exc}") from exc
         return self.written
+
+    def scene(self) -> Dict[str, Any]:
+        """The scene file's content with :attr:`metadata` merged into its ``metadata``
+        (``report`` key by key). LightingError when the file cannot be read."""
+        try:
+            with open(self.scene_file, encoding="utf-8") as stream:
+                scene = json.load(stream)
+        except (OSError, ValueError) as exc:
+            raise LightingError(f"The report cannot be written: the scene file "
+                                f"'{self.scene_file}' cannot be read: {exc}") from exc
+        if not isinstance(scene, dict):
+            raise LightingError(f"The report cannot be written: '{self.scene_file}' is not a "
+                                "scene")
+        meta = dict(scene.get("metadata") or {})
+        for key, value in self.metadata.items():
+            if key == "report" and isinstance(meta.get("report"), dict):
+                value = dict(meta["report"], **value)
+            meta[key] = value
+        scene["metadata"] = meta
+        return scene
 
     # -- worker thread (the GUI polls ``finished``, as for an analysis run) -----------------
     def start(self) -> None:
@@ -146,6 +177,30 @@ class ReportJob:
         return self.finished
 
 
+def light_scenes_of(analysis: Any, notes: List[str]) -> List[Dict[str, Any]]:
+    """The analysis' light scenes as the document holds them now, for the report's pages
+    ({name, levels}, the scene format's ``metadata.light_scenes``); a scene whose levels do
+    not pair up is left out and said in ``notes`` (Check names it too)."""
+    from lighting.objects import light_scene
+
+    found = []
+    for scene in light_scene.scenes(analysis):
+        try:
+            found.append({"name": scene.Label, "levels": light_scene.levels(scene)})
+        except ValueError as exc:
+            notes.append(f"Light scene {scene.Label} is not shown: {exc}")
+    return found
+
+
+def _calculated_on(traced: Dict[str, Any]) -> Optional[str]:
+    """When the run ended (its provenance's UTC time), or None when the results do not say."""
+    from lighting.objects import results as results_obj
+
+    typed = results_obj.read(traced)
+    provenance = getattr(typed, "provenance", None) if typed is not None else None
+    return getattr(provenance, "finished_utc", None) or None
+
+
 def prepare_report(analysis: Any, path: str, date: Optional[str] = None,
                    title: Optional[str] = None, *, allow_stale: bool = False,
                    allow_partial: bool = False, allow_unverified: bool = False,
@@ -154,13 +209,20 @@ def prepare_report(analysis: Any, path: str, date: Optional[str] = None,
     """Read what the report of ``analysis``' stored results needs (main thread), refusing
     early what the document alone can tell: no results (CheckError), stale results unless
     ``allow_stale`` (StaleResultsError), partial results unless ``allow_partial``
-    (PartialResultsError), an output folder that does not exist or a wrong suffix
-    (LightingError). ``signoff`` fields override the document's (:func:`signoff_of`)."""
+    (PartialResultsError), an output folder that does not exist or a wrong suffix, report
+    inputs that cannot be used (LightingError naming the property).
+
+    The report gets the results as traced and the analysis' light scenes (the generator
+    rescales each); its inputs come from the analysis' Report properties
+    (objects/report_settings.py): ``title`` defaults to ProjectName, else the document's
+    label; ``date`` to the ReportDate policy; the sign-off fields are the document's
+    (:func:`signoff_of`), overridden by the analysis' names, overridden by ``signoff``."""
+    from lighting.objects import report_settings
     from lighting.objects import results as results_obj
     from lighting.solver import store
 
     obj = store.results_object(analysis)
-    data = results_obj.data(obj)
+    data = results_obj.traced(obj)
     if data is None:
         raise CheckError(Report.one("error", f"Analysis '{analysis.Label}' has no results to "
                                              "report: run the analysis first"))
@@ -169,6 +231,11 @@ def prepare_report(analysis: Any, path: str, date: Optional[str] = None,
         module.guard.output_path(path)
     except module.ReportError as exc:
         raise LightingError(f"The report cannot be written: {exc}") from exc
+    metadata = report_settings.metadata(analysis)  # unusable inputs refused before any work
+    if not date:
+        calculated = (_calculated_on(data) if getattr(analysis, "ReportDate", "") ==
+                      "Calculation" else None)
+        date = report_settings.report_date(analysis, calculated)
     state = store.results_state(analysis)
     if state.stale and not allow_stale:
         raise StaleResultsError(analysis.Label, state.text())
@@ -182,11 +249,13 @@ def prepare_report(analysis: Any, path: str, date: Optional[str] = None,
     if state.stale:
         notes.append(f"These {state.text()}: run the analysis again before handing this "
                      "report on.")
-    fields = dict(signoff_of(analysis.Document), **{k: v for k, v in (signoff or {}).items()
-                                                    if v is not None})
+    metadata["light_scenes"] = light_scenes_of(analysis, notes)
+    fields = dict(signoff_of(analysis.Document), **report_settings.signoff(analysis))
+    fields.update({k: v for k, v in (signoff or {}).items() if v is not None})
     return ReportJob(scene_file=scene_file,
                      data=dict(data, warnings=list(data.get("warnings", [])) + notes),
-                     path=path, date=date, title=title or analysis.Document.Label,
+                     path=path, metadata=metadata, date=date,
+                     title=title or fields.get("project") or analysis.Document.Label,
                      signoff=fields, view_png=view_png, allow_partial=allow_partial,
                      allow_unverified=allow_unverified, allow_stale=allow_stale)
 

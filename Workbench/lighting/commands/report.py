@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Command "Report": writes the calculation report of the analysis' stored results as PDF or
-HTML (``lighting.report``, docs/report.md), asking where. commands.register() adds it;
-RUN_COMMANDS places it after Results.
+HTML (``lighting.report``, docs/report.md). commands.register() adds it; RUN_COMMANDS places it
+after Results. It opens the report panel (taskpanels/report_panel.py): the report's inputs
+(project, sign-off names, date, energy; saved on the analysis) and the file; *Write report*
+then writes it as below.
 
 The report takes seconds (WeasyPrint), so it is written on a worker thread that a QTimer
 polls, as the analysis panel does for a run (solver/machine.py): the document is read first on
@@ -48,8 +50,9 @@ def ask_path(analysis: Any) -> Optional[str]:
     """The file the user chooses (``.pdf`` added when the name has no known suffix), or None."""
     from PySide import QtGui
 
+    start = str(getattr(analysis, "ReportFile", "") or "") or default_path(analysis)
     path, chosen = QtGui.QFileDialog.getSaveFileName(
-        FreeCADGui.getMainWindow(), "Write the lighting report", default_path(analysis), FILTER)
+        FreeCADGui.getMainWindow(), "Write the lighting report", start, FILTER)
     if not path:
         return None
     if os.path.splitext(path)[1].lower() not in (".pdf", ".html", ".htm"):
@@ -261,7 +264,19 @@ class CommandReport(_commands.BaseCommand):
         return _commands._doc() is not None and _has_results(_commands.active_analysis())
 
     def Activated(self) -> None:  # noqa: N802
-        analysis = _commands.active_analysis()
-        path = ask_path(analysis)
-        if path:
-            write_report(analysis, path)
+        open_panel(_commands.active_analysis())
+
+
+def open_panel(analysis: Any) -> Optional[Any]:
+    """The report panel of ``analysis`` in the task view (after closing the open Lighting
+    panel, unless it is running: then None and the user is told why)."""
+    from lighting.taskpanels import report_panel, sync
+
+    if not sync.close_current():
+        return None
+    # ask_path and write_report are looked up when called: tests replace them (the user's
+    # answer in the save dialog).
+    panel = report_panel.ReportTaskPanel(
+        analysis, write=lambda a, path: write_report(a, path),
+        ask_path=lambda a: ask_path(a), default_path=default_path(analysis))
+    return sync.show(panel)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any, Dict, List, Optional
 
-from lighting.objects import luminaire, observer, placement_domain, target
+from lighting.objects import luminaire, observer, placement_domain, report_settings, target
 from lighting.objects.base import BaseProxy, Prop, READ_ONLY, objects_of_type
 from lighting.solver import run as solver_run
 
@@ -102,6 +102,8 @@ class Analysis(BaseProxy):
                        "(cancelled), check failed, failed: ...; whether the results are still "
                        "current: lighting.results_state()", "not run", _RO),
         "SceneFile": Prop("App::PropertyString", "Results", "Last exported scene file", "", _RO),
+        # Report: the calculation report's inputs (objects/report_settings.py)
+        **report_settings.PROPERTIES,
         # The results themselves live in the results object of the group (objects/results.py).
     }
 
