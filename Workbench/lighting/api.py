@@ -169,10 +169,14 @@ def report(doc: Any, path: str, analysis: Any = None, date: Optional[str] = None
     ``.html`` or ``.pdf``, written whole or not at all, into a folder that exists. Cover with
     the verdicts, luminaire schedule, surfaces, per target Em/Emin/Emax/U0/Ud with their
     intervals, requirements and verdicts, false-colour plans and value charts of the grids,
-    the run's warnings. ``date`` (YYYY-MM-DD, default today) and ``title`` (default: the
-    document's label) are printed on it; ``signoff`` ({project, author, checked_by}) overrides
-    what the document says (its label, CreatedBy, Company); ``view_png`` is a picture of the
-    model for the report (the Report command passes the 3D view). Returns the path written.
+    the run's warnings; the results as traced, whatever light scene is shown, and a table per
+    light scene of the analysis. The analysis' Report properties (ProjectName, ProjectNumber,
+    Client, PreparedBy, CheckedBy, ReportDate, the LENI inputs) fill in project, names, date
+    and energy. ``date`` (YYYY-MM-DD; default by ReportDate: today) and ``title`` (default:
+    ProjectName, else the document's label) are printed on it; ``signoff`` ({project, author,
+    checked_by}) overrides the analysis' names and what the document says (its label,
+    CreatedBy, Company); ``view_png`` is a picture of the model for the report (the Report
+    command passes the 3D view). Returns the path written.
 
     Refused: results that no longer describe the model unless ``allow_stale`` (then marked
     stale), a cancelled run's unless ``allow_partial`` (then marked partial on every page),

@@ -25,20 +25,19 @@ from lighting.objects import light_scene, report_settings
 from lighting.viewproviders.base import icon_path
 
 #: ReportDate's items as the panel names them.
-DATE_TEXTS = {"Today": "Today (the day it is written)",
-              "Calculation": "Day of the calculation",
+DATE_TEXTS = {"Today": "Today", "Calculation": "Day of the calculation",
               "Fixed": "Fixed date"}
 TEXT_FIELDS = (("ProjectName", "Project name"), ("ProjectNumber", "Project number"),
                ("Client", "Client"), ("PreparedBy", "Prepared by"), ("CheckedBy", "Checked by"))
 #: Energy property, label, suffix, maximum, decimals, step.
 NUMBER_FIELDS = (
-    ("OperatingHoursDay", "Operating hours with daylight t_D", " h/a", 8760.0, 0, 50.0),
-    ("OperatingHoursNight", "Operating hours without daylight t_N", " h/a", 8760.0, 0, 50.0),
-    ("OccupancyFactor", "Occupancy factor F_O", "", 1.0, 2, 0.05),
-    ("DaylightDependencyFactor", "Daylight dependency factor F_D", "", 1.0, 2, 0.05),
-    ("ConstantIlluminanceFactor", "Constant illuminance factor F_C", "", 1.0, 2, 0.05),
+    ("OperatingHoursDay", "Hours in use with daylight (t_D)", " h/a", 8760.0, 0, 50.0),
+    ("OperatingHoursNight", "Hours in use without daylight (t_N)", " h/a", 8760.0, 0, 50.0),
+    ("OccupancyFactor", "Occupancy factor (F_O)", "", 1.0, 2, 0.05),
+    ("DaylightDependencyFactor", "Daylight dependency factor (F_D)", "", 1.0, 2, 0.05),
+    ("ConstantIlluminanceFactor", "Constant illuminance factor (F_C)", "", 1.0, 2, 0.05),
     ("ParasiticEnergy", "Parasitic energy", " kWh/(m² a)", 1.0e4, 2, 0.1),
-    ("EnergyFloorArea", "Floor area (0 = the largest work plane)", " m²", 1.0e7, 2, 1.0))
+    ("EnergyFloorArea", "Floor area (0: the largest work plane)", " m²", 1.0e5, 2, 1.0))
 
 _last_panel: Optional["ReportTaskPanel"] = None
 
@@ -54,6 +53,13 @@ def _form(parent: QtGui.QWidget) -> QtGui.QFormLayout:
     form.setRowWrapPolicy(QtGui.QFormLayout.WrapAllRows)
     form.setFieldGrowthPolicy(QtGui.QFormLayout.AllNonFixedFieldsGrow)
     return form
+
+
+def _label(text: str) -> QtGui.QLabel:
+    """A field's label that wraps rather than widen the panel."""
+    label = QtGui.QLabel(text)
+    label.setWordWrap(True)
+    return label
 
 
 class ReportTaskPanel:
@@ -98,7 +104,7 @@ class ReportTaskPanel:
         box = QtGui.QGroupBox("Project")
         form = _form(box)
         for name, label in TEXT_FIELDS[:3]:
-            form.addRow(label, self._line(name))
+            form.addRow(_label(label), self._line(name))
         self.texts["ProjectName"].setPlaceholderText(self.analysis.Document.Label)
         return box
 
@@ -108,11 +114,14 @@ class ReportTaskPanel:
         box = QtGui.QGroupBox("Sign-off")
         form = _form(box)
         for name, label in TEXT_FIELDS[3:]:
-            form.addRow(label, self._line(name))
+            form.addRow(_label(label), self._line(name))
         author = signoff_of(self.analysis.Document).get("author", "")
         self.texts["PreparedBy"].setPlaceholderText(author or "name, company")
         self.texts["CheckedBy"].setPlaceholderText("blank: a line to sign on")
         self.policy = QtGui.QComboBox()
+        self.policy.setSizeAdjustPolicy(
+            QtGui.QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        self.policy.setMinimumContentsLength(8)
         for key in report_settings.DATE_POLICIES:
             self.policy.addItem(DATE_TEXTS[key], key)
         self.policy.setCurrentIndex(
@@ -127,8 +136,8 @@ class ReportTaskPanel:
         except ValueError:
             day = datetime.date.today()
         self.fixed.setDate(QtCore.QDate(day.year, day.month, day.day))
-        form.addRow("Date of the report", self.policy)
-        form.addRow("Fixed date", self.fixed)
+        form.addRow(_label("Date of the report"), self.policy)
+        form.addRow(_label("Fixed date"), self.fixed)
         return box
 
     def _energy_box(self) -> QtGui.QGroupBox:
@@ -148,8 +157,8 @@ class ReportTaskPanel:
             spin.setValue(float(getattr(self.analysis, name)))
             spin.setToolTip(self.analysis.getDocumentationOfProperty(name))
             self.numbers[name] = spin
-            form.addRow(label, spin)
-        self.numbers["EnergyFloorArea"].setSpecialValueText("the largest work plane")
+            form.addRow(_label(label), spin)
+        self.numbers["EnergyFloorArea"].setSpecialValueText("largest work plane")
         return box
 
     def _output_box(self, path: str) -> QtGui.QGroupBox:
