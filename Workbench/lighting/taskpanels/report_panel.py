@@ -209,7 +209,8 @@ class ReportTaskPanel:
                             if out["ReportDate"] == "Fixed" else str(self.analysis.FixedDate))
         out["EnergyEstimate"] = self.energy.isChecked()
         out.update({name: float(spin.value()) for name, spin in self.numbers.items()})
-        out["ReportFile"] = self.path.text().strip()
+        typed = self.path.text().strip()
+        out["ReportFile"] = os.path.abspath(os.path.expanduser(typed)) if typed else ""
         return out
 
     def problems(self) -> List[str]:
@@ -221,7 +222,7 @@ class ReportTaskPanel:
             found.append("Choose the report file")
         elif os.path.splitext(path)[1].lower() not in (".pdf", ".html", ".htm"):
             found.append(f"The report file must end in .pdf or .html: {path}")
-        elif not os.path.isdir(os.path.dirname(os.path.abspath(path))):
+        elif not os.path.isdir(os.path.dirname(path)):
             found.append(f"The folder does not exist: {os.path.dirname(path)}")
         return found
 
