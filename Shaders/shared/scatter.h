@@ -61,8 +61,11 @@ LS_FN bool reflect_ggx(float alpha, vec3 facing, LS_INOUT(vec3) dir LS_RNG_PARAM
   return dot(dir, facing) > 0.0f;  // below the surface: absorbed
 }
 
-// Glass of index `ior` and internal transmittance `tau` (applied on entry); `thin`: a pane of two
-// interfaces. `cos_in`: dot(dir, n) with the front normal n (its sign says whether the photon
+// Glass of index `ior` and internal transmittance `tau` of one pass through the body, applied at
+// the start of every pass: on entry and after every internal reflection (Fresnel or total), so a
+// thick slab transmits (1 - R)^2 tau / (1 - R^2 tau^2) as a thin pane does, and light caught by
+// total internal reflection (a pane's edges against its frame) decays as in real glass instead
+// of bouncing until max_bounces; `thin`: a pane of two interfaces. `cos_in`: dot(dir, n) with the front normal n (its sign says whether the photon
 // enters); `facing`: the normal on the photon's side. Fresnel (mean of s and p) picks reflection;
 // a thin pane then passes the photon straight on (both refractions cancel), a body refracts it.
 LS_FN bool scatter_dielectric(float ior, float tau, bool thin, float cos_in, vec3 facing,
@@ -87,9 +90,11 @@ LS_FN bool scatter_dielectric(float ior, float tau, bool thin, float cos_in, vec
   const float r = 0.5f * (rs + rp);
   if (u < r) {
     dir = reflect_dir(dir, facing);
-    return true;
+    // Reflected inside: another pass through the body (clear glass draws nothing, so its paths
+    // keep their random streams).
+    return entering || tau >= 1.0f || LS_UNIFORM() < tau;
   }
-  // Refraction (Snell), then the body's internal transmittance decides survival on entry.
+  // Refraction (Snell); entering starts a pass through the body.
   dir = normalize(eta * dir + (eta * cos_i - cos_t) * facing);
   return !entering || LS_UNIFORM() < tau;
 }
