@@ -432,7 +432,9 @@ class AnalysisTaskPanel(ModelessPanel):
             return
         self.progress.setValue(1000)
         # What was traced and how long the whole run took (check, export, tracing, storing).
-        self._set_status(f"{self.analysis.Status} - {result.photons:,.0f} photons traced, "
+        traced = max(job.photons_traced, int(result.photons))  # both passes of a continued run
+        went_on = ", continued by itself to decide" if job.continued else ""
+        self._set_status(f"{self.analysis.Status} - {traced:,.0f} photons traced{went_on}, "
                          f"run took {seconds_text(job.wall_seconds())}")
         self.log("info", "Results:\n" + result.table())
         self.log("info", store.summary_line(result))  # last: the status bar shows this line
