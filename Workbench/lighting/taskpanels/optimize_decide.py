@@ -46,9 +46,24 @@ def verdict_lines(result: results_mod.AnalysisResult) -> List[str]:
     return lines
 
 
+def luminaires_now(analysis: Any) -> List[Any]:
+    """(name, position in mm rounded to 0.1 mm) of the analysis' luminaires, sorted."""
+    from lighting.objects import analysis as analysis_mod
+
+    out = []
+    for obj in analysis_mod.luminaires(analysis):
+        base = obj.getGlobalPlacement().Base
+        out.append((obj.Name, round(base.x, 1), round(base.y, 1), round(base.z, 1)))
+    return sorted(out)
+
+
 class OptimizeDecide:
     """The Decide button and its run for an Optimize placement panel (``panel``: its
     ``analysis``, ``result``, ``selected_member()``, ``apply()``, ``set_busy()``)."""
+
+    TIP = ("Apply the selected layout (if it is not applied) and run the analysis with Decide "
+           "on until its requirements are pass or FAIL, going on by itself within the "
+           "automatic limit (the results are stored like a run's)")
 
     def __init__(self, panel: Any) -> None:
         self.panel = panel
@@ -57,11 +72,12 @@ class OptimizeDecide:
         #: the analysis' Photons, going on by itself within the limit).
         self.budget: Optional[int] = None
         self.applied: Optional[int] = None
+        #: The analysis' luminaires right after Apply (luminaires_now): Decide traces the
+        #: applied layout only while the document still holds it.
+        self.snapshot: List[Any] = []
         self._budgeted = False
         self.button = QtGui.QPushButton("Decide")
-        self.button.setToolTip("Apply the selected layout (if it is not applied) and run the "
-                               "analysis with Decide on until its requirements are pass or "
-                               "FAIL (the results are stored like a run's)")
+        self.button.setToolTip(self.TIP)
         self.button.setMinimumWidth(40)
         self.button.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Fixed)
         self.button.setEnabled(False)
@@ -82,10 +98,18 @@ class OptimizeDecide:
         """Decide is possible when there is a layout to trace and nothing runs."""
         self.button.setEnabled(on and not self.is_busy())
 
+    def was_applied(self, member: int) -> None:
+        """Layout ``member`` was just applied: remember what the document holds now; another
+        layout than before starts from the analysis' own budget again."""
+        if self.applied != member:
+            self.budget = None
+        self.applied = member
+        self.snapshot = luminaires_now(self.panel.analysis)
+
     def forget(self) -> None:
         """A new search: the next Decide starts from the analysis' own budget again."""
-        self.budget, self.applied = None, None
-        self.button.setText("Decide")
+        self.budget, self.applied, self.snapshot = None, None, []
+        self.button.setToolTip(self.TIP)
         self.label.setText("")
 
     def start(self) -> None:
@@ -95,8 +119,11 @@ class OptimizeDecide:
             return
         member = panel.selected_member()
         if self.applied != member:
-            panel.apply()
-            self.applied, self.budget = member, None
+            panel.apply()  # sets applied and the snapshot
+        elif self.snapshot != luminaires_now(panel.analysis):
+            self.label.setText(f"The document no longer holds layout {member + 1} as applied "
+                               "(an Undo or an edit since): Apply it again, then Decide.")
+            return
         analysis = panel.analysis
         photons = self.budget or int(analysis.Photons)
         store.write_settings(analysis, Photons=photons, TargetAccuracy=0.0, Decide=True)
@@ -165,7 +192,7 @@ class OptimizeDecide:
         plan = decide_mod.plan(result)
         if plan is None:
             self.budget = None
-            self.button.setText("Decide")
+            self.button.setToolTip(self.TIP)
             lines.append("Every requirement decided." if result.verdict else
                          "No requirement was judged: set the target's required Em.")
         else:
@@ -176,8 +203,19 @@ class OptimizeDecide:
                 why = machine.why_not(plan, decide_mod.limit_seconds())
             lines.append(f"Undecided: {why}.")
             self.budget = plan.budget or None
-            about = "" if plan.seconds is None else f", about {seconds_text(plan.seconds)}"
-            self.button.setText(f"Decide ({decide_mod.photons_text(plan.budget)}{about})"
-                                if plan.budget else "Decide")
+            about = "" if plan.seconds is None else f" (about {seconds_text(plan.seconds)})"
+            self.button.setToolTip(
+                f"Trace layout {(self.applied or 0) + 1} again with Decide on and at most "
+                f"{decide_mod.photons_text(plan.budget)} photons{about}; the run stops as soon "
+                "as every requirement is decided" if plan.budget else self.TIP)
         self.label.setText("\n".join(lines))
         FreeCAD.Console.PrintMessage("Optimize placement: " + " ".join(lines) + "\n")
+        QtCore.QTimer.singleShot(0, self._scroll_to_label)
+
+    def _scroll_to_label(self) -> None:
+        """Bring the outcome into view: the task view scrolls the whole panel."""
+        parent = self.label.parentWidget()
+        while parent is not None and not isinstance(parent, QtGui.QScrollArea):
+            parent = parent.parentWidget()
+        if parent is not None:
+            parent.ensureWidgetVisible(self.label)

@@ -134,7 +134,7 @@ class OptimizeTaskPanel(ModelessPanel):
         layout = QtGui.QVBoxLayout(self.form)
         layout.addWidget(self._intention_box())
         layout.addWidget(self._budget_box())
-        row = QtGui.QHBoxLayout()
+        row = QtGui.QGridLayout()  # two by two: Run Cancel / Apply Decide
         self.buttons = {}
         for name, text, tip in (("run", "Run", "Export the model and search"),
                                 ("cancel", "Cancel", "Stop; the optima found so far are kept"),
@@ -144,8 +144,12 @@ class OptimizeTaskPanel(ModelessPanel):
             button.setToolTip(tip)
             button.setMinimumWidth(40)
             button.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Fixed)
-            row.addWidget(button)
+            row.addWidget(button, len(self.buttons) // 2, len(self.buttons) % 2)
             self.buttons[name] = button
+        # Decide for the chosen layout (taskpanels/optimize_decide.py).
+        self.decider = OptimizeDecide(self)
+        self.buttons["decide"] = self.decider.button
+        row.addWidget(self.decider.button, 1, 1)
         self.buttons["run"].clicked.connect(self.run)
         self.buttons["cancel"].clicked.connect(self.cancel)
         self.buttons["apply"].clicked.connect(self.apply)
@@ -162,6 +166,7 @@ class OptimizeTaskPanel(ModelessPanel):
         self.status.setWordWrap(True)
         self.status.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Preferred)
         layout.addWidget(self.status)
+        layout.addWidget(self.decider.label)
         layout.addWidget(_label("Optima, best first (details: tooltip)"))
         self.table = QtGui.QTableWidget(0, 2)
         self.table.setHorizontalHeaderLabels(["Layout", "Em / U0"])
@@ -172,11 +177,6 @@ class OptimizeTaskPanel(ModelessPanel):
         self.table.verticalHeader().setVisible(False)
         self.table.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Expanding)
         layout.addWidget(self.table)
-        # Decide for the chosen layout (taskpanels/optimize_decide.py).
-        self.decider = OptimizeDecide(self)
-        self.buttons["decide"] = self.decider.button
-        layout.addWidget(self.decider.button)
-        layout.addWidget(self.decider.label)
 
     def _intention_box(self) -> QtGui.QGroupBox:
         box = QtGui.QGroupBox("Intention")
@@ -415,9 +415,7 @@ class OptimizeTaskPanel(ModelessPanel):
         member = self.selected_member()
         removed = [o.Label for o in self.result.removed]
         placed = self.result.apply(member)
-        if self.decider.applied != member:  # another layout: its own Decide budget
-            self.decider.budget = None
-        self.decider.applied = member
+        self.decider.was_applied(member)
         text = f"applied layout {member + 1}: {len(placed)} luminaire(s) placed"
         if removed:
             text += f", removed {', '.join(removed)}"
