@@ -100,9 +100,12 @@ def build_office(path: str):
     sys.path.insert(0, os.path.join(REPO, "Examples"))
     import office_model
 
+    STATUS["documents_at_start"] = sorted(FreeCAD.listDocuments())
     doc = FreeCAD.newDocument("office")
     pump(0.3)
+    STATUS["documents_after_new"] = sorted(FreeCAD.listDocuments())
     office_model.build_office(doc, photons=20000)
+    STATUS["documents_after_build"] = sorted(FreeCAD.listDocuments())
     office_model.show_in_gui(doc)
     doc.saveAs(path)
     pump(0.5)
@@ -137,6 +140,18 @@ def grab_with_view(name: str, docs_name: str) -> str:
     return path
 
 
+def grab_screen(name: str) -> str:
+    """What the X server shows (QScreen.grabWindow(0) reads Xvfb's framebuffer): the 3D view
+    as OpenGL drew it, navigation cube included, which a widget grab leaves out."""
+    from PySide import QtGui
+
+    pump(0.5)
+    path = os.path.join(OUT, f"{name}.png")
+    QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(path)
+    STATUS["images"][name] = path
+    return path
+
+
 def body() -> None:
     import FreeCAD
 
@@ -154,6 +169,7 @@ def body() -> None:
     check_toolbar()
     check_legend_clear_of_cube()
     grab_with_view("toolbar_legend_1280", "toolbar-legend-1280.png")
+    grab_screen("toolbar_legend_screen")
     check_reopen_unmodified(out)
 
 

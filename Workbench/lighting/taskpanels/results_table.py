@@ -73,8 +73,12 @@ def figure_lines(t: results_mod.TargetResult) -> List[Tuple[str, str, str]]:
     if t.is_glare:
         name, interval = t.ugr_text()
         label, value = name.rsplit(" ", 1)
-        bounded = any(end is not None for end in t.ugr_ci)
-        return [(label, value, interval if bounded else "-")]
+        low, high = t.ugr_ci
+        if low is not None and high is not None:
+            interval = _ci((low, high))  # the same "low - high" as the lux intervals
+        elif low is None and high is None:
+            interval = "-"
+        return [(label, value, interval)]
     lines = [("Em", f"{t.mean_lux:.1f} lx", _ci((t.ci_low_lux, t.ci_high_lux)))]
     if t.kind == "grid":
         lines += [("Emin", f"{t.min_lux:.1f} lx", _ci(t.min_ci_lux)),
