@@ -157,7 +157,7 @@ def grab_with_view(name: str, docs_name: str) -> str:
     return path
 
 
-def grab_screen(name: str) -> str:
+def grab_screen(name: str, docs_name: str = "") -> str:
     """What the X server shows (QScreen.grabWindow(0) reads Xvfb's framebuffer): the 3D view
     as OpenGL drew it, navigation cube included, which a widget grab leaves out."""
     from PySide import QtGui
@@ -166,10 +166,12 @@ def grab_screen(name: str) -> str:
     path = os.path.join(OUT, f"{name}.png")
     QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(path)
     STATUS["images"][name] = path
+    if docs_name:
+        STATUS["docs_images"][name] = docs_name
     return path
 
 
-def measure_title_and_cube(name: str) -> dict:
+def measure_title_and_cube(name: str, docs_name: str = "") -> dict:
     """The legend's title and the navigation cube as the X server shows them, with the model
     hidden for a moment (the cube and the legend stay): where the title's dark text ends and
     the cube's light faces begin in the view's top band, in view pixels."""
@@ -183,7 +185,7 @@ def measure_title_and_cube(name: str) -> dict:
     for o in hidden:
         o.ViewObject.Visibility = False
     try:
-        path = grab_screen(name)
+        path = grab_screen(name, docs_name)
     finally:
         for o in hidden:
             o.ViewObject.Visibility = True
@@ -233,7 +235,7 @@ def check_cube_on_screen() -> None:
 
     from lighting.viewproviders import coloring
 
-    found = measure_title_and_cube("legend_cube_screen")
+    found = measure_title_and_cube("legend_cube_screen", "legend-cube-screen.png")
     STATUS["cube_on_screen"] = found
     expect(found["cube_pixels"] > 500, f"no navigation cube on screen: {found}")
     expect(clear_of_cube(found), f"the legend title reaches the navigation cube: {found}")

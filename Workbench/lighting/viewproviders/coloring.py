@@ -114,6 +114,12 @@ def refresh(analysis: Any) -> None:
     """Repaint the analysis' targets and its legend from its results object."""
     if not FreeCAD.GuiUp:
         return
+    if getattr(analysis.Document, "Restoring", False):
+        # A file being read: FreeCAD turns the event loop while it reads (its progress bar),
+        # so a timer may fire before the analysis' group holds its results object; painting
+        # then showed "no results" and nothing painted again. Paint once it is read.
+        refresh_later(analysis)
+        return
     try:
         scale = scale_for(analysis)
         found = results_mod.of_analysis(analysis)
@@ -140,6 +146,8 @@ def refresh_target(target: Any) -> None:
 
 
 _pending: set = set()
+#: How often a repaint asked for while a file is being read looks again.
+RESTORE_RETRY_MS = 50
 
 
 def refresh_later(obj: Any) -> None:
@@ -155,8 +163,11 @@ def refresh_later(obj: Any) -> None:
     _pending.add(key)
 
     def repaint() -> None:
-        _pending.discard(key)
         doc = FreeCAD.listDocuments().get(doc_name)
+        if doc is not None and getattr(doc, "Restoring", False):
+            QtCore.QTimer.singleShot(RESTORE_RETRY_MS, repaint)  # still being read (above)
+            return
+        _pending.discard(key)
         found = doc.getObject(name) if doc is not None else None
         if found is None:  # closed or deleted meanwhile
             return
