@@ -127,6 +127,32 @@ class Decide(DocTestCase):
             self.assertEqual(json.load(stream)["settings"]["photons"], plan.budget)
 
     @needs_solver
+    def test_the_default_run_decides_a_layout_tool_result_close_to_its_requirement(self):
+        """A 3 x 2 layout made by the layout tool, its workplane required just under what it
+        gets: the default budget (200 000 photons, Decide on) leaves it undecided, and the
+        default run goes on by itself and decides it."""
+        import test_layout as layouts
+
+        doc, ceiling, face = layouts._office_without_luminaires()
+        layouts._layout(doc, ceiling, face, margin_x_m=1.0, margin_y_m=1.0)
+        analysis = analysis_mod.find_analysis(doc)
+        analysis.Photons, analysis.Decide, analysis.TargetAccuracy = 200000, True, 0.0
+        probe = machine.run_analysis(analysis, output_dir=work_dir("decide"), decide_limit_s=0)
+        em = probe["Workplane"].mean_lux
+        lo = probe["Workplane"].ci_low_lux
+        # Required inside the default run's interval (the same seed traces the same photons):
+        # undecided at the budget, as the issue's 502 lx against 500 lx.
+        workplane(doc).RequiredLux = round(em - 0.6 * (em - lo), 1)
+        workplane(doc).RequiredUniformity = 0.0
+        first = machine.run_analysis(analysis, output_dir=work_dir("decide"), decide_limit_s=0)
+        self.assertEqual(first["Workplane"].undecided, ["em"],
+                         f"Em {first['Workplane'].mean_lux} [{first['Workplane'].ci_low_lux}, "
+                         f"{first['Workplane'].ci_high_lux}] vs {workplane(doc).RequiredLux}")
+        result = machine.run_analysis(analysis, output_dir=work_dir("decide"))  # the default
+        self.assertEqual(result["Workplane"].undecided, [])
+        self.assertGreater(result.photons, 200000)
+
+    @needs_solver
     def test_beyond_the_limit_the_run_stops_and_says_why(self):
         doc = build_office(photons=16384, seed=1)
         analysis = analysis_mod.find_analysis(doc)
