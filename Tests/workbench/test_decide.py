@@ -180,7 +180,8 @@ class Decide(DocTestCase):
         plan = decide.plan(AnalysisResult([row], photons=1000, seconds=0.01))
         self.assertEqual((plan.budget, plan.seconds), (4_000_000, 2.0))
         self.assertTrue(plan.within(30.0) and not plan.within(1.0))
-        self.assertIn("4.0\u202fM photons, about 2.0 s, more than the 1 s", machine.why_not(plan, 1.0))
+        self.assertIn("4.0\u202fM photons, about 2.0 s, more than the 1 s",
+                      machine.why_not(plan, 1.0))
         self.assertIsNone(decide.plan(AnalysisResult([], photons=1000)))
 
 

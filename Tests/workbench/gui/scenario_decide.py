@@ -4,7 +4,8 @@ with a small photon budget: the workplane's Em is undecided, and the panel's Und
 says what deciding costs (photons, seconds) with a Decide button. One click runs again and
 decides it. (The automatic continuation is limited to 1 ms here, so the panel says why the
 run stopped: what deciding needs, more than that limit.) The facts say the photons traced and
-the time it took (never "0.00 s"), and the legend keeps the scale set from the requirements (locked) over both runs."""
+the time it took (never "0.00 s"), and the legend keeps the scale set from the requirements
+(locked) over both runs."""
 import os
 import sys
 
