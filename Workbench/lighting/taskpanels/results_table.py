@@ -151,7 +151,7 @@ class ResultsTable(QtGui.QWidget):
         self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
         self.table.verticalHeader().setVisible(False)
         self.table.setTextElideMode(QtCore.Qt.ElideRight)
-        self.table.setWordWrap(False)
+        self.table.setWordWrap(True)  # only the verdict column is narrower than its text
         self.table.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         layout.addWidget(self.table)
         self.all_columns = QtGui.QCheckBox("All columns")
@@ -240,6 +240,13 @@ class ResultsTable(QtGui.QWidget):
             table.setColumnHidden(column, name not in ESSENTIAL_COLUMNS)
             header.setSectionResizeMode(column, QtGui.QHeaderView.ResizeToContents)
         header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
+        # The verdict column as wide as "undecided": a longer text ("no limit set") wraps
+        # onto a second line instead of squeezing the target names to nothing.
+        check = COLUMNS.index("Check")
+        header.setSectionResizeMode(check, QtGui.QHeaderView.Fixed)
+        metrics = QtGui.QFontMetrics(table.font())
+        table.setColumnWidth(check, max(metrics.horizontalAdvance(word) for word in
+                                        ("undecided", "Check", "FAIL (est.)")) + 12)
         table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         _fit_height(table)
         details = self.details
