@@ -38,7 +38,7 @@ def verdict_lines(result: results_mod.AnalysisResult) -> List[str]:
             value = verdict.get("value")
             shown = "-" if value is None else f"{value:.{digits}f}{unit}"
             relation = "<=" if verdict.get("relation") == "<=" else ">="
-            word = {"pass": "pass", "fail": "FAIL"}.get(verdict.get("verdict"), "undecided")
+            word = {"pass": "pass", "fail": "FAIL"}.get(t.verdict_of.get(key), "undecided")
             parts.append(f"{name} {shown} {relation} {float(verdict.get('required', 0)):g}"
                          f"{unit} {word}")
         if parts:

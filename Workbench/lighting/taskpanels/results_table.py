@@ -58,7 +58,7 @@ def requirement_lines(t: results_mod.TargetResult) -> List[Tuple[str, str]]:
         if key == "ugr" and t.kind == "observer_grid":
             name = "max UGR"
         relation = "<=" if verdict.get("relation") == "<=" else ">="
-        word = {"pass": "pass", "fail": "FAIL"}.get(verdict.get("verdict"), "undecided")
+        word = {"pass": "pass", "fail": "FAIL"}.get(t.verdict_of.get(key), "undecided")
         if t.estimated:
             word += " (est.)"
         out.append((f"{name} {relation} {float(verdict.get('required', 0.0)):g}{unit}", word))
