@@ -245,8 +245,7 @@ class ResultsTable(QtGui.QWidget):
         check = COLUMNS.index("Check")
         header.setSectionResizeMode(check, QtGui.QHeaderView.Fixed)
         metrics = QtGui.QFontMetrics(table.font())
-        table.setColumnWidth(check, max(metrics.horizontalAdvance(word) for word in
-                                        ("undecided", "Check", "FAIL (est.)")) + 12)
+        table.setColumnWidth(check, metrics.horizontalAdvance("undecided") + 12)
         table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         _fit_height(table)
         details = self.details
