@@ -165,11 +165,38 @@ def run_macro_file(path: str, globals_: Optional[dict] = None) -> None:
     exec(code, dict(globals_ or {}, __name__="__main__", __file__=path))
 
 
+def run_from_toolbar(doc) -> object:
+    """Lighting_Run as from the toolbar; waits for this run to finish and returns it."""
+    import FreeCADGui
+
+    from lighting.taskpanels import analysis_panel
+
+    before = analysis_panel.last_run()
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.runCommand("Lighting_Run")
+    wait_until(lambda: analysis_panel.last_run() is not before and
+               analysis_panel.last_run().stage in ("done", "failed", "cancelled"), 180)
+    job = analysis_panel.last_run()
+    expect(job is not before and job.stage == "done",
+           f"run did not finish: {job.stage if job else None} {job.error if job else ''}")
+    pump(0.5)
+    return job
+
+
 def scenario(body: Callable[[], None], delay_ms: int = 1500) -> None:
     """Run ``body`` once FreeCAD's event loop is up (the Start page shown), then finish.
-    Exceptions become failures with their traceback."""
+    Exceptions become failures with their traceback.
+
+    Only the scenario FreeCAD was started with runs (run_scenario.py names it in
+    LIGHTING_GUI_SCENARIO): a scenario module imported by another for a helper must not
+    schedule its own session too (it did: toolbar_legend, importing state_stale, ran
+    state_stale's session as well, whose opened example was the second document)."""
     from PySide import QtCore
 
+    wanted = os.environ.get("LIGHTING_GUI_SCENARIO")
+    mine = os.path.basename(body.__code__.co_filename)
+    if wanted and mine != f"scenario_{wanted}.py":
+        return
     start_watchdog()
 
     def run() -> None:

@@ -37,7 +37,7 @@ def main(argv: list) -> int:
     env = freecad_env(root)
     out = os.path.join(root, "out")
     os.makedirs(out)
-    env.update(LIGHTING_GUI_OUT=out, QTWEBENGINE_DISABLE_SANDBOX="1",
+    env.update(LIGHTING_GUI_OUT=out, QTWEBENGINE_DISABLE_SANDBOX="1", LIGHTING_GUI_SCENARIO=name,
                PYTHONPATH=os.pathsep.join(filter(None, [HERE, env.get("PYTHONPATH")])))
     cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad", macro]
     print("run_scenario:", " ".join(cmd), flush=True)

@@ -2,8 +2,10 @@
 builds the office, types a required Em just under what the workplane gets (572 lx), and runs
 with a small photon budget: the workplane's Em is undecided, and the panel's Undecided section
 says what deciding costs (photons, seconds) with a Decide button. One click runs again and
-decides it; the facts say the photons traced and the time it took (never "0.00 s"), and the
-legend keeps the scale set from the requirements (locked) over both runs."""
+decides it. (The automatic continuation is limited to 1 ms here, so the panel says why the
+run stopped: what deciding needs, more than that limit.) The facts say the photons traced and
+the time it took (never "0.00 s"), and the legend keeps the scale set from the requirements
+(locked) over both runs."""
 import os
 import sys
 
@@ -33,6 +35,12 @@ def body() -> None:
     import office_model
     from lighting.taskpanels import analysis_panel
 
+    import FreeCAD
+
+    # A user who keeps runs short: a decide run goes on by itself for at most 1 ms of tracing
+    # (the preference; default 30 s, which would decide this one without asking).
+    FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Mod/Lighting").SetFloat(
+        "DecideLimitSeconds", 0.001)
     doc = office_model.build_office(photons=16384, seed=1)
     office_model.show_in_gui(doc)
     pump(0.5)
@@ -53,6 +61,11 @@ def body() -> None:
            f"the workplane's Em is not listed as undecided: {STATUS['undecided']}")
     expect(len(view.buttons) >= 1, "no Decide button")
     expect(all("photons" in i.text() for i in view.items), "a row does not say the photons")
+    why = view.summary.text()
+    STATUS["why_not"] = why
+    expect("The run did not decide them: deciding needs up to" in why
+           and "more than the 0.001 s a run continues by itself" in why,
+           f"the panel does not say why the run did not decide: {why}")
     expect("0.00 s" not in panel.facts.text(), f"facts: {panel.facts.text()}")
     expect("every requirement decided" not in panel.facts.text(),
            f"the facts say decided with an undecided row: {panel.facts.text()}")

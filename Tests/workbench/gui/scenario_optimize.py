@@ -4,7 +4,9 @@ a workplane that requires Em 500 lx and U0 0.6, a ceiling placement domain), Opt
 placement with small budgets. The panel must propose "meet Em and U0 with the least flux",
 show progress with an estimated time left within seconds, ask before replacing the hand-placed
 panels, list the optima, and Apply must leave exactly the chosen layout's luminaires - none
-coincident - in one undo step."""
+coincident - in one undo step. The panel's Decide then traces the applied layout with Decide on:
+its verdicts are shown, decided or with what deciding needs and why the run stopped; after
+Undo, Decide says the document no longer holds the layout instead of tracing."""
 import os
 import sys
 import time
@@ -147,13 +149,61 @@ def body() -> None:
     FreeCADGui.ActiveDocument.ActiveView.viewTop()
     FreeCADGui.SendMsgToActiveView("ViewFit")
     grab_window("optimize", docs_name="optimize.png")
-    doc.undo()
+    check_decide(panel, doc)
+    while doc.UndoCount > undo_before:  # Decide's results and settings, then the Apply
+        doc.undo()
     pump(0.3)
     restored = luminaire_layout(analysis)
     expect(sorted(restored) == sorted(before)
            and all((restored[k] - before[k]).Length < 1e-6 for k in before),
            f"undo did not restore the hand-placed layout: {sorted(restored)}")
+    # The document no longer holds the applied layout: Decide says so instead of tracing.
+    runs = panel.decider.job
+    panel.buttons["decide"].click()
+    pump(0.3)
+    STATUS["decide_after_undo"] = panel.decider.label.text()
+    expect(panel.decider.job is runs and "no longer holds layout 1" in
+           panel.decider.label.text(), f"Decide after Undo: {panel.decider.label.text()}")
     FreeCADGui.Control.closeDialog()
+
+
+def check_decide(panel, doc) -> None:
+    """The panel's own Decide for the applied layout: one click runs the analysis with Decide
+    on; its verdicts follow, each pass or FAIL, or what deciding needs and why the run stopped
+    (with the next click's budget on the button)."""
+    from lighting.solver import store
+
+    expect(panel.buttons["decide"].isEnabled() and visible_in_window(panel.buttons["decide"]),
+           "Decide is not enabled and visible after the search")
+    results_before = doc.UndoCount
+    panel.buttons["decide"].click()
+    pump(0.3)
+    expect(panel.is_busy() and not panel.buttons["run"].isEnabled(),
+           "the Decide run did not start (or Run stays enabled)")
+    done = wait_until(lambda: not panel.is_busy() and not panel.decider.timer.isActive(),
+                      300.0, 0.1)
+    expect(done, "the Decide run did not finish")
+    text = panel.decider.label.text()
+    STATUS["decide"] = text
+    STATUS["decide_button"] = panel.buttons["decide"].toolTip()
+    log(f"Decide: {text} | button {panel.buttons['decide'].toolTip()}")
+    expect(visible_in_window(panel.decider.label), "the Decide outcome is not in view")
+    expect(doc.UndoCount > results_before, "the Decide run stored no results")
+    expect(text.startswith("Layout 1 traced:") and "Workplane: Em" in text and "U0" in text,
+           f"the Decide run's verdicts are not shown: {text}")
+    result = store.load_from_document(panel.analysis)  # what the document holds now
+    decided = "Every requirement decided." in text
+    why = "Undecided:" in text and "press Decide" in text and "photons" in text
+    expect(decided != why, f"neither decided nor said why not: {text}")
+    if why:
+        tip = panel.buttons["decide"].toolTip()
+        expect("at most" in tip and "photons" in tip,
+               f"the button does not give the next budget: {tip}")
+    if result is not None:
+        workplane = [t for t in result.targets if t.label == "Workplane"]
+        expect(bool(workplane) and ((not workplane[0].undecided) == decided),
+               f"the panel's words disagree with the stored results: {text}")
+    grab_window("optimize_decide", docs_name="optimize-decide.png")
 
 
 scenario(body)

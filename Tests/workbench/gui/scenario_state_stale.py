@@ -10,32 +10,14 @@ left out, and the results are stale."""
 import os
 import subprocess
 
-from guilib import (build_example_file, STATUS, expect, grab_window, log, main_window, pump, scenario,
-                    wait_until)
+from guilib import (build_example_file, STATUS, expect, grab_window, log, main_window, pump,
+                    run_from_toolbar, scenario, wait_until)
 
 PHOTONS = 100000
 
 
 def build_example() -> str:
     return build_example_file(PHOTONS)
-
-
-def run_from_toolbar(doc) -> object:
-    """Lighting_Run as from the toolbar; waits for this run to finish and returns it."""
-    import FreeCADGui
-
-    from lighting.taskpanels import analysis_panel
-
-    before = analysis_panel.last_run()
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.runCommand("Lighting_Run")
-    wait_until(lambda: analysis_panel.last_run() is not before and
-               analysis_panel.last_run().stage in ("done", "failed", "cancelled"), 180)
-    job = analysis_panel.last_run()
-    expect(job is not before and job.stage == "done",
-           f"run did not finish: {job.stage if job else None} {job.error if job else ''}")
-    pump(0.5)
-    return job
 
 
 def workplane_em(doc):

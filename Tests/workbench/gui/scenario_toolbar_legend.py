@@ -7,8 +7,8 @@ reopened: it does not show as modified. (The office is built as Examples/office.
 in a document with one 3D view, so that the screenshot shows the view.)"""
 import os
 
-from guilib import OUT, STATUS, expect, main_window, pump, scenario, visible_in_window
-from scenario_state_stale import run_from_toolbar
+from guilib import (OUT, STATUS, expect, main_window, pump, run_from_toolbar, scenario,
+                    visible_in_window)
 
 REPO = os.environ.get("LIGHTING_SOURCE_DIR") or os.path.dirname(os.path.dirname(
     os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
@@ -77,16 +77,31 @@ def check_reopen_unmodified(path: str) -> None:
     import FreeCADGui
 
     doc = FreeCAD.ActiveDocument
+    STATUS["touched_before_save"] = [o.Name for o in doc.Objects if "Touched" in o.State]
     doc.save()
     pump(0.3)
     name = doc.Name
     FreeCAD.closeDocument(name)
     pump(0.5)
-    again = FreeCAD.openDocument(path)
-    pump(1.5)
+
+    class Changes:  # which properties change while the file opens (when it fails: why)
+        seen: list = []
+
+        def slotChangedObject(self, obj, prop):  # noqa: N802 (FreeCAD API name)
+            if not getattr(obj.Document, "Restoring", False):
+                self.seen.append(f"{obj.Name}.{prop}")
+
+    changes = Changes()
+    FreeCAD.addDocumentObserver(changes)
+    try:
+        again = FreeCAD.openDocument(path)
+        pump(1.5)
+    finally:
+        FreeCAD.removeDocumentObserver(changes)
     touched = [o.Name for o in again.Objects if "Touched" in o.State]
     modified = FreeCADGui.getDocument(again.Name).Modified
-    STATUS["reopened"] = {"modified": modified, "touched": touched}
+    STATUS["reopened"] = {"modified": modified, "touched": touched,
+                          "changed": sorted(set(changes.seen))}
     expect(not modified and not touched, f"the reopened document shows as modified: {touched}")
 
 
@@ -100,9 +115,14 @@ def build_office(path: str):
     sys.path.insert(0, os.path.join(REPO, "Examples"))
     import office_model
 
+    STATUS["documents_at_start"] = sorted(FreeCAD.listDocuments())
     doc = FreeCAD.newDocument("office")
     pump(0.3)
+    STATUS["documents_after_new"] = sorted(FreeCAD.listDocuments())
     office_model.build_office(doc, photons=20000)
+    STATUS["documents_after_build"] = sorted(FreeCAD.listDocuments())
+    expect(STATUS["documents_after_build"] == [doc.Name],
+           f"other documents open after building: {STATUS['documents_after_build']}")
     office_model.show_in_gui(doc)
     doc.saveAs(path)
     pump(0.5)
@@ -137,6 +157,103 @@ def grab_with_view(name: str, docs_name: str) -> str:
     return path
 
 
+def grab_screen(name: str, docs_name: str = "") -> str:
+    """What the X server shows (QScreen.grabWindow(0) reads Xvfb's framebuffer): the 3D view
+    as OpenGL drew it, navigation cube included, which a widget grab leaves out."""
+    from PySide import QtGui
+
+    pump(0.5)
+    path = os.path.join(OUT, f"{name}.png")
+    QtGui.QGuiApplication.primaryScreen().grabWindow(0).save(path)
+    STATUS["images"][name] = path
+    if docs_name:
+        STATUS["docs_images"][name] = docs_name
+    return path
+
+
+def measure_title_and_cube(name: str, docs_name: str = "") -> dict:
+    """The legend's title and the navigation cube as the X server shows them, with the model
+    hidden for a moment (the cube and the legend stay): where the title's dark text ends and
+    the cube's light faces begin in the view's top band, in view pixels."""
+    import FreeCAD
+    from PySide import QtCore, QtGui
+
+    doc = FreeCAD.ActiveDocument
+    keep = {"LightingAnalysis"} | {o.Name for o in doc.getObject("LightingAnalysis").Group}
+    hidden = [o for o in doc.Objects if o.Name not in keep and o.ViewObject is not None
+              and o.ViewObject.Visibility]
+    for o in hidden:
+        o.ViewObject.Visibility = False
+    try:
+        path = grab_screen(name, docs_name)
+    finally:
+        for o in hidden:
+            o.ViewObject.Visibility = True
+    image = QtGui.QImage(path)
+    view = main_window().findChild(QtGui.QMdiArea).activeSubWindow().widget()
+    origin = view.mapToGlobal(QtCore.QPoint(0, 0))
+    params = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/View")
+    cube = params.GetInt("CubeSize", 132)
+    width = min(view.width(), image.width() - origin.x())
+    dark, cube_left, cube_pixels = {}, None, 0
+    for y in range(2, min(cube + 60, view.height())):
+        for x in range(2, width - 2):
+            colour = QtGui.QColor(image.pixel(origin.x() + x, origin.y() + y))
+            r, g, b = colour.red(), colour.green(), colour.blue()
+            if max(r, g, b) < 45:  # black text or outlines on the dark blue background
+                dark.setdefault(y, []).append(x)
+            elif min(r, g, b) > 170 and x > width - cube - 40:  # the cube's light faces
+                cube_pixels += 1
+                cube_left = x if cube_left is None else min(cube_left, x)
+    # The title: rows whose dark pixels start at the left (where the legend is drawn); its
+    # right end follows the glyphs while they are less than 30 px apart, so a title running
+    # under the cube reaches the cube's own outlines.
+    title_right = -1
+    for y, xs in dark.items():
+        if xs[0] > 0.1 * width:
+            continue
+        end = xs[0]
+        for x in xs[1:]:
+            if x - end > 30:
+                break
+            end = x
+        title_right = max(title_right, end)
+    return {"title_right_px": title_right, "cube_left_px": cube_left,
+            "cube_pixels": cube_pixels, "view_px": width}
+
+
+def clear_of_cube(found: dict) -> bool:
+    return (found["cube_pixels"] > 500 and found["title_right_px"] > 0
+            and found["cube_left_px"] is not None
+            and found["title_right_px"] < found["cube_left_px"] - 10)
+
+
+def check_cube_on_screen() -> None:
+    """On the real screen the cube is drawn and the title ends left of it; the same
+    measurement catches a planted title long enough to run under the cube."""
+    import FreeCAD
+
+    from lighting.viewproviders import coloring
+
+    found = measure_title_and_cube("legend_cube_screen", "legend-cube-screen.png")
+    STATUS["cube_on_screen"] = found
+    expect(found["cube_pixels"] > 500, f"no navigation cube on screen: {found}")
+    expect(clear_of_cube(found), f"the legend title reaches the navigation cube: {found}")
+    analysis = FreeCAD.ActiveDocument.getObject("LightingAnalysis")
+    proxy = analysis.ViewObject.Proxy
+    proxy.legend_title = lambda: "Illuminance [lx] with a planted title much too long to " \
+                                 "stay clear of the navigation cube in the corner at all"
+    try:
+        coloring.refresh(analysis)
+        planted = measure_title_and_cube("legend_cube_planted")
+    finally:
+        del proxy.legend_title  # the class' own again
+        coloring.refresh(analysis)
+    STATUS["cube_planted"] = planted
+    expect(not clear_of_cube(planted), f"the pixel check misses a title under the cube: "
+                                       f"{planted}")
+
+
 def body() -> None:
     import FreeCAD
 
@@ -154,7 +271,9 @@ def body() -> None:
     check_toolbar()
     check_legend_clear_of_cube()
     grab_with_view("toolbar_legend_1280", "toolbar-legend-1280.png")
+    grab_screen("toolbar_legend_screen")
     check_reopen_unmodified(out)
+    check_cube_on_screen()  # last: it hides the model for a moment (which modifies it)
 
 
 scenario(body)

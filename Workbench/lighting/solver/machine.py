@@ -24,7 +24,9 @@ from lighting import files
 from lighting.export import fingerprint as fingerprint_mod
 from lighting.export import scene as scene_mod
 from lighting.messages import CancelledError, CheckError, LightingError, Report, SolverError
+from lighting.objects import analysis as analysis_mod
 from lighting.solver import check as check_mod
+from lighting.solver import decide as decide_mod
 from lighting.solver import results as results_mod
 from lighting.solver import run, store
 
@@ -38,8 +40,10 @@ class AnalysisRun:
 
     def __init__(self, analysis: Any, output_dir: Optional[str] = None,
                  log: Optional[Callable[[str, str], None]] = None,
-                 spare_core: bool = False) -> None:
-        """``spare_core``: with Threads = 0 (all cores), leave one core to the GUI."""
+                 spare_core: bool = False, decide_limit_s: Optional[float] = None) -> None:
+        """``spare_core``: with Threads = 0 (all cores), leave one core to the GUI.
+        ``decide_limit_s``: the tracing seconds a decide run may add by itself to decide its
+        requirements (solver/decide.py; None: the preference, 0: never)."""
         self.analysis = analysis
         self.output_dir = output_dir or scene_mod.default_output_directory(analysis)
         self.log = log or (lambda level, text: None)
@@ -61,6 +65,12 @@ class AnalysisRun:
         self.ended: Optional[float] = None
         #: The photons the solver was allowed (Photons, or MaxPhotons with an accuracy goal).
         self.budget = 0
+        #: Photons traced in all (a run that continued to decide traced twice).
+        self.photons_traced = 0
+        #: What deciding the first pass' undecided requirements takes (None: all decided).
+        self.decide_plan: Optional[decide_mod.Plan] = None
+        #: Whether the run went on by itself to decide them (within the limit).
+        self.continued = False
         self._cancelled = False
         self._token: Optional[Any] = None
         self._thread: Optional[threading.Thread] = None
@@ -72,6 +82,9 @@ class AnalysisRun:
                                                  if spare_core else 0),
             "backend": str(analysis.Backend), "accuracy": float(analysis.TargetAccuracy),
             "max_photons": int(analysis.MaxPhotons),
+            "decides": analysis_mod.decides(analysis),
+            "decide_limit_s": decide_mod.limit_seconds() if decide_limit_s is None
+            else max(float(decide_limit_s), 0.0),
         }
 
     # -- stages --------------------------------------------------------------------------
@@ -149,6 +162,10 @@ class AnalysisRun:
         self.total = self.budget = photons
         data = self._solve_once(photons, 0, progress, accuracy)
         facts = results_mod.read(data).run
+        self.photons_traced = int(facts.photons)
+        if s["decides"] and not accuracy:
+            data = self._continue_to_decide(data, photons, progress)
+            facts = results_mod.read(data).run
         if accuracy and not facts.partial:
             self.log("info", f"Target accuracy {accuracy:g}: traced {facts.photons} "
                              f"photons (at most {photons})")
@@ -164,6 +181,38 @@ class AnalysisRun:
         except OSError as exc:
             raise SolverError(str(exc)) from exc
         return data
+
+    def _continue_to_decide(self, data: Dict[str, Any], photons: int,
+                            progress: Optional[ProgressFn]) -> Dict[str, Any]:
+        """A decide run that spent its budget undecided traces again with the Decide budget
+        (solver/decide.py) when that takes at most the limit; the second run replaces the
+        first (same seed: its first photons are the first run's). Beyond the limit it stops
+        and logs why."""
+        facts = results_mod.read(data).run
+        if facts.partial or self._cancelled or facts.stop_reason == "decided":
+            return data
+        plan = decide_mod.plan(results_mod.AnalysisResult.from_data(data))
+        self.decide_plan = plan
+        if plan is None:
+            return data
+        limit = self._settings["decide_limit_s"]
+        count = f"{len(plan.undecided)} requirement(s) undecided after {facts.photons:,} photons"
+        if not plan.within(limit):
+            self.log("info", f"Decide: {count}; {why_not(plan, limit)}")
+            return data
+        self.log("info", f"Decide: {count}: tracing again with a budget of {plan.budget:,} "
+                         f"photons (at most about {plan.seconds:.1f} s, within the {limit:g} s "
+                         "a run continues by itself)")
+        self.total = photons + plan.budget
+        self.budget = plan.budget
+        again = self._solve_once(plan.budget, photons, progress)
+        found = results_mod.read(again).run
+        self.photons_traced += int(found.photons)
+        if found.partial and found.photons < facts.photons:
+            return data  # cancelled early in the second pass: the first is worth more
+        self.continued = True
+        self._rewrite_photons(plan.budget)
+        return again
 
     def _rewrite_photons(self, photons: int) -> None:
         """Make the scene file's settings match the final run, so the CLI reproduces it."""
@@ -236,11 +285,30 @@ class AnalysisRun:
         return text
 
 
+def why_not(plan: decide_mod.Plan, limit_s: float) -> str:
+    """Why a run did not go on to decide: "deciding needs up to 4.1 M photons, about 38 s,
+    more than the 30 s a run continues by itself: press Decide"."""
+    if plan.undecidable:
+        return ("a value sits exactly on its requirement, so no run can decide it; "
+                "the run stopped")
+    need = f"deciding needs up to {decide_mod.photons_text(plan.budget)} photons"
+    if plan.seconds is None:
+        return need + " (the results give no tracing rate): press Decide"
+    need += f", about {plan.seconds:.0f} s" if plan.seconds >= 10 else \
+        f", about {plan.seconds:.1f} s"
+    if limit_s <= 0.0:
+        return need + " (runs do not continue by themselves: preference DecideLimitSeconds " \
+                      "is 0): press Decide"
+    return need + f", more than the {limit_s:g} s a run continues by itself: press Decide"
+
+
 def run_analysis(analysis: Any, output_dir: Optional[str] = None,
                  progress: Optional[ProgressFn] = None,
-                 log: Optional[Callable[[str, str], None]] = None) -> results_mod.AnalysisResult:
-    """All four stages synchronously (headless API). Raises a LightingError subclass."""
-    job = AnalysisRun(analysis, output_dir, log)
+                 log: Optional[Callable[[str, str], None]] = None,
+                 decide_limit_s: Optional[float] = None) -> results_mod.AnalysisResult:
+    """All four stages synchronously (headless API). Raises a LightingError subclass.
+    ``decide_limit_s``: see :class:`AnalysisRun`."""
+    job = AnalysisRun(analysis, output_dir, log, decide_limit_s=decide_limit_s)
     job.check()
     job.prepare()
     try:

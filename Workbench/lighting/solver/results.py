@@ -122,6 +122,8 @@ class TargetResult:
     #: The requirements ("em", "u0", ...) the solver left undecided (their ``verdicts`` entry
     #: holds ``to_decide``: what deciding would cost).
     undecided: List[str] = field(default_factory=list)
+    #: The verdict per requirement as the reader gives it ("pass", "fail", "undecided").
+    verdict_of: Dict[str, str] = field(default_factory=dict)
     #: What deciding each undecided requirement would cost: (photons, seconds), None where
     #: unknown (the reader's ``Target.to_decide``).
     to_decide: Dict[str, Tuple[Optional[int], Optional[float]]] = field(default_factory=dict)
@@ -166,6 +168,7 @@ class TargetResult:
                                 if target.verdict_of(k) == "undecided"],
                      to_decide={k: target.to_decide(k) for k in target.verdicts
                                 if target.verdict_of(k) == "undecided"},
+                     verdict_of={k: str(target.verdict_of(k)) for k in target.verdicts},
                      is_glare=target.is_glare)
         if target.is_glare:  # an observer grid's: the maximum's
             result.ugr = target.ugr.value

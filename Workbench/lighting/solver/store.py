@@ -203,7 +203,18 @@ def apply_to_document(analysis: Any, data: Dict[str, Any], scene_file: str = "",
         _set(obj, "ResultsJson", json.dumps(data, separators=(",", ":")))
         _set(analysis, "SceneFile", scene_file)
         _set(analysis, "Status", status)
+    _settled(obj, analysis)
     return load_from_document(analysis)
+
+
+def _settled(*objs: Any) -> None:
+    """Nothing is left to recompute: the results object and the analysis compute nothing
+    (their ``execute`` is empty), so storing results must not leave them touched. A touched
+    object is saved as touched, and a reopened file then showed both as needing a recompute
+    (GUI scenario toolbar_legend)."""
+    for obj in objs:
+        if obj is not None and hasattr(obj, "purgeTouched"):
+            obj.purgeTouched()
 
 
 @contextmanager

@@ -79,6 +79,7 @@ class AnalysisTaskPanel(ModelessPanel):
         self.timer = QtCore.QTimer()
         self.timer.setInterval(POLL_MS)
         self.timer.timeout.connect(self._poll)
+        self._seen = self._document_settings()  # what _show_settings compares against
         self.refresh()
         if autostart:
             QtCore.QTimer.singleShot(0, self.run)
@@ -305,16 +306,28 @@ class AnalysisTaskPanel(ModelessPanel):
         except Exception:  # noqa: BLE001 - the panel was closed or the analysis deleted
             pass
 
-    def _show_settings(self) -> None:
+    def _document_settings(self) -> Dict[str, Any]:
         a = self.analysis
-        for box, value in ((self.photons, int(a.Photons)),
-                           (self.accuracy, float(a.TargetAccuracy) * 100.0)):
-            if box.value() != value:
-                box.blockSignals(True)
-                box.setValue(value)
-                box.blockSignals(False)
-        if self.decide.isChecked() != bool(getattr(a, "Decide", False)):
-            self.decide.setChecked(bool(getattr(a, "Decide", False)))
+        return {"Photons": int(a.Photons), "TargetAccuracy": float(a.TargetAccuracy) * 100.0,
+                "Decide": bool(getattr(a, "Decide", False))}
+
+    def _show_settings(self) -> None:
+        """Set the run settings whose document value changed since the last look (an Undo
+        of "Lighting settings", a script, a Decide click); a value the user is typing, which
+        reaches the document only with Check/Run/Export, survives unrelated changes (a
+        luminaire moved, a results object stored)."""
+        now = self._document_settings()
+        fields = {"Photons": (self.photons, self.photons.setValue),
+                  "TargetAccuracy": (self.accuracy, self.accuracy.setValue),
+                  "Decide": (self.decide, self.decide.setChecked)}
+        for name, value in now.items():
+            widget, setter = fields[name]
+            shown = widget.isChecked() if name == "Decide" else widget.value()
+            if self._seen.get(name) != value and shown != value:
+                widget.blockSignals(True)  # showing the document must not write it back
+                setter(value)
+                widget.blockSignals(False)
+        self._seen = now
         self._label_photons()
 
     def _show_stored_results(self) -> None:
@@ -432,7 +445,9 @@ class AnalysisTaskPanel(ModelessPanel):
             return
         self.progress.setValue(1000)
         # What was traced and how long the whole run took (check, export, tracing, storing).
-        self._set_status(f"{self.analysis.Status} - {result.photons:,.0f} photons traced, "
+        traced = max(job.photons_traced, int(result.photons))  # both passes of a continued run
+        went_on = ", continued by itself to decide" if job.continued else ""
+        self._set_status(f"{self.analysis.Status} - {traced:,.0f} photons traced{went_on}, "
                          f"run took {seconds_text(job.wall_seconds())}")
         self.log("info", "Results:\n" + result.table())
         self.log("info", store.summary_line(result))  # last: the status bar shows this line

@@ -2,24 +2,24 @@
 """The analysis panel's "Undecided" section: per requirement still undecided (its interval
 straddles the required value), what deciding it costs (the solver's ``to_decide`` forecast:
 photons of a whole run and tracing seconds, docs/statistics.md "What deciding would cost") and
-a *Decide* button that runs the analysis with Decide on and a photon budget from that forecast.
-
-The forecast puts the interval's end just on the bound: a run of exactly that many photons
-decides only about half the time (the estimate moves as much as the interval shrinks). The
-button's budget is :data:`MARGIN` times it: a decide run stops at its first look where every
-requirement is decided, so the margin costs photons only when they are needed."""
+a *Decide* button that runs the analysis with Decide on and a photon budget from that forecast
+(solver/decide.py: :data:`MARGIN` times it, since a run of exactly the forecast decides only
+about half the time). A decide run goes on by itself to decide within the automatic limit
+(``DecideLimitSeconds``); when deciding would take longer, the summary says so, with what it
+needs, and the button does it."""
 from __future__ import annotations
 
-import math
 from typing import Callable, List, NamedTuple, Optional
 
 from PySide import QtGui
 
+from lighting.solver import decide as decide_mod
+from lighting.solver import machine
 from lighting.solver import results as results_mod
 from lighting.taskpanels.results_table import seconds_text
 
-#: Budget of a Decide click over the forecast photons (see the module doc).
-MARGIN = 4
+#: Budget of a Decide click over the forecast photons (solver/decide.py).
+MARGIN = decide_mod.MARGIN
 #: Names of the requirements in the user's words.
 NAMES = {"em": "Em", "u0": "U0", "emin": "Emin", "ud": "Ud", "ugr": "UGR"}
 
@@ -72,9 +72,8 @@ def undecided(result: Optional[results_mod.AnalysisResult]) -> List[Undecided]:
 def budget(item: Undecided, traced: float) -> int:
     """The photon budget of a Decide click: MARGIN x the forecast (a run of the whole
     forecast decides about half the time), at least twice what was traced, rounded up to a
-    thousand."""
-    wanted = max(MARGIN * float(item.photons or 0), 2.0 * traced)
-    return int(math.ceil(wanted / 1000.0) * 1000)
+    thousand (solver/decide.py)."""
+    return decide_mod.budget_for(float(item.photons or 0), traced)
 
 
 class DecideView(QtGui.QWidget):
@@ -111,12 +110,22 @@ class DecideView(QtGui.QWidget):
                                  "No requirement was judged: set a target's required Em or "
                                  "an observer's UGR limit.")
         else:
-            self.summary.setText(
-                f"{len(self.items)} requirement(s) undecided after {_count(result.photons)} "
-                "photons: the interval still holds the required value. Decide traces until "
-                "each is pass or FAIL (it stops as soon as they are).")
+            self.summary.setText(self.undecided_summary(result))
         for item in self.items:
             self._add_row(item, result, running)
+
+    def undecided_summary(self, result: results_mod.AnalysisResult) -> str:
+        """How many are undecided, and why the run did not go on to decide them (the
+        automatic limit, or a value on its bound) with what deciding needs."""
+        text = (f"{len(self.items)} requirement(s) undecided after {_count(result.photons)} "
+                "photons: the interval still holds the required value.")
+        plan = decide_mod.plan(result)
+        limit = decide_mod.limit_seconds()
+        if plan is not None and not plan.within(limit):
+            why = machine.why_not(plan, limit)
+            text += f" The run did not decide them: {why}."
+        text += " Decide traces until each is pass or FAIL (it stops as soon as they are)."
+        return text
 
     def set_running(self, running: bool) -> None:
         """No Decide while a run is in progress."""

@@ -26,6 +26,7 @@ from lighting.objects import analysis as analysis_mod
 from lighting.solver import optimize, run
 from lighting.viewproviders.base import icon_path
 from lighting.taskpanels.modeless import ModelessPanel
+from lighting.taskpanels.optimize_decide import OptimizeDecide
 
 POLL_MS = 100
 CONSOLE_EVERY_S = 5.0  # progress lines in the report view, not one per trace
@@ -133,7 +134,7 @@ class OptimizeTaskPanel(ModelessPanel):
         layout = QtGui.QVBoxLayout(self.form)
         layout.addWidget(self._intention_box())
         layout.addWidget(self._budget_box())
-        row = QtGui.QHBoxLayout()
+        row = QtGui.QGridLayout()  # two by two: Run Cancel / Apply Decide
         self.buttons = {}
         for name, text, tip in (("run", "Run", "Export the model and search"),
                                 ("cancel", "Cancel", "Stop; the optima found so far are kept"),
@@ -143,8 +144,12 @@ class OptimizeTaskPanel(ModelessPanel):
             button.setToolTip(tip)
             button.setMinimumWidth(40)
             button.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Fixed)
-            row.addWidget(button)
+            row.addWidget(button, len(self.buttons) // 2, len(self.buttons) % 2)
             self.buttons[name] = button
+        # Decide for the chosen layout (taskpanels/optimize_decide.py).
+        self.decider = OptimizeDecide(self)
+        self.buttons["decide"] = self.decider.button
+        row.addWidget(self.decider.button, 1, 1)
         self.buttons["run"].clicked.connect(self.run)
         self.buttons["cancel"].clicked.connect(self.cancel)
         self.buttons["apply"].clicked.connect(self.apply)
@@ -161,6 +166,7 @@ class OptimizeTaskPanel(ModelessPanel):
         self.status.setWordWrap(True)
         self.status.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Preferred)
         layout.addWidget(self.status)
+        layout.addWidget(self.decider.label)
         layout.addWidget(_label("Optima, best first (details: tooltip)"))
         self.table = QtGui.QTableWidget(0, 2)
         self.table.setHorizontalHeaderLabels(["Layout", "Em / U0"])
@@ -244,8 +250,18 @@ class OptimizeTaskPanel(ModelessPanel):
             self._target_changed()
 
     def is_busy(self) -> bool:
-        """True while a search of this panel is running."""
-        return self.job is not None and not self.job.finished
+        """True while a search or a Decide run of this panel is running."""
+        searching = self.job is not None and not self.job.finished
+        return searching or self.decider.is_busy()
+
+    def selected_member(self) -> int:
+        """The layout chosen in the list (0: the best)."""
+        rows = self.table.selectionModel().selectedRows()
+        return rows[0].row() if rows else 0
+
+    def set_busy(self, running: bool) -> None:
+        """Buttons while a search or a Decide run is in progress."""
+        self._busy(running)
 
     def _goal_changed(self, *args: Any) -> None:
         goal = self.goal.currentData()
@@ -255,8 +271,9 @@ class OptimizeTaskPanel(ModelessPanel):
     def _busy(self, running: bool) -> None:
         self.buttons["run"].setEnabled(not running)
         self.buttons["cancel"].setEnabled(running)
-        self.buttons["apply"].setEnabled(not running and self.result is not None
-                                         and bool(self.result.members))
+        chosen = not running and self.result is not None and bool(self.result.members)
+        self.buttons["apply"].setEnabled(chosen)
+        self.decider.enable(chosen)
 
     def ask_replace_others(self, others: List[Any]) -> Optional[bool]:
         """Ask before the search whether the other luminaires on the domains' faces are to
@@ -302,6 +319,7 @@ class OptimizeTaskPanel(ModelessPanel):
             self.status.setText(report.format() if report is not None else str(exc))
             return
         self.result = None
+        self.decider.forget()
         self.table.setRowCount(0)
         self.job = SearchJob(prepared, self.screening.value() or None,
                              self.confirmation.value() or None)
@@ -316,7 +334,8 @@ class OptimizeTaskPanel(ModelessPanel):
         self.timer.start()
 
     def cancel(self) -> None:
-        """Stop the search; the optima found so far are kept."""
+        """Stop the search (the optima found so far are kept) or the Decide run."""
+        self.decider.cancel()
         if self.job is not None and not self.job.finished and self.job.cancel_token is not None:
             self.job.cancel_token.cancel()
             self.status.setText("cancelling...")
@@ -393,10 +412,10 @@ class OptimizeTaskPanel(ModelessPanel):
         """Leave exactly the selected layout's luminaires (one undo step)."""
         if self.result is None or not self.result.members:
             return []
-        rows = self.table.selectionModel().selectedRows()
-        member = rows[0].row() if rows else 0
+        member = self.selected_member()
         removed = [o.Label for o in self.result.removed]
         placed = self.result.apply(member)
+        self.decider.was_applied(member)
         text = f"applied layout {member + 1}: {len(placed)} luminaire(s) placed"
         if removed:
             text += f", removed {', '.join(removed)}"
@@ -414,7 +433,10 @@ class OptimizeTaskPanel(ModelessPanel):
         self.cancel()
         if self.job is not None:
             self.job.thread.join(5.0)
+        if self.decider.job is not None:
+            self.decider.job.wait(5.0)
         self.timer.stop()
+        self.decider.timer.stop()
         FreeCADGui.Control.closeDialog()
         return True
 

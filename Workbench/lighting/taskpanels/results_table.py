@@ -1,7 +1,10 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The analysis panel's results section: the table (target, Em, U0 and the verdict in the narrow
-panel; the intervals, Emin and Emax behind "All columns" and in each row's tooltip) and the run's
-facts under it: photons traced, how long it took, why the run stopped."""
+"""The analysis panel's results section: the table (target, Em, U0 and the verdict: what fits the
+narrow panel), each row's tooltip with every figure, its interval and the requirement judged,
+"All columns": a details table under it with every figure and interval one per line (so the
+panel never scrolls sideways at its default width), and the run's facts: photons traced, how
+long it took, why the run stopped. An observer's row is its own: UGR with its interval and
+limit, never an illuminance or an area."""
 from __future__ import annotations
 
 from typing import Any, List, Optional, Tuple
@@ -39,6 +42,61 @@ def rows(result: results_mod.AnalysisResult) -> List[List[str]]:
         else:
             out.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci] + ["-"] * 6 + [verdict])
     return out
+
+
+#: Requirement keys in the user's words, and their units.
+_NAMES = {"em": ("Em", " lx"), "emin": ("Emin", " lx"), "u0": ("U0", ""), "ud": ("Ud", ""),
+          "ugr": ("UGR", "")}
+
+
+def requirement_lines(t: results_mod.TargetResult) -> List[Tuple[str, str]]:
+    """("Em >= 500 lx", "pass") per requirement judged; an observer without a limit:
+    ("UGR limit", "no limit set")."""
+    out = []
+    for key, verdict in t.verdicts.items():
+        name, unit = _NAMES.get(key, (key, ""))
+        if key == "ugr" and t.kind == "observer_grid":
+            name = "max UGR"
+        relation = "<=" if verdict.get("relation") == "<=" else ">="
+        word = {"pass": "pass", "fail": "FAIL"}.get(t.verdict_of.get(key), "undecided")
+        if t.estimated:
+            word += " (est.)"
+        out.append((f"{name} {relation} {float(verdict.get('required', 0.0)):g}{unit}", word))
+    if t.is_glare and not t.verdicts:
+        out.append(("UGR limit", NO_LIMIT))
+    return out
+
+
+def figure_lines(t: results_mod.TargetResult) -> List[Tuple[str, str, str]]:
+    """(figure, value, interval) of a target, as its kind has them: an observer its UGR, a grid
+    Em, Emin, Emax and U0, a face target Em."""
+    if t.is_glare:
+        name, interval = t.ugr_text()
+        label, value = name.rsplit(" ", 1)
+        low, high = t.ugr_ci
+        if low is not None and high is not None:
+            interval = _ci((low, high))  # the same "low - high" as the lux intervals
+        elif low is None and high is None:
+            interval = "-"
+        return [(label, value, interval)]
+    lines = [("Em", f"{t.mean_lux:.1f} lx", _ci((t.ci_low_lux, t.ci_high_lux)))]
+    if t.kind == "grid":
+        lines += [("Emin", f"{t.min_lux:.1f} lx", _ci(t.min_ci_lux)),
+                  ("Emax", f"{t.max_lux:.1f} lx", _ci(t.max_ci_lux)),
+                  ("U0", f"{t.uniformity:.2f}", _ci(t.uniformity_ci, 2))]
+    return lines
+
+
+def tooltip(t: results_mod.TargetResult, confidence: float) -> str:
+    """A row's tooltip: the target and its kind, every figure with its interval, and each
+    requirement with its verdict (an observer: UGR, interval, limit)."""
+    level = f"{confidence * 100:g} %"
+    lines = [f"{t.label} ({t.kind.replace('_', ' ')})"]
+    for name, value, interval in figure_lines(t):
+        lines.append(f"{name} {value}" + (f", {level} interval {interval}"
+                                          if interval != "-" else ""))
+    lines += [f"{rule}: {word}" for rule, word in requirement_lines(t)]
+    return "\n".join(lines)
 
 
 def seconds_text(seconds: float) -> str:
@@ -93,13 +151,27 @@ class ResultsTable(QtGui.QWidget):
         self.table.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
         self.table.verticalHeader().setVisible(False)
         self.table.setTextElideMode(QtCore.Qt.ElideRight)
-        self.table.setWordWrap(False)
+        self.table.setWordWrap(True)  # only the verdict column is narrower than its text
         self.table.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         layout.addWidget(self.table)
         self.all_columns = QtGui.QCheckBox("All columns")
-        self.all_columns.setToolTip("Show the confidence intervals, Emin and Emax too")
+        self.all_columns.setToolTip("Show every figure with its confidence interval (Emin, "
+                                    "Emax, U0; an observer's UGR and limit) and each "
+                                    "requirement, one per line")
         self.all_columns.toggled.connect(self.layout_table)
         layout.addWidget(self.all_columns)
+        # Every figure one per line: three narrow columns fit the default combo view, where
+        # the eleven columns of the text table would need sideways scrolling.
+        self.details = QtGui.QTableWidget(0, 3)
+        self.details.setHorizontalHeaderLabels(["", "Value", "Interval"])
+        self.details.setEditTriggers(QtGui.QAbstractItemView.NoEditTriggers)
+        self.details.verticalHeader().setVisible(False)
+        self.details.setWordWrap(False)
+        self.details.setTextElideMode(QtCore.Qt.ElideRight)
+        self.details.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        self.details.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        self.details.setSelectionMode(QtGui.QAbstractItemView.NoSelection)
+        layout.addWidget(self.details)
         self.facts = QtGui.QLabel("")
         self.facts.setWordWrap(True)
         layout.addWidget(self.facts)
@@ -112,9 +184,9 @@ class ResultsTable(QtGui.QWidget):
             self.layout_table()
             self.facts.setText("No results yet: press Run.")
             return
-        for row, values in enumerate(rows(result)):
+        for row, (t, values) in enumerate(zip(result.targets, rows(result))):
             self.table.insertRow(row)
-            tip = "\n".join(f"{name}: {value}" for name, value in zip(COLUMNS, values))
+            tip = tooltip(t, result.confidence)
             for column, value in enumerate(values):
                 item = QtGui.QTableWidgetItem(value)
                 item.setToolTip(tip)
@@ -123,25 +195,73 @@ class ResultsTable(QtGui.QWidget):
                 if colour is not None:
                     item.setForeground(QtGui.QBrush(QtGui.QColor(*colour)))
                 self.table.setItem(row, column, item)
+        self._fill_details(result)
         self.layout_table()
         self.facts.setText(facts)
 
+    def _fill_details(self, result: Optional[results_mod.AnalysisResult]) -> None:
+        """The details table: per target a title row, its figures (value, interval) and its
+        requirements (rule, verdict)."""
+        table = self.details
+        table.setRowCount(0)
+        bold = QtGui.QFont(table.font())
+        bold.setBold(True)
+        for t in result.targets if result is not None else []:
+            tip = tooltip(t, result.confidence)
+            row = table.rowCount()
+            table.insertRow(row)
+            title = QtGui.QTableWidgetItem(f"{t.label} ({t.kind.replace('_', ' ')})")
+            title.setFont(bold)
+            title.setToolTip(tip)
+            table.setItem(row, 0, title)
+            table.setSpan(row, 0, 1, 3)
+            lines = [(n, v, i, None) for n, v, i in figure_lines(t)]
+            lines += [(rule, "", word, VERDICT_COLOURS.get(word.split(" ")[0]))
+                      for rule, word in requirement_lines(t)]
+            for name, value, third, colour in lines:
+                row = table.rowCount()
+                table.insertRow(row)
+                if not value:  # a requirement: its rule over two cells, the verdict
+                    table.setSpan(row, 0, 1, 2)
+                for column, text in enumerate((name, value, third)):
+                    item = QtGui.QTableWidgetItem(text)
+                    item.setToolTip(tip)
+                    if column == 2 and colour is not None:
+                        item.setForeground(QtGui.QBrush(QtGui.QColor(*colour)))
+                    table.setItem(row, column, item)
+
     def layout_table(self, *args: Any) -> None:
-        """Show the essential columns (or all), the target column taking the spare width,
-        and make the table as tall as its rows: the panel scrolls, not the table."""
+        """The essential columns, the target column taking the spare width; with "All
+        columns" the details table under it. Both as tall as their rows (the panel scrolls,
+        not the tables) and never wider than the panel."""
         table = self.table
-        every = self.all_columns.isChecked()
         header = table.horizontalHeader()
         for column, name in enumerate(COLUMNS):
-            table.setColumnHidden(column, not every and name not in ESSENTIAL_COLUMNS)
+            table.setColumnHidden(column, name not in ESSENTIAL_COLUMNS)
             header.setSectionResizeMode(column, QtGui.QHeaderView.ResizeToContents)
-        if not every:
-            header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
-        table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAsNeeded if every
-                                           else QtCore.Qt.ScrollBarAlwaysOff)
-        table.resizeRowsToContents()
-        height = header.height() + 2 * table.frameWidth()
-        height += sum(table.rowHeight(r) for r in range(table.rowCount()))
-        if every:
-            height += table.horizontalScrollBar().sizeHint().height()
-        table.setFixedHeight(max(height, header.height() + 2 * table.frameWidth() + 4))
+        header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
+        # The verdict column as wide as "undecided": a longer text ("no limit set") wraps
+        # onto a second line instead of squeezing the target names to nothing.
+        check = COLUMNS.index("Check")
+        header.setSectionResizeMode(check, QtGui.QHeaderView.Fixed)
+        metrics = QtGui.QFontMetrics(table.font())
+        table.setColumnWidth(check, metrics.horizontalAdvance("undecided") + 12)
+        table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        _fit_height(table)
+        details = self.details
+        every = self.all_columns.isChecked()
+        details.setVisible(every and details.rowCount() > 0)
+        header = details.horizontalHeader()
+        header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
+        for column in (1, 2):
+            header.setSectionResizeMode(column, QtGui.QHeaderView.ResizeToContents)
+        _fit_height(details)
+
+
+def _fit_height(table: QtGui.QTableWidget) -> None:
+    """Make ``table`` exactly as tall as its header and rows."""
+    header = table.horizontalHeader()
+    table.resizeRowsToContents()
+    height = header.height() + 2 * table.frameWidth()
+    height += sum(table.rowHeight(r) for r in range(table.rowCount()))
+    table.setFixedHeight(max(height, header.height() + 2 * table.frameWidth() + 4))

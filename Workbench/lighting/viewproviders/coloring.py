@@ -85,22 +85,40 @@ def paint_target(target: Any, scale: Optional[Scale], results: Optional[Any] = N
         proxy.set_isolux(*(isolux_polylines(target, scale, cells) if grid else ([],)))
     if not unlit:
         colour, transparency = NO_RESULT_GRID if target.TargetType == "Grid" else NO_RESULT_FACES
-        vobj.ShapeColor = colour
-        vobj.DiffuseColor = [colour] * faces
-        vobj.Transparency = transparency
+        _show(vobj, colour, [colour] * faces, transparency)
         return
     if target.TargetType == "Grid" and len(cells) == faces:
         colours = scale.colours(cells)
     else:
         colours = [scale.colour(mean)] * faces
-    vobj.Transparency = 0
-    vobj.ShapeColor = colours[0]
-    vobj.DiffuseColor = colours
+    _show(vobj, colours[0], colours, 0)
+
+
+def _bytes(colours: Any) -> List[Tuple[int, ...]]:
+    """Colours as the document stores them (8 bits a channel, alpha dropped)."""
+    return [tuple(int(round(float(c) * 255.0)) for c in colour[:3]) for colour in colours]
+
+
+def _show(vobj: Any, shape: Any, diffuse: List[Any], transparency: int) -> None:
+    """Set the view properties that differ from what is shown. Writing equal colours again
+    marked a document just reopened as modified (its painted colours are saved with it)."""
+    if int(vobj.Transparency) != int(transparency):
+        vobj.Transparency = transparency
+    if _bytes([vobj.ShapeColor]) != _bytes([shape]):
+        vobj.ShapeColor = shape
+    if _bytes(vobj.DiffuseColor) != _bytes(diffuse):
+        vobj.DiffuseColor = diffuse
 
 
 def refresh(analysis: Any) -> None:
     """Repaint the analysis' targets and its legend from its results object."""
     if not FreeCAD.GuiUp:
+        return
+    if getattr(analysis.Document, "Restoring", False):
+        # A file being read: FreeCAD turns the event loop while it reads (its progress bar),
+        # so a timer may fire before the analysis' group holds its results object; painting
+        # then showed "no results" and nothing painted again. Paint once it is read.
+        refresh_later(analysis)
         return
     try:
         scale = scale_for(analysis)
@@ -128,6 +146,8 @@ def refresh_target(target: Any) -> None:
 
 
 _pending: set = set()
+#: How often a repaint asked for while a file is being read looks again.
+RESTORE_RETRY_MS = 50
 
 
 def refresh_later(obj: Any) -> None:
@@ -143,8 +163,11 @@ def refresh_later(obj: Any) -> None:
     _pending.add(key)
 
     def repaint() -> None:
-        _pending.discard(key)
         doc = FreeCAD.listDocuments().get(doc_name)
+        if doc is not None and getattr(doc, "Restoring", False):
+            QtCore.QTimer.singleShot(RESTORE_RETRY_MS, repaint)  # still being read (above)
+            return
+        _pending.discard(key)
         found = doc.getObject(name) if doc is not None else None
         if found is None:  # closed or deleted meanwhile
             return

@@ -1,0 +1,159 @@
+"""GUI scenario: the analysis panel's details at FreeCAD's default window size. The user builds
+the office with an office task on the workplane and an *Observer* (UGR limit 19), runs, and:
+
+- ticks *All columns*: every figure with its interval (Emin, Emax, U0; the observer's UGR and
+  limit) and each requirement's verdict appear one per line under the table, and neither table
+  is wider than the panel (no sideways scrolling), no value cut short;
+- reads the observer's row: UGR with its interval and limit, never an illuminance or an area;
+- types a photon count without pressing Run, then moves a luminaire (an unrelated change the
+  panel refreshes on): the typed value stays; a script setting the analysis' Photons (as Undo
+  of "Lighting settings" does) is followed."""
+import os
+import sys
+
+from guilib import STATUS, expect, grab_window, log, pump, scenario, wait_until
+
+sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
+
+OFFICE = "Offices: Writing, typing, reading, data processing"
+
+
+def fits(table) -> dict:
+    """Whether ``table`` needs no sideways scrolling and shows every cell's text whole."""
+    from PySide import QtGui
+
+    header = table.horizontalHeader()
+    metrics = QtGui.QFontMetrics(table.font())
+    cut = []
+    for row in range(table.rowCount()):
+        for column in range(table.columnCount()):
+            item = table.item(row, column)
+            if item is None or table.isColumnHidden(column) or column == 0:
+                continue  # the first column elides long labels by design (tooltip)
+            if table.columnSpan(row, column) > 1:
+                continue
+            if metrics.horizontalAdvance(item.text()) + 6 > table.columnWidth(column):
+                cut.append(item.text())
+    return {"content_px": header.length(), "viewport_px": table.viewport().width(),
+            "cut": cut, "scrollbar": table.horizontalScrollBar().isVisible()}
+
+
+def check_all_columns(panel, eye) -> None:
+    view = panel.results_view
+    panel.all_columns.setChecked(True)  # the user ticks it
+    pump(0.5)
+    details = view.details
+    expect(details.isVisible() and details.rowCount() > 0, "All columns shows no details")
+    texts = [[details.item(r, c).text() if details.item(r, c) else "" for c in range(3)]
+             for r in range(details.rowCount())]
+    STATUS["details"] = texts
+    main, more = fits(panel.table), fits(details)
+    STATUS["fit"] = {"table": main, "details": more,
+                     "panel_px": panel.scroll.viewport().width()}
+    for name, fit in (("table", main), ("details", more)):
+        expect(fit["content_px"] <= fit["viewport_px"] and not fit["scrollbar"],
+               f"the {name} is wider than the panel: {fit}")
+        expect(not fit["cut"], f"values cut short in the {name}: {fit['cut']}")
+    expect(details.width() <= panel.scroll.viewport().width(),
+           f"the details table is wider than the panel: {STATUS['fit']}")
+    flat = [" | ".join(t) for t in texts]
+    for wanted in ("Workplane (grid)", "Emin", "Emax", "U0", "Em >= 500 lx"):
+        expect(any(wanted in line for line in flat), f"no {wanted!r} in the details: {flat}")
+    eye_rows = [line for line in flat if line.startswith(eye.Label)]
+    expect(bool(eye_rows), f"no details for the observer: {flat}")
+    at = flat.index(eye_rows[0]) if eye_rows else 0
+    mine = flat[at + 1:at + 3]
+    expect(len(mine) == 2 and mine[0].startswith("UGR |") and " - " in mine[0].split(" | ")[2]
+           and mine[1].startswith("UGR <= 19 |"), f"the observer's details: {mine}")
+    expect(not any(" lx" in line for line in mine), f"the observer shows lux: {mine}")
+
+
+def check_observer_row(panel, eye) -> None:
+    table = panel.table
+    row = [r for r in range(table.rowCount()) if table.item(r, 0).text() == eye.Label]
+    expect(len(row) == 1, f"no row for {eye.Label}")
+    if not row:
+        return
+    cells = [table.item(row[0], c).text() for c in range(table.columnCount())]
+    tip = table.item(row[0], 2).toolTip()
+    STATUS["observer_row"] = {"cells": cells, "tooltip": tip}
+    expect(cells[2].startswith("UGR "), f"the observer's row: {cells}")
+    expect("interval" in tip and "UGR <= 19:" in tip and " lx" not in tip and "m\u00b2" not in tip
+           and "Em" not in tip, f"the observer's tooltip: {tip!r}")
+    work = [r for r in range(table.rowCount()) if table.item(r, 0).text() == "Workplane"][0]
+    wtip = table.item(work, 2).toolTip()
+    STATUS["workplane_tooltip"] = wtip
+    expect("Em >= 500 lx:" in wtip and "interval" in wtip, f"workplane tooltip: {wtip!r}")
+
+
+def check_typed_value_kept(panel, doc, analysis) -> None:
+    """A value being typed survives an unrelated change; a change of the value itself is
+    followed."""
+    from PySide import QtCore, QtGui
+
+    box = panel.photons
+    panel.scroll.ensureWidgetVisible(box)
+    box.setFocus()
+    box.selectAll()
+    for char in "123456":  # typed key by key, as a user types
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtGui.QApplication.sendEvent(box, QtGui.QKeyEvent(
+                kind, int(getattr(QtCore.Qt, f"Key_{char}")), QtCore.Qt.NoModifier, char))
+    pump(0.2)
+    typed = box.value()
+    lum = doc.getObject("Luminaire01")
+    base = lum.Placement.Base
+    lum.Placement.Base = base.add(type(base)(100.0, 0.0, 0.0))  # the property editor's move
+    doc.recompute()
+    pump(1.0)  # the panels refresh 0.15 s after the burst of changes
+    STATUS["typed"] = {"typed": typed, "after_unrelated": box.value(),
+                       "document": int(analysis.Photons), "state": panel.state_label.text()}
+    # The panel did refresh on the move (its state line says the results are stale).
+    expect("out of date" in panel.state_label.text(),
+           f"the panel did not refresh on the move: {panel.state_label.text()}")
+    expect(typed == 123456 and box.value() == 123456,
+           f"the typed photons did not survive an unrelated change: {STATUS['typed']}")
+    analysis.Photons = 50000  # what Undo of "Lighting settings" does to the document
+    doc.recompute()
+    ok = wait_until(lambda: box.value() == 50000, 2.0)
+    STATUS["typed"]["after_document_change"] = box.value()
+    expect(ok, f"the field did not follow the document's Photons: {box.value()}")
+    box.clearFocus()
+    panel.form.setFocus(QtCore.Qt.OtherFocusReason)
+
+
+def body() -> None:
+    import FreeCADGui
+
+    import lighting
+    import office_model
+    from lighting.taskpanels import analysis_panel
+
+    doc = office_model.build_office(photons=100000, seed=1)
+    office_model.show_in_gui(doc)
+    pump(0.5)
+    workplane = [o for o in doc.Objects if o.Label == "Workplane"][0]
+    workplane.Activity = OFFICE
+    analysis = doc.getObject(office_model.OBJECTS["analysis"])
+    eye = lighting.make_observer(doc, (2.5, 1.5, 1.2), analysis=analysis)
+    doc.recompute()
+    expect(float(eye.UgrMax) == 19.0, f"observer limit {eye.UgrMax}")
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(analysis)
+    FreeCADGui.runCommand("Lighting_Run")
+    ok = wait_until(lambda: analysis_panel.last_run() is not None
+                    and analysis_panel.last_run().finished, 180.0)
+    expect(ok, "the run did not finish")
+    pump(0.5)
+    panel = analysis_panel.last_panel()
+    check_observer_row(panel, eye)
+    check_all_columns(panel, eye)
+    log(f"fit {STATUS.get('fit')}")
+    panel.scroll.ensureWidgetVisible(panel.results_view.details)
+    panel.scroll.ensureWidgetVisible(panel.table)
+    pump(0.3)
+    grab_window("panel_all_columns", docs_name="panel-all-columns.png")
+    check_typed_value_kept(panel, doc, analysis)
+
+
+scenario(body)
