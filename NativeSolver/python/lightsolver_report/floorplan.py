@@ -66,6 +66,9 @@ class Plan:
     extent: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
     level: Optional[Level] = None
     items: Optional[PlanItems] = None
+    #: The floor area inside the walls around the storey's horizontal grids (None: the walls
+    #: enclose none of them; section.room_floor_area).
+    floor_m2: Optional[float] = None
 
 
 def choose_scale(width_m: float, height_m: float) -> int:

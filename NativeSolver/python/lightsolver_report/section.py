@@ -78,6 +78,8 @@ class Section:
     furniture: List[Polyline] = field(default_factory=list)  # opaque, lower: cabinets, frames
     glass: List[Polyline] = field(default_factory=list)  # glass cut (windows)
     layers: List[Layer] = field(default_factory=list)  # top view below the cut, lowest first
+    #: The meshes cut as walls (what bounds a room: floorarea.py).
+    wall_meshes: List[Mesh] = field(default_factory=list)
 
     def bounds(self) -> Optional[Tuple[float, float, float, float]]:
         """(xmin, xmax, ymin, ymax) of the cut, None when nothing is cut."""
@@ -434,6 +436,8 @@ def section(meshes: Sequence[Mesh], level: Level) -> Section:
     groups: Dict[str, List[Polyline]] = {"walls": [], "furniture": [], "glass": []}
     for mesh, segs, normals, top in cuts:
         kind = "glass" if mesh.kind == "glass" else "walls" if top >= wall_top else "furniture"
+        if kind == "walls":
+            out.wall_meshes.append(mesh)
         groups[kind].extend(chain(segs, normals))
     out.walls, out.furniture, out.glass = (_join(groups[k]) for k in
                                            ("walls", "furniture", "glass"))
@@ -450,3 +454,4 @@ def _join(lines: List[Polyline]) -> List[Polyline]:
         return closed
     return closed + chain(np.concatenate([l.segments for l in loose]),
                           np.concatenate([l.normals for l in loose]))
+
