@@ -180,6 +180,14 @@ def test_a_door_does_not_let_the_room_out_but_a_missing_wall_does():
     assert room_floor_area([slab, open_room], [open_room], level, [(2.5, 2.0)]) is None
     # A point outside the floor: no room.
     assert room_floor_area([slab, walls], [walls], level, [(9.0, 9.0)]) is None
+    # Turned 30° off the axes: within a fifth of a 20 mm cell times the walls' 18 m.
+    c, s = np.cos(np.radians(30)), np.sin(np.radians(30))
+    turn = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    slab_t, walls_t = (Mesh(m.name, m.label, m.material, m.kind, m.reflectance,
+                            m.vertices @ turn.T, m.triangles) for m in (slab, walls))
+    centre = (turn @ [2.5, 2.0, 0.0])[:2]
+    assert room_floor_area([slab_t, walls_t], [walls_t], level, [tuple(centre)]) == \
+        pytest.approx(20.0, abs=0.2 * 0.02 * 18)
 
 
 # --- power from the photometric file ------------------------------------------------------------

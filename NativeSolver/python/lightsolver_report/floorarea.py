@@ -7,9 +7,10 @@ upright faces (of the meshes the section cuts as walls) drawn across it as lines
 is filled from each calculation grid's centre without crossing a line. A wall above a door or
 a window still projects onto the plan, so openings do not let the fill out; a floor that the
 fill can leave without meeting a wall (an open slab, a wall missing) has no room, and the
-caller falls back to the grid's own area. Cells are at most 10 mm (larger floors: as many as
-fit 250 000 cells); the cells the wall lines run through count half, so the area is right to
-about a tenth of a cell's width times the walls' length."""
+caller falls back to the grid's own area. Cells are at most 20 mm (larger floors: as many as
+fit 250 000 cells); the cells the wall lines run through count half, so the area is exact for
+walls along the axes on multiples of 20 mm and otherwise within about a fifth of a cell times
+the walls' length (the office turned 30°: 19.94 m² for 20 m²)."""
 from __future__ import annotations
 
 import math
@@ -21,7 +22,7 @@ from lightsolver_report.meshes import Mesh
 from lightsolver_report.section import Level, unit_normals
 
 #: Largest cell (m) and most cells of the raster.
-CELL_M = 0.01
+CELL_M = 0.02
 MAX_CELLS = 250_000
 #: A face lies on the floor within this height (m).
 ON_FLOOR_M = 2e-3
@@ -47,36 +48,36 @@ class _Raster:
         return i, j
 
     def triangles(self, tris: np.ndarray) -> np.ndarray:
-        """Cells whose centre lies in one of the triangles (k, 3, 2)."""
-        mask = np.zeros((self.ny, self.nx), dtype=bool)
-        for a, b, c in tris:
-            lo, hi = np.minimum(np.minimum(a, b), c), np.maximum(np.maximum(a, b), c)
-            (i0, j0), (i1, j1) = self.index(*lo), self.index(*hi)
-            ys = self.y0 + (np.arange(i0, i1 + 1) + 0.5) * self.cell
-            xs = self.x0 + (np.arange(j0, j1 + 1) + 0.5) * self.cell
-            px, py = np.meshgrid(xs, ys)
-            d = (b[1] - c[1]) * (a[0] - c[0]) + (c[0] - b[0]) * (a[1] - c[1])
-            if abs(d) < 1e-18:
-                continue
-            l1 = ((b[1] - c[1]) * (px - c[0]) + (c[0] - b[0]) * (py - c[1])) / d
-            l2 = ((c[1] - a[1]) * (px - c[0]) + (a[0] - c[0]) * (py - c[1])) / d
-            inside = (l1 >= -1e-9) & (l2 >= -1e-9) & (l1 + l2 <= 1 + 1e-9)
-            mask[i0:i1 + 1, j0:j1 + 1] |= inside
-        return mask
+        """Cells whose centre lies in one of the triangles (k, 3, 2) (the picture's rasteriser,
+        vectorised: a floor of many triangles costs no Python loop)."""
+        from lightsolver_report.zbuffer import coverage
+
+        pixels = np.stack([(tris[..., 0] - self.x0) / self.cell,
+                           (tris[..., 1] - self.y0) / self.cell], axis=-1)
+        return coverage(pixels, self.nx, self.ny).reshape(self.ny, self.nx)
 
     def lines(self, segments: np.ndarray) -> np.ndarray:
-        """Cells a segment (k, 2, 2) passes through (sampled at a third of a cell)."""
+        """Cells a segment (k, 2, 2) passes through (sampled at a third of a cell; repeated
+        segments once, in batches of at most a million samples)."""
         mask = np.zeros((self.ny, self.nx), dtype=bool)
         if not len(segments):
             return mask
+        keys = np.round(segments / (self.cell / 8.0)).astype(np.int64).reshape(-1, 4)
+        segments = segments[np.sort(np.unique(keys, axis=0, return_index=True)[1])]
         length = np.linalg.norm(segments[:, 1] - segments[:, 0], axis=1)
         steps = np.ceil(length / (self.cell / 3.0)).astype(np.int64) + 1
-        which = np.repeat(np.arange(len(segments)), steps)
-        start = np.concatenate([[0], np.cumsum(steps)[:-1]])
-        t = (np.arange(int(steps.sum())) - np.repeat(start, steps)) / np.repeat(
-            np.maximum(steps - 1, 1), steps)
-        pts = segments[which, 0] + t[:, None] * (segments[which, 1] - segments[which, 0])
-        mask[self.index(pts[:, 0], pts[:, 1])] = True
+        ends = np.cumsum(steps)
+        start = 0
+        while start < len(segments):
+            stop = max(start + 1, int(np.searchsorted(ends, ends[start] - steps[start]
+                                                      + 1_000_000, side="right")))
+            part, n = segments[start:stop], steps[start:stop]
+            which = np.repeat(np.arange(len(part)), n)
+            t = (np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)) / np.repeat(
+                np.maximum(n - 1, 1), n)
+            pts = part[which, 0] + t[:, None] * (part[which, 1] - part[which, 0])
+            mask[self.index(pts[:, 0], pts[:, 1])] = True
+            start = stop
         return mask
 
 

@@ -83,6 +83,13 @@ def _chunk(faces, counts, x0, y0, w, x, y, z, area, width, depth, owner) -> None
     owner[pix[nearer]] = face[nearer]
 
 
+def coverage(tris: np.ndarray, width: int, height: int) -> np.ndarray:
+    """Which pixels (row-major, y up) have their centre in one of the triangles (k, 3, 2),
+    given in pixel coordinates."""
+    flat = np.concatenate([tris, np.zeros(tris.shape[:2] + (1,))], axis=-1)
+    return _nearest(flat, width, height)[1] >= 0
+
+
 def render(quads: np.ndarray, colours: np.ndarray, width: int, height: int) -> np.ndarray:
     """RGBA image (height, width, 4), row 0 at the bottom, of faces ``quads`` (k, 4, 3) given
     in pixel coordinates (x right, y up, depth towards the viewer) with ``colours`` (k, 4):
