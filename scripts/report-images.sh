@@ -43,3 +43,31 @@ shot "$tmp/office.pdf" "Axonometric view" report-model -W 827 -H 600
 shot "$tmp/workbench.pdf" "[0-9] Luminaires" report-office-schedule
 shot "$tmp/workbench.pdf" "[0-9] Calculation areas" report-office-workplane
 shot "$tmp/workbench.pdf" "[0-9] Provenance and sign-off" report-office-signoff
+# The same office turned 30° off the model's axes (plan and picture follow the room): its
+# results are the office's own (the same room, turned), without their provenance since the
+# turned scene is another file.
+/usr/bin/python3 - "$F" "$tmp" <<'PY'
+import json, math, os, sys
+src, out = sys.argv[1], sys.argv[2]
+c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+turn = lambda p: [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]]
+scene = json.load(open(os.path.join(src, "workbench.scene.json")))
+for m in scene["meshes"]:
+    m["vertices"] = [turn(v) for v in m["vertices"]]
+for lum in scene["luminaires"]:
+    lum["position"], lum["aim"] = turn(lum["position"]), turn(lum["aim"])
+    lum["rotation_deg"] = lum.get("rotation_deg", 0.0) + 30.0
+    lum["file"] = os.path.abspath(os.path.join(src, lum["file"]))
+for t in scene["targets"]:
+    for key in ("corner", "edge1", "edge2", "position", "view_direction"):
+        if key in t:
+            t[key] = turn(t[key])
+json.dump(scene, open(os.path.join(out, "turned.scene.json"), "w"))
+results = json.load(open(os.path.join(src, "workbench.results.json")))
+results.pop("provenance")
+json.dump(results, open(os.path.join(out, "turned.results.json"), "w"))
+PY
+"$cli" report "$tmp/turned.scene.json" --results "$tmp/turned.results.json" --allow-unverified \
+  --date 2026-01-01 --out "$tmp/turned.pdf" > /dev/null
+shot "$tmp/turned.pdf" "Floor plan" report-turned-plan -W 827 -H 820
+shot "$tmp/turned.pdf" "Axonometric view" report-turned-model -W 827 -H 660

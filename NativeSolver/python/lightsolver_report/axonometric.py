@@ -2,9 +2,10 @@
 """The false-colour picture of the model: the workbench's 3D-view screenshot when it passes one
 (``report.view_png``), else an axonometric drawing of the scene's meshes made here.
 
-The drawing is a parallel projection from above one corner of the plan, painted far to near
-(triangles split until they are small, so that the painter's order is right), with the
-ceiling and the walls nearest the viewer left out so that the room's inside shows. Surfaces
+The drawing is a parallel projection from above one corner of the room (the room's own
+corner: the view turns with a room not aligned with the model's axes), rendered with a depth
+buffer (zbuffer.py: each pixel the nearest face, right for any orientation), with the ceiling
+and the walls nearest the viewer left out so that the room's inside shows. Surfaces
 with results and the cells of calculation grids are coloured by their illuminance on the
 report's false-colour scale (a legend in lux); the other surfaces are grey, lighter for a
 higher reflectance; glass is a light transparent blue. The triangles are one raster image
@@ -17,10 +18,11 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from lightsolver_report import plots
+from lightsolver_report import plots, zbuffer
 from lightsolver_report.meshes import Mesh
 from lightsolver_report.planitems import PlanItems
 from lightsolver_report.section import Level, unit_normals
+from lightsolver_report.viewframe import room_angle, room_box, rotate_z
 
 #: The viewer: above the plan's lower-left corner (from −x and −y), this far above the horizon.
 AZIMUTH_DEG, ELEVATION_DEG = 235.0, 42.0
@@ -30,11 +32,14 @@ ENCLOSING_M = 1.8
 #: Enclosing surfaces this close to the plan's sides next to the viewer are left out (the plan
 #: has a 0.4 m margin around the walls' outside).
 NEAR_BAND_M = 0.9
-#: At most this many triangles are painted (splitting stops earlier on large models).
+#: At most this many triangles are drawn (a huge mesh by its largest).
 MAX_TRIANGLES = 60000
 #: Calculation grids with more cells are painted in blocks of cells (their mean).
 MAX_CELLS = 40000
 RASTER_DPI = 200
+#: Calculation grids and surfaces with results are drawn this much nearer (m) than the faces
+#: they lie on (a desk top's calculation surface on the desk, a wall's on the wall).
+LIFT_M = 0.003
 
 
 def view_axes(azimuth_deg: float = AZIMUTH_DEG, elevation_deg: float = ELEVATION_DEG
@@ -44,22 +49,6 @@ def view_axes(azimuth_deg: float = AZIMUTH_DEG, elevation_deg: float = ELEVATION
     toward = np.array([math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)])
     right = np.array([-math.sin(a), math.cos(a), 0.0])
     return right, np.cross(toward, right), toward
-
-
-def split(corners: np.ndarray, longest: float, budget: int = MAX_TRIANGLES) -> np.ndarray:
-    """Triangles (m, 3, 3) split in four (at their edge midpoints) until no edge is longer
-    than ``longest`` or the next round would exceed ``budget`` triangles."""
-    for _ in range(8):
-        edges = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2).max(axis=1)
-        big = edges > longest
-        if not np.any(big) or len(corners) + 3 * int(np.count_nonzero(big)) > budget:
-            break
-        a, b, c = corners[big, 0], corners[big, 1], corners[big, 2]
-        ab, bc, ca = (a + b) / 2, (b + c) / 2, (c + a) / 2
-        parts = np.stack([np.stack(t, axis=1) for t in
-                          ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))], axis=1)
-        corners = np.concatenate([corners[~big], parts.reshape(-1, 3, 3)])
-    return corners
 
 
 def largest(corners: np.ndarray, count: int) -> np.ndarray:
@@ -117,11 +106,10 @@ def split_at(corners: np.ndarray, h: float) -> Tuple[np.ndarray, np.ndarray]:
 
 
 class Painting:
-    """What the axonometric paints, in layers painted one after the other (each layer far to
-    near): the storey cut into slabs at the heights of its horizontal calculation grids, each
-    slab followed by the grids on its top. Seen from above, everything above such a plane is
-    nearer than the plane, which is nearer than everything below it, so the painter's order
-    is right across slabs; within a slab small triangles keep it nearly right."""
+    """What the axonometric shows: the storey's faces cut into slabs at the heights of its
+    horizontal calculation grids, and the grids' cells on those planes, each group with its
+    colours and whether it carries results (drawn a little nearer than what it lies on). The
+    depth buffer decides what is seen; the groups' order does not matter."""
 
     def __init__(self, cuts: Sequence[float]) -> None:
         self.cuts = sorted(cuts)
@@ -130,6 +118,7 @@ class Painting:
             len(self.cuts) + 1)]
         self.planes: List[List[Tuple[np.ndarray, np.ndarray]]] = [[] for _ in self.cuts]
         self.values: List[float] = []  # every illuminance shown (for the colour scale)
+        self.lifted: set = set()  # ids of the groups drawn LIFT_M nearer (results)
 
     def slab_parts(self, corners: np.ndarray) -> List[np.ndarray]:
         """The triangles cut into the slabs, bottom slab first."""
@@ -140,15 +129,19 @@ class Painting:
             parts.append(below)
         return parts + [rest]
 
-    def add(self, slab: int, polys: np.ndarray, colours: np.ndarray) -> None:
+    def add(self, slab: int, polys: np.ndarray, colours: np.ndarray, lift: bool = False
+            ) -> None:
         if len(polys):
             self.slabs[slab].append((polys, colours))
+            if lift:
+                self.lifted.add(id(polys))
 
     def add_plane(self, height: float, polys: np.ndarray, colours: np.ndarray) -> bool:
         """Grid quads on one of the cut planes; False when ``height`` is not one."""
         for i, h in enumerate(self.cuts):
             if abs(h - height) < 1e-9:
                 self.planes[i].append((polys, colours))
+                self.lifted.add(id(polys))
                 return True
         return False
 
@@ -162,10 +155,11 @@ class Painting:
         return out
 
 
-def _grey(mesh: Mesh, normals: np.ndarray) -> np.ndarray:
+def _grey(mesh: Mesh, normals: np.ndarray, angle_deg: float = 0.0) -> np.ndarray:
     """Grey by reflectance, lighter for faces turned to a light from above the viewer's left
-    (so that the walls and the floor are told apart); glass light blue and transparent."""
-    light = np.array([-0.55, 0.25, 0.8])
+    (so that the walls and the floor are told apart; the light turns with the room, as the
+    viewer does); glass light blue and transparent."""
+    light = rotate_z(np.array([-0.55, 0.25, 0.8]), angle_deg)
     shade = 0.6 + 0.4 * np.abs(normals @ (light / np.linalg.norm(light)))
     if mesh.kind == "glass":
         rgba = np.tile([0.72, 0.85, 0.95, 0.35], (len(normals), 1))
@@ -177,16 +171,19 @@ def _grey(mesh: Mesh, normals: np.ndarray) -> np.ndarray:
 
 
 def _visible(corners: np.ndarray, level: Level, box: Tuple[float, float, float, float],
-             toward: np.ndarray, enclosing: bool) -> np.ndarray:
+             toward: np.ndarray, enclosing: bool, angle_deg: float = 0.0) -> np.ndarray:
     """Which triangles to paint: those of the storey, less, for an enclosing mesh (walls,
     ceiling, tall cupboards: reaching above ENCLOSING_M over the floor), those whose side
     facing the room's centre faces away from the viewer (the near walls' faces, the ceiling)
-    and those within NEAR_BAND_M of the plan's sides next to the viewer (what stands in the
-    near walls: window frames, panes)."""
+    and those within NEAR_BAND_M of the room's sides next to the viewer (what stands in the
+    near walls: window frames, panes). ``box`` and ``toward`` are in the room's frame, the
+    model turned by −``angle_deg`` (room_angle), so that a rotated room loses its own near
+    walls."""
     low, high = corners[:, :, 2].min(axis=1), corners[:, :, 2].max(axis=1)
     keep = (low < level.top_z - 0.05) & (high > level.floor_z - 0.05)
     if not enclosing:
         return keep
+    corners = rotate_z(corners, -angle_deg) if angle_deg else corners
     x0, x1, y0, y1 = box
     centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2, level.floor_z + 1.2])
     mid = corners.mean(axis=1)
@@ -204,13 +201,12 @@ def _visible(corners: np.ndarray, level: Level, box: Tuple[float, float, float, 
 
 def paint_scene(meshes: Sequence[Mesh], items: PlanItems, level: Level,
                 surface_lux: Dict[str, float], grid_lux: Dict[str, np.ndarray],
-                box: Tuple[float, float, float, float], toward: np.ndarray, longest: float,
-                cmap, norm) -> Painting:
-    """The storey's surfaces and calculation grids, coloured (``cmap``/``norm`` for values)."""
+                box: Tuple[float, float, float, float], toward: np.ndarray,
+                cmap, norm, angle_deg: float = 0.0) -> Painting:
+    """The storey's surfaces and calculation grids, coloured (``cmap``/``norm`` for values);
+    ``box`` and ``toward`` in the room's frame (see :func:`_visible`)."""
     mesh_lux = {s.mesh: surface_lux[s.name] for s in items.surfaces if s.name in surface_lux}
     grids = [g for g in items.grids if g.name in grid_lux and grid_lux[g.name].size]
-    # The floor is a slab of its own: the floor slab's edges below it are painted first, the
-    # floor next, then what stands on it.
     out = Painting(sorted({round(g.z, 9) for g in grids if g.horizontal} |
                           {level.floor_z - 1e-6, level.floor_z + 0.01}))
     total = sum(len(m.triangles) for m in meshes) or 1
@@ -219,35 +215,33 @@ def paint_scene(meshes: Sequence[Mesh], items: PlanItems, level: Level,
         if not len(corners):
             continue
         enclosing = float(corners[:, :, 2].max()) > level.floor_z + ENCLOSING_M
-        corners = corners[_visible(corners, level, box, toward, enclosing)]
-        share = max(1000, int(MAX_TRIANGLES * len(mesh.triangles) / total))
-        corners = largest(corners, share)
+        corners = corners[_visible(corners, level, box, toward, enclosing, angle_deg)]
+        corners = largest(corners, max(1000, int(MAX_TRIANGLES * len(mesh.triangles) / total)))
         for slab, part in enumerate(out.slab_parts(corners)):
-            part = split(part, longest, max(len(part), share))
             if mesh.name in mesh_lux:
                 rgba = np.tile(cmap(norm(mesh_lux[mesh.name])), (len(part), 1))
             else:
-                rgba = _grey(mesh, unit_normals(part))
-            out.add(slab, part, rgba)
+                rgba = _grey(mesh, unit_normals(part), angle_deg)
+            out.add(slab, part, rgba, lift=mesh.name in mesh_lux)
     for grid in grids:
         quads, values = _grid_cells(grid.corners, grid_lux[grid.name])
         rgba = cmap(norm(values))
         if not (grid.horizontal and out.add_plane(round(grid.z, 9), quads, rgba)):
-            out.add(int(np.searchsorted(out.cuts, grid.z)), quads, rgba)
+            out.add(int(np.searchsorted(out.cuts, grid.z)), quads, rgba, lift=True)
     return out
 
 
-def _luminaire_polys(items: PlanItems, size: float) -> np.ndarray:
+def _luminaire_polys(items: PlanItems, size: float, angle_deg: float = 0.0) -> np.ndarray:
     """Luminaires as small flat shapes: their outline, or a square of ``size`` about a point
-    source."""
+    source (along the room's walls)."""
     polys = []
     for mark in items.luminaires:
         if mark.outline is not None and np.ptp(mark.outline, axis=0).max() > size:
             polys.append(mark.outline)
         else:
-            p, h = mark.position, size / 2
-            polys.append(np.array([p + (-h, -h, 0), p + (h, -h, 0), p + (h, h, 0),
-                                   p + (-h, h, 0)]))
+            h = size / 2
+            square = np.array([(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)])
+            polys.append(mark.position + rotate_z(square, angle_deg))
     return np.asarray(polys).reshape(-1, 4, 3)
 
 
@@ -257,25 +251,55 @@ def _quads(polys: np.ndarray) -> np.ndarray:
     return polys if polys.shape[1] == 4 else polys[:, [0, 1, 2, 2]]
 
 
+def _all_faces(painting: Painting) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every face of the painting as quads (k, 4, 3) with its colour and whether it is lifted
+    (carries results)."""
+    quads, colours, lifted = [], [], []
+    for layer in painting.layers():
+        for polys, rgba in layer:
+            quads.append(_quads(polys))
+            colours.append(rgba)
+            lifted.append(np.full(len(polys), id(polys) in painting.lifted))
+    if not quads:
+        return np.zeros((0, 4, 3)), np.zeros((0, 4)), np.zeros(0, dtype=bool)
+    return np.concatenate(quads), np.concatenate(colours), np.concatenate(lifted)
+
+
+def projected(painting: Painting, azimuth_deg: float = AZIMUTH_DEG
+              ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The painting's faces in the view from ``azimuth_deg``: (plan coordinates (k, 4, 2),
+    depth towards the viewer (k, 4), colours (k, 4)). Faces with results are LIFT_M nearer;
+    faces turned away from the viewer a tenth of a millimetre farther, so that of two faces
+    in contact (a wall's foot on the floor) the one facing the viewer is seen."""
+    right, up, toward = view_axes(azimuth_deg)
+    quads, colours, lifted = _all_faces(painting)
+    flat = np.stack([quads @ right, quads @ up], axis=-1)
+    normals = np.cross(quads[:, 1] - quads[:, 0], quads[:, 2] - quads[:, 0])
+    away = normals @ toward < 0
+    depth = quads @ toward + (np.where(lifted, LIFT_M, 0.0) - np.where(away, 1e-4, 0.0))[:, None]
+    return flat, depth, colours
+
+
+def rasterise(flat: np.ndarray, depth: np.ndarray, colours: np.ndarray,
+              bounds: Tuple[float, float, float, float], px_w: int, px_h: int) -> np.ndarray:
+    """The depth-buffered image (px_h, px_w, 4), row 0 at the bottom, of projected faces over
+    ``bounds`` (x0, x1, y0, y1)."""
+    x0, x1, y0, y1 = bounds
+    pixels = np.stack([(flat[..., 0] - x0) * px_w / (x1 - x0),
+                       (flat[..., 1] - y0) * px_h / (y1 - y0), depth], axis=-1)
+    return zbuffer.render(pixels, colours, px_w, px_h)
+
+
 def draw(painting: Painting, lamps: np.ndarray, norm, cmap, salt: str,
          azimuth_deg: float = AZIMUTH_DEG) -> str:
-    """Paint far to near in the parallel projection; a colour bar in lux when values show."""
+    """The parallel projection, rendered with a depth buffer into one raster image (RASTER_DPI,
+    not antialiased: no seams, a small file), the luminaires over it as outlines and a colour
+    bar in lux when values show."""
     from matplotlib.collections import PolyCollection
     from matplotlib.cm import ScalarMappable
 
-    right, up, toward = view_axes(azimuth_deg)
-    tris, colours = [], []
-    for layer in painting.layers():
-        if not layer:
-            continue
-        t = np.concatenate([_quads(p) for p, _ in layer])
-        c = np.concatenate([rgba for _, rgba in layer])
-        order = np.argsort(t.mean(axis=1) @ toward, kind="stable")  # far first
-        tris.append(t[order])
-        colours.append(c[order])
-    tris = np.concatenate(tris) if tris else np.zeros((0, 4, 3))
-    colours = np.concatenate(colours) if colours else np.zeros((0, 4))
-    flat = np.stack([tris @ right, tris @ up], axis=-1)
+    right, up, _ = view_axes(azimuth_deg)
+    flat, depth, colours = projected(painting, azimuth_deg)
     every = np.concatenate([flat.reshape(-1, 2), np.stack(
         [lamps @ right, lamps @ up], axis=-1).reshape(-1, 2)]) if len(lamps) else \
         flat.reshape(-1, 2)
@@ -292,13 +316,15 @@ def draw(painting: Painting, lamps: np.ndarray, norm, cmap, salt: str,
     width, height = fig.get_size_inches()
     ax = fig.add_axes((0.1 / width, 0.1 / height, plot_w / width, plot_h / height))
     pad = 0.01 * size.max()
-    ax.set_xlim(lo[0] - pad, hi[0] + pad)
-    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    x0, x1, y0, y1 = lo[0] - pad, hi[0] + pad, lo[1] - pad, hi[1] + pad
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
     ax.set_aspect("equal", adjustable="box")
     ax.set_axis_off()
-    # Not antialiased: no seams between neighbouring triangles, and a raster a tenth the size.
-    ax.add_collection(PolyCollection(flat, facecolors=colours, edgecolors=colours,
-                                     linewidths=0.25, antialiaseds=False, rasterized=True))
+    px_w, px_h = max(1, round(plot_w * RASTER_DPI)), max(1, round(plot_h * RASTER_DPI))
+    image = rasterise(flat, depth, colours, (x0, x1, y0, y1), px_w, px_h)
+    ax.imshow(image, extent=(x0, x1, y0, y1), origin="lower", interpolation="none",
+              aspect="auto", zorder=1)
     if len(lamps):
         ax.add_collection(PolyCollection(np.stack([lamps @ right, lamps @ up], axis=-1),
                                          facecolors="#fff6cc", edgecolors="#4d4d4d",
@@ -323,6 +349,7 @@ class ModelPicture:
         self.report, self.meshes, self.items = report, meshes, items
         self.level, self.box, self.north_deg, self.salt = level, box, north_deg, salt
         self._svg: Optional[str] = None
+        self._angle: Optional[float] = None
 
     @property
     def view_png(self) -> Optional[str]:
@@ -340,7 +367,8 @@ class ModelPicture:
         if self.view_png:
             return ("The model in the 3D view of the design software, surfaces in false "
                     "colours by their illuminance.")
-        return (f"Axonometric view of the model from above {_side(self.north_deg)}; the ceiling "
+        return (f"Axonometric view of the model from above {_side(self.north_deg, self.angle)}; "
+                "the ceiling "
                 "and the walls nearest the viewer are left out. Calculation grids (cell by "
                 "cell) and calculation surfaces (their mean) in false colours by their "
                 "illuminance; other surfaces in grey, lighter for a higher reflectance; "
@@ -374,29 +402,38 @@ class ModelPicture:
                 values.extend(np.asarray(lux, dtype=float).ravel().tolist())
         norm = Normalize(*plots.colour_range(np.asarray(values, dtype=float)))
         cmap = plots.colormap()
-        _, _, toward = view_axes()
+        _, _, toward = view_axes()  # in the room's frame: the standard view
         painting = paint_scene(self.meshes, self.items, self.level, surface_lux, grid_lux,
-                               self.box, toward, self._longest(), cmap, norm)
+                               room_box(self.meshes, self.level, self.angle), toward, cmap,
+                               norm, self.angle)
         painting.values = values
         return painting, norm, cmap
 
-    def _longest(self) -> float:
-        """Triangles are split until no edge is longer: a sixteenth of the plan's size."""
+    @property
+    def angle(self) -> float:
+        """The room's orientation (room_angle): the view turns with it."""
+        if self._angle is None:
+            self._angle = room_angle(self.meshes, self.level) if self.level else 0.0
+        return self._angle
+
+    def _lamp_size(self) -> float:
+        """A point source's square: a 48th of the plan's size."""
         x0, x1, y0, y1 = self.box
-        return max(x1 - x0, y1 - y0) / 16.0
+        return max(x1 - x0, y1 - y0) / 48.0
 
     def _draw(self) -> str:
         painting, norm, cmap = self.painting()
-        return draw(painting, _luminaire_polys(self.items, self._longest() / 3.0), norm, cmap,
-                    self.salt)
+        lamps = _luminaire_polys(self.items, self._lamp_size(), self.angle)
+        return draw(painting, lamps, norm, cmap, self.salt, AZIMUTH_DEG + self.angle)
 
 
-def _side(north_deg: Optional[float]) -> str:
+def _side(north_deg: Optional[float], angle_deg: float = 0.0) -> str:
     """Where the viewer is: "its south-west corner" (...) when north is known, else the plan's
-    corner."""
+    corner (the room's, for a room turned by ``angle_deg``)."""
     if north_deg is None:
-        return "the lower left corner of the plan"
-    bearing = (90.0 - AZIMUTH_DEG + north_deg) % 360.0  # clockwise from north
+        return "the lower left corner of the plan" if not angle_deg else (
+            "the room's corner at the lower left of the plan")
+    bearing = (90.0 - AZIMUTH_DEG - angle_deg + north_deg) % 360.0  # clockwise from north
     names = ("north", "north-east", "east", "south-east", "south", "south-west", "west",
              "north-west")
     return f"its {names[int(((bearing + 22.5) % 360.0) // 45.0)]} corner"

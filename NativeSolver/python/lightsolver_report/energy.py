@@ -110,16 +110,23 @@ def leni(inputs: EnergyInputs, power_w: float, area_m2: float, area_label: str) 
                 inputs.parasitic_kwh_m2 * area_m2)
 
 
-def leni_area(inputs: EnergyInputs, horizontal: List[Tuple[str, float]]) -> Optional[
-        Tuple[float, str]]:
-    """The area LENI is per: the designer's ``area_m2``, else the largest upward-facing
-    calculation grid's (its label says so); None when neither exists."""
+def leni_area(inputs: EnergyInputs, horizontal: List[Tuple[str, float]],
+              floor_m2: Optional[float] = None) -> Optional[Tuple[float, str]]:
+    """The area LENI is per, with what it is: the designer's ``area_m2`` (EN 15193-1's useful
+    floor area: the right input); else the floor area inside the walls that the model's plan
+    encloses around the calculation grids (``floor_m2``, section.room_floor_area); else the
+    largest upward-facing calculation grid's, said as such (a grid usually leaves a border
+    along the walls, so LENI comes out somewhat high); None when none of them exists."""
     if inputs.area_m2 is not None:
         return inputs.area_m2, "floor area as stated"
+    if floor_m2 is not None and floor_m2 > 0:
+        return floor_m2, ("floor area inside the walls, measured on the plan: no floor area "
+                          "was stated")
     if not horizontal:
         return None
     label, area = max(horizontal, key=lambda la: la[1])
-    return area, f"area of the calculation area {label}"
+    return area, (f"area of the calculation area {label}: no floor area was stated and the "
+                  "plan shows no walls enclosing it")
 
 
 def power_density(power_w: float, area_m2: float, em_lux: Optional[float]

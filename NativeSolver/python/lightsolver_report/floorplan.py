@@ -66,6 +66,9 @@ class Plan:
     extent: Tuple[float, float, float, float] = (0.0, 1.0, 0.0, 1.0)
     level: Optional[Level] = None
     items: Optional[PlanItems] = None
+    #: The floor area inside the walls around the storey's horizontal grids (None: the walls
+    #: enclose none of them; section.room_floor_area).
+    floor_m2: Optional[float] = None
 
 
 def choose_scale(width_m: float, height_m: float) -> int:
@@ -162,25 +165,41 @@ class _Labels:
                            "edgecolor": "none", "alpha": 0.8})
 
 
-def _draw_layers(ax, section: Section, raster: bool) -> None:
-    """What lies below the section, seen from above: each mesh's faces (on the floor in the
-    floor's colour, higher ones grey by reflectance) and its drawn edges, lower meshes first."""
-    from matplotlib.collections import LineCollection, PolyCollection
-
+def top_view(section: Section) -> List[Tuple[np.ndarray, str, str, float, float]]:
+    """What lies below the section, seen from above, in painting order: (shape, face colour,
+    edge colour, line width, height) of every mesh's faces (on the floor in the floor's
+    colour, higher ones grey by reflectance) and drawn edges (a face's is "none"), from the
+    lowest up across all meshes: a face hides the edges and faces below it, its own mesh's too
+    (a table's legs under its top), and an edge is drawn over a face at its own height (the
+    face's outline)."""
     floor_z = section.level.floor_z
-    for i, layer in enumerate(section.layers):
-        z = 1.0 + i * 1e-4  # lower layers first, higher ones over them
+    found: List[Tuple[Tuple[float, int], Tuple[np.ndarray, str, str, float, float]]] = []
+    for layer in section.layers:
         if len(layer.triangles):
             on_floor = layer.heights <= floor_z + 0.03
             colours = np.where(on_floor, FLOOR, plots_grey(layer.mesh.reflectance))
-            ax.add_collection(PolyCollection(
-                layer.triangles, facecolors=list(colours), edgecolors=list(colours),
-                linewidths=0.25, zorder=z, rasterized=raster))
+            found.extend(((float(h), 0), (t, str(c), str(c), 0.25, float(h)))
+                         for t, c, h in zip(layer.triangles, colours, layer.heights))
         if len(layer.edges):
-            floorish = layer.top_z <= floor_z + 0.03
-            ax.add_collection(LineCollection(
-                layer.edges, colors="#b4b0a8" if floorish else EDGE, linewidths=0.4,
-                zorder=z + 5e-5, rasterized=raster))
+            colour = "#b4b0a8" if layer.top_z <= floor_z + 0.03 else EDGE
+            found.extend(((float(h), 1), (e, "none", colour, 0.4, float(h)))
+                         for e, h in zip(layer.edges, layer.edge_heights))
+    found.sort(key=lambda item: item[0])  # stable: ties keep the meshes' order
+    return [item for _, item in found]
+
+
+def _draw_layers(ax, section: Section, raster: bool) -> None:
+    """The top view below the section (:func:`top_view`) as one collection, so that its
+    painting order holds across meshes."""
+    from matplotlib.collections import PolyCollection
+
+    items = top_view(section)
+    if not items:
+        return
+    shapes, faces, edges, widths, _ = zip(*items)
+    ax.add_collection(PolyCollection(list(shapes), facecolors=list(faces),
+                                     edgecolors=list(edges), linewidths=list(widths),
+                                     closed=True, zorder=1.0, rasterized=raster))
 
 
 def plots_grey(reflectance: float) -> str:
@@ -242,17 +261,22 @@ def _draw_targets(ax, items: PlanItems, labels: _Labels) -> None:
                                              linewidths=0.8, linestyles=(0, (1.2, 1.2)),
                                              zorder=3.1))
     for grid in items.grids:  # names inside the top-left corner of each grid
-        xy = grid.corners[:, :2]
-        x, y = float(xy[:, 0].min()), float(xy[:, 1].max())
-        labels.place(grid.label, x, y, 0.3, GRID, first=(1, -1))
+        labels.place(grid.label, *top_left(grid.corners[:, :2]), 0.3, GRID, first=(1, -1))
     for surface in items.surfaces:  # horizontal: inside the top-left corner, like a grid's
         if surface.horizontal and len(surface.edges):
-            xy = surface.edges[:, :, :2].reshape(-1, 2)
-            labels.place(surface.label, float(xy[:, 0].min()), float(xy[:, 1].max()), 0.3,
+            labels.place(surface.label, *top_left(surface.edges[:, :, :2].reshape(-1, 2)), 0.3,
                          GRID, first=(1, -1))
         else:
             labels.place(surface.label, float(surface.centre[0]), float(surface.centre[1]),
                          0.8, GRID)
+
+
+def top_left(xy: np.ndarray) -> Tuple[float, float]:
+    """The corner of an outline's points nearest the top left of their box (the box's corner
+    itself for an outline along the axes; a turned grid's own corner, not a point outside
+    it)."""
+    k = int(np.argmin((xy[:, 0] - xy[:, 0].min()) + (xy[:, 1].max() - xy[:, 1])))
+    return float(xy[k, 0]), float(xy[k, 1])
 
 
 def _arrow(ax, start, end, colour: str, width: float, zorder: float, gid: str) -> None:

@@ -15,6 +15,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import lightsolver_results
 from lightsolver_report import energy, scenes
+from lightsolver_report.initial import InitialValues, initial_values
 from lightsolver_report.areas import (QUANTITIES, Area, GridData, Requirement,  # noqa: F401
                                       Verdict, build_area)
 from lightsolver_report.fmt import finite
@@ -66,6 +67,10 @@ class Report:
     signoff: Optional[Dict[str, Any]] = None
     #: Partial (cancelled) results let through on request: marked on every page.
     partial: bool = False
+    #: The energy inputs (``metadata.report.energy``), None when not given.
+    energy_inputs: Optional[energy.EnergyInputs] = None
+    #: Initial (new-installation) values per area, or why there are none (initial.py).
+    initial: InitialValues = field(default_factory=InitialValues)
 
     # --- what the page asks -------------------------------------------------------------
 
@@ -143,11 +148,7 @@ class Report:
     def common_mf(self) -> Optional[float]:
         """The maintenance factor of every luminaire that emits light, when they share one:
         then initial values are the maintained ones / MF (illuminance is linear in flux)."""
-        found = {r.maintenance_factor for r in self.luminaires if r.flux_lm > 0}
-        if len(found) != 1:
-            return None
-        mf = found.pop()
-        return mf if mf and mf != 1.0 else None
+        return self.initial.common_mf
 
     @property
     def areas_with_requirements(self) -> List[Area]:
@@ -199,18 +200,28 @@ def _loads(report: Report, traced: Optional[Dict[str, Any]], scene: Dict[str, An
                 power, area.area_m2, full.get(area.name))
 
 
-def _energy(report: Report, inputs: Optional[energy.EnergyInputs]) -> None:
+def _energy(report: Report, inputs: Optional[energy.EnergyInputs],
+            floor_m2: Optional[float] = None) -> None:
+    report.energy_inputs = inputs
     if inputs is None:
         return
     power = report.total_power_w
     grids = [(a.label, a.area_m2) for a in report.areas if a.horizontal and a.area_m2]
-    where = energy.leni_area(inputs, grids)
+    where = energy.leni_area(inputs, grids, floor_m2)
     if power is None:
         report.leni_missing = "the power of every luminaire is needed"
     elif where is None:
-        report.leni_missing = "the floor area is needed (area_m2)"
+        report.leni_missing = "the floor area is needed"
     else:
         report.leni = energy.leni(inputs, power, where[0], where[1])
+
+
+def use_floor_area(report: Report, floor_m2: Optional[float]) -> None:
+    """LENI again with the floor area the model's plan encloses (pictures.attach measures it
+    after the plans are drawn); only where the designer stated none."""
+    if report.energy_inputs is not None and report.energy_inputs.area_m2 is None:
+        report.leni, report.leni_missing = None, ""
+        _energy(report, report.energy_inputs, floor_m2)
 
 
 def _light_scenes(report: Report, doc: Dict[str, Any], scene: Dict[str, Any],
@@ -283,6 +294,8 @@ def build_report(scene: Dict[str, Any], results: Dict[str, Any], *, scene_name: 
         solver_total_flux_lm=finite(doc.get("total_flux_lm")), traced_flux=read.traced_flux,
         metadata=meta)
     traced = _light_scenes(report, doc, scene, light_scenes, labels)
+    report.initial = initial_values(scene, doc, read.targets, read.luminaires,
+                                    scenes.solver_rescale(), labels)
     _loads(report, traced, scene)
     _energy(report, inputs)
     roles = {f: f"photometric data: {r.title}" for r in luminaires for f in r.files}

@@ -20,6 +20,7 @@ import numpy as np
 from lightsolver_report import floorplan
 from lightsolver_report.meshes import Mesh, load_meshes
 from lightsolver_report.planitems import PlanItems, luminaire_row, observer_row, plan_items
+from lightsolver_report.floorarea import room_floor_area
 from lightsolver_report.section import find_levels, section
 
 
@@ -79,8 +80,21 @@ def build_plans(scene: Dict[str, Any], meshes: Sequence[Mesh], items: PlanItems,
             observers=[observer_row(o, level.floor_z, north) for o in mine.observers],
             areas=[g.label for g in mine.grids] + [s.label for s in mine.surfaces],
             numbered=numbered, aimed=any(m.aimed for m in mine.luminaires),
-            bar_m=floorplan.bar_length(box[1] - box[0]), extent=box, level=level, items=mine))
+            bar_m=floorplan.bar_length(box[1] - box[0]), extent=box, level=level, items=mine,
+            floor_m2=room_floor_area(meshes, cut.wall_meshes, level,
+                                     [tuple(g.corners[:, :2].mean(axis=0))
+                                      for g in mine.grids if g.horizontal])))
     return plans
+
+
+def floor_area(plans: Sequence[floorplan.Plan]) -> Optional[float]:
+    """The floor area inside the walls around every horizontal grid of every storey (LENI's
+    area where the designer states none); None unless the walls enclose each of them."""
+    with_grids = [p for p in plans if p.items is not None and any(
+        g.horizontal for g in p.items.grids)]
+    if not with_grids or any(p.floor_m2 is None for p in with_grids):
+        return None
+    return float(sum(p.floor_m2 for p in with_grids))
 
 
 def png_data_uri(path: str) -> str:
@@ -112,3 +126,7 @@ def attach(report: Any, scene: Dict[str, Any], base_dir: str) -> None:
                                         first.level if first else None,
                                         first.extent if first else None, north_deg(scene))
     report.picture_notes = notes
+    if hasattr(report, "energy_inputs"):
+        from lightsolver_report.model import use_floor_area
+
+        use_floor_area(report, floor_area(report.plans))

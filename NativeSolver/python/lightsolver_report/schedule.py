@@ -54,6 +54,9 @@ class LuminaireRow:
     power_w: Optional[float] = None
     #: The power is the photometric file's input watts (the scene gives no ``power_w``).
     power_from_file: bool = False
+    #: The factor the file's input watts were scaled by: the luminaire's initial flux over the
+    #: file's (another lumen package or a dimmed setting of the same luminaire; 1: as stated).
+    power_scale: float = 1.0
 
     @property
     def title(self) -> str:
@@ -141,6 +144,34 @@ def scene_flux(lum: Dict[str, Any], summary: Optional[Dict[str, Any]]) -> float:
     return flux or 0.0
 
 
+def flux_ratio(lum: Dict[str, Any], summary: Dict[str, Any], mf: Optional[float]) -> float:
+    """The luminaire's initial flux (the scene's ``flux_lm`` ÷ MF) over the flux its
+    photometric file states (the lamp lumens the solver scales by; an absolute file's own
+    flux): the factor by which its input watts are scaled when the scene asks for another
+    flux. 1 where the scene keeps the file's flux or either flux is unknown."""
+    flux = finite(lum.get("flux_lm"))
+    if flux is None:
+        return 1.0
+    if summary.get("absolute_photometry"):
+        stated = finite(summary.get("integrated_lumens_lm"))
+    else:
+        stated = finite(summary.get("lamp_lumens_lm"))
+    if not stated or stated <= 0:
+        return 1.0
+    ratio = flux / (mf or 1.0) / stated
+    return 1.0 if abs(ratio - 1.0) <= 1e-9 else ratio
+
+
+def maintenance_factor(lum: Dict[str, Any], extra: Any) -> Optional[float]:
+    """The luminaire's maintenance factor (its own key, else ``metadata.luminaires``'), None
+    where none is given or it does not apply (a photometric file at its own absolute flux)."""
+    extra = extra if isinstance(extra, dict) else {}
+    mf = finite(lum.get("maintenance_factor", extra.get("maintenance_factor")))
+    if lum.get("type") == "photometric" and lum.get("flux_lm") is None:
+        return None  # the file's own absolute flux: no maintenance factor was applied
+    return mf if mf else None
+
+
 class PhotometricFiles:
     """The scene's photometric files: each summary read once, with the parser's warnings."""
 
@@ -178,9 +209,7 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
         extra = per_lum.get(name) if isinstance(per_lum.get(name), dict) else {}
         file = lum.get("file") if lum.get("type") == "photometric" else None
         summary = files.summary(file) if file is not None else None
-        mf = finite(lum.get("maintenance_factor", extra.get("maintenance_factor")))
-        if lum.get("type") == "photometric" and lum.get("flux_lm") is None:
-            mf = None  # the file's own absolute flux: no maintenance factor was applied
+        mf = maintenance_factor(lum, extra)
         flux = by_name.get(name)
         row = LuminaireRow(kind=_describe(lum), file=file,
                            flux_lm=flux.emitted_flux_lm if flux else 0.0,
@@ -199,7 +228,8 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
             row.file_lamp_lm = finite(summary.get("rated_lumens_lm"))
             row.file_watts = finite(summary.get("input_watts")) or None
             if row.power_w is None and row.file_watts:
-                row.power_w, row.power_from_file = row.file_watts, True
+                row.power_scale = flux_ratio(lum, summary, mf)
+                row.power_w, row.power_from_file = row.file_watts * row.power_scale, True
         same_file = _content_key(file, files.base_dir)
         if summary is not None:
             if same_file not in tables:
@@ -208,7 +238,8 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
             row.ugr_table = tables[same_file]
             row.ugr_4h8h = row.ugr_table.headline() if row.ugr_table else None
         key = (row.kind, same_file, row.flux_lm, row.rated_flux_lm, row.tilt_factor,
-               row.dimming, row.maintenance_factor, row.power_w, row.power_from_file)
+               row.dimming, row.maintenance_factor, row.power_w, row.power_from_file,
+               row.power_scale)
         entry = rows.setdefault(key, row)
         entry.names.append(str(labels.get(name, name)))
         if file is not None and file not in entry.files:

@@ -67,6 +67,9 @@ class Layer:
     heights: np.ndarray  # (k,) each triangle's highest z
     edges: np.ndarray  # (e, 2, 2) projected drawn edges
     top_z: float
+    #: Each edge's height (its higher end): edges and faces are painted together by height,
+    #: so a face above an edge (a table's top over its legs) hides it.
+    edge_heights: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 @dataclass
@@ -78,6 +81,8 @@ class Section:
     furniture: List[Polyline] = field(default_factory=list)  # opaque, lower: cabinets, frames
     glass: List[Polyline] = field(default_factory=list)  # glass cut (windows)
     layers: List[Layer] = field(default_factory=list)  # top view below the cut, lowest first
+    #: The meshes cut as walls (what bounds a room: floorarea.py).
+    wall_meshes: List[Mesh] = field(default_factory=list)
 
     def bounds(self) -> Optional[Tuple[float, float, float, float]]:
         """(xmin, xmax, ymin, ymax) of the cut, None when nothing is cut."""
@@ -378,18 +383,24 @@ def drawn_edges(corners: np.ndarray, crease_deg: float = CREASE_DEG) -> np.ndarr
     return np.stack([starts[keep], ends[keep]], axis=1)
 
 
-def _distinct_2d(edges: np.ndarray) -> np.ndarray:
-    """Projected edges without the points (vertical edges) and without repeats (a box's top
-    and bottom edges fall on each other)."""
-    edges = edges[np.linalg.norm(edges[:, 1] - edges[:, 0], axis=1) > 1e-4]
-    if not len(edges):
-        return edges
-    keys = np.round(edges / WELD_M).astype(np.int64)
+def _distinct_2d(edges: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """Edges (e, 2, 3) projected: (edges (k, 2, 2), their heights), without the points
+    (vertical edges) and without repeats (a box's top and bottom edges fall on each other:
+    the highest is kept, the one seen from above)."""
+    flat = edges[:, :, :2]
+    keep = np.linalg.norm(flat[:, 1] - flat[:, 0], axis=1) > 1e-4
+    flat, heights = flat[keep], edges[keep][:, :, 2].max(axis=1)
+    if not len(flat):
+        return flat, heights
+    order = np.argsort(-heights, kind="stable")  # highest first: unique keeps the first
+    flat, heights = flat[order], heights[order]
+    keys = np.round(flat / WELD_M).astype(np.int64)
     swap = (keys[:, 0, 0] > keys[:, 1, 0]) | (
         (keys[:, 0, 0] == keys[:, 1, 0]) & (keys[:, 0, 1] > keys[:, 1, 1]))
     keys[swap] = keys[swap][:, ::-1]
     _, first = np.unique(keys.reshape(-1, 4), axis=0, return_index=True)
-    return edges[np.sort(first)]
+    first = np.sort(first)
+    return flat[first], heights[first]
 
 
 def _layer(mesh: Mesh, level: Level) -> Optional[Layer]:
@@ -406,11 +417,12 @@ def _layer(mesh: Mesh, level: Level) -> Optional[Layer]:
     if len(corners) > TOP_VIEW_MAX:  # a huge mesh: its larger faces (the rest is too small
         keep = np.sort(np.argsort(-areas(corners), kind="stable")[:TOP_VIEW_MAX])  # to see)
         corners, high = corners[keep], high[keep]
-    edges = _distinct_2d(drawn_edges(corners)[:, :, :2])
+    edges, edge_heights = _distinct_2d(drawn_edges(corners))
     seen = np.abs(unit_normals(corners)[:, 2]) > 0.05  # vertical faces have no area in plan
     tops = high[seen]
     order = np.argsort(tops, kind="stable")
-    return Layer(mesh, corners[seen][order][:, :, :2], tops[order], edges, float(high.max()))
+    return Layer(mesh, corners[seen][order][:, :, :2], tops[order], edges, float(high.max()),
+                 edge_heights)
 
 
 def section(meshes: Sequence[Mesh], level: Level) -> Section:
@@ -434,6 +446,8 @@ def section(meshes: Sequence[Mesh], level: Level) -> Section:
     groups: Dict[str, List[Polyline]] = {"walls": [], "furniture": [], "glass": []}
     for mesh, segs, normals, top in cuts:
         kind = "glass" if mesh.kind == "glass" else "walls" if top >= wall_top else "furniture"
+        if kind == "walls":
+            out.wall_meshes.append(mesh)
         groups[kind].extend(chain(segs, normals))
     out.walls, out.furniture, out.glass = (_join(groups[k]) for k in
                                            ("walls", "furniture", "glass"))
@@ -450,3 +464,4 @@ def _join(lines: List[Polyline]) -> List[Polyline]:
         return closed
     return closed + chain(np.concatenate([l.segments for l in loose]),
                           np.concatenate([l.normals for l in loose]))
+
