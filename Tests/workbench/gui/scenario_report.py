@@ -278,7 +278,6 @@ def check_inputs_saved(doc, analysis) -> None:
 def check_pdf_inputs(out: str, text: str, doc) -> None:
     """The PDF says what the user typed: names, hours, the LENI they give; its pages that
     matter are kept as pictures."""
-    import lighting
     from lighting.reporting import report_module
 
     flat = " ".join(text.split())
@@ -291,8 +290,15 @@ def check_pdf_inputs(out: str, text: str, doc) -> None:
              f"= {fmt.number(HOURS['OperatingHoursNight'], 5)} h without")
     for part in hours:
         expect(" ".join(part.split()) in flat, f"{part!r} not in the PDF text")
-    # LENI = P F_C F_O (t_D F_D + t_N) / 1000 / A over the work plane (no floor area given).
-    area = max(t.area_m2 for t in lighting.results(doc).targets if t.name == "Workplane")
+    # LENI = P F_C F_O (t_D F_D + t_N) / 1000 / A, A the floor inside the office's walls (no
+    # floor area given: the report measures it on the plan), the example's 5 m x 4 m room.
+    import importlib.util
+    model_py = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                            "Examples", "office_model.py")
+    spec = importlib.util.spec_from_file_location("office_model_dimensions", model_py)
+    office_model = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(office_model)
+    area = office_model.ROOM_X_MM * office_model.ROOM_Y_MM / 1.0e6
     power = 36.0 * 4
     leni = power * HOURS["OccupancyFactor"] * (
         HOURS["OperatingHoursDay"] + HOURS["OperatingHoursNight"]) / 1000.0 / area

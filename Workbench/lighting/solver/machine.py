@@ -205,21 +205,27 @@ class AnalysisRun:
                          "a run continues by itself)")
         self.total = photons + plan.budget
         self.budget = plan.budget
+        # The scene file says the budget before it is traced: the results' provenance hashes
+        # the file as traced, so the CLI reproduces the run and the report accepts it.
+        first_scene = self._rewrite_photons(plan.budget)
         again = self._solve_once(plan.budget, photons, progress)
         found = results_mod.read(again).run
         self.photons_traced += int(found.photons)
         if found.partial and found.photons < facts.photons:
-            return data  # cancelled early in the second pass: the first is worth more
+            # Cancelled early in the second pass: the first is worth more, with its scene file.
+            files.write_text(self.scene_file, first_scene)
+            return data
         self.continued = True
-        self._rewrite_photons(plan.budget)
         return again
 
-    def _rewrite_photons(self, photons: int) -> None:
-        """Make the scene file's settings match the final run, so the CLI reproduces it."""
+    def _rewrite_photons(self, photons: int) -> str:
+        """Make the scene file's settings say ``photons``; returns the file's former text."""
         with open(self.scene_file, encoding="utf-8") as stream:
-            scene = json.load(stream)
+            text = stream.read()
+        scene = json.loads(text)
         scene.setdefault("settings", {})["photons"] = int(photons)
         files.write_text(self.scene_file, scene_mod.dumps_scene(scene))
+        return text
 
     def apply(self) -> results_mod.AnalysisResult:
         """Results stage (main thread): store the results in the document."""
