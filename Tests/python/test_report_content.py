@@ -250,6 +250,12 @@ def test_signoff_given_by_the_caller_is_printed_on_the_cover_and_the_block():
     assert "C. Engineer" in cover and "D. Lead" in cover
     block = html[html.index("Provenance and sign-off</h2>"):]
     assert "<td>Head office</td>" in block and "Prepared by: C. Engineer" in block
+    assert "Project no." not in html and "<th>Client</th>" not in html  # only when given
+    report.signoff = dict(report.signoff, project_number="2026-014", client="Müller AG")
+    block = page(report)
+    block = block[block.index("Provenance and sign-off</h2>"):]
+    assert "<th>Project no.</th><td>2026-014</td>" in block
+    assert "<th>Client</th><td>Müller AG</td>" in block
 
 
 # --- client wording ---------------------------------------------------------------------------

@@ -184,6 +184,9 @@ def test_signoff_fields_are_passed_to_the_model_and_unknown_ones_refused(tmp_pat
     assert report.signoff == {"project": "Office 3", "author": "", "checked_by": "K. Lux"}
     assert build(SCENE, results_dict(), date=DATE).signoff == {
         "project": "", "author": "", "checked_by": ""}
+    named = build(SCENE, results_dict(), date=DATE, signoff={"client": " Müller AG ",
+                                                            "project_number": ""})
+    assert named.signoff == {"project": "", "author": "", "checked_by": "", "client": "Müller AG"}
 
 
 def test_the_view_picture_must_be_a_png(tmp_path):

@@ -99,8 +99,7 @@ class ReportJob:
     scene_file: str
     data: Dict[str, Any]
     path: str
-    #: Keys merged into the scene's ``metadata`` for the report (``report``, ``description``,
-    #: ``light_scenes``); the file itself is left as the run read it.
+    #: Keys merged into the scene's ``metadata`` for the report (``report``, ``light_scenes``); the file itself is left as the run read it.
     metadata: Dict[str, Any] = field(default_factory=dict)
     date: Optional[str] = None
     title: Optional[str] = None

@@ -41,12 +41,15 @@ def parser() -> argparse.ArgumentParser:
     signed.add_argument("--project", help="project name")
     signed.add_argument("--author", help="who made the calculation")
     signed.add_argument("--checked-by", help="who checked it")
+    signed.add_argument("--project-number", help="the project's number (printed when given)")
+    signed.add_argument("--client", help="the client (printed when given)")
     return p
 
 
 def main(argv: Optional[List[str]] = None) -> int:
     args = parser().parse_args(argv)
-    signoff = {"project": args.project, "author": args.author, "checked_by": args.checked_by}
+    signoff = {"project": args.project, "author": args.author, "checked_by": args.checked_by,
+               "project_number": args.project_number, "client": args.client}
     try:
         guard.output_path(args.out)  # before tracing: an hour's run must not end in a typo
         if args.save_results and not os.path.isdir(os.path.dirname(

@@ -28,6 +28,8 @@ PathLike = Union[str, "os.PathLike[str]"]
 SUFFIXES = {".html": "html", ".htm": "html", ".pdf": "pdf"}
 #: The sign-off block's fields (COMMON interface: project, author, checked by).
 SIGNOFF_KEYS = ("project", "author", "checked_by")
+#: Sign-off keys printed only when given (signoff.OPTIONAL_SIGNOFF_FIELDS).
+OPTIONAL_SIGNOFF_KEYS = ("project_number", "client")
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 
@@ -152,11 +154,14 @@ def signoff(fields: Optional[Mapping[str, Any]]) -> Dict[str, str]:
     """The sign-off block's fields, every key present ("" where not given); an unknown key is
     an error (a misspelt ``checked_by`` must not vanish from a signed page)."""
     fields = dict(fields or {})
-    unknown = sorted(set(fields) - set(SIGNOFF_KEYS))
+    unknown = sorted(set(fields) - set(SIGNOFF_KEYS) - set(OPTIONAL_SIGNOFF_KEYS))
     if unknown:
         raise ReportError(f"signoff: unknown field(s) {', '.join(map(repr, unknown))}; "
-                          f"expected {', '.join(SIGNOFF_KEYS)}")
-    return {key: str(fields.get(key) or "").strip() for key in SIGNOFF_KEYS}
+                          f"expected {', '.join(SIGNOFF_KEYS + OPTIONAL_SIGNOFF_KEYS)}")
+    out = {key: str(fields.get(key) or "").strip() for key in SIGNOFF_KEYS}
+    out.update({key: str(fields[key]).strip() for key in OPTIONAL_SIGNOFF_KEYS
+                if str(fields.get(key) or "").strip()})
+    return out
 
 
 def view_png(path: Optional[PathLike]) -> Optional[str]:

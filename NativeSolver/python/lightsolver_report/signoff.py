@@ -15,6 +15,10 @@ from typing import Any, Dict, List, Optional, Tuple
 #: The sign-off fields a report prints, with their captions.
 SIGNOFF_FIELDS: Tuple[Tuple[str, str], ...] = (
     ("project", "Project"), ("author", "Prepared by"), ("checked_by", "Checked by"))
+#: Printed after those, and only when given (no line to write on: the client's name and the
+#: project number are known when the report is made, or not wanted).
+OPTIONAL_SIGNOFF_FIELDS: Tuple[Tuple[str, str], ...] = (
+    ("project_number", "Project no."), ("client", "Client"))
 
 
 @dataclass
@@ -134,11 +138,15 @@ def signoff_fields(given: Optional[Dict[str, Any]], metadata: Dict[str, Any],
                    title: str) -> List[Tuple[str, str]]:
     """(caption, value) of each sign-off field: ``given`` (render's ``signoff``) over the
     scene's ``metadata.report`` over the title (the project); "" where nobody is named (a line
-    to write on)."""
+    to write on); the project number and client only where given."""
     report_meta = metadata.get("report") if isinstance(metadata.get("report"), dict) else {}
     out = []
     for key, caption in SIGNOFF_FIELDS:
         value = (given or {}).get(key) or report_meta.get(key) or (
             title if key == "project" else "")
         out.append((caption, str(value)))
+    for key, caption in OPTIONAL_SIGNOFF_FIELDS:
+        value = (given or {}).get(key) or report_meta.get(key)
+        if value:
+            out.append((caption, str(value)))
     return out

@@ -93,22 +93,14 @@ def _text(analysis: Any, name: str) -> str:
 
 
 def signoff(analysis: Any) -> Dict[str, str]:
-    """The sign-off fields the analysis names (project, author, checked_by); empty ones left
-    out, so that the document's own (its label, CreatedBy) stand in for them."""
+    """The sign-off fields the analysis names (project, author, checked_by, project_number,
+    client); empty ones left out, so that the document's own (its label, CreatedBy) stand in
+    for them."""
     fields = {"project": _text(analysis, "ProjectName"), "author": _text(analysis, "PreparedBy"),
-              "checked_by": _text(analysis, "CheckedBy")}
+              "checked_by": _text(analysis, "CheckedBy"),
+              "project_number": _text(analysis, "ProjectNumber"),
+              "client": _text(analysis, "Client")}
     return {key: value for key, value in fields.items() if value}
-
-
-def description(analysis: Any) -> str:
-    """The cover's line under the title: "Project no. 2026-014 · Client: Müller AG" ("" when
-    neither is given)."""
-    parts = []
-    if _text(analysis, "ProjectNumber"):
-        parts.append(f"Project no. {_text(analysis, 'ProjectNumber')}")
-    if _text(analysis, "Client"):
-        parts.append(f"Client: {_text(analysis, 'Client')}")
-    return " · ".join(parts)
 
 
 def problems(analysis: Any) -> List[str]:
@@ -154,16 +146,13 @@ def energy(analysis: Any) -> Optional[Dict[str, float]]:
 
 def metadata(analysis: Any) -> Dict[str, Any]:
     """What the report inputs add to the scene's ``metadata`` for the report: ``report``
-    ({project, author, checked_by, energy}: the names given, the energy block) and
-    ``description`` (project number and client). LightingError for unusable inputs."""
+    ({project, author, checked_by, project_number, client, energy}: the names given, the
+    energy block). LightingError for unusable inputs."""
     block: Dict[str, Any] = dict(signoff(analysis))
     found = energy(analysis)
     if found is not None:
         block["energy"] = found
-    out: Dict[str, Any] = {"report": block}
-    if description(analysis):
-        out["description"] = description(analysis)
-    return out
+    return {"report": block}
 
 
 def report_date(analysis: Any, finished_utc: Optional[str] = None) -> Optional[str]:

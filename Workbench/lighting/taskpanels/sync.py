@@ -178,12 +178,17 @@ _guard: Optional[WheelGuard] = None
 
 
 def _guard_one(widget: Any) -> None:
-    if widget.property("lightingWheelGuard"):
+    try:
+        if widget.property("lightingWheelGuard"):
+            return
+        widget.setProperty("lightingWheelGuard", True)
+        if isinstance(widget, WHEEL_FIELDS):
+            widget.setFocusPolicy(QtCore.Qt.StrongFocus)  # no focus from the wheel
+        widget.installEventFilter(_guard)
+    except RuntimeError:
+        # Its C++ object is already deleted (a panel closing while the document changes, e.g.
+        # a Delete: the task dialog's button box goes first): nothing left to guard.
         return
-    widget.setProperty("lightingWheelGuard", True)
-    if isinstance(widget, WHEEL_FIELDS):
-        widget.setFocusPolicy(QtCore.Qt.StrongFocus)  # no focus from the wheel
-    widget.installEventFilter(_guard)
 
 
 def guard_wheel(root: Any) -> None:
