@@ -5,6 +5,8 @@ the office with an office task on the workplane and an *Observer* (UGR limit 19)
   (a name squeezed beside the value columns was elided to "D..."): the row is tall enough for
   the name wrapped to the table's width and the pixels of its band reach across the name;
   a long name, typed as the target's Label, wraps instead of being cut;
+- unticks *Decide requirements*, asks for an Em just at what the workplane gets and runs: the
+  Undecided summary says Decide was off (not a limit the run never tried) and offers Decide;
 - ticks *All columns*: every figure with its interval (Emin, Emax, U0; the observer's UGR and
   limit) and each requirement's verdict appear one per line under the table, and neither table
   is wider than the panel (no sideways scrolling), no value cut short;
@@ -107,6 +109,53 @@ def check_long_name(panel, doc) -> None:
     panel.scroll.ensureWidgetVisible(panel.table)
     pump(0.3)
     grab_window("panel_long_name")
+
+
+def check_decide_off(panel, doc) -> None:
+    """A run with Decide off that leaves the workplane undecided: the summary says why."""
+    from lighting.taskpanels import analysis_panel
+
+    workplane = [o for o in doc.Objects if o.Label == "Workplane"][0]
+    workplane.RequiredLux = 580.0  # about its Em: undecided after a short run
+    doc.recompute()
+    panel.decide.setChecked(False)  # the user unticks it, sets a short run and presses Run
+    panel.photons.setValue(16384)
+    before = analysis_panel.last_run()
+    panel.buttons["run"].click()
+    ok = wait_until(lambda: analysis_panel.last_run() is not before
+                    and analysis_panel.last_run().finished, 180.0)
+    expect(ok, "the run with Decide off did not finish")
+    pump(0.5)
+    view = panel.decide_view
+    summary = view.summary.text()
+    STATUS["decide_off"] = {"summary": summary, "buttons": [b.text() for b in view.buttons],
+                            "items": [i.text() for i in view.items]}
+    expect(any(i.target == "Workplane" and i.name == "Em" for i in view.items),
+           f"the workplane's Em is not undecided: {STATUS['decide_off']}")
+    expect("Decide requirements was off for this run" in summary and "Press Decide" in summary
+           and "continues by itself" not in summary, f"the Decide-off summary: {summary!r}")
+    expect(bool(view.buttons) and all(b.isEnabled() for b in view.buttons),
+           f"no Decide offered: {STATUS['decide_off']}")
+    panel.scroll.ensureWidgetVisible(panel.sections["undecided"])
+    pump(0.3)
+    expect_no_sideways_scrolling(panel, "Decide off")
+    grab_window("panel_decide_off", docs_name="decide-off.png")
+
+
+def expect_no_sideways_scrolling(panel, what: str) -> None:
+    """The panel's content is no wider than its viewport (a Decide button's long text once
+    pushed it sideways, cutting every line's first letters)."""
+    from PySide import QtGui
+
+    room = panel.scroll.viewport().width()
+    wide = [(w.minimumSizeHint().width(), type(w).__name__, (w.text() if hasattr(w, "text")
+                                                             else "")[:40])
+            for w in panel.form.findChildren(QtGui.QWidget)
+            if w.isVisible() and w.minimumSizeHint().width() > room]
+    shift = panel.scroll.horizontalScrollBar().maximum()
+    STATUS.setdefault("sideways", {})[what] = {"viewport_px": room, "scroll_px": shift,
+                                               "too_wide": sorted(wide, reverse=True)[:6]}
+    expect(shift == 0, f"the panel scrolls sideways ({what}): {STATUS['sideways'][what]}")
 
 
 def check_all_columns(panel, eye) -> None:
@@ -221,6 +270,7 @@ def body() -> None:
     check_names(panel, "default width")
     check_all_columns(panel, eye)
     check_names(panel, "all columns")  # the panel's scroll bar narrows the table
+    expect_no_sideways_scrolling(panel, "all columns")
     log(f"fit {STATUS.get('fit')}")
     panel.scroll.ensureWidgetVisible(panel.results_view.details)
     panel.scroll.ensureWidgetVisible(panel.table)
@@ -228,6 +278,7 @@ def body() -> None:
     grab_window("panel_all_columns", docs_name="panel-all-columns.png")
     check_typed_value_kept(panel, doc, analysis)
     check_long_name(panel, doc)
+    check_decide_off(panel, doc)
 
 
 scenario(body)
