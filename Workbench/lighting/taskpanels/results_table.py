@@ -16,7 +16,8 @@ from lighting.solver import results as results_mod
 
 COLUMNS = ("Target", "Type", "Em lx", "Em CI", "Emin lx", "Emin CI", "Emax lx", "Emax CI",
            "U0", "U0 CI", "Check")
-#: The columns shown in the narrow default panel (the others: "All columns", tooltips).
+#: The columns shown in the narrow default panel (the others: "All columns", tooltips); the
+#: target's name is drawn as a line of its own above each row's values (NameAboveDelegate).
 ESSENTIAL_COLUMNS = ("Target", "Em lx", "U0", "Check")
 #: Text colours of the verdict column: pass green, FAIL red, undecided amber.
 VERDICT_COLOURS = {"pass": (0, 130, 0), "FAIL": (200, 0, 0), "undecided": (190, 110, 0)}
