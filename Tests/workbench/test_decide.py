@@ -46,6 +46,37 @@ class Facts(unittest.TestCase):
         self.assertEqual(results_table.seconds_text(75.0), "1 min 15 s")
 
 
+    def test_a_run_with_decide_off_says_so_and_offers_decide(self):
+        from lighting.solver.results import AnalysisResult, TargetResult
+        from lighting.taskpanels import decide_view
+
+        row = TargetResult("Workplane", "Workplane", "grid", 502.0, 498.0, 506.0,
+                           verdict="undecided", undecided=["em"],
+                           verdicts={"em": {"required": 500.0, "relation": ">=", "value": 502.0}},
+                           to_decide={"em": (1_000_000, 0.5)})
+        off = AnalysisResult([row], photons=200000, seconds=0.14, stop_reason="photons",
+                             verdict="undecided", data={"decide": False})
+        text = decide_view.summary_text(off, limit_s=0.001)
+        self.assertIn("Decide requirements was off for this run, so it stopped after its "
+                      "200\u202f000 photons", text)
+        self.assertIn("Press Decide", text)
+        self.assertIn("tick Decide requirements", text)
+        self.assertNotIn("continues by itself", text)  # the limit is not why
+        off.stop_reason = "accuracy"
+        self.assertIn("stopped at its accuracy goal", decide_view.summary_text(off, 0.001))
+        row.to_decide = {"em": (None, None)}  # on its bound: no Decide to offer
+        text = decide_view.summary_text(off, 0.001)
+        self.assertIn("no run can decide it", text)
+        self.assertNotIn("Press Decide", text)
+        # A decide run beyond the limit: the limit is why.
+        row.to_decide = {"em": (1_000_000, 0.5)}
+        on = AnalysisResult([row], photons=16384, seconds=0.03, stop_reason="photons",
+                            verdict="undecided", data={"decide": True})
+        text = decide_view.summary_text(on, limit_s=0.001)
+        self.assertIn("more than the 0.001 s a run continues by itself", text)
+        self.assertNotIn("was off", text)
+
+
 class Decide(DocTestCase):
     def test_a_new_analysis_scale_is_locked_to_its_requirements(self):
         doc = build_office()

@@ -1,6 +1,12 @@
 """GUI scenario: the analysis panel's details at FreeCAD's default window size. The user builds
 the office with an office task on the workplane and an *Observer* (UGR limit 19), runs, and:
 
+- reads every target's name whole in the results table, each on its own line above its values
+  (a name squeezed beside the value columns was elided to "D..."): the row is tall enough for
+  the name wrapped to the table's width and the pixels of its band reach across the name;
+  a long name, typed as the target's Label, wraps instead of being cut;
+- unticks *Decide requirements*, asks for an Em just at what the workplane gets and runs: the
+  Undecided summary says Decide was off (not a limit the run never tried) and offers Decide;
 - ticks *All columns*: every figure with its interval (Emin, Emax, U0; the observer's UGR and
   limit) and each requirement's verdict appear one per line under the table, and neither table
   is wider than the panel (no sideways scrolling), no value cut short;
@@ -36,6 +42,120 @@ def fits(table) -> dict:
                 cut.append(item.text())
     return {"content_px": header.length(), "viewport_px": table.viewport().width(),
             "cut": cut, "scrollbar": table.horizontalScrollBar().isVisible()}
+
+
+def names_shown(table) -> dict:
+    """Whether each target's name (column 0's text) can be read whole: in a visible column
+    wide enough for it, or, column 0 hidden, drawn on its row above the values: the row is as
+    tall as the name wrapped to the table's width (bold, as drawn) plus a line of values, and
+    the dark pixels of that band reach across the name (an elided "D..." reaches a few
+    pixels)."""
+    from PySide import QtCore, QtGui
+
+    plain = QtGui.QFontMetrics(table.font())
+    bold_font = QtGui.QFont(table.font())
+    bold_font.setBold(True)
+    bold = QtGui.QFontMetrics(bold_font)
+    width = table.horizontalHeader().length()
+    image = table.viewport().grab().toImage()
+    scale = image.width() / max(table.viewport().width(), 1)  # 1 under Xvfb
+    out = []
+    for row in range(table.rowCount()):
+        name = table.item(row, 0).text()
+        if not table.isColumnHidden(0):
+            out.append({"name": name, "ok": plain.horizontalAdvance(name) + 6
+                        <= table.columnWidth(0), "column_px": table.columnWidth(0)})
+            continue
+        # Wrapped between words, anywhere only within a word longer than the line.
+        longest = max((bold.horizontalAdvance(w) for w in name.split()), default=0)
+        wrap = QtCore.Qt.TextWrapAnywhere if longest > width - 8 else QtCore.Qt.TextWordWrap
+        wrapped = bold.boundingRect(QtCore.QRect(0, 0, width - 8, 100000),
+                                    int(QtCore.Qt.AlignLeft | wrap), name)
+        top, height = table.rowViewportPosition(row), table.rowHeight(row)
+        xs = [x for y in range(top, top + wrapped.height() + 2)
+              for x in range(0, width)
+              if QtGui.qGray(image.pixel(int(x * scale), int(y * scale))) < 100]
+        reach = (max(xs) - min(xs) + 1) if xs else 0
+        wanted = 0.8 * min(bold.horizontalAdvance(name), width - 8)
+        out.append({"name": name, "row_px": height, "needed_px": wrapped.height()
+                    + plain.height(), "lines": round(wrapped.height() / bold.lineSpacing()),
+                    "ink_px": reach, "name_px": bold.horizontalAdvance(name),
+                    "ok": height >= wrapped.height() + plain.height() and reach >= wanted})
+    return {"rows": out, "cut": [r["name"] for r in out if not r["ok"]]}
+
+
+def check_names(panel, what: str) -> dict:
+    """Every name in the table readable whole (names_shown); ``what`` names the check."""
+    shown = names_shown(panel.table)
+    STATUS.setdefault("names", {})[what] = shown
+    expect(panel.table.rowCount() > 0 and not shown["cut"],
+           f"target names cut short in the table ({what}): {shown}")
+    return shown
+
+
+def check_long_name(panel, doc) -> None:
+    """A long Label, typed in the property editor: shown whole, wrapped over two lines."""
+    target = [o for o in doc.Objects if o.Label == "Desk top"][0]
+    long_name = "Desk top by the window on the north side of the office"
+    target.Label = long_name
+    doc.recompute()
+    ok = wait_until(lambda: any(panel.table.item(r, 0).text() == long_name
+                                for r in range(panel.table.rowCount())), 3.0)
+    pump(0.5)
+    expect(ok, f"the table does not show the new Label {long_name!r}")
+    shown = check_names(panel, "long name")
+    lines = [r.get("lines", 1) for r in shown["rows"] if r["name"] == long_name]
+    expect(lines and lines[0] >= 2, f"the long name does not wrap: {shown}")
+    panel.scroll.ensureWidgetVisible(panel.table)
+    pump(0.3)
+    grab_window("panel_long_name")
+
+
+def check_decide_off(panel, doc) -> None:
+    """A run with Decide off that leaves the workplane undecided: the summary says why."""
+    from lighting.taskpanels import analysis_panel
+
+    workplane = [o for o in doc.Objects if o.Label == "Workplane"][0]
+    workplane.RequiredLux = 580.0  # about its Em: undecided after a short run
+    doc.recompute()
+    panel.decide.setChecked(False)  # the user unticks it, sets a short run and presses Run
+    panel.photons.setValue(16384)
+    before = analysis_panel.last_run()
+    panel.buttons["run"].click()
+    ok = wait_until(lambda: analysis_panel.last_run() is not before
+                    and analysis_panel.last_run().finished, 180.0)
+    expect(ok, "the run with Decide off did not finish")
+    pump(0.5)
+    view = panel.decide_view
+    summary = view.summary.text()
+    STATUS["decide_off"] = {"summary": summary, "buttons": [b.text() for b in view.buttons],
+                            "items": [i.text() for i in view.items]}
+    expect(any(i.target == "Workplane" and i.name == "Em" for i in view.items),
+           f"the workplane's Em is not undecided: {STATUS['decide_off']}")
+    expect("Decide requirements was off for this run" in summary and "Press Decide" in summary
+           and "continues by itself" not in summary, f"the Decide-off summary: {summary!r}")
+    expect(bool(view.buttons) and all(b.isEnabled() for b in view.buttons),
+           f"no Decide offered: {STATUS['decide_off']}")
+    panel.scroll.ensureWidgetVisible(panel.sections["undecided"])
+    pump(0.3)
+    expect_no_sideways_scrolling(panel, "Decide off")
+    grab_window("panel_decide_off", docs_name="decide-off.png")
+
+
+def expect_no_sideways_scrolling(panel, what: str) -> None:
+    """The panel's content is no wider than its viewport (a Decide button's long text once
+    pushed it sideways, cutting every line's first letters)."""
+    from PySide import QtGui
+
+    room = panel.scroll.viewport().width()
+    wide = [(w.minimumSizeHint().width(), type(w).__name__, (w.text() if hasattr(w, "text")
+                                                             else "")[:40])
+            for w in panel.form.findChildren(QtGui.QWidget)
+            if w.isVisible() and w.minimumSizeHint().width() > room]
+    shift = panel.scroll.horizontalScrollBar().maximum()
+    STATUS.setdefault("sideways", {})[what] = {"viewport_px": room, "scroll_px": shift,
+                                               "too_wide": sorted(wide, reverse=True)[:6]}
+    expect(shift == 0, f"the panel scrolls sideways ({what}): {STATUS['sideways'][what]}")
 
 
 def check_all_columns(panel, eye) -> None:
@@ -147,13 +267,18 @@ def body() -> None:
     pump(0.5)
     panel = analysis_panel.last_panel()
     check_observer_row(panel, eye)
+    check_names(panel, "default width")
     check_all_columns(panel, eye)
+    check_names(panel, "all columns")  # the panel's scroll bar narrows the table
+    expect_no_sideways_scrolling(panel, "all columns")
     log(f"fit {STATUS.get('fit')}")
     panel.scroll.ensureWidgetVisible(panel.results_view.details)
     panel.scroll.ensureWidgetVisible(panel.table)
     pump(0.3)
     grab_window("panel_all_columns", docs_name="panel-all-columns.png")
     check_typed_value_kept(panel, doc, analysis)
+    check_long_name(panel, doc)
+    check_decide_off(panel, doc)
 
 
 scenario(body)

@@ -6,7 +6,8 @@ a *Decide* button that runs the analysis with Decide on and a photon budget from
 (solver/decide.py: :data:`MARGIN` times it, since a run of exactly the forecast decides only
 about half the time). A decide run goes on by itself to decide within the automatic limit
 (``DecideLimitSeconds``); when deciding would take longer, the summary says so, with what it
-needs, and the button does it."""
+needs, and the button does it. A run made with Decide off never tried: the summary says that,
+not the limit, and offers the button and the Run settings' switch."""
 from __future__ import annotations
 
 from typing import Callable, List, NamedTuple, Optional
@@ -76,6 +77,42 @@ def budget(item: Undecided, traced: float) -> int:
     return decide_mod.budget_for(float(item.photons or 0), traced)
 
 
+def summary_text(result: results_mod.AnalysisResult,
+                 limit_s: Optional[float] = None) -> str:
+    """How many requirements are undecided, and why the run did not go on to decide them
+    (Decide was off, the automatic limit ``limit_s``, default the preference, or a value on
+    its bound) with what deciding needs."""
+    text = (f"{len(undecided(result))} requirement(s) undecided after "
+            f"{_count(result.photons)} photons: the interval still holds the required value.")
+    off = decide_off_text(result)
+    if off is not None:  # the run never tried: the automatic limit is not why
+        return text + off
+    plan = decide_mod.plan(result)
+    limit = decide_mod.limit_seconds() if limit_s is None else limit_s
+    if plan is not None and not plan.within(limit):
+        text += f" The run did not decide them: {machine.why_not(plan, limit)}."
+    text += " Decide traces until each is pass or FAIL (it stops as soon as they are)."
+    return text
+
+
+def decide_off_text(result: results_mod.AnalysisResult) -> Optional[str]:
+    """What the summary says of a run made with *Decide requirements* off (the results'
+    ``decide`` is false): it stopped where its settings said, without trying to decide, and
+    how to decide; None for a decide run, or results that do not say."""
+    if result.data.get("decide") is not False:
+        return None
+    how = {"accuracy": "at its accuracy goal", "time": "at its time limit"}.get(
+        result.stop_reason, f"after its {_count(result.photons)} photons")
+    text = (f" Decide requirements was off for this run, so it stopped {how} without trying "
+            "to decide them.")
+    if any(item.photons is not None for item in undecided(result)):
+        text += (" Press Decide to trace until each is pass or FAIL (it stops as soon as they "
+                 "are), or tick Decide requirements under Run settings for every run.")
+    else:
+        text += " A value sits exactly on its requirement, so no run can decide it."
+    return text
+
+
 class DecideView(QtGui.QWidget):
     """The rows of undecided requirements, each with its cost and a Decide button that calls
     ``decide(budget)``."""
@@ -115,17 +152,8 @@ class DecideView(QtGui.QWidget):
             self._add_row(item, result, running)
 
     def undecided_summary(self, result: results_mod.AnalysisResult) -> str:
-        """How many are undecided, and why the run did not go on to decide them (the
-        automatic limit, or a value on its bound) with what deciding needs."""
-        text = (f"{len(self.items)} requirement(s) undecided after {_count(result.photons)} "
-                "photons: the interval still holds the required value.")
-        plan = decide_mod.plan(result)
-        limit = decide_mod.limit_seconds()
-        if plan is not None and not plan.within(limit):
-            why = machine.why_not(plan, limit)
-            text += f" The run did not decide them: {why}."
-        text += " Decide traces until each is pass or FAIL (it stops as soon as they are)."
-        return text
+        """The summary over the rows (:func:`summary_text`)."""
+        return summary_text(result)
 
     def set_running(self, running: bool) -> None:
         """No Decide while a run is in progress."""
@@ -142,7 +170,9 @@ class DecideView(QtGui.QWidget):
         layout.addWidget(label)
         if item.photons is not None:
             photons = budget(item, result.photons)
-            button = QtGui.QPushButton(f"Decide ({_count(photons)} photons at most)")
+            # Two lines: "Decide (2 154 000 photons at most)" on one is wider than the
+            # default combo view and pushed the whole panel sideways.
+            button = QtGui.QPushButton(f"Decide\n({_count(photons)} photons at most)")
             button.setToolTip(
                 f"Run with Decide on and a budget of {_count(photons)} photons ({MARGIN} x the "
                 "forecast, which decides only about half the time); the run stops at the first "

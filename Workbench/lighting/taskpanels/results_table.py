@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""The analysis panel's results section: the table (target, Em, U0 and the verdict: what fits the
-narrow panel), each row's tooltip with every figure, its interval and the requirement judged,
+"""The analysis panel's results section: the table (per target its name on a line of its own
+across the table, and under it Em, U0 and the verdict: what fits the narrow panel with every
+name readable), each row's tooltip with every figure, its interval and the requirement judged,
 "All columns": a details table under it with every figure and interval one per line (so the
 panel never scrolls sideways at its default width), and the run's facts: photons traced, how
 long it took, why the run stopped. An observer's row is its own: UGR with its interval and
@@ -15,7 +16,8 @@ from lighting.solver import results as results_mod
 
 COLUMNS = ("Target", "Type", "Em lx", "Em CI", "Emin lx", "Emin CI", "Emax lx", "Emax CI",
            "U0", "U0 CI", "Check")
-#: The columns shown in the narrow default panel (the others: "All columns", tooltips).
+#: The columns shown in the narrow default panel (the others: "All columns", tooltips); the
+#: target's name is drawn as a line of its own above each row's values (NameAboveDelegate).
 ESSENTIAL_COLUMNS = ("Target", "Em lx", "U0", "Check")
 #: Text colours of the verdict column: pass green, FAIL red, undecided amber.
 VERDICT_COLOURS = {"pass": (0, 130, 0), "FAIL": (200, 0, 0), "undecided": (190, 110, 0)}
@@ -139,6 +141,91 @@ def facts_text(result: results_mod.AnalysisResult, wall_seconds: Optional[float]
     return text
 
 
+class NameAboveDelegate(QtGui.QStyledItemDelegate):
+    """Paints each row of the results table as two parts: the target's name (column 0's text,
+    bold) across the whole row, wrapped when longer than the row, and under it the cell's
+    value. The model keeps one row per target with the name in column 0 (scripts and tests
+    read it), but column 0 is hidden: a name beside three value columns got what they left
+    over in the default combo view, a few pixels ("D... top")."""
+
+    #: Pixels around the name inside its band.
+    PAD = 4
+
+    def __init__(self, table: QtGui.QTableWidget) -> None:
+        super().__init__(table)
+        self._table = table
+
+    def name_font(self) -> QtGui.QFont:
+        """The font of the names: the table's, bold (as the details table's titles)."""
+        font = QtGui.QFont(self._table.font())
+        font.setBold(True)
+        return font
+
+    def row_span(self) -> Tuple[int, int]:
+        """(left, width) in viewport pixels of the row's visible columns."""
+        table = self._table
+        visible = [c for c in range(table.columnCount()) if not table.isColumnHidden(c)]
+        if not visible:
+            return 0, table.viewport().width()
+        return table.columnViewportPosition(visible[0]), table.horizontalHeader().length()
+
+    def name_rect(self, row: int, top: int = 0) -> QtCore.QRect:
+        """Where row ``row``'s name is drawn (its band from ``top``): the row's width less the
+        padding, as tall as the name wrapped to it."""
+        left, width = self.row_span()
+        inner = QtCore.QRect(left + self.PAD, top + self.PAD // 2,
+                             max(width - 2 * self.PAD, 1), 100000)
+        metrics = QtGui.QFontMetrics(self.name_font())
+        text = self.name(row) or " "
+        bound = metrics.boundingRect(inner, name_flags(metrics, text, inner.width()), text)
+        return QtCore.QRect(inner.left(), inner.top(), inner.width(), bound.height())
+
+    def name(self, row: int) -> str:
+        """Row ``row``'s target name (column 0's text)."""
+        item = self._table.item(row, 0)
+        return item.text() if item is not None else ""
+
+    def band_height(self, row: int) -> int:
+        """The height of row ``row``'s name band (the name and its padding)."""
+        return self.name_rect(row).height() + self.PAD
+
+    def sizeHint(self, option: QtGui.QStyleOptionViewItem,
+                 index: QtCore.QModelIndex) -> QtCore.QSize:
+        size = super().sizeHint(option, index)
+        return QtCore.QSize(size.width(),
+                            size.height() + self.band_height(index.row()) + self.PAD // 2)
+
+    def paint(self, painter: QtGui.QPainter, option: QtGui.QStyleOptionViewItem,
+              index: QtCore.QModelIndex) -> None:
+        band = self.band_height(index.row())
+        cell = QtCore.QRect(option.rect)
+        painter.save()
+        # Each cell paints its own slice of the name: together the row shows it whole.
+        painter.setClipRect(QtCore.QRect(cell.left(), cell.top(), cell.width(), band))
+        painter.setFont(self.name_font())
+        painter.setPen(option.palette.color(QtGui.QPalette.Text))
+        rect = self.name_rect(index.row(), cell.top())
+        text = self.name(index.row())
+        painter.drawText(rect, name_flags(painter.fontMetrics(), text, rect.width()), text)
+        painter.restore()
+        value = QtGui.QStyleOptionViewItem(option)
+        value.rect = QtCore.QRect(cell.left(), cell.top() + band, cell.width(),
+                                  cell.height() - band - self.PAD // 2)  # clear of the rule
+        super().paint(painter, value, index)
+        painter.save()  # a rule under each target (the table draws no grid)
+        painter.setPen(option.palette.color(QtGui.QPalette.Mid))
+        painter.drawLine(cell.bottomLeft(), cell.bottomRight())
+        painter.restore()
+
+
+def name_flags(metrics: QtGui.QFontMetrics, text: str, width: int) -> int:
+    """How a name is laid out in its band: left, top, wrapped between words; anywhere when a
+    word is longer than the line ("Workplane_north_office"), which no word wrap can show."""
+    longest = max((metrics.horizontalAdvance(w) for w in text.split()), default=0)
+    wrap = QtCore.Qt.TextWrapAnywhere if longest > width else QtCore.Qt.TextWordWrap
+    return int(QtCore.Qt.AlignLeft | QtCore.Qt.AlignTop | wrap)
+
+
 class ResultsTable(QtGui.QWidget):
     """The results table, its "All columns" switch and the run's facts."""
 
@@ -153,6 +240,17 @@ class ResultsTable(QtGui.QWidget):
         self.table.setTextElideMode(QtCore.Qt.ElideRight)
         self.table.setWordWrap(True)  # only the verdict column is narrower than its text
         self.table.setVerticalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
+        self.table.setSelectionMode(QtGui.QAbstractItemView.NoSelection)
+        self.table.setShowGrid(False)  # a vertical grid line would cut through the names
+        self.names = NameAboveDelegate(self.table)
+        self.table.setItemDelegate(self.names)
+        self._fitted_width = -1
+        self._refit_timer = QtCore.QTimer(self)  # a child: never fires after the panel closed
+        self._refit_timer.setSingleShot(True)
+        self._refit_timer.setInterval(0)
+        self._refit_timer.timeout.connect(self._refit)
+        # A wider or narrower panel wraps the names differently: fit the rows again.
+        self.table.horizontalHeader().sectionResized.connect(self._width_changed)
         layout.addWidget(self.table)
         self.all_columns = QtGui.QCheckBox("All columns")
         self.all_columns.setToolTip("Show every figure with its confidence interval (Emin, "
@@ -231,23 +329,24 @@ class ResultsTable(QtGui.QWidget):
                     table.setItem(row, column, item)
 
     def layout_table(self, *args: Any) -> None:
-        """The essential columns, the target column taking the spare width; with "All
-        columns" the details table under it. Both as tall as their rows (the panel scrolls,
-        not the tables) and never wider than the panel."""
+        """The essential values (the names drawn above them, column 0 hidden), the Em column
+        taking the spare width; with "All columns" the details table under it. Both as tall
+        as their rows (the panel scrolls, not the tables) and never wider than the panel."""
         table = self.table
         header = table.horizontalHeader()
         for column, name in enumerate(COLUMNS):
-            table.setColumnHidden(column, name not in ESSENTIAL_COLUMNS)
+            table.setColumnHidden(column, name not in ESSENTIAL_COLUMNS or column == 0)
             header.setSectionResizeMode(column, QtGui.QHeaderView.ResizeToContents)
-        header.setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
-        # The verdict column as wide as "undecided": a longer text ("no limit set") wraps
-        # onto a second line instead of squeezing the target names to nothing.
+        header.setSectionResizeMode(COLUMNS.index("Em lx"), QtGui.QHeaderView.Stretch)
+        # The verdict column as wide as "undecided": a longer text ("no limit set",
+        # "undecided (est.)") wraps onto a second line instead of widening the table.
         check = COLUMNS.index("Check")
         header.setSectionResizeMode(check, QtGui.QHeaderView.Fixed)
         metrics = QtGui.QFontMetrics(table.font())
         table.setColumnWidth(check, metrics.horizontalAdvance("undecided") + 12)
         table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         _fit_height(table)
+        self._fitted_width = header.length()
         details = self.details
         every = self.all_columns.isChecked()
         details.setVisible(every and details.rowCount() > 0)
@@ -256,6 +355,18 @@ class ResultsTable(QtGui.QWidget):
         for column in (1, 2):
             header.setSectionResizeMode(column, QtGui.QHeaderView.ResizeToContents)
         _fit_height(details)
+
+
+    def _width_changed(self, *args: Any) -> None:
+        """The columns were resized (the panel's width changed): once the resizing is over,
+        fit the rows to the names as they now wrap."""
+        self._refit_timer.start()
+
+    def _refit(self) -> None:
+        width = self.table.horizontalHeader().length()
+        if width != self._fitted_width:  # only a new width: fitting changes heights only
+            self._fitted_width = width
+            _fit_height(self.table)
 
 
 def _fit_height(table: QtGui.QTableWidget) -> None:
