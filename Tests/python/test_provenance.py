@@ -256,3 +256,31 @@ def test_rescaled_results_belong_to_the_traced_scene_with_their_factors_noted(cl
         '  luminaire "spot" is dimmed by 1 but its group "accent" by 0.5: the results\' flux '
         "record is not the solver's"]
     assert lightsolver.verify_results(str(LAMPS), doc) == [r.stdout.splitlines()[1].strip()]
+
+
+def test_python_combine_records_its_traces_and_fluxes(lit_room, room_scene):
+    sim = lightsolver.Simulation(str(lit_room), backend="embree", threads=1)
+    groups = sim.groups
+    assert [g["name"] for g in groups] == ["panel 1", "panel 2", "panel 3", "panel 4", "down"]
+    traces = [sim.trace_group(g, 20000, 4) for g in range(len(groups))]
+    combined = sim.combine(traces, [g["flux_lm"] for g in groups])
+    run_ = sim.run(photons=20000, seed=4)
+    # Every group traced with the run's seed and combined at its flux is the run, bit for bit.
+    assert [t["mean_lux"] for t in combined["targets"]] == \
+        [t["mean_lux"] for t in run_["targets"]]
+    assert list(VALIDATOR.iter_errors(lightsolver_results.plain(combined))) == []
+    p = combined["provenance"]
+    assert p["command"].startswith("python: lightsolver.Simulation.combine")
+    same = lambda r: without_run_facts(r, also=("threads",))["provenance"]  # noqa: E731
+    assert same(combined) == same(run_)
+    assert combined["rescaled"] == {g["name"]: 1.0 for g in groups}
+    # Other fluxes: the panels at half, the downlight dark (no trace).
+    fluxes = [0.5 * g["flux_lm"] for g in groups[:4]] + [0.0]
+    dimmed = sim.combine(traces[:4] + [None], fluxes)
+    assert dimmed["rescaled"] == {**{g["name"]: 0.5 for g in groups[:4]}, "down": 0.0}
+    assert lightsolver_results.read(dimmed).rescaled == dimmed["rescaled"]
+    found = lightsolver.verify_document(str(lit_room), dimmed)
+    assert found["differences"] == [] and '"down" x 0' in found["notes"][0]
+    assert '"panel 1" x 0.5' in found["notes"][0]
+    refused = lightsolver.verify_results(str(room_scene), dimmed)
+    assert any("content differs" in d for d in refused)
