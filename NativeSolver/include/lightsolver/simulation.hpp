@@ -104,7 +104,8 @@ class Simulation {
   GroupTrace trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
                          const std::shared_ptr<ProcessGroup>& processes = nullptr);
 
-  /// Results from groups traced apart: `traces[g]` for group g (null: the group is dark) and
+  /// Results from groups traced apart: `traces[g]` for group g (null: the group is dark, and
+  /// its flux must be 0) and
   /// `flux_lm[g]` the flux each group emits now (its traced tallies are scaled to it: light is
   /// linear in a group's flux). Combining the traces of every group made with one seed equals
   /// run() with it, bit for bit, in every estimate. The results record each group's factor

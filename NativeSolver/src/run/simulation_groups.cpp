@@ -110,6 +110,10 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
       throw std::invalid_argument("combine: a group's flux must be finite and >= 0");
     }
     const GroupTrace* t = traces[g];
+    if (t == nullptr && flux_lm[g] > 0.0) {  // its light would be missing from the results
+      throw std::invalid_argument("combine: group " + std::to_string(g) +
+                                  " has a flux but no trace (a dark group's flux is 0)");
+    }
     if (t == nullptr) continue;
     if (t->group != g || t->bins.size() != bins) {
       throw std::invalid_argument("combine: trace " + std::to_string(g) + " is not that group's");
