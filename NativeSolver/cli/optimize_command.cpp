@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "backend_option.hpp"
+#include "command_line.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "lightsolver/output_file.hpp"
 #include "processes.hpp"
@@ -78,6 +79,7 @@ int run_optimize(OptimizeArgs& a) {
   if (a.static_n) a.overrides.screening_photons = 0;
   if (a.no_reuse) a.overrides.reuse_traces = false;
   a.overrides.processes = processes();
+  a.overrides.command = command_line();
   opt::Control control;
   control.cancel = &g_stop;
   if (!a.quiet)

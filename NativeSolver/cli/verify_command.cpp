@@ -30,14 +30,18 @@ std::string read_text(const std::string& path, const char* what) {
 
 int run_verify(const VerifyArgs& a) {
   try {
-    const std::vector<std::string> differences =
-        verify_results(a.scene, read_text(a.results, "results file"), a.results);
-    if (differences.empty()) {
-      std::cout << a.results << ": results belong to " << a.scene << "\n";
+    const Verification v =
+        verify_document(a.scene, read_text(a.results, "results file"), a.results);
+    const char* what = v.optimization ? "optimizer output" : "results";
+    if (v.differences.empty()) {
+      std::cout << a.results << ": " << what << " belong" << (v.optimization ? "s" : "") << " to "
+                << a.scene << "\n";
+      for (const std::string& n : v.notes) std::cout << "  note: " << n << "\n";
       return 0;
     }
-    std::cout << a.results << ": results do not belong to " << a.scene << ":\n";
-    for (const std::string& d : differences) std::cout << "  " << d << "\n";
+    std::cout << a.results << ": " << what << " do" << (v.optimization ? "es" : "")
+              << " not belong to " << a.scene << ":\n";
+    for (const std::string& d : v.differences) std::cout << "  " << d << "\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
@@ -76,11 +80,15 @@ void add_verify_command(CLI::App& app) {
   auto args = std::make_shared<VerifyArgs>();
   CLI::App* cmd = app.add_subcommand(
       "verify",
-      "Say whether a results file belongs to a scene: the scene's content and every file it "
-      "reads (meshes, photometric files, requirements table) unchanged since the results were "
-      "traced");
+      "Say whether a results file (or an optimizer's output) belongs to a scene: the scene's "
+      "content and every file it reads (meshes, photometric files, requirements table) "
+      "unchanged since the results were traced, and their flux record the solver's (rescaled "
+      "groups are noted)");
   cmd->add_option("scene", args->scene, "Scene file (lightsolver.scene/1 JSON)")->required();
-  cmd->add_option("results", args->results, "Results file (lightsolver.results/1)")->required();
+  cmd->add_option("results", args->results,
+                  "Results file (lightsolver.results/1) or optimizer output "
+                  "(lightsolver.optimization/1)")
+      ->required();
   cmd->callback([args] {
     if (const int rc = run_verify(*args); rc != 0) throw CLI::RuntimeError(rc);
   });

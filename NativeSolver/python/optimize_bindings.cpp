@@ -13,6 +13,7 @@
 
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "run_option_keywords.hpp"
 
 namespace py = pybind11;
 namespace opt = lightsolver::optimizer;
@@ -98,6 +99,7 @@ py::dict optimize_py(py::object scene, py::object optimization,
   const opt::SceneProblem problem = problem_from(scene, optimization);
   opt::RunOverrides o{iterations, seed, screening_photons, confirmation_photons, threads, backend};
   o.reuse_traces = reuse_traces;
+  o.command = python_command("optimize");
   std::atomic<bool> stop{false};
   opt::Control control;
   control.cancel = &stop;

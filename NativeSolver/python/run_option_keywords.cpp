@@ -67,7 +67,9 @@ bool listed(const char* name, std::initializer_list<const char*> names) {
 }  // namespace
 
 std::string python_command(const char* function) {
-  const bool simulation = std::strcmp(function, "run") == 0 || std::strcmp(function, "refine") == 0;
+  const bool simulation = std::strcmp(function, "run") == 0 ||
+                          std::strcmp(function, "refine") == 0 ||
+                          std::strcmp(function, "combine") == 0;
   std::string text =
       std::string("python: lightsolver.") + (simulation ? "Simulation." : "") + function;
   // The script that called it, where Python knows one (FreeCAD's embedded interpreter may not).

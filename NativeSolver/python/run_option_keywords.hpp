@@ -20,7 +20,8 @@ bool per_run_keyword(const lightsolver::RunOptionInfo& row);
 bool checkpointed_keyword(const lightsolver::RunOptionInfo& row);
 
 /// How a Python call started a run, for the results' provenance: "python: lightsolver.solve"
-/// ("Simulation.run" for `run` and `refine`), then " in " and sys.argv where it is not empty.
+/// ("Simulation.<function>" for `run`, `refine` and `combine`), then " in " and sys.argv where
+/// it is not empty.
 std::string python_command(const char* function);
 
 /// Sets `options` from the keywords of a call: each must be a row `take` accepts or one of

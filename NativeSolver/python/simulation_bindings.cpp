@@ -84,6 +84,44 @@ class PySimulation {
     return results_dict(r);
   }
 
+  // Group `group` traced alone (Simulation::trace_group): its share of a run of `photons`.
+  std::shared_ptr<GroupTrace> trace_group(std::size_t group, std::uint64_t photons,
+                                          std::uint64_t seed) {
+    std::lock_guard lock(locked(mutex_), std::adopt_lock);
+    py::gil_scoped_release nogil;
+    return std::make_shared<GroupTrace>(sim_->trace_group(group, photons, seed));
+  }
+
+  // `traces[g]`: group g's trace or None (dark); the results record the call as its command.
+  py::dict combine(const py::list& traces, const std::vector<double>& flux_lm, double confidence) {
+    std::vector<const GroupTrace*> parts;
+    for (const py::handle t : traces) {
+      parts.push_back(t.is_none() ? nullptr : &t.cast<const GroupTrace&>());
+    }
+    const std::string command = python_command("combine");
+    Results r;
+    {
+      std::lock_guard lock(locked(mutex_), std::adopt_lock);
+      py::gil_scoped_release nogil;
+      r = sim_->combine(parts, flux_lm, confidence);
+    }
+    if (r.provenance) r.provenance->command = command;
+    return results_dict(r);
+  }
+
+  py::list groups() {
+    std::lock_guard lock(locked(mutex_), std::adopt_lock);
+    py::list out;
+    for (const LuminaireGroup& g : sim_->groups()) {
+      py::dict d;
+      d["name"] = g.name;
+      d["flux_lm"] = g.flux_lm;
+      d["luminaires"] = g.luminaires;
+      out.append(d);
+    }
+    return out;
+  }
+
   void cancel() { cancel_.store(true); }
 
   std::uint64_t kept_photons() {
@@ -141,6 +179,14 @@ py::object progress_of(const py::kwargs& keywords) {
 }  // namespace
 
 void bind_simulation(py::module_& m) {
+  py::class_<GroupTrace, std::shared_ptr<GroupTrace>>(
+      m, "GroupTrace",
+      "One luminaire group's tallies, traced alone by Simulation.trace_group and summed into "
+      "results by Simulation.combine (docs/optimization.md, \"Reused traces\")")
+      .def_readonly("group", &GroupTrace::group)
+      .def_readonly("run_photons", &GroupTrace::run_photons)
+      .def_readonly("photons", &GroupTrace::photons)
+      .def_readonly("seed", &GroupTrace::seed);
   py::class_<PySimulation>(m, "Simulation",
                            "A scene prepared once for many runs with small changes between them "
                            "(docs/live.md): set_luminaire, set_mesh_transform, run, refine")
@@ -183,6 +229,22 @@ void bind_simulation(py::module_& m) {
            "Keywords:" +
            keywords_doc(refine_keyword) + "\n  progress=None: as solve()'s")
               .c_str())
+      .def_property_readonly(
+          "groups", &PySimulation::groups,
+          "The luminaire groups as the scene stands: dicts with name, flux_lm (emitted) and "
+          "luminaires (indices), in the order of their first luminaire")
+      .def("trace_group", &PySimulation::trace_group, py::arg("group"), py::arg("photons"),
+           py::arg("seed"),
+           "Traces luminaire group `group` alone: its share of a run of `photons` photons with "
+           "`seed`, equal bit for bit to that group's part of run(photons=..., seed=...). Returns "
+           "a GroupTrace for combine(). Raises InputError for an unknown or dark group.")
+      .def("combine", &PySimulation::combine, py::arg("traces"), py::arg("flux_lm"),
+           py::arg("confidence") = 0.95,
+           "Results (a dict as run() returns) from groups traced apart: traces[g] is group g's "
+           "GroupTrace or None (dark), flux_lm[g] the flux it emits now (its tallies are scaled "
+           "to it). Records every group's factor against the scene's flux in `rescaled` and a "
+           "provenance as run() does (docs/scene-format.md, \"Provenance\"): "
+           "lightsolver.verify_results accepts them for the scene file when it is unchanged.")
       .def("cancel", &PySimulation::cancel,
            "Stops the run in progress (any thread) after its current batch; its result is "
            "partial and its photons are kept")

@@ -157,9 +157,10 @@ def test_verify_cannot_verify_results_without_provenance(cli, lit_room, lit_resu
     path.write_text(json.dumps(res))
     r = run(cli, "verify", lit_room, path)
     assert r.returncode == 1 and "cannot be verified" in r.stdout
-    optimized = SOURCE_DIR / "Tests" / "golden" / "cornell.results.json"  # no results document
+    # An optimizer's output is verified as one (test_optimize_provenance.py): not this scene's.
+    optimized = SOURCE_DIR / "Tests" / "golden" / "cornell.results.json"
     r = run(cli, "verify", lit_room, optimized)
-    assert r.returncode == 1 and "format" in r.stderr
+    assert r.returncode == 1 and "optimizer output does not belong" in r.stdout
     assert lightsolver_results.read(res).provenance is None
     truncated = tmp_path / "truncated.json"
     truncated.write_text(json.dumps(OLD_RESULTS)[:30])
@@ -229,3 +230,57 @@ def test_check_lists_every_error_and_warning(cli, room_scene, tmp_path):
     assert "luminaires[0].flux_lm" in errors[0] and "2 errors" in r.stdout
     missing = run(cli, "check", tmp_path / "nowhere.json")
     assert missing.returncode == 1 and "nowhere.json" in missing.stdout + missing.stderr
+
+
+def test_rescaled_results_belong_to_the_traced_scene_with_their_factors_noted(cli, tmp_path):
+    # The golden rescale: the lamps scene's trace with three groups at other fluxes.
+    rescaled = SOURCE_DIR / "Tests" / "golden" / "lamps_rescaled.embree.results.json"
+    r = run(cli, "verify", LAMPS, rescaled)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert r.stdout.splitlines() == [
+        f"{rescaled}: results belong to {LAMPS}",
+        '  note: the same trace with other group fluxes: the scene\'s fluxes times the recorded '
+        'factors (rescaled): "accent" x 0.5, "downlights" x 1.7, "sun" x 0']
+    doc = json.loads(rescaled.read_text())
+    assert lightsolver_results.read(doc).rescaled == {
+        "accent": 0.5, "downlights": 1.7, "general": 1.0, "sun": 0.0}
+    assert lightsolver.verify_document(str(LAMPS), doc)["notes"] == \
+        [r.stdout.splitlines()[1][len("  note: "):]]
+    # A flux record that is not the solver's: the spot as traced while its group is halved.
+    doc["luminaires"][2]["dimming"] = 1.0
+    edited = tmp_path / "edited.json"
+    edited.write_text(json.dumps(doc))
+    r = run(cli, "verify", LAMPS, edited)
+    assert r.returncode == 1
+    assert r.stdout.splitlines()[1:] == [
+        '  luminaire "spot" is dimmed by 1 but its group "accent" by 0.5: the results\' flux '
+        "record is not the solver's"]
+    assert lightsolver.verify_results(str(LAMPS), doc) == [r.stdout.splitlines()[1].strip()]
+
+
+def test_python_combine_records_its_traces_and_fluxes(lit_room, room_scene):
+    sim = lightsolver.Simulation(str(lit_room), backend="embree", threads=1)
+    groups = sim.groups
+    assert [g["name"] for g in groups] == ["panel 1", "panel 2", "panel 3", "panel 4", "down"]
+    traces = [sim.trace_group(g, 20000, 4) for g in range(len(groups))]
+    combined = sim.combine(traces, [g["flux_lm"] for g in groups])
+    run_ = sim.run(photons=20000, seed=4)
+    # Every group traced with the run's seed and combined at its flux is the run, bit for bit.
+    assert [t["mean_lux"] for t in combined["targets"]] == \
+        [t["mean_lux"] for t in run_["targets"]]
+    assert list(VALIDATOR.iter_errors(lightsolver_results.plain(combined))) == []
+    p = combined["provenance"]
+    assert p["command"].startswith("python: lightsolver.Simulation.combine")
+    same = lambda r: without_run_facts(r, also=("threads",))["provenance"]  # noqa: E731
+    assert same(combined) == same(run_)
+    assert combined["rescaled"] == {g["name"]: 1.0 for g in groups}
+    # Other fluxes: the panels at half, the downlight dark (no trace).
+    fluxes = [0.5 * g["flux_lm"] for g in groups[:4]] + [0.0]
+    dimmed = sim.combine(traces[:4] + [None], fluxes)
+    assert dimmed["rescaled"] == {**{g["name"]: 0.5 for g in groups[:4]}, "down": 0.0}
+    assert lightsolver_results.read(dimmed).rescaled == dimmed["rescaled"]
+    found = lightsolver.verify_document(str(lit_room), dimmed)
+    assert found["differences"] == [] and '"down" x 0' in found["notes"][0]
+    assert '"panel 1" x 0.5' in found["notes"][0]
+    refused = lightsolver.verify_results(str(room_scene), dimmed)
+    assert any("content differs" in d for d in refused)

@@ -78,8 +78,29 @@ std::vector<std::string> verify_provenance(const std::string& scene_path,
 std::optional<Provenance> provenance_from_json(const std::string& text,
                                                const std::string& source = "");
 
-/// The same for results JSON text (read with results_from_json(), which names `source` and the
-/// field of a document that is no results document).
+/// What `lightsolver verify` finds: why a document does not belong to a scene file (empty: it
+/// belongs) and, for one that belongs, what it is beside a plain run of the scene.
+struct Verification {
+  std::vector<std::string> differences;
+  std::vector<std::string> notes;  ///< only when it belongs (no differences)
+  bool optimization = false;       ///< the document is an optimizer's output, not results
+};
+
+/// verify_provenance() for a document's JSON text, by its `format`:
+/// - results (read with results_from_json() when `validate`, which names `source` and the field
+///   of a document that is no results document; without it only `provenance`, `rescaled`,
+///   `groups` and `luminaires` are read): also its flux record. Results whose `rescaled` gives
+///   a group a factor (a rescale, a light scene, combined group traces) belong to the scene when
+///   its content and files are the traced ones and every luminaire's `dimming` is its group's
+///   factor and every group's `flux_lm` the sum of its luminaires' `emitted_flux_lm`: a note
+///   names the factors that are not 1.
+/// - an optimizer's output (lightsolver.optimization/1): also the optimization block it
+///   searched against the scene file's (`provenance.optimization_sha256`); a note says that it
+///   holds configurations, not results.
+Verification verify_document(const std::string& scene_path, const std::string& text,
+                             const std::string& source = "", bool validate = true);
+
+/// verify_document(...).differences for results JSON text.
 std::vector<std::string> verify_results(const std::string& scene_path,
                                         const std::string& results_text,
                                         const std::string& source = "");

@@ -5,6 +5,7 @@
 /// costs nothing; moving a mesh declared movable is an instance transform update, not a
 /// rebuild.
 
+#include <chrono>
 #include <glm/mat4x4.hpp>
 #include <memory>
 #include <string>
@@ -35,6 +36,9 @@ struct GroupTrace {
   std::uint64_t seed = 0;
   std::vector<Tally> bins;  ///< one per tally bin of the scene (layout internal)
   std::uint64_t ray_segments = 0, capped_paths = 0, cut_paths = 0;
+  /// When it was traced and by how many processes (the combined results' provenance).
+  std::chrono::system_clock::time_point started{}, finished{};
+  int mpi_ranks = 1;
 };
 
 class Simulation {
@@ -80,6 +84,10 @@ class Simulation {
   /// Seconds spent applying changes since the previous run (reported, then reset, by run()).
   double pending_update_seconds() const;
 
+  /// The backend that traces ("embree", "vulkan") and its device, as the backend reports it.
+  std::string backend_name() const;
+  std::string device() const;
+
   /// The luminaire groups, in the order of their first luminaire in the scene.
   std::vector<LuminaireGroup> groups() const;
 
@@ -96,15 +104,22 @@ class Simulation {
   GroupTrace trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
                          const std::shared_ptr<ProcessGroup>& processes = nullptr);
 
-  /// Results from groups traced apart: `traces[g]` for group g (null: the group is dark) and
+  /// Results from groups traced apart: `traces[g]` for group g (null: the group is dark, and
+  /// its flux must be 0) and
   /// `flux_lm[g]` the flux each group emits now (its traced tallies are scaled to it: light is
   /// linear in a group's flux). Combining the traces of every group made with one seed equals
-  /// run() with it, bit for bit, in every estimate. Throws std::invalid_argument when the
-  /// traces do not fit the scene.
+  /// run() with it, bit for bit, in every estimate. The results record each group's factor
+  /// against the scene as it stands in `rescaled` (as a rescale does: flux_lm[g] / the group's
+  /// flux; 0 for a dark group) and a provenance as run() does: the scene's source (none after
+  /// a change in memory), the traces' photons, processes, times and the simulation's backend,
+  /// device and threads; its `seed` option is null when the traces have different seeds.
+  /// Throws std::invalid_argument when the traces do not fit the scene.
   Results combine(const std::vector<const GroupTrace*>& traces, const std::vector<double>& flux_lm,
                   double confidence) const;
 
  private:
+  Provenance combined_provenance(const std::vector<const GroupTrace*>& traces,
+                                 const Results& r) const;
   Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);
   std::unique_ptr<detail::SimulationState> state_;
 };

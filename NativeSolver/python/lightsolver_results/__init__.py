@@ -25,13 +25,13 @@ import os
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple, Union
 
-from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, READ_TYPES, ResultsError, check, finite,
-                     plain, schema)
+from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, OPTIMIZATION_FORMAT, READ_TYPES,
+                     ResultsError, check, finite, plain, schema)
 from .provenance import Provenance, SourceFile, read_provenance, without_run_facts
 from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFlux, _migrate,
                         migrate)
 
-__all__ = ["FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "DERIVED_FLUX_NOTE",
+__all__ = ["FORMAT", "OPTIMIZATION_FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "DERIVED_FLUX_NOTE",
            "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "Target", "LuminaireFlux",
            "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
            "read", "load", "Provenance", "SourceFile", "without_run_facts"]
@@ -278,6 +278,14 @@ class Results:
         """The luminaires' flux is the solver's record of what it traced (not derived)."""
         return DERIVED_FLUX_NOTE not in self.notes and "luminaires" in self.doc
 
+    @property
+    def rescaled(self) -> Dict[str, float]:
+        """Each group's factor against the flux it was traced at, where the results are the
+        same trace with other group fluxes (a rescale, results combined from group traces);
+        empty for results as traced."""
+        factors = self.doc.get("rescaled")
+        return {str(k): float(v) for k, v in factors.items()} if isinstance(factors, dict) else {}
+
     def luminaire(self, name: str) -> Optional[LuminaireFlux]:
         return next((lum for lum in self.luminaires if lum.name == name), None)
 
@@ -299,6 +307,10 @@ def read(source: Union[Dict[str, Any], str, "os.PathLike[str]"],
     scene-file keys): judged on the point estimates of the targets the solver did not judge
     (:func:`migrate`; their ``estimated`` is set)."""
     doc = load(source) if not isinstance(source, dict) else source
+    if isinstance(doc, dict) and doc.get("format") == OPTIMIZATION_FORMAT:
+        raise ResultsError(f"an optimizer's output ({OPTIMIZATION_FORMAT}), not results: it holds "
+                           "configurations, not their light; trace the chosen configuration's "
+                           "scene for its results")
     if not isinstance(doc, dict) or doc.get("format", None if strict else FORMAT) != FORMAT:
         found = doc.get("format") if isinstance(doc, dict) else type(doc).__name__
         raise ResultsError(f"not a {FORMAT} document (format: {found!r})")

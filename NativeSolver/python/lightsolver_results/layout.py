@@ -10,6 +10,8 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional
 
 FORMAT = "lightsolver.results/1"
+#: An optimizer's output (docs/schemas/optimization.schema.json): configurations, not results.
+OPTIMIZATION_FORMAT = "lightsolver.optimization/1"
 #: Grid-cell numpy arrays that ``lightsolver.solve()`` adds beside the results layout.
 CELL_ARRAYS = ("cells_lux", "cells_ci_low_lux", "cells_ci_high_lux", "cells_hits")
 #: Target types whose result is a UGR (an observer grid's is its maximum over its points).

@@ -3,7 +3,7 @@
 results come from. ``lightsolver.verify_results`` compares it with a scene file."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional
 
 
@@ -35,10 +35,17 @@ class Provenance:
     finished_utc: str
     host: str
     command: str
+    #: An optimizer's output only (docs/optimization.md, "Provenance and configurations"): the
+    #: SHA-256 of the optimization block searched, and the domain (each variable's ``name``,
+    #: ``cells`` and ``min``/``max``/``periodic`` or ``levels``): how a member's cells give its
+    #: values. None and empty in results.
+    optimization_sha256: Optional[str] = None
+    domain: List[Dict[str, Any]] = field(default_factory=list)
 
 
 def read_provenance(doc: Dict[str, Any]) -> Optional[Provenance]:
-    """The document's provenance; None for results written before the solver recorded it."""
+    """The document's provenance (results, or an optimizer's output); None for one written
+    before the solver recorded it."""
     p = doc.get("provenance")
     if not isinstance(p, dict):
         return None
@@ -54,7 +61,10 @@ def read_provenance(doc: Dict[str, Any]) -> Optional[Provenance]:
         build_type=text("build_type"), backend=text("backend"), device=text("device"),
         mpi_ranks=int(p.get("mpi_ranks") or 1), threads=int(p.get("threads") or 0),
         options=dict(p.get("options") or {}), started_utc=text("started_utc"),
-        finished_utc=text("finished_utc"), host=text("host"), command=text("command"))
+        finished_utc=text("finished_utc"), host=text("host"), command=text("command"),
+        optimization_sha256=str(p["optimization_sha256"]) if p.get("optimization_sha256")
+        else None,
+        domain=[dict(d) for d in p.get("domain") or [] if isinstance(d, dict)])
 
 
 #: Provenance fields that say when, where and how a run was started, not what it computed:

@@ -1,6 +1,8 @@
 // SceneEvaluator: applies a configuration to a Simulation (luminaires replaced, movable meshes
 // placed by instance transform), traces it and reduces the Results to the intention's
 // estimates. Also the conservative U0 interval and the run / JSON helpers.
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -8,9 +10,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "types/luminaire_types.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "optimizer/group_traces.hpp"
+#include "optimizer/problem_provenance.hpp"
+#include "types/luminaire_types.hpp"
 
 namespace lightsolver::optimizer {
 namespace {
@@ -293,8 +296,15 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
   if (o.seed) opt.seed = *o.seed;
   if (o.screening_photons) opt.screening_photons = *o.screening_photons;
   if (o.confirmation_photons) opt.confirmation_photons = *o.confirmation_photons;
+  const auto started = std::chrono::system_clock::now();
   SceneEvaluator evaluator(problem, o.threads, o.backend, o.processes, o.reuse_traces);
-  return optimize(problem.domain, problem.intention, evaluator, opt, control);
+  OptimizationResult r = optimize(problem.domain, problem.intention, evaluator, opt, control);
+  const int threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
+  r.provenance = search_provenance(problem, opt, o.reuse_traces.value_or(problem.reuse_traces),
+                                   evaluator.backend_name(), evaluator.device(), threads,
+                                   o.processes ? o.processes->size() : 1, o.command, started,
+                                   std::chrono::system_clock::now());
+  return r;
 }
 
 std::string problem_result_json(const SceneProblem& problem, const OptimizationResult& result,
@@ -304,6 +314,7 @@ std::string problem_result_json(const SceneProblem& problem, const OptimizationR
   for (std::size_t i = 0; i < result.isoc.size(); ++i) {
     j["isoc"][i]["scene"] = describe_values(problem, result.isoc[i].values);
   }
+  if (result.provenance) j["provenance"] = search_provenance_json(problem, *result.provenance);
   return j.dump(indent);
 }
 

@@ -9,11 +9,12 @@
 #include <stdexcept>
 
 #include "io/json_reader.hpp"
-#include "types/luminaire_types.hpp"
-#include "scene/scene_document.hpp"
-#include "types/target_types.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "optimizer/placement_region.hpp"
+#include "scene/provenance.hpp"
+#include "scene/scene_document.hpp"
+#include "types/luminaire_types.hpp"
+#include "types/target_types.hpp"
 
 namespace lightsolver::optimizer {
 namespace {
@@ -403,6 +404,7 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
   SceneProblem p;
   p.scene = std::move(scene);
   p.file = file;
+  p.block_sha256 = lightsolver::detail::sha256_hex(lightsolver::detail::canonical_json(block));
   const JsonNode root(block, "optimization", p.file);
   root.require_object({"intention", "variables", "search"});
   p.intention = read_intention(root.at("intention"), p.scene);

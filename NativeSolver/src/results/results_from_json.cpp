@@ -235,6 +235,13 @@ void read_effects(const JsonNode& root, Results& r) {
 Results results_from_json(const std::string& text, const std::string& source) {
   const nlohmann::json doc = detail::parse_json_text(text, source);
   const JsonNode root(doc, "", source);
+  if (root.at("format").string() == kOptimizationFormat) {
+    root.at("format").fail(
+        std::string("an optimizer's output (") + kOptimizationFormat +
+        "), not results: it holds configurations, not their light; trace the chosen "
+        "configuration's scene for its results (docs/optimization.md, \"Provenance and "
+        "configurations\"), or `lightsolver verify SCENE` it against its scene");
+  }
   if (root.at("format").string() != kResultsFormat) {
     root.at("format").fail(std::string("expected \"") + kResultsFormat + "\"");
   }

@@ -4,17 +4,23 @@
 // traces of groups a configuration did not change, and traces no photon for a flux change.
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "estimate/decide.hpp"
-#include "model/groups.hpp"
 #include "estimate/run_results.hpp"
+#include "lightsolver/simulation.hpp"
+#include "model/groups.hpp"
 #include "run/shared_tracing.hpp"
 #include "run/simulation_state.hpp"
-#include "lightsolver/simulation.hpp"
+#include "scene/provenance.hpp"
 
 namespace lightsolver {
+
+std::string Simulation::backend_name() const { return state_->backend->name(); }
+
+std::string Simulation::device() const { return state_->backend->device(); }
 
 std::vector<LuminaireGroup> Simulation::groups() const {
   std::vector<LuminaireGroup> out;
@@ -57,6 +63,8 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
   }
   check_photon_count(run_photons, scene.settings.max_bounces, "", "photons");
   GroupTrace out;
+  out.started = std::chrono::system_clock::now();
+  out.mpi_ranks = processes ? processes->size() : 1;
   out.group = group;
   out.run_photons = run_photons;
   out.photons = detail::group_photons(p.groups, run_photons)[group];
@@ -79,6 +87,7 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
   out.ray_segments = block.ray_segments;
   out.capped_paths = block.capped_paths;
   out.cut_paths = block.cut_paths;
+  out.finished = std::chrono::system_clock::now();
   return out;
 }
 
@@ -101,6 +110,10 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
       throw std::invalid_argument("combine: a group's flux must be finite and >= 0");
     }
     const GroupTrace* t = traces[g];
+    if (t == nullptr && flux_lm[g] > 0.0) {  // its light would be missing from the results
+      throw std::invalid_argument("combine: group " + std::to_string(g) +
+                                  " has a flux but no trace (a dark group's flux is 0)");
+    }
     if (t == nullptr) continue;
     if (t->group != g || t->bins.size() != bins) {
       throw std::invalid_argument("combine: trace " + std::to_string(g) + " is not that group's");
@@ -134,9 +147,41 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
     if (p.groups[g].flux_lm > 0.0) dimming[g] = flux_lm[g] / p.groups[g].flux_lm;
   }
   r.luminaires = detail::luminaire_results(scene, p, dimming);
+  for (std::size_t g = 0; g < groups; ++g) r.rescaled.emplace_back(p.groups[g].name, dimming[g]);
   detail::add_verdicts(r);
   detail::add_warnings(scene, r);
+  r.provenance = combined_provenance(traces, r);
   return r;
+}
+
+// The provenance of combined traces: what run() records, with the traces' own run facts.
+Provenance Simulation::combined_provenance(const std::vector<const GroupTrace*>& traces,
+                                           const Results& r) const {
+  auto started = std::chrono::system_clock::time_point::max();
+  auto finished = std::chrono::system_clock::time_point::min();
+  int ranks = 1;
+  bool one_seed = true;
+  for (const GroupTrace* t : traces) {
+    if (t == nullptr) continue;
+    started = std::min(started, t->started);
+    finished = std::max(finished, t->finished);
+    ranks = std::max(ranks, t->mpi_ranks);
+    one_seed = one_seed && t->seed == r.seed;
+  }
+  if (started > finished) started = finished = std::chrono::system_clock::now();  // all dark
+  SolveOptions options;
+  options.command = "library call: Simulation::combine (group traces)";
+  const int threads =
+      state_->threads > 0 ? state_->threads : tbb::this_task_arena::max_concurrency();
+  Provenance p = detail::run_provenance(state_->scene, options, r, threads,
+                                        state_->backend->device(), started, finished);
+  p.mpi_ranks = ranks;
+  if (!one_seed) {  // each group's own seed (the optimizer's reused traces): no single one
+    for (auto& [name, value] : p.options) {
+      if (name == "seed") value = OptionValue();
+    }
+  }
+  return p;
 }
 
 }  // namespace lightsolver

@@ -163,13 +163,13 @@ OptionValue resolved_option(std::string_view name, const Results& r, const Scene
                          "\" has no resolved value (provenance.cpp)");
 }
 
+}  // namespace
+
 std::string host_name() {
   char name[HOST_NAME_MAX + 1] = {};
   if (gethostname(name, sizeof name - 1) != 0 || !name[0]) return "unknown";
   return name;
 }
-
-}  // namespace
 
 std::string sha256_hex(std::string_view bytes) {
   Digest d = new_sha256();

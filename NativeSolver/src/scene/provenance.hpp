@@ -42,6 +42,9 @@ Provenance run_provenance(const Scene& scene, const SolveOptions& options, const
                           std::chrono::system_clock::time_point started,
                           std::chrono::system_clock::time_point finished);
 
+/// This machine's host name ("unknown" when it has none).
+std::string host_name();
+
 /// "2025-01-31T09:30:00Z".
 std::string utc_text(std::chrono::system_clock::time_point t);
 

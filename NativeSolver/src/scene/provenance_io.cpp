@@ -1,12 +1,16 @@
 // The results' "provenance" object both ways, and whether results belong to a scene file
 // (`lightsolver verify`, Python's lightsolver.verify_results).
+#include <algorithm>
 #include <climits>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
+#include "lightsolver/defaults.hpp"
+#include "lightsolver/results_io.hpp"
 #include "scene/provenance.hpp"
 #include "scene/scene_document.hpp"
-#include "lightsolver/results_io.hpp"
 
 namespace lightsolver {
 namespace detail {
@@ -153,10 +157,145 @@ std::vector<std::string> verify_provenance(const std::string& scene_path,
   return out;
 }
 
+namespace {
+
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+double number_or(const nlohmann::json& j, const char* key, double fallback) {
+  return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+}
+
+std::string text_or(const nlohmann::json& j, const char* key) {
+  return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : "";
+}
+
+// "Fluxes as recorded": every luminaire dimmed by its group's factor in `rescaled` (1 without
+// one) and every group's flux the sum of its luminaires' emitted flux, as the solver writes them
+// (a run, a rescale, combined group traces). Results from before `luminaires` have nothing to
+// check. The factors that are not 1 are noted: the results are the scene's light with them.
+void check_flux_record(const nlohmann::json& doc, Verification& v) {
+  std::map<std::string, double> factor;
+  if (doc.contains("rescaled") && doc["rescaled"].is_object()) {
+    for (const auto& [name, f] : doc["rescaled"].items()) {
+      if (f.is_number()) factor[name] = f.get<double>();
+    }
+  }
+  const nlohmann::json none = nlohmann::json::array();
+  const nlohmann::json& groups = doc.contains("groups") ? doc["groups"] : none;
+  const nlohmann::json& luminaires = doc.contains("luminaires") ? doc["luminaires"] : none;
+  if (!groups.is_array() || !luminaires.is_array()) return;
+  std::map<std::string, double> emitted;
+  for (const nlohmann::json& l : luminaires) {
+    const std::string group = text_or(l, "group");
+    const auto f = factor.find(group);
+    const double expected = f == factor.end() ? 1.0 : f->second;
+    const double dimming = number_or(l, "dimming", expected);
+    if (!(std::abs(dimming - expected) <= 1e-12 * std::max(1.0, expected))) {
+      v.differences.push_back("luminaire \"" + text_or(l, "name") + "\" is dimmed by " +
+                              number_text(dimming) + " but its group \"" + group + "\" by " +
+                              number_text(expected) +
+                              ": the results' flux record is not the solver's");
+    }
+    emitted[group] += number_or(l, "emitted_flux_lm", 0.0);
+  }
+  std::map<std::string, bool> known;
+  for (const nlohmann::json& g : groups) {
+    const std::string name = text_or(g, "name");
+    known[name] = true;
+    const double flux = number_or(g, "flux_lm", 0.0);
+    if (!luminaires.empty() && !(std::abs(flux - emitted[name]) <= 1e-9 * std::max(1.0, flux))) {
+      v.differences.push_back("luminaire group \"" + name + "\" emits " + number_text(flux) +
+                              " lm, its luminaires " + number_text(emitted[name]) +
+                              " lm: the results' flux record is not the solver's");
+    }
+  }
+  std::string scaled;
+  for (const auto& [name, f] : factor) {
+    if (!groups.empty() && !known.contains(name)) {
+      v.differences.push_back("the results rescale luminaire group \"" + name +
+                              "\", which they do not hold");
+    } else if (f != 1.0) {
+      scaled += (scaled.empty() ? "" : ", ") + ("\"" + name + "\" x " + number_text(f));
+    }
+  }
+  if (!scaled.empty()) {
+    v.notes.push_back(
+        "the same trace with other group fluxes: the scene's fluxes times the "
+        "recorded factors (rescaled): " +
+        scaled);
+  }
+}
+
+// An optimizer's output: its provenance and the optimization block it searched.
+void verify_optimization(const std::string& scene_path, const nlohmann::json& doc,
+                         const std::string& source, Verification& v) {
+  v.optimization = true;
+  if (!doc.contains("provenance") || doc["provenance"].is_null()) {
+    v.differences.push_back(
+        "the optimizer's output carries no provenance (written by a solver that did not record "
+        "it): it cannot be verified against this scene; run the search again");
+    return;
+  }
+  const std::optional<Provenance> p =
+      detail::read_provenance(detail::JsonNode(doc["provenance"], "provenance", source));
+  v.differences = verify_provenance(scene_path, p);
+  if (p->scene_sha256) {
+    const nlohmann::json scene =
+        detail::parse_json_text(detail::read_scene_text(scene_path), scene_path);
+    const std::string searched = text_or(doc["provenance"], "optimization_sha256");
+    const std::string now = scene.contains("optimization")
+                                ? detail::sha256_hex(detail::canonical_json(scene["optimization"]))
+                                : "";
+    if (now.empty()) {
+      v.differences.push_back("the scene has no optimization block now");
+    } else if (searched != now) {
+      v.differences.push_back(
+          "the optimization block searched differs from the scene's (changed since, or given "
+          "in its place)");
+    }
+  }
+  v.notes.push_back(
+      "an optimizer's output (lightsolver.optimization/1), not results: each ISOC member is the "
+      "scene with its values applied (docs/optimization.md, \"Provenance and configurations\")");
+}
+
+// Results: read in full (`validate`) or only their provenance and flux record (Python's dicts).
+void verify_results_document(const std::string& scene_path, const nlohmann::json& doc,
+                             const std::string& text, const std::string& source, bool validate,
+                             Verification& v) {
+  std::optional<Provenance> p;
+  if (validate) {
+    p = results_from_json(text, source).provenance;
+  } else if (doc.is_object() && doc.contains("provenance") && !doc["provenance"].is_null()) {
+    p = detail::read_provenance(detail::JsonNode(doc["provenance"], "provenance", source));
+  }
+  v.differences = verify_provenance(scene_path, p);
+  if (p) check_flux_record(doc, v);
+}
+
+}  // namespace
+
+Verification verify_document(const std::string& scene_path, const std::string& text,
+                             const std::string& source, bool validate) {
+  const nlohmann::json doc = detail::parse_json_text(text, source);
+  Verification v;
+  if (doc.is_object() && doc.contains("format") && doc["format"] == kOptimizationFormat) {
+    verify_optimization(scene_path, doc, source, v);
+  } else {
+    verify_results_document(scene_path, doc, text, source, validate, v);
+  }
+  if (!v.differences.empty()) v.notes.clear();
+  return v;
+}
+
 std::vector<std::string> verify_results(const std::string& scene_path,
                                         const std::string& results_text,
                                         const std::string& source) {
-  return verify_provenance(scene_path, results_from_json(results_text, source).provenance);
+  return verify_document(scene_path, results_text, source).differences;
 }
 
 }  // namespace lightsolver

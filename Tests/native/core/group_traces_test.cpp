@@ -123,6 +123,8 @@ TEST(GroupTraceErrors, BadGroupsWeightsAndTracesAreRefused) {
   EXPECT_THROW(sim.combine({&left, &left, nullptr}, {1, 1, 0}, 0.95),    // not group 1's
                std::invalid_argument);
   EXPECT_THROW(sim.combine({&left, nullptr, nullptr}, {-1, 0, 0}, 0.95), std::invalid_argument);
+  // A group without a trace is dark: a flux for it would be recorded but its light missing.
+  EXPECT_THROW(sim.combine({&left, nullptr, nullptr}, {1, 5, 0}, 0.95), std::invalid_argument);
   EXPECT_THROW(sim.combine({&left, nullptr, nullptr}, {1, 0, 0}, 1.0), InputError);
   const Results ok = sim.combine({&left, nullptr, nullptr}, {1, 0, 0}, 0.95);
   EXPECT_GT(ok.targets[1].estimate.mean, 0.0);

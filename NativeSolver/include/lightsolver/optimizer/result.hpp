@@ -6,12 +6,14 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "lightsolver/optimizer/domain.hpp"
 #include "lightsolver/optimizer/intention.hpp"
 #include "lightsolver/optimizer/isoc.hpp"
+#include "lightsolver/provenance.hpp"
 #include "lightsolver/statistics.hpp"
 
 namespace lightsolver::optimizer {
@@ -89,6 +91,8 @@ struct OptimizationResult {
   Counters counters;
   StopReason stop = StopReason::kIterationLimit;
   std::vector<IterationStats> history;  ///< one entry per iteration (if requested)
+  /// Where the search comes from (run_problem() sets it; the engine alone does not).
+  std::optional<Provenance> provenance;
 };
 
 /// JSON text ("lightsolver.optimization/1", described in docs/optimization.md).

@@ -78,6 +78,9 @@ struct SceneProblem {
   /// configuration searched; positions are always distinct (docs/optimization.md §10).
   double min_spacing_m = 0.0;
   std::string file;  ///< for messages
+  /// SHA-256 of the optimization block's canonical JSON (the scene file's, or the one given in
+  /// its place): the output's provenance.optimization_sha256.
+  std::string block_sha256;
 
   /// Meshes that translation or rotation variables move (Simulation::Options::movable_meshes).
   std::vector<std::string> movable_meshes() const;
@@ -143,6 +146,9 @@ class SceneEvaluator final : public Evaluator {
   const Scene& scene() const { return simulation_.scene(); }
   /// Results of the last trace (for tests and pictures).
   const Results& last_results() const { return last_; }
+  /// The backend that traces and its device (the search's provenance).
+  std::string backend_name() const { return simulation_.backend_name(); }
+  std::string device() const { return simulation_.device(); }
 
  private:
   struct Reuse;  // the trace plan and the kept group traces (group_traces.hpp)
@@ -165,13 +171,18 @@ struct RunOverrides {
   std::string backend = kAutoBackend;       ///< a name from lightsolver::backends()
   std::shared_ptr<ProcessGroup> processes;  ///< MPI ranks sharing every trace (null: alone)
   std::optional<bool> reuse_traces;         ///< overrides SceneProblem::reuse_traces
+  /// How the search was started, for its provenance: the CLI's command line, "python: ...".
+  std::string command;
 };
 
-/// Builds a SceneEvaluator and runs optimize() with the problem's search settings.
+/// Builds a SceneEvaluator and runs optimize() with the problem's search settings. The result's
+/// provenance records the base scene's source, the build, backend, device, processes, threads,
+/// the resolved search settings, the times, host and `overrides.command`.
 OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& overrides,
                                const Control& control = {});
 
-/// to_json(result) with, per ISOC member, `"scene": describe_values(...)` added.
+/// to_json(result) with, per ISOC member, `"scene": describe_values(...)` added, and the
+/// result's `provenance` (with the block's hash and the domain searched) when it has one.
 std::string problem_result_json(const SceneProblem& problem, const OptimizationResult& result,
                                 int indent = 2);
 
