@@ -22,6 +22,7 @@
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "lightsolver/study.hpp"
+#include "daylight_bindings.hpp"
 #include "optimize_bindings.hpp"
 #include "provenance_bindings.hpp"
 #include "run_option_keywords.hpp"
@@ -449,4 +450,5 @@ PYBIND11_MODULE(lightsolver, m) {
   bind_simulation(m);  // lightsolver.Simulation
   bind_types(m);       // lightsolver.luminaire_types(), target_types()
   bind_provenance(m);  // lightsolver.verify_results
+  bind_daylight(m);    // lightsolver.sun_position, read_weather
 }

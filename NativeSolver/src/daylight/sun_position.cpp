@@ -38,7 +38,7 @@ constexpr double kObliquityJ2000Deg = 23.4392911;  // IAU 1980, 23°26'21.448"
 constexpr double kAberrationArcsec = 20.4898;      // Meeus ch. 25, divided by R in AU
 
 void require(bool ok, const std::string& field, const std::string& what) {
-  if (!ok) throw InputError("", field, what);
+  if (!ok) throw InputError(detail::kSunInputs, field, what);
 }
 
 void require_range(double v, double lo, double hi, const std::string& field,

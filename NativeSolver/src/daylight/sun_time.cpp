@@ -27,7 +27,7 @@ class Iso8601 {
   Iso8601(std::string_view text, const std::string& field) : s_(text), field_(field) {}
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw InputError("", field_,
+    throw InputError(detail::kSunInputs, field_,
                      "'" + std::string(s_) +
                          "' is not an ISO 8601 date-time "
                          "(YYYY-MM-DDThh:mm[:ss][Z|±hh:mm]): " +
@@ -81,9 +81,13 @@ class Iso8601 {
     }
     std::optional<double> zone = read_zone(pos);
     if (zone && utc_offset_h && std::abs(*zone - *utc_offset_h) > 1e-9)
-      fail("its zone disagrees with the time zone given besides it");
+      throw InputError(
+          detail::kSunInputs, field_,
+          "'" + std::string(s_) + "': its zone disagrees with the time zone given beside it");
     if (!zone && !utc_offset_h)
-      fail("no time zone: add Z or ±hh:mm, or give the time zone (--tz or --utc)");
+      throw InputError(detail::kSunInputs, field_,
+                       "'" + std::string(s_) +
+                           "' has no time zone: add Z (UTC) or ±hh:mm, or give the zone beside it");
     t.utc_offset_h = zone ? *zone : *utc_offset_h;
     if (!std::isfinite(t.utc_offset_h) || std::abs(t.utc_offset_h) > 14)
       fail("the time zone must be −14 … 14 h");
