@@ -42,8 +42,8 @@ struct SunOptions {
   bool refraction = true;
   double pressure_mbar = 1010.0;  ///< annual mean local pressure, 500 … 1100 mbar
   double temperature_c = 10.0;    ///< annual mean local temperature, −90 … 60 °C
-  /// ΔT = TT − UT1 in seconds; absent: libnova's estimate for the date (a few seconds off in this
-  /// century, which moves the sun by about 0.0001°).
+  /// ΔT = TT − UT1 in seconds; absent: Espenak & Meeus' polynomial for 1986 … 2050 (a few
+  /// seconds off: about 0.0001° of the sun's position), libnova's estimate outside it.
   std::optional<double> delta_t_s;
 };
 

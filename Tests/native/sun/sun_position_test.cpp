@@ -104,6 +104,12 @@ TEST(SunPosition, AgreesWithNoaaAcrossAYear) {
       compared, worst_at, worst_day, worst_elevation);
 }
 
+// ΔT by default: Espenak & Meeus' polynomial, near the observed 64.5 s (2003) and 69.2 s (2026).
+TEST(SunPosition, DefaultDeltaTIsNearTheObserved) {
+  EXPECT_NEAR(sun_position(kGolden, kSpaTime).delta_t_s, 64.5, 1.0);
+  EXPECT_NEAR(sun_position(kGolden, {2026, 6, 1, 12, 0, 0, 0}).delta_t_s, 69.2, 7.0);
+}
+
 TEST(SunPosition, DirectionInTheSceneFrame) {
   SunPosition p;
   p.elevation_deg = 0.0;
