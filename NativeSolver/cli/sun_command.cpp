@@ -75,6 +75,7 @@ std::string flag_message(const InputError& e) {
   std::string flag = e.where();
   for (const auto& [field, name] : kFlags)
     if (flag.rfind(field, 0) == 0) flag = name;
+  if (what.find("has no time zone") != std::string::npos) what += ", or give --tz or --utc";
   return flag + ": " + what;
 }
 

@@ -86,8 +86,7 @@ class Iso8601 {
           "'" + std::string(s_) + "': its zone disagrees with the time zone given beside it");
     if (!zone && !utc_offset_h)
       throw InputError(detail::kSunInputs, field_,
-                       "'" + std::string(s_) +
-                           "' has no time zone: add Z (UTC) or ±hh:mm, or give the zone beside it");
+                       "'" + std::string(s_) + "' has no time zone: add Z (UTC) or ±hh:mm");
     t.utc_offset_h = zone ? *zone : *utc_offset_h;
     if (!std::isfinite(t.utc_offset_h) || std::abs(t.utc_offset_h) > 14)
       fail("the time zone must be −14 … 14 h");
