@@ -95,3 +95,26 @@ def test_weather_cli(cli, tmp_path):
     bad.write_text("\n".join(CHICAGO.read_text().splitlines()[:100]) + "\n")
     r = run(cli, "weather", str(bad))
     assert r.returncode == 1 and "cut.epw: line 100" in r.stderr and "92 hourly rows" in r.stderr
+
+
+def test_a_sun_luminaire_from_python_takes_its_position():
+    """Scene.add_light(..., 'sun', site=..., time=...) passes the keys to the scene reader: the
+    beam's flux is E · opening area · sin(elevation) for a horizontal opening."""
+    import numpy as np
+
+    s = lightsolver.Scene()
+    s.add_material("grey", "diffuse", reflectance=0.5)
+    s.add_mesh("floor", np.array([[-9, -9, 0], [9, -9, 0], [9, 9, 0], [-9, 9, 0]], float),
+               np.array([[0, 1, 2], [0, 2, 3]]), "grey")
+    site = {"latitude_deg": 48.85, "longitude_deg": 2.35}
+    s.add_light("sun", "sun", illuminance_lx=85000, site=site, time="2026-06-21T14:00+02:00",
+                corner=[-3, -3, 3], edge1=[0, 6, 0], edge2=[6, 0, 0])
+    s.add_target("floor", "surface", mesh="floor")
+    s.validate()
+    elevation = lightsolver.sun_position(48.85, 2.35, "2026-06-21T14:00+02:00")["elevation_deg"]
+    assert s.total_flux_lm == pytest.approx(85000 * 36 * math.sin(math.radians(elevation)),
+                                            rel=1e-9)
+    s.add_light("bad", "sun", illuminance_lx=1, site={"latitude_deg": 98, "longitude_deg": 0},
+                time="2026-06-21T14:00Z", corner=[0, 0, 3], edge1=[0, 1, 0], edge2=[1, 0, 0])
+    with pytest.raises(lightsolver.InputError, match=r"luminaires\[1\]\.site\.latitude_deg"):
+        s.validate()
