@@ -159,7 +159,7 @@ class Reader {
            std::to_string(fields.size()) + " (a truncated or damaged file?)");
     WeatherHour h;
     h.line = line_;
-    h.year = static_cast<int>(number(fields[0], "year"));
+    h.year = static_cast<int>(in_range(number(fields[0], "year"), -9999, 9999, "year"));
     h.month = static_cast<int>(in_range(number(fields[f::kMonth], "month"), 1, 12, "month"));
     const int days = detail::days_in_month(leap ? 2000 : 2001, h.month);
     h.day = static_cast<int>(in_range(number(fields[f::kDay], "day"), 1, days, "day"));

@@ -147,6 +147,13 @@ TEST(Epw, MalformedFilesNameFileAndLine) {
                      "line 12")
                 .find("expected month 1, day 1, hour 4"),
             std::string::npos);
+  // A year no int holds.
+  EXPECT_NE(error_of(replace_line(year, 12,
+                                  "1e300,1,1,4,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
+                                  "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
+                     "line 12")
+                .find("year 1e+300"),
+            std::string::npos);
   // Month 13.
   EXPECT_NE(error_of(replace_line(year, 12,
                                   "2001,13,1,4,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
