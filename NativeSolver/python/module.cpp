@@ -11,6 +11,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "daylight_bindings.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/cost.hpp"
 #include "lightsolver/defaults.hpp"
@@ -22,7 +23,6 @@
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
 #include "lightsolver/study.hpp"
-#include "daylight_bindings.hpp"
 #include "optimize_bindings.hpp"
 #include "provenance_bindings.hpp"
 #include "run_option_keywords.hpp"

@@ -17,8 +17,8 @@ using detail::find_luminaire_type;
 using detail::luminaire_type;
 using detail::luminaire_types;
 
-constexpr Luminaire::Type kAll[] = {Luminaire::Type::Point, Luminaire::Type::Spot,
-                                    Luminaire::Type::Area, Luminaire::Type::Directional,
+constexpr Luminaire::Type kAll[] = {Luminaire::Type::Point,       Luminaire::Type::Spot,
+                                    Luminaire::Type::Area,        Luminaire::Type::Directional,
                                     Luminaire::Type::Photometric, Luminaire::Type::Sun};
 
 TEST(LuminaireTypes, OneCompleteRowPerType) {
