@@ -27,6 +27,7 @@
 #include "rescale_command.hpp"
 #include "run_option_flags.hpp"
 #include "study_command.hpp"
+#include "sun_command.hpp"
 #include "verify_command.hpp"
 
 namespace {
@@ -280,6 +281,8 @@ int run_command_line(int argc, char** argv) {
   lightsolver::cli::add_report_command(app);    // execs python3 -m lightsolver_report
   lightsolver::cli::add_verify_command(app);    // runs from its own callback
   lightsolver::cli::add_check_command(app);     // runs from its own callback
+  lightsolver::cli::add_sun_command(app);       // runs from its own callback
+  lightsolver::cli::add_weather_command(app);   // runs from its own callback
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);

@@ -11,6 +11,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "daylight_bindings.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/cost.hpp"
 #include "lightsolver/defaults.hpp"
@@ -449,4 +450,5 @@ PYBIND11_MODULE(lightsolver, m) {
   bind_simulation(m);  // lightsolver.Simulation
   bind_types(m);       // lightsolver.luminaire_types(), target_types()
   bind_provenance(m);  // lightsolver.verify_results
+  bind_daylight(m);    // lightsolver.sun_position, read_weather
 }

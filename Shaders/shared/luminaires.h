@@ -26,7 +26,8 @@
   X(Spot, 1, HAS_SPOT, emit_spot)                      \
   X(Area, 2, HAS_AREA, emit_area)                      \
   X(Directional, 3, HAS_DIRECTIONAL, emit_directional) \
-  X(Photometric, 4, HAS_PHOTOMETRIC, emit_photometric)
+  X(Photometric, 4, HAS_PHOTOMETRIC, emit_photometric) \
+  X(Sun, 5, HAS_SUN, emit_sun)
 
 #ifdef __cplusplus
 namespace lightsolver::shared {
@@ -77,6 +78,33 @@ LS_EMISSION(emit_area) {
 LS_EMISSION(emit_directional) {
   origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2 LS_RNG_ARG), l.axis);
   dir = l.axis;
+}
+
+// The sun: the directional beam through its opening, its directions spread over the solar disc
+// (uniform radiance over the cap of angular radius α about the axis d), as many photons per
+// direction as the opening's area across it, |n·ω|. That density is uniform in the disc's
+// projection onto the opening's plane (projected solid angle), an ellipse: centre cos α sin θ u,
+// semi-axes sin α cos θ along u and sin α along w = n × u (cos θ = n·d, n turned toward d).
+// Drawn there, then lifted back onto the sphere: exact, no rejection loop. The record
+// (types/luminaire_sun.cpp): axis d, position u, half_beam_rad sin α, half_field_rad n·d (its
+// sign says which way n = edge1 × edge2 turns), cos_half_field 1 − sin θ cos α. Its flux
+// E·A·|n·d| is then exact: the cap projects to π sin²α cos θ, to π sin²α across the beam.
+LS_FN vec3 sun_cross(vec3 a, vec3 b) {
+  return vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+LS_EMISSION(emit_sun) {
+  origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2 LS_RNG_ARG), l.axis);
+  const float rho = sqrt(LS_UNIFORM());
+  const float phi = 2.0f * kPi * LS_UNIFORM();
+  const float x = rho * cos(phi), y = rho * sin(phi);
+  const float cos_t = abs(l.half_field_rad), r = l.half_beam_rad;
+  const vec3 n = (l.half_field_rad < 0.0f ? -1.0f : 1.0f) * normalize(sun_cross(l.edge1, l.edge2));
+  // a: the point's coordinate along u, 1 − a kept apart so that 1 − a² does not cancel.
+  const float one_minus_a = l.cos_half_field - r * cos_t * x;
+  const float a = 1.0f - one_minus_a, b = r * y;
+  const float h = sqrt(max(0.0f, one_minus_a * (1.0f + a) - b * b));
+  dir = normalize(a * l.position + b * sun_cross(n, l.position) + h * n);
 }
 
 #ifdef __cplusplus

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "lightsolver/compliance.hpp"
+#include "lightsolver/daylight.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/provenance.hpp"
@@ -60,7 +61,7 @@ struct Mesh {
 
 /// Light source. Fields not used by a type keep their defaults.
 struct Luminaire {
-  enum class Type { Point, Spot, Area, Directional, Photometric };
+  enum class Type { Point, Spot, Area, Directional, Photometric, Sun };
   std::string name;
   Type type = Type::Point;
   double flux_lm = 0.0;            ///< emitted flux (directional: derived from illuminance_lx)
@@ -70,6 +71,14 @@ struct Luminaire {
   double field_angle_deg = 0.0;    ///< spot: full angle at 10 % of peak intensity
   glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};  ///< area / directional parallelogram
   double illuminance_lx = 0.0;                     ///< directional: illuminance normal to the beam
+  /// Sun: where and when, when its beam's `direction` is computed from them (check() sets it);
+  /// empty: `direction` is given. `time` is ISO 8601 with its zone; `north_deg` is the model's
+  /// true north from +y, counter-clockwise seen from above (as `metadata.north_deg`).
+  std::optional<Site> site;
+  std::string time;
+  double north_deg = 0.0;
+  /// Sun: its position at `site` and `time` (check() fills it), for messages and results.
+  std::optional<SunPosition> sun;
   /// Photometric: the distribution and its sampler (shared, immutable), the file it came from,
   /// and the luminaire frame: `aim` is where gamma = 0 points, `rotation_deg` turns the C0
   /// plane counter-clockwise about the luminaire's up axis (-aim; for a downlight: as seen from

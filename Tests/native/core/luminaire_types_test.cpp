@@ -17,9 +17,9 @@ using detail::find_luminaire_type;
 using detail::luminaire_type;
 using detail::luminaire_types;
 
-constexpr Luminaire::Type kAll[] = {Luminaire::Type::Point, Luminaire::Type::Spot,
-                                    Luminaire::Type::Area, Luminaire::Type::Directional,
-                                    Luminaire::Type::Photometric};
+constexpr Luminaire::Type kAll[] = {Luminaire::Type::Point,       Luminaire::Type::Spot,
+                                    Luminaire::Type::Area,        Luminaire::Type::Directional,
+                                    Luminaire::Type::Photometric, Luminaire::Type::Sun};
 
 TEST(LuminaireTypes, OneCompleteRowPerType) {
   EXPECT_EQ(luminaire_types().size(), std::size(kAll));
@@ -57,8 +57,14 @@ TEST(LuminaireTypes, PlacementHooksAgree) {
       EXPECT_TRUE(aim == &l.direction || aim == &l.aim) << row.name;
     }
   }
-  EXPECT_EQ(detail::aimable_luminaire_type_names(), "spot, directional or photometric");
+  EXPECT_EQ(detail::aimable_luminaire_type_names(), "spot, directional, photometric or sun");
   EXPECT_FALSE(luminaire_type(Luminaire::Type::Directional).placed);
+  EXPECT_FALSE(luminaire_type(Luminaire::Type::Sun).placed);
+  // A sun placed by site and time is not aimed: its time is what moves it.
+  Luminaire sun;
+  sun.type = Luminaire::Type::Sun;
+  sun.site = Site{45, 7, 0};
+  EXPECT_EQ(luminaire_type(Luminaire::Type::Sun).aim(sun), nullptr);
   EXPECT_TRUE(luminaire_type(Luminaire::Type::Area).placed);
 }
 
@@ -76,7 +82,7 @@ TEST(LuminaireTypes, UnknownTypeMessageListsEveryName) {
     error = e.what();
   }
   EXPECT_NE(error.find("luminaires[0].type: unknown luminaire type \"laser\" (expected point, "
-                       "spot, area, directional or photometric)"),
+                       "spot, area, directional, photometric or sun)"),
             std::string::npos)
       << error;
 }

@@ -52,6 +52,7 @@ Luminaire example_luminaire(Luminaire::Type type) {
       break;
     case Luminaire::Type::Area:
     case Luminaire::Type::Directional:
+    case Luminaire::Type::Sun:
       l.corner = {1.5, 1.5, 2.9};
       l.edge1 = {0, 1, 0};  // edge1 x edge2 = -z
       l.edge2 = {1, 0, 0};

@@ -1,0 +1,167 @@
+// The sun luminaire type (docs/scene-format.md, `sun`; docs/daylight.md, "Sun"): the directional
+// beam through a parallelogram opening, its direction given or computed from a site and a time,
+// its directions spread over the solar disc. Its row of the table in luminaire_types.cpp; the
+// emission both backends run is `emit_sun` in Shaders/shared/luminaires.h.
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <string>
+
+#include "io/json_reader.hpp"
+#include "lightsolver/daylight.hpp"
+#include "model/prepared_scene.hpp"
+#include "types/luminaire_rows.hpp"
+
+namespace lightsolver::detail {
+namespace {
+
+using namespace luminaire_rows;
+
+// The solar disc's angular diameter, 0.53° (its mean; 0.524° … 0.542° over the year).
+constexpr double kSunDiameterDeg = 0.53;
+constexpr double kSunRadiusRad = 0.5 * kSunDiameterDeg * std::numbers::pi / 180.0;
+
+constexpr const char* kSunKeys[] = {"name", "type",      "illuminance_lx", "direction", "site",
+                                    "time", "north_deg", "corner",         "edge1",     "edge2"};
+constexpr const char* kSiteKeys[] = {"latitude_deg", "longitude_deg", "elevation_m"};
+
+void read_sun(const JsonNode& n, Luminaire& l, const std::string&) {
+  n.require_object(kSunKeys);
+  l.illuminance_lx = n.at("illuminance_lx").number();
+  l.corner = n.at("corner").vec3();
+  l.edge1 = n.at("edge1").vec3();
+  l.edge2 = n.at("edge2").vec3();
+  const bool computed = n.has("site") || n.has("time") || n.has("north_deg");
+  if (n.has("direction") == computed)
+    n.fail("a sun gives either its beam's `direction` or `site` and `time` (with `north_deg`)");
+  if (!computed) {
+    l.direction = n.at("direction").vec3();
+    return;
+  }
+  const JsonNode site = n.at("site");
+  site.require_object(kSiteKeys);
+  l.site = Site{site.at("latitude_deg").number(), site.at("longitude_deg").number(),
+                site.number_or("elevation_m", 0.0)};
+  l.time = n.at("time").string();
+  l.north_deg = n.number_or("north_deg", 0.0);
+}
+
+// The sun position's own error as the scene's: its key (site.latitude_deg, time, north_deg) and
+// its message without the "sun position: field: " the library puts first.
+[[noreturn]] void fail_as_scene(const LuminaireChecks& c, const InputError& e) {
+  std::string what = e.what();
+  const std::string prefix = e.file() + ": " + e.where() + ": ";
+  if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+  const std::string& w = e.where();
+  const std::string key = w.rfind("time", 0) == 0 ? "time" : w == "north_deg" ? w : "site." + w;
+  c.fail(key.c_str(), what);
+}
+
+// The beam's direction from the site and time: the way the light travels, away from the sun.
+void position_the_sun(const LuminaireChecks& c, Luminaire& l) {
+  try {
+    l.sun = sun_position(*l.site, parse_iso8601(l.time, std::nullopt, "time"));
+    l.direction = -sun_direction(*l.sun, l.north_deg);
+  } catch (const InputError& e) {
+    fail_as_scene(c, e);
+  }
+}
+
+void check_sun(const LuminaireChecks& c, Luminaire& l) {
+  if (l.site) {
+    position_the_sun(c, l);
+  } else {
+    unit_direction(c, "direction", l.direction);
+  }
+  c.parallelogram(l, "the area is zero");
+  if (!(l.illuminance_lx >= 0.0 && std::isfinite(l.illuminance_lx))) {
+    c.fail("illuminance_lx", "must be a finite value >= 0 (got " + show(l.illuminance_lx) + ")");
+  }
+  if (l.illuminance_lx > limits::kMaxIlluminance_lx) {
+    c.fail("illuminance_lx", "more than 10^7 lx (got " + show(l.illuminance_lx) +
+                                 "; direct sunlight is about 10^5 lx)");
+  }
+  // Below the horizon (its centre, refraction included) the sun lights nothing: switched off.
+  if (l.sun && l.sun->elevation_deg <= 0.0) {
+    l.flux_lm = 0.0;
+    return;
+  }
+  const double n_dot_d =
+      std::abs(glm::dot(glm::normalize(glm::cross(l.edge1, l.edge2)), l.direction));
+  if (n_dot_d <= std::sin(kSunRadiusRad)) {
+    c.fail(l.site ? "time" : "direction",
+           "the sun's disc (0.53°) reaches the plane of its opening: the beam runs within " +
+               show(std::asin(n_dot_d) * 180.0 / std::numbers::pi) +
+               "° of the parallelogram; turn the opening toward the sun");
+  }
+  l.flux_lm = directional_flux_lm(l);  // E · area · |n·d|: exact for the disc (luminaires.h)
+  if (!(l.flux_lm <= limits::kMaxFlux_lm)) {
+    c.fail("illuminance_lx", "the beam carries " + show(l.flux_lm) +
+                                 " lm (illuminance_lx x the opening's area across the beam), "
+                                 "more than 10^12 lm: beyond any physical light source");
+  }
+}
+
+// The record emit_sun reads (Shaders/shared/luminaires.h): axis d (the beam), position u (d's
+// direction along the opening's plane), half_beam_rad sin α (the disc's angular radius),
+// half_field_rad n·d (n = edge1 × edge2, normalised) and cos_half_field 1 − sin θ cos α, where
+// cos θ = |n·d|, computed without cancellation (1 − sin θ = cos² θ / (1 + sin θ)).
+void prepare_sun(const Luminaire& l, PreparedLuminaire& p) {
+  const glm::dvec3 d = glm::normalize(l.direction);
+  const glm::dvec3 n = glm::normalize(glm::cross(l.edge1, l.edge2));
+  const double t = glm::dot(n, d);
+  const glm::dvec3 along = d - t * n;
+  const double sin_theta = glm::length(along);
+  const glm::dvec3 u = sin_theta > 1e-12 ? along / sin_theta : glm::normalize(l.edge1);
+  const double half = std::sin(0.5 * kSunRadiusRad);
+  p.axis = vec3(d);
+  p.position = vec3(u);
+  p.half_beam_rad = static_cast<float>(std::sin(kSunRadiusRad));
+  p.half_field_rad = static_cast<float>(t);
+  p.cos_half_field =
+      static_cast<float>(2.0 * half * half + std::cos(kSunRadiusRad) * t * t / (1.0 + sin_theta));
+}
+
+EmissionSupport support_sun(const PreparedLuminaire& l) {
+  EmissionSupport s;
+  s.axis = glm::normalize(glm::dvec3(l.axis));
+  const glm::dvec3 corner(l.corner), e1(l.edge1), e2(l.edge2);
+  s.points = {corner, corner + e1, corner + e2, corner + e1 + e2};
+  s.half_angle_rad = kSunRadiusRad;
+  return s;
+}
+
+GlareShape glare_sun(const Luminaire&) {
+  return no_glare("the sun's beam (daylight) is not a luminaire in the field of view");
+}
+
+double own_flux(const Luminaire& l) { return l.flux_lm; }
+glm::dvec3 at_corner(const Luminaire& l) { return l.corner; }
+glm::dvec3 centre(const Luminaire& l) { return l.corner + 0.5 * (l.edge1 + l.edge2); }
+void move_opening(Luminaire& l, const glm::dvec3& c) { l.corner = c - 0.5 * (l.edge1 + l.edge2); }
+// A given beam can be aimed; a sun placed by site and time cannot (its time is the variable).
+glm::dvec3* aim_sun(Luminaire& l) { return l.site ? nullptr : &l.direction; }
+
+}  // namespace
+
+LuminaireType sun_luminaire_type() {
+  return {.type = Luminaire::Type::Sun,
+          .name = "sun",
+          .keys = kSunKeys,
+          .read = read_sun,
+          .check = check_sun,
+          .prepare = prepare_sun,
+          .emit = shared_emission<shared::emit_sun>,
+          .emitted_flux = own_flux,
+          .support = support_sun,
+          .glare_kind = GlareShape::Kind::None,
+          .glare = glare_sun,
+          .effect = "sun_emission",
+          .anchor = at_corner,
+          .centre = centre,
+          .move_to = move_opening,
+          .aim = aim_sun,
+          .placed = false};
+}
+
+}  // namespace lightsolver::detail
