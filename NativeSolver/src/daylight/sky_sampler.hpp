@@ -83,9 +83,14 @@ class SkyEmitter {
   const std::vector<double>& portal_flux_lm() const { return portal_flux_; }
   const SkyDirections& directions(std::size_t portal) const { return *directions_[portal]; }
 
-  /// A photon: origin and direction of travel (world). `uniform()` returns doubles in [0, 1).
+  /// A photon: origin and direction of travel (world); returns the portal it comes through
+  /// (0 for the disc). `uniform()` returns doubles in [0, 1).
   template <class Uniform>
-  void emit(Uniform&& uniform, glm::dvec3& origin, glm::dvec3& dir) const;
+  std::size_t emit(Uniform&& uniform, glm::dvec3& origin, glm::dvec3& dir) const;
+  /// Portal k's unit normal into the room (edge1 x edge2 normalised).
+  glm::dvec3 inward(std::size_t k) const {
+    return glm::normalize(glm::cross(portals_[k].edge1, portals_[k].edge2));
+  }
 
  private:
   std::shared_ptr<const Sky> sky_;
@@ -118,7 +123,7 @@ glm::dvec3 SkyDirections::sample(Uniform&& uniform) const {
 }
 
 template <class Uniform>
-void SkyEmitter::emit(Uniform&& uniform, glm::dvec3& origin, glm::dvec3& dir) const {
+std::size_t SkyEmitter::emit(Uniform&& uniform, glm::dvec3& origin, glm::dvec3& dir) const {
   std::size_t k = 0;
   if (portal_cdf_.size() > 1) {
     const double x = uniform() * portal_cdf_.back();
@@ -130,7 +135,7 @@ void SkyEmitter::emit(Uniform&& uniform, glm::dvec3& origin, glm::dvec3& dir) co
   if (!portals_.empty()) {
     const Portal& p = portals_[k];
     origin = p.corner + s * p.edge1 + t * p.edge2;
-    return;
+    return k;
   }
   // Uniform on the disc of radius R perpendicular to `toward`, R beyond the centre.
   const glm::dvec3 helper = std::abs(toward.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
@@ -138,6 +143,7 @@ void SkyEmitter::emit(Uniform&& uniform, glm::dvec3& origin, glm::dvec3& dir) co
   const glm::dvec3 e2 = glm::cross(toward, e1);
   const double r = radius_ * std::sqrt(s), phi = 2.0 * 3.141592653589793 * t;
   origin = centre_ + radius_ * toward + r * (std::cos(phi) * e1 + std::sin(phi) * e2);
+  return 0;
 }
 
 }  // namespace lightsolver::daylight

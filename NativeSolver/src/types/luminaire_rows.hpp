@@ -38,5 +38,7 @@ EmittedRay shared_emission(const PreparedLuminaire& l, PathRng& rng) {
 
 /// The row of luminaire_photometric.cpp.
 LuminaireType photometric_luminaire_type();
+/// The row of luminaire_sky.cpp.
+LuminaireType sky_luminaire_type();
 
 }  // namespace lightsolver::detail

@@ -323,6 +323,7 @@ const auto kTypes = std::to_array<LuminaireType>({
      .aim = direction_aim,
      .placed = false},
     photometric_luminaire_type(),
+    sky_luminaire_type(),
 });
 static_assert(kTypes.size() <= kMaxLuminaireTypes);
 
