@@ -12,9 +12,6 @@ namespace lightsolver::daylight {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-// sin 6°: the lowest band of sky patch centres at which Radiance's gendaymtx evaluates the Perez
-// model (Tregenza/Reinhart rows start at 6° altitude).
-constexpr double kMinCosZ = 0.10452846326765347;
 
 // ISO 15469:2004 / CIE S 011/E:2003, Table 1: gradation group (a, b) and indicatrix group
 // (c, d, e) of each of the 15 standard general skies. Checked against two independent
@@ -147,8 +144,8 @@ double SkyShape::raw(const Direction& toward, const Direction& sun) const {
   double phi = 1.0 + m * cz;
   // exp(b / cos Z) -> 0 at the horizon for b < 0 (every CIE sky). A Perez sky can have b > 0
   // (its coefficients outside the conditions they were fitted to: low sun with heavy brightness,
-  // clearness bin 5 at high sun), where the term grows without bound toward the horizon: there
-  // cos Z is floored at sin 6° (kMinCosZ), so the band below 6° is as bright as at 6°.
+  // the sixth clearness bin at high sun), where the term grows without bound toward the horizon:
+  // there cos Z is floored at sin 6° (kMinCosZ), so the band below 6° is as bright as at 6°.
   if (a != 0.0 && cz > 0.0) phi += a * std::exp(b / (b > 0.0 ? std::max(cz, kMinCosZ) : cz));
   double f = 1.0;
   if (c != 0.0 || e != 0.0) {

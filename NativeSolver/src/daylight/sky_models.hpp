@@ -18,6 +18,10 @@
 
 namespace lightsolver::daylight {
 
+/// Where b > 0 (a Perez sky outside its fitted conditions) cos Z is floored at this, sin 6°: the
+/// lowest row of sky patches at which Radiance's gendaymtx evaluates the model.
+inline constexpr double kMinCosZ = 0.10452846326765347;
+
 /// A unit direction, z up (toward the zenith).
 struct Direction {
   double x = 0.0, y = 0.0, z = 1.0;
@@ -86,7 +90,8 @@ struct PerezState {
   /// The brightness the luminance coefficients were evaluated at: delta within gendaylit's
   /// range [0.01, 0.6], at least 0.2 for 1.065 < epsilon < 2.8 (gendaylit's check), raised in
   /// steps of 0.01 where the published coefficients give no light above the horizon at all
-  /// (clearness bin 5 at brightness below ~0.05 with the sun above ~70°).
+  /// (the sixth clearness bin, 2.8 <= epsilon < 4.5, at brightness below ~0.05 with the sun
+  /// above ~70°).
   double shape_delta = 0.0;
   int bin = 0;  ///< clearness bin, 0..7
   double diffuse_efficacy_lm_w = 0.0;

@@ -40,6 +40,13 @@ class SkyDirections {
   double weight(const glm::dvec3& toward) const { return w_(toward); }
   /// Largest w / majorant seen at `n` pseudo-random points per cell (a test of the bound).
   double worst_bound_ratio(int n) const;
+  /// The table, for the GPU: bands, sectors, each cell's majorant and the cumulative
+  /// majorant x solid angle (cell i = band i / n_az, sector i % n_az; band edges at
+  /// sin(-pi/2 + pi k / n_alt), the middle one exactly 0).
+  int bands() const { return n_alt_; }
+  int sectors() const { return n_az_; }
+  const std::vector<double>& bounds() const { return bound_; }
+  const std::vector<double>& cumulative() const { return cdf_; }
 
   /// One direction; `uniform()` returns doubles in [0, 1).
   template <class Uniform>
@@ -82,6 +89,9 @@ class SkyEmitter {
   /// Flux of each portal (the disc: one entry).
   const std::vector<double>& portal_flux_lm() const { return portal_flux_; }
   const SkyDirections& directions(std::size_t portal) const { return *directions_[portal]; }
+  /// Without portals: the site's centre and radius.
+  const glm::dvec3& site_centre() const { return centre_; }
+  double site_radius_m() const { return radius_; }
 
   /// A photon: origin and direction of travel (world); returns the portal it comes through
   /// (0 for the disc). `uniform()` returns doubles in [0, 1).

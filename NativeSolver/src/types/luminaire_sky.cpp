@@ -2,8 +2,11 @@
 // uniform ground below the horizon, shining through portals (parallelogram openings) or, without
 // one, from a disc covering the site. Its row of the table in luminaire_types.cpp. The sky
 // models and the exact direction sampling are daylight/'s (sky_models, sky_sampler).
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -236,6 +239,73 @@ void move_sky(Luminaire& l, const glm::dvec3& c) {
 glm::dvec3* sky_no_aim(Luminaire&) { return nullptr; }
 
 }  // namespace
+
+std::uint32_t pack_sky_record(const PreparedLuminaire& l, std::vector<float>& floats,
+                              std::vector<std::uint64_t>& thresholds,
+                              std::uint64_t (*threshold)(double c, double total)) {
+  const Luminaire& src = *l.source;
+  const daylight::SkyEmitter& e = *src.sky_emitter;
+  const daylight::Sky& sky = e.sky();
+  const daylight::SkyShape& sh = sky.shape();
+  const auto base = static_cast<std::uint32_t>(floats.size());
+  auto f = [&](double v) { floats.push_back(static_cast<float>(v)); };
+  auto u = [&](std::size_t v) {
+    floats.push_back(std::bit_cast<float>(static_cast<std::uint32_t>(v)));
+  };
+  auto v3 = [&](const glm::dvec3& v) { f(v.x), f(v.y), f(v.z); };
+  // Local coordinates: world minus the anchor, plus the anchor's local position (emit_sky).
+  const glm::dvec3 shift = glm::dvec3(l.position) - src.position;
+  for (double x : {sh.a, sh.b, sh.m, sh.c, sh.d, sh.e, sh.k, sky.scale()}) f(x);
+  v3({sky.sun().x, sky.sun().y, sky.sun().z});
+  f(sky.ground_luminance());
+  const std::size_t portals = e.portals().size();
+  u(portals);
+  u(static_cast<std::size_t>(e.directions(0).bands()));
+  u(static_cast<std::size_t>(e.directions(0).sectors()));
+  u(thresholds.size());
+  const std::vector<double>& pf = e.portal_flux_lm();
+  double total = 0.0;
+  for (double x : pf) total += x;
+  double run = 0.0;
+  for (double x : pf) thresholds.push_back(threshold(run += x, total));
+  v3(e.site_centre() + shift);
+  f(e.site_radius_m());
+  f(daylight::kMinCosZ);
+  while (floats.size() < base + 24) f(0.0);
+  const std::size_t tables = std::max<std::size_t>(portals, 1);
+  const auto first_portal = floats.size();
+  floats.resize(first_portal + 16 * tables, 0.0f);
+  for (std::size_t k = 0; k < tables; ++k) {
+    const daylight::SkyDirections& d = e.directions(k);
+    const std::size_t bound_off = floats.size();
+    for (double b : d.bounds()) {  // rounded up: float must not cut the majorant
+      floats.push_back(std::nextafter(static_cast<float>(b), std::numeric_limits<float>::max()));
+    }
+    const std::size_t cdf_off = thresholds.size();
+    const double cells_total = d.cumulative().back();
+    std::size_t last = 0;
+    for (std::size_t c = 0; c < d.cumulative().size(); ++c) {
+      thresholds.push_back(threshold(d.cumulative()[c], cells_total));
+      if (d.bounds()[c] > 0.0) last = c;
+    }
+    float* slot = floats.data() + first_portal + 16 * k;
+    if (portals > 0) {
+      const auto& p = e.portals()[k];
+      const glm::dvec3 corner = p.corner + shift, out = -e.inward(k);
+      const glm::dvec3 vs[4] = {corner, p.edge1, p.edge2, out};
+      for (int i = 0; i < 4; ++i) {
+        slot[3 * i] = static_cast<float>(vs[i].x);
+        slot[3 * i + 1] = static_cast<float>(vs[i].y);
+        slot[3 * i + 2] = static_cast<float>(vs[i].z);
+      }
+    }
+    slot[12] = std::bit_cast<float>(static_cast<std::uint32_t>(bound_off));
+    slot[13] = std::bit_cast<float>(static_cast<std::uint32_t>(cdf_off));
+    slot[14] = std::bit_cast<float>(static_cast<std::uint32_t>(d.bounds().size()));
+    slot[15] = std::bit_cast<float>(static_cast<std::uint32_t>(last));
+  }
+  return base;
+}
 
 LuminaireType sky_luminaire_type() {
   return {.type = Luminaire::Type::Sky,

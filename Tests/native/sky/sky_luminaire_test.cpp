@@ -1,7 +1,7 @@
 // The sky luminaire traced (src/types/luminaire_sky.cpp): unobstructed horizontal illuminance
 // under the uniform, overcast and a CIE clear sky without portals; a roof opening in a black room
 // against L pi x the configuration factor (portal coplanar with the ceiling's hole); a 1 cm²
-// skylight; a side-lit room with and without its portal. Each on every backend that traces skies.
+// skylight; a side-lit room with and without its portal. Each on every backend (Embree, Vulkan).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -211,16 +211,7 @@ TEST_P(SkyTraced, SideLitRoomPortalAndNoPortalAgree) {
   EXPECT_LT(b.targets[0].estimate.sigma, 0.05 * b.targets[0].estimate.mean);
 }
 
-// The backends that trace skies (the Vulkan backend does not yet: docs/daylight.md, "Sky").
-std::vector<std::string> sky_backends() {
-  std::vector<std::string> out;
-  for (const std::string& b : backends()) {
-    if (b != "vulkan") out.push_back(b);
-  }
-  return out;
-}
-
-INSTANTIATE_TEST_SUITE_P(Backends, SkyTraced, ::testing::ValuesIn(sky_backends()));
+INSTANTIATE_TEST_SUITE_P(Backends, SkyTraced, ::testing::ValuesIn(backends()));
 
 }  // namespace
 }  // namespace lightsolver::test
