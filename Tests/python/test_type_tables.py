@@ -20,6 +20,7 @@ REPORT_MODEL = SOURCE_DIR / "NativeSolver" / "python" / "lightsolver_report" / "
 #: Solver luminaire types the workbench offers no object for, and why.
 NOT_IN_WORKBENCH: Dict[str, str] = {
     "directional": "a sun's beam: the workbench has no daylight objects yet",
+    "sky": "daylight through portals: the workbench has no daylight objects yet",
 }
 
 LUMINAIRES: List[dict] = lightsolver.luminaire_types()
@@ -33,7 +34,7 @@ def quoted_types(text: str) -> Set[str]:
 
 def test_the_tables_list_every_type_once_with_their_fields():
     names = [t["name"] for t in LUMINAIRES]
-    assert names == ["point", "spot", "area", "directional", "photometric"]
+    assert names == ["point", "spot", "area", "directional", "photometric", "sky"]
     assert [t["name"] for t in TARGETS] == ["surface", "grid", "observer", "observer_grid"]
     for t in LUMINAIRES:
         assert {"name", "type"} <= set(t["keys"])
