@@ -3,11 +3,13 @@
 // point, area and directional emissions are shared/luminaires.h, which the CPU runs too; the spot
 // profile is shared/spot.h (float here, double there). The spot's rejection loop stays here:
 // theta comes from atan (acos is imprecise near 1 on some drivers) and the accepted sample lives
-// in a private global (lavapipe, below). The photometric emission is photometric.glsl.
+// in a private global (lavapipe, below). The photometric emission is photometric.glsl, the
+// sky's sky.glsl.
 #ifndef LIGHTSOLVER_EMIT_GLSL
 #define LIGHTSOLVER_EMIT_GLSL
 
 #include "photometric.glsl"
+#include "sky.glsl"
 #include "shared/luminaires.h"
 #include "shared/spot.h"
 

@@ -18,8 +18,9 @@
 //   LS_SPEC_FIRST_LUMINAIRE + code (trace_bindings.h);
 // - switch: the GLSL name of that constant (on when the scene has the type's emission effect);
 // - emission: the GLSL function emit() calls, of the LS_EMISSION signature. Here for the types
-//   both backends emit alike; the spot's (emit.glsl) and the photometric's (photometric.glsl)
-//   differ from the CPU's on purpose (docs/solver.md, "Physics written once").
+//   both backends emit alike; the spot's (emit.glsl), the photometric's (photometric.glsl) and
+//   the sky's (sky.glsl) differ from the CPU's on purpose (docs/solver.md, "Physics written
+//   once").
 // Function-like macros are the one form of code generation glslc's preprocessor and C++'s share.
 #define LS_LUMINAIRE_TYPES(X)                          \
   X(Point, 0, HAS_POINT, emit_point)                   \
@@ -27,7 +28,8 @@
   X(Area, 2, HAS_AREA, emit_area)                      \
   X(Directional, 3, HAS_DIRECTIONAL, emit_directional) \
   X(Photometric, 4, HAS_PHOTOMETRIC, emit_photometric) \
-  X(Sun, 5, HAS_SUN, emit_sun)
+  X(Sun, 5, HAS_SUN, emit_sun)                         \
+  X(Sky, 6, HAS_SKY, emit_sky)
 
 #ifdef __cplusplus
 namespace lightsolver::shared {
@@ -47,7 +49,7 @@ struct LuminaireGpu {
   vec3 edge1;
   float cos_half_field;
   vec3 edge2;
-  uint photometric;  // index into photometrics[] (the photometric type only)
+  uint photometric;  // photometric: index into photometrics[]; sky: its record in photo_floats[]
 };
 
 // Every emission has this signature: from luminaire l, a photon's origin and direction, drawn

@@ -22,6 +22,9 @@ namespace lightsolver {
 
 struct PhotometricData;    // photometry.hpp
 class PhotometricSampler;  // photometry.hpp
+namespace daylight {
+class SkyEmitter;  // src/daylight/sky_sampler.hpp
+}
 
 /// Surface interaction model. Defaults are a diffuse material's (defaults.hpp); a mirror or
 /// glossy material built in code sets its reflectance, as default_material() does.
@@ -60,8 +63,35 @@ struct Mesh {
 };
 
 /// Light source. Fields not used by a type keep their defaults.
+/// A `sky` luminaire's sky (docs/scene-format.md, "sky"; docs/daylight.md, "Sky").
+struct SkyDefinition {
+  /// "cie" (a CIE standard general sky, `cie_type` 1..15), "cie_overcast" (Moon & Spencer),
+  /// "uniform" or "perez".
+  std::string model = "cie_overcast";
+  int cie_type = 1;
+  std::optional<glm::dvec3> sun_direction;  ///< toward the sun (z up), where the model needs it
+  /// The level (CIE, overcast, uniform): exactly one of zenith luminance or diffuse horizontal
+  /// illuminance of the unobstructed sky.
+  std::optional<double> zenith_luminance_cd_m2, diffuse_horizontal_lx;
+  /// Perez: diffuse horizontal and direct normal, in W/m² or (`perez_lux`) lx.
+  double perez_diffuse_horizontal = 0.0, perez_direct_normal = 0.0;
+  bool perez_lux = false;
+  int day_of_year = 172;
+  double dew_point_c = 11.0;
+  double ground_reflectance = 0.2;  ///< the ground below the horizon
+  double sun_direct_normal_lx = 0.0;  ///< the sun's light on the ground (CIE, overcast, uniform)
+  /// Openings the sky shines through (edge1 x edge2 points into the room); none: from a disc
+  /// covering the sphere of `site_radius_m` about `site_centre`.
+  struct Portal {
+    glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};
+  };
+  std::vector<Portal> portals;
+  glm::dvec3 site_centre{0.0};
+  double site_radius_m = 0.0;
+};
+
 struct Luminaire {
-  enum class Type { Point, Spot, Area, Directional, Photometric, Sun };
+  enum class Type { Point, Spot, Area, Directional, Photometric, Sun, Sky };
   std::string name;
   Type type = Type::Point;
   double flux_lm = 0.0;            ///< emitted flux (directional: derived from illuminance_lx)
@@ -93,6 +123,10 @@ struct Luminaire {
   /// Electrical power (W), any type: read and range-checked, ignored by tracing (the report's
   /// luminaire schedule and W/m2 use it). Empty when not given.
   std::optional<double> power_w;
+  /// Sky: its definition, and the sky with its portals as traced (built by validate(); its
+  /// flux is flux_lm, and `position` the point it is anchored at).
+  SkyDefinition sky;
+  std::shared_ptr<const daylight::SkyEmitter> sky_emitter;
   /// Control group (scene key `group`): luminaires of one group are dimmed together and their
   /// light is tallied apart from the other groups' (docs/statistics.md, "Groups"). Empty: the
   /// luminaire's own name, so each luminaire is its own group.

@@ -1,8 +1,10 @@
 #pragma once
 // What the luminaire types' rows share across their files (luminaire_types.cpp holds the table
 // and the point, spot, area and directional rows; luminaire_photometric.cpp the photometric row).
+#include <cstdint>
 #include <glm/vec3.hpp>
 #include <string>
+#include <vector>
 
 #include "shared/luminaires.h"
 #include "types/luminaire_types.hpp"
@@ -40,5 +42,13 @@ EmittedRay shared_emission(const PreparedLuminaire& l, PathRng& rng) {
 LuminaireType photometric_luminaire_type();
 /// The row of luminaire_sun.cpp.
 LuminaireType sun_luminaire_type();
+/// The row of luminaire_sky.cpp.
+LuminaireType sky_luminaire_type();
+/// A sky luminaire's GPU record (Shaders/sky.glsl's layout) appended to `floats`, its cell and
+/// portal thresholds to `thresholds` (`threshold(c, total)`: the 53-bit threshold of cumulative
+/// `c` out of `total`, vulkan/gpu_scene.cpp's); returns the record's offset in `floats`.
+std::uint32_t pack_sky_record(const PreparedLuminaire& l, std::vector<float>& floats,
+                              std::vector<std::uint64_t>& thresholds,
+                              std::uint64_t (*threshold)(double c, double total));
 
 }  // namespace lightsolver::detail

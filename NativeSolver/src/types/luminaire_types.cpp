@@ -324,6 +324,7 @@ const auto kTypes = std::to_array<LuminaireType>({
      .placed = false},
     photometric_luminaire_type(),
     sun_luminaire_type(),
+    sky_luminaire_type(),
 });
 static_assert(kTypes.size() <= kMaxLuminaireTypes);
 

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "lightsolver/photometry.hpp"
+#include "types/luminaire_rows.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -249,6 +250,12 @@ void pack_luminaires(const PreparedScene& s, GpuSceneData& d) {
       if (l.type == Luminaire::Type::Photometric) {
         d.luminaires.back().photometric = static_cast<std::uint32_t>(d.photometrics.size());
         d.photometrics.push_back(photometric.pack(l));
+      } else if (l.type == Luminaire::Type::Sky) {  // its record in the photometric floats
+        if (!l.source || !l.source->sky_emitter) {
+          throw std::runtime_error("Vulkan backend: sky luminaire not validated");
+        }
+        d.luminaires.back().photometric =
+            pack_sky_record(l, d.photo_floats, d.photo_cdf53, scaled_cdf_threshold);
       }
     }
   }

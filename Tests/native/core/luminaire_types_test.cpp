@@ -19,7 +19,8 @@ using detail::luminaire_types;
 
 constexpr Luminaire::Type kAll[] = {Luminaire::Type::Point,       Luminaire::Type::Spot,
                                     Luminaire::Type::Area,        Luminaire::Type::Directional,
-                                    Luminaire::Type::Photometric, Luminaire::Type::Sun};
+                                    Luminaire::Type::Photometric, Luminaire::Type::Sun,
+                                    Luminaire::Type::Sky};
 
 TEST(LuminaireTypes, OneCompleteRowPerType) {
   EXPECT_EQ(luminaire_types().size(), std::size(kAll));
@@ -82,7 +83,7 @@ TEST(LuminaireTypes, UnknownTypeMessageListsEveryName) {
     error = e.what();
   }
   EXPECT_NE(error.find("luminaires[0].type: unknown luminaire type \"laser\" (expected point, "
-                       "spot, area, directional, photometric or sun)"),
+                       "spot, area, directional, photometric, sun or sky)"),
             std::string::npos)
       << error;
 }

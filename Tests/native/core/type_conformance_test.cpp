@@ -66,6 +66,11 @@ Luminaire example_luminaire(Luminaire::Type type) {
                        std::string(LIGHTSOLVER_SOURCE_DIR) + "/Resources/luminaires/downlight.ies",
                        std::nullopt, "flux_lm");
       break;
+    case Luminaire::Type::Sky:  // the uniform sky through a 1 m² opening in the ceiling
+      l.sky.model = "uniform";
+      l.sky.zenith_luminance_cd_m2 = 1000.0;
+      l.sky.portals.push_back({{1.5, 1.5, 2.9}, {0, 1, 0}, {1, 0, 0}});
+      break;
   }
   return l;
 }

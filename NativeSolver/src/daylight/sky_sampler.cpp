@@ -1,0 +1,153 @@
+// Exact sky direction sampling and the sky seen through portals (sky_sampler.hpp).
+#include "daylight/sky_sampler.hpp"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <stdexcept>
+
+namespace lightsolver::daylight {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Gauss-Legendre on [0, 1].
+constexpr double kG2x[2] = {0.21132486540518713, 0.7886751345948129};
+constexpr double kG4x[4] = {0.0694318442029737, 0.33000947820757187, 0.6699905217924281,
+                            0.9305681557970263};
+constexpr double kG4w[4] = {0.17392742256872692, 0.3260725774312731, 0.3260725774312731,
+                            0.17392742256872692};
+
+double wrap_azimuth(double phi) {
+  phi = std::fmod(phi, 2.0 * kPi);
+  return phi < 0.0 ? phi + 2.0 * kPi : phi;
+}
+
+}  // namespace
+
+glm::dvec3 SkyDirections::direction(double u, double phi) {
+  const double s = std::sqrt(std::max(0.0, 1.0 - u * u));
+  return {s * std::cos(phi), s * std::sin(phi), u};
+}
+
+SkyDirections::Cell SkyDirections::cell(std::size_t i) const {
+  const std::size_t band = i / n_az_, sector = i % n_az_;
+  const double dphi = 2.0 * kPi / n_az_;
+  return {alt_edges_u_[band], alt_edges_u_[band + 1], sector * dphi, (sector + 1) * dphi};
+}
+
+SkyDirections::SkyDirections(Weight w, const std::vector<glm::dvec3>& peaks, int n_alt, int n_az)
+    : w_(std::move(w)), n_alt_(n_alt), n_az_(n_az) {
+  if (n_alt < 2 || n_alt % 2 != 0 || n_az < 1) throw std::invalid_argument("sky table size");
+  alt_edges_u_.resize(n_alt + 1);
+  for (int i = 0; i <= n_alt; ++i) {
+    alt_edges_u_[i] = i == n_alt / 2 ? 0.0 : std::sin(-kPi / 2 + kPi * i / n_alt);
+  }
+  alt_edges_u_.front() = -1.0;
+  alt_edges_u_.back() = 1.0;
+  const std::size_t cells = static_cast<std::size_t>(n_alt) * n_az;
+  bound_.resize(cells);
+  cdf_.resize(cells);
+  double total = 0.0, sum4 = 0.0, sum2 = 0.0;
+  for (std::size_t i = 0; i < cells; ++i) {
+    const Cell c = cell(i);
+    const double du = c.u1 - c.u0, dphi = c.phi1 - c.phi0;
+    double hi = 0.0, lo = INFINITY;
+    for (int a = 0; a <= 4; ++a) {
+      for (int b = 0; b <= 4; ++b) {
+        // Nudged off the cell's edges, where the sky meets the ground.
+        const double fa = std::clamp(a / 4.0, 1e-9, 1.0 - 1e-9);
+        const double v = w_(direction(c.u0 + fa * du, c.phi0 + b / 4.0 * dphi));
+        hi = std::max(hi, v);
+        lo = std::min(lo, v);
+      }
+    }
+    for (const glm::dvec3& p : peaks) {
+      const double phi = wrap_azimuth(std::atan2(p.y, p.x));
+      if (p.z >= c.u0 && p.z <= c.u1 && phi >= c.phi0 && phi <= c.phi1) {
+        hi = std::max(hi, w_(p));
+      }
+    }
+    bound_[i] = hi > 0.0 ? hi + (hi - lo) : 0.0;
+    total += bound_[i] * du * dphi;
+    cdf_[i] = total;
+    double q4 = 0.0, q2 = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) {
+        q4 += kG4w[a] * kG4w[b] * w_(direction(c.u0 + kG4x[a] * du, c.phi0 + kG4x[b] * dphi));
+      }
+    }
+    for (int a = 0; a < 2; ++a) {
+      for (int b = 0; b < 2; ++b) {
+        q2 += 0.25 * w_(direction(c.u0 + kG2x[a] * du, c.phi0 + kG2x[b] * dphi));
+      }
+    }
+    sum4 += q4 * du * dphi;
+    sum2 += q2 * du * dphi;
+  }
+  integral_ = sum4;
+  integral_error_ = sum4 > 0.0 ? std::abs(sum4 - sum2) / sum4 : 0.0;
+  if (!std::isfinite(total)) throw std::invalid_argument("the sky's luminance is not finite");
+}
+
+double SkyDirections::worst_bound_ratio(int n) const {
+  double worst = 0.0;
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  auto next = [&]() {  // splitmix64: reproducible points, no dependence on the solver's RNG
+    state += 0x9E3779B97F4A7C15ull;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  };
+  for (std::size_t i = 0; i < bound_.size(); ++i) {
+    const Cell c = cell(i);
+    for (int k = 0; k < n; ++k) {
+      const double v =
+          w_(direction(c.u0 + next() * (c.u1 - c.u0), c.phi0 + next() * (c.phi1 - c.phi0)));
+      if (v > 0.0) worst = std::max(worst, bound_[i] > 0.0 ? v / bound_[i] : INFINITY);
+    }
+  }
+  return worst;
+}
+
+SkyEmitter::SkyEmitter(std::shared_ptr<const Sky> sky, std::vector<Portal> portals,
+                       glm::dvec3 site_centre, double site_radius_m)
+    : sky_(std::move(sky)),
+      portals_(std::move(portals)),
+      centre_(site_centre),
+      radius_(site_radius_m) {
+  const Sky* s = sky_.get();
+  const Direction sd = s->sun();
+  const glm::dvec3 sun(sd.x, sd.y, sd.z);
+  auto luminance = [s](const glm::dvec3& d) { return s->luminance({d.x, d.y, d.z}); };
+  double total = 0.0, err = 0.0;
+  auto add = [&](std::unique_ptr<SkyDirections> dirs, double area) {
+    const double f = area * dirs->integral();
+    err += f * dirs->integral_error();
+    total += f;
+    portal_flux_.push_back(f);
+    portal_cdf_.push_back(total);
+    directions_.push_back(std::move(dirs));
+  };
+  if (portals_.empty()) {
+    if (!(radius_ > 0.0)) throw std::invalid_argument("site radius must be > 0 without portals");
+    add(std::make_unique<SkyDirections>(luminance, std::vector<glm::dvec3>{sun, {0, 0, 1}}),
+        kPi * radius_ * radius_);
+  }
+  for (const Portal& p : portals_) {
+    const glm::dvec3 n = glm::cross(p.edge1, p.edge2);
+    const double area = glm::length(n);
+    if (!(area > 0.0)) throw std::invalid_argument("portal of zero area");
+    const glm::dvec3 out = -n / area;  // toward the sky: against the light's way in
+    auto w = [luminance, out](const glm::dvec3& d) {
+      const double c = glm::dot(d, out);
+      return c > 0.0 ? luminance(d) * c : 0.0;
+    };
+    add(std::make_unique<SkyDirections>(w, std::vector<glm::dvec3>{sun, out, {0, 0, 1}}), area);
+  }
+  flux_lm_ = total;
+  flux_error_ = total > 0.0 ? err / total : 0.0;
+}
+
+}  // namespace lightsolver::daylight
