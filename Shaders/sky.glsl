@@ -7,15 +7,17 @@
 #ifndef LIGHTSOLVER_SKY_GLSL
 #define LIGHTSOLVER_SKY_GLSL
 
+#include "shared/glazing.h"
+
 // Header floats (uints stored as their bits): 0..6 a b m c d e k, 7 scale (cd/m² per raw unit),
 // 8..10 the sun, 11 ground luminance, 12 portals (0: the disc), 13 bands, 14 sectors,
 // 15 the portals' thresholds in photo_cdf53[], 16..18 the site's centre (local), 19 its radius,
-// 20 the floor of cos Z where b > 0. Then per portal (or the disc) 16 floats: 0..2 corner (local),
+// 20 the floor of cos Z where b > 0. Then per portal (or the disc) 20 floats: 0..2 corner (local),
 // 3..5 edge1, 6..8 edge2, 9..11 the outward normal (toward the sky; 0 for the disc),
 // 12 majorants in photo_floats[], 13 thresholds in photo_cdf53[], 14 cells, 15 the last cell
-// with light.
+// with light, 16 the glazing's scale τv / T(0), 17 its panes (0: none; shared/glazing.h).
 const uint kSkyHeader = 24u;
-const uint kSkyPortal = 16u;
+const uint kSkyPortal = 20u;
 const int kSkyMaxTries = 1000;  // acceptance is ~1/2 or better: only stops a broken table
 
 float sky_f(uint at) { return photo_floats[at]; }
@@ -77,7 +79,10 @@ vec3 sky_direction(uint base, uint p) {
     const float s = sqrt(max(0.0, 1.0 - u * u));
     const vec3 w = vec3(s * cos(az), s * sin(az), u);
     float weight = sky_luminance(base, w);
-    if (portal) weight *= max(0.0, dot(w, out_n));
+    if (portal) {
+      const float cos_out = max(0.0, dot(w, out_n));
+      weight *= cos_out * glazing_transmittance(cos_out, sky_f(p + 16u), sky_u(p + 17u));
+    }
     g_sky_dir = w;
     if (rng_uniform() * photo_floats[bound_off + cell] < weight) accepted = true;
   }

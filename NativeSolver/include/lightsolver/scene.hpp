@@ -62,6 +62,16 @@ struct Mesh {
   std::vector<glm::u32vec3> triangles;
 };
 
+/// Glazing in a daylight opening (a sky's portal, a sun's opening; docs/daylight.md, "Glazing"):
+/// τv at normal incidence (clear glass's angular shape, single or double panes), the glazed
+/// fraction of the opening (frame factor) and the maintenance (dirt) factor, as EN 17037/DIALux.
+struct GlazingDefinition {
+  double transmittance = 1.0;
+  int panes = 1;
+  double frame_factor = 1.0;
+  double maintenance_factor = 1.0;
+};
+
 /// Light source. Fields not used by a type keep their defaults.
 /// A `sky` luminaire's sky (docs/scene-format.md, "sky"; docs/daylight.md, "Sky").
 struct SkyDefinition {
@@ -78,12 +88,13 @@ struct SkyDefinition {
   bool perez_lux = false;
   int day_of_year = 172;
   double dew_point_c = 11.0;
-  double ground_reflectance = 0.2;  ///< the ground below the horizon
+  double ground_reflectance = 0.2;    ///< the ground below the horizon
   double sun_direct_normal_lx = 0.0;  ///< the sun's light on the ground (CIE, overcast, uniform)
   /// Openings the sky shines through (edge1 x edge2 points into the room); none: from a disc
   /// covering the sphere of `site_radius_m` about `site_centre`.
   struct Portal {
     glm::dvec3 corner{0.0}, edge1{0.0}, edge2{0.0};
+    std::optional<GlazingDefinition> glazing;  ///< none: an open hole
   };
   std::vector<Portal> portals;
   glm::dvec3 site_centre{0.0};
@@ -109,6 +120,8 @@ struct Luminaire {
   double north_deg = 0.0;
   /// Sun: its position at `site` and `time` (check() fills it), for messages and results.
   std::optional<SunPosition> sun;
+  /// Sun: the glazing of its opening (none: an open hole).
+  std::optional<GlazingDefinition> glazing;
   /// Photometric: the distribution and its sampler (shared, immutable), the file it came from,
   /// and the luminaire frame: `aim` is where gamma = 0 points, `rotation_deg` turns the C0
   /// plane counter-clockwise about the luminaire's up axis (-aim; for a downlight: as seen from

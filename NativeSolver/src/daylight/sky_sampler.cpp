@@ -140,11 +140,17 @@ SkyEmitter::SkyEmitter(std::shared_ptr<const Sky> sky, std::vector<Portal> porta
     const double area = glm::length(n);
     if (!(area > 0.0)) throw std::invalid_argument("portal of zero area");
     const glm::dvec3 out = -n / area;  // toward the sky: against the light's way in
-    auto w = [luminance, out](const glm::dvec3& d) {
+    // Glazing: the transmitted part is drawn exactly (τ(θ) in the weight, frame and dirt in the
+    // flux), so every photon still carries the same power and none is spent on absorbed light.
+    const double scale = p.glazing.scale();
+    const unsigned panes = p.glazing.panes;
+    auto w = [luminance, out, scale, panes](const glm::dvec3& d) {
       const double c = glm::dot(d, out);
-      return c > 0.0 ? luminance(d) * c : 0.0;
+      return c > 0.0 ? luminance(d) * c * shared::glazing_transmittance<double>(c, scale, panes)
+                     : 0.0;
     };
-    add(std::make_unique<SkyDirections>(w, std::vector<glm::dvec3>{sun, out, {0, 0, 1}}), area);
+    add(std::make_unique<SkyDirections>(w, std::vector<glm::dvec3>{sun, out, {0, 0, 1}}),
+        area * p.glazing.factor());
   }
   flux_lm_ = total;
   flux_error_ = total > 0.0 ? err / total : 0.0;

@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "daylight/sky_glazing.hpp"
 #include "daylight/sky_models.hpp"
 
 namespace lightsolver::daylight {
@@ -75,11 +76,13 @@ class SkyEmitter {
  public:
   struct Portal {
     glm::dvec3 corner, edge1, edge2;
+    Glazing glazing{};  ///< τ(θ) weights the directions; frame x maintenance the flux
   };
   SkyEmitter(std::shared_ptr<const Sky> sky, std::vector<Portal> portals, glm::dvec3 site_centre,
              double site_radius_m);
 
-  /// Flux entering through the portals (or leaving the disc), lm: A ∫ L cos dω per portal, or
+  /// Flux entering through the portals (or leaving the disc), lm: A f ∫ L cos τ(θ) dω per
+  /// portal (f = frame x maintenance, τ the glazing's transmittance; 1 without glazing), or
   /// π R² ∫ L dω for the disc.
   double flux_lm() const { return flux_lm_; }
   /// Relative error estimate of flux_lm() (the quadrature's).

@@ -11,6 +11,8 @@
 
 namespace lightsolver::detail {
 
+class JsonNode;
+
 namespace luminaire_rows {
 
 /// Numbers in messages: 6 significant digits, as the validator prints them.
@@ -44,6 +46,13 @@ LuminaireType photometric_luminaire_type();
 LuminaireType sun_luminaire_type();
 /// The row of luminaire_sky.cpp.
 LuminaireType sky_luminaire_type();
+/// A daylight opening's `glazing` object (luminaire_sky.cpp; the sky's portals, the sun).
+GlazingDefinition read_glazing(const JsonNode& n);
+/// Checks it (errors name `<at>.transmittance` ...) and returns the factor on the opening's light
+/// for an opening whose normal makes cos θ = `cos_i` with the beam (the sun's τ(θ) x frame x
+/// maintenance).
+double glazing_factor(const LuminaireChecks& c, const std::string& at, const GlazingDefinition& g,
+                      double cos_i);
 /// A sky luminaire's GPU record (Shaders/sky.glsl's layout) appended to `floats`, its cell and
 /// portal thresholds to `thresholds` (`threshold(c, total)`: the 53-bit threshold of cumulative
 /// `c` out of `total`, vulkan/gpu_scene.cpp's); returns the record's offset in `floats`.

@@ -37,7 +37,9 @@ constexpr const char* kSkyKeys[] = {"name",
                                     "site"};
 constexpr const char* kPerezKeys[] = {"diffuse_horizontal", "direct_normal", "units", "day_of_year",
                                       "dew_point_c"};
-constexpr const char* kPortalKeys[] = {"corner", "edge1", "edge2"};
+constexpr const char* kPortalKeys[] = {"corner", "edge1", "edge2", "glazing"};
+constexpr const char* kGlazingKeys[] = {"transmittance", "panes", "frame_factor",
+                                        "maintenance_factor"};
 constexpr const char* kSiteKeys[] = {"centre", "radius_m"};
 
 int whole_number(const JsonNode& n) {
@@ -78,7 +80,9 @@ void read_sky(const JsonNode& n, Luminaire& l, const std::string&) {
     for (std::size_t i = 0; i < ps.array_size(); ++i) {
       const JsonNode p = ps[i];
       p.require_object(kPortalKeys);
-      s.portals.push_back({p.at("corner").vec3(), p.at("edge1").vec3(), p.at("edge2").vec3()});
+      s.portals.push_back(
+          {p.at("corner").vec3(), p.at("edge1").vec3(), p.at("edge2").vec3(), std::nullopt});
+      if (p.has("glazing")) s.portals.back().glazing = read_glazing(p.at("glazing"));
     }
   }
   if (n.has("site")) {
@@ -87,6 +91,26 @@ void read_sky(const JsonNode& n, Luminaire& l, const std::string&) {
     s.site_centre = site.at("centre").vec3();
     s.site_radius_m = site.at("radius_m").number();
   }
+}
+
+// An opening's glazing as the daylight module takes it; errors name `<at>.<key>`.
+daylight::Glazing checked_glazing(const LuminaireChecks& c, const std::string& at,
+                                  const GlazingDefinition& g) {
+  auto in_unit = [&](const char* key, double v, const char* what) {
+    if (!(v > 0.0 && v <= 1.0)) {
+      c.fail((at + "." + key).c_str(),
+             std::string("must be more than 0 and at most 1 (") + what + "; got " + show(v) + ")");
+    }
+  };
+  in_unit("transmittance", g.transmittance,
+          "τv at normal incidence; an opaque opening is no portal: leave it out");
+  in_unit("frame_factor", g.frame_factor, "the glazed fraction of the opening");
+  in_unit("maintenance_factor", g.maintenance_factor, "1: clean glass");
+  if (g.panes != 1 && g.panes != 2) {
+    c.fail((at + ".panes").c_str(),
+           "must be 1 (single) or 2 (double glazing), got " + std::to_string(g.panes));
+  }
+  return {g.transmittance, static_cast<unsigned>(g.panes), g.frame_factor, g.maintenance_factor};
 }
 
 daylight::SkySpec sky_spec(const LuminaireChecks& c, const SkyDefinition& s) {
@@ -160,6 +184,10 @@ void check_sky(const LuminaireChecks& c, Luminaire& l) {
     edges.edge2 = s.portals[i].edge2;
     c.parallelogram(edges, ("portal " + std::to_string(i) + "'s area is zero").c_str());
     portals.push_back({edges.corner, edges.edge1, edges.edge2});
+    if (s.portals[i].glazing) {
+      portals.back().glazing =
+          checked_glazing(c, "portals[" + std::to_string(i) + "].glazing", *s.portals[i].glazing);
+    }
   }
   if (portals.empty()) {
     c.coordinates("site", s.site_centre);
@@ -240,6 +268,25 @@ glm::dvec3* sky_no_aim(Luminaire&) { return nullptr; }
 
 }  // namespace
 
+GlazingDefinition read_glazing(const JsonNode& n) {
+  n.require_object(kGlazingKeys);
+  GlazingDefinition g;
+  g.transmittance = n.at("transmittance").number();
+  if (n.has("panes")) g.panes = whole_number(n.at("panes"));
+  g.frame_factor = n.number_or("frame_factor", 1.0);
+  g.maintenance_factor = n.number_or("maintenance_factor", 1.0);
+  return g;
+}
+
+double glazing_factor(const LuminaireChecks& c, const std::string& at, const GlazingDefinition& g,
+                      double cos_i) {
+  const daylight::Glazing glazing = checked_glazing(c, at, g);
+  return glazing.tau(cos_i) * glazing.factor();
+}
+
+// Floats per portal in the GPU record (Shaders/sky.glsl's kSkyPortal).
+constexpr std::size_t kSkyPortalFloats = 20;
+
 std::uint32_t pack_sky_record(const PreparedLuminaire& l, std::vector<float>& floats,
                               std::vector<std::uint64_t>& thresholds,
                               std::uint64_t (*threshold)(double c, double total)) {
@@ -274,7 +321,7 @@ std::uint32_t pack_sky_record(const PreparedLuminaire& l, std::vector<float>& fl
   while (floats.size() < base + 24) f(0.0);
   const std::size_t tables = std::max<std::size_t>(portals, 1);
   const auto first_portal = floats.size();
-  floats.resize(first_portal + 16 * tables, 0.0f);
+  floats.resize(first_portal + kSkyPortalFloats * tables, 0.0f);
   for (std::size_t k = 0; k < tables; ++k) {
     const daylight::SkyDirections& d = e.directions(k);
     const std::size_t bound_off = floats.size();
@@ -288,7 +335,7 @@ std::uint32_t pack_sky_record(const PreparedLuminaire& l, std::vector<float>& fl
       thresholds.push_back(threshold(d.cumulative()[c], cells_total));
       if (d.bounds()[c] > 0.0) last = c;
     }
-    float* slot = floats.data() + first_portal + 16 * k;
+    float* slot = floats.data() + first_portal + kSkyPortalFloats * k;
     if (portals > 0) {
       const auto& p = e.portals()[k];
       const glm::dvec3 corner = p.corner + shift, out = -e.inward(k);
@@ -298,6 +345,8 @@ std::uint32_t pack_sky_record(const PreparedLuminaire& l, std::vector<float>& fl
         slot[3 * i + 1] = static_cast<float>(vs[i].y);
         slot[3 * i + 2] = static_cast<float>(vs[i].z);
       }
+      slot[16] = static_cast<float>(p.glazing.scale());
+      slot[17] = std::bit_cast<float>(p.glazing.panes);
     }
     slot[12] = std::bit_cast<float>(static_cast<std::uint32_t>(bound_off));
     slot[13] = std::bit_cast<float>(static_cast<std::uint32_t>(cdf_off));

@@ -74,9 +74,13 @@ TEST(SkySampler, MajorantBoundsTheWeight) {
   const SkyEmitter::Portal window{
       {0, 0, 0}, {0, 0, 1.2}, {1.0, 0, 0}};  // a wall window at y = 0, light along +y
   const SkyEmitter::Portal tilted{{0, 0, 0}, {1, 0, 0}, {0, 0.6, -0.8}};
+  // Glazed: τ(θ) falls to 0 at grazing incidence (double and single panes, sky_glazing.hpp).
+  SkyEmitter::Portal glazed_window = window, glazed_tilted = tilted;
+  glazed_window.glazing = Glazing{0.7, 2, 0.8, 0.9};
+  glazed_tilted.glazing = Glazing{0.01, 1, 1.0, 1.0};
   for (const auto& sky : skies) {
-    const SkyEmitter e(sky, {kSkylight, window, tilted}, {}, 0.0);
-    for (std::size_t p = 0; p < 3; ++p) {
+    const SkyEmitter e(sky, {kSkylight, window, tilted, glazed_window, glazed_tilted}, {}, 0.0);
+    for (std::size_t p = 0; p < 5; ++p) {
       EXPECT_LE(e.directions(p).worst_bound_ratio(16), 1.0) << "portal " << p;
     }
     const SkyEmitter disc(sky, {}, {}, 1.0);
