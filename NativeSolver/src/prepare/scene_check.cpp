@@ -4,14 +4,18 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <vector>
 
+#include "lightsolver/scene_io.hpp"
 #include "model/coincident.hpp"
 #include "model/prepared_scene.hpp"
-#include "scene/scene_document.hpp"
 #include "prepare/target_reach.hpp"
-#include "lightsolver/scene_io.hpp"
+#include "scene/scene_document.hpp"
 
 namespace lightsolver {
 
@@ -33,11 +37,74 @@ std::string at(const char* list, std::size_t i) {
   return std::string(list) + "[" + std::to_string(i) + "]";
 }
 
+std::string one_decimal(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+std::string two_digits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2g", v);
+  return buf;
+}
+
+// A sky without portals emits from a disc of its site's radius R across every direction
+// (docs/daylight.md, "Emission"). A scene point farther than R from the site's centre misses part
+// of the sky (a wrong result, not a slow one); and a scene within r of its own centre catches at
+// most (r/R)² of the photons, since its shadow on any disc fits in a circle of radius r. Both are
+// found from the meshes' vertices and the targets' points (the convex hull's farthest points):
+// linear in the vertices, no tracing. Whether a room is closed is not judged (that needs
+// tracing); the photon share says what portals would gain.
+template <class Warn>
+void add_sky_site_warnings(const Scene& scene, Warn&& warn) {
+  std::vector<glm::dvec3> points;
+  for (const Mesh& m : scene.meshes)
+    points.insert(points.end(), m.vertices.begin(), m.vertices.end());
+  for (const Target& t : scene.targets) {
+    if (t.type == Target::Type::Observer) {
+      points.push_back(t.position);
+    } else if (t.type != Target::Type::Surface) {
+      points.insert(points.end(), {t.corner, t.corner + t.edge1, t.corner + t.edge2,
+                                   t.corner + t.edge1 + t.edge2});
+      points.insert(points.end(), t.positions.begin(), t.positions.end());
+    }
+  }
+  if (points.empty()) return;
+  glm::dvec3 lo = points.front(), hi = points.front();
+  for (const glm::dvec3& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::dvec3 mid = 0.5 * (lo + hi);
+  for (std::size_t i = 0; i < scene.luminaires.size(); ++i) {
+    const Luminaire& l = scene.luminaires[i];
+    if (l.type != Luminaire::Type::Sky || !l.sky.portals.empty()) continue;
+    const double R = l.sky.site_radius_m;
+    double far = 0.0, r = 0.0;
+    for (const glm::dvec3& p : points) {
+      far = std::max(far, glm::length(p - l.sky.site_centre));
+      r = std::max(r, glm::length(p - mid));
+    }
+    const std::string field = at("luminaires", i) + ".site";
+    if (far > R) {
+      warn(field, "the scene reaches " + one_decimal(far) + " m from the site's centre, beyond " +
+                      "its radius_m " + one_decimal(R) +
+                      " m: points out there do not receive the "
+                      "whole sky and ground; give radius_m >= " +
+                      one_decimal(far) + " m");
+    } else if (r < 0.5 * R) {
+      warn(field, "at most " + two_digits(100.0 * r * r / (R * R)) +
+                      " % of the sky's photons can reach the scene (it lies within " +
+                      one_decimal(r) + " m of its centre, the site's radius is " + one_decimal(R) +
+                      " m): a smaller radius_m, or portals on the openings (every photon enters "
+                      "the room), give the same answer for less work");
+    }
+  }
+}
+
 // What Simulation would add to Results::warnings before the first photon, per field.
 void add_run_warnings(const Scene& scene, SceneCheck& out) {
   auto warn = [&](std::string field, std::string message) {
     out.warnings.push_back({scene.source_file, std::move(field), 0, std::move(message)});
   };
+  add_sky_site_warnings(scene, warn);
   // A scene validated before (load_scene's, then check_scene's copy) may repeat a remark.
   Warnings seen;
   for (const std::string& w : scene.warnings) {
