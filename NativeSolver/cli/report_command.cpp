@@ -30,7 +30,7 @@ constexpr const char* kDefaultPython = "/usr/bin/python3";
 
 struct ReportArgs {
   std::string scene, results, out, date, title, save_results, backend = kAutoBackend;
-  std::string project, author, checked_by;  // the sign-off block
+  std::string project, author, checked_by, project_number, client;  // the sign-off block
   std::optional<std::uint64_t> photons, seed;
   bool allow_partial = false, allow_unverified = false;
 };
@@ -81,6 +81,8 @@ std::vector<std::string> python_arguments(const std::string& python, const Repor
   add("--project", a.project);
   add("--author", a.author);
   add("--checked-by", a.checked_by);
+  add("--project-number", a.project_number);
+  add("--client", a.client);
   if (a.allow_partial) argv.emplace_back("--allow-partial");
   if (a.allow_unverified) argv.emplace_back("--allow-unverified");
   argv.insert(argv.end(), {"--", a.scene});  // a scene named "-x.json" is still the scene
@@ -140,6 +142,9 @@ void add_report_command(CLI::App& app) {
   cmd->add_option("--project", args->project, "Project name for the sign-off block");
   cmd->add_option("--author", args->author, "Who made the calculation (sign-off block)");
   cmd->add_option("--checked-by", args->checked_by, "Who checked it (sign-off block)");
+  cmd->add_option("--project-number", args->project_number,
+                  "The project's number (sign-off block and cover; printed when given)");
+  cmd->add_option("--client", args->client, "The client (sign-off block and cover; printed when given)");
   cmd->callback([args] {
     try {
       exec_report(*args);

@@ -350,7 +350,8 @@ def test_the_command_line_flags_reach_render(monkeypatch, tmp_path):
                      "--allow-partial", "--allow-unverified", "--author", "A. Writer",
                      "--checked-by", "K. Lux"]) == 0
     assert seen["allow_partial"] and seen["allow_unverified"]
-    assert seen["signoff"] == {"project": None, "author": "A. Writer", "checked_by": "K. Lux"}
+    assert seen["signoff"] == {"project": None, "author": "A. Writer", "checked_by": "K. Lux",
+                               "project_number": None, "client": None}
     seen.clear()
     assert cmd.main([str(SCENE), "--results", str(RESULTS), "--out", str(tmp_path / "r.pdf")]) == 0
     assert not seen["allow_partial"] and not seen["allow_unverified"]
@@ -372,12 +373,16 @@ def test_lightsolver_report_refuses_a_missing_folder_and_empty_results(cli, tmp_
     partial = write_results(tmp_path, json.dumps(partial_results()), "partial.json")
     r = subprocess.run([cli, "report", str(SCENE), "--results", str(partial), "--date", DATE,
                         "--allow-partial", "--allow-unverified", "--project", "Office 3",
-                        "--author", "A. Writer", "--checked-by", "K. Lux", "--out",
+                        "--author", "A. Writer", "--checked-by", "K. Lux", "--project-number",
+                        "2026-014", "--client", "Müller AG", "--out",
                         str(tmp_path / "r.html")], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
-    assert (tmp_path / "r.html").read_text(encoding="utf-8") == render_html(
+    page = (tmp_path / "r.html").read_text(encoding="utf-8")
+    assert page == render_html(
         SCENE, partial_results(), date=DATE,
-        signoff={"project": "Office 3", "author": "A. Writer", "checked_by": "K. Lux"})
+        signoff={"project": "Office 3", "author": "A. Writer", "checked_by": "K. Lux",
+                 "project_number": "2026-014", "client": "Müller AG"})
+    assert "<th>Client</th><td>Müller AG</td>" in page
 
 
 def test_stale_results_of_a_changed_model_are_refused_unless_allowed_and_then_said(tmp_path):

@@ -57,6 +57,7 @@ void read_sun(const JsonNode& n, Luminaire& l, const std::string&) {
   const std::string& w = e.where();
   const std::string key = w.rfind("time", 0) == 0 ? "time" : w == "north_deg" ? w : "site." + w;
   c.fail(key.c_str(), what);
+  throw e;  // not reached (fail throws); GCC does not carry [[noreturn]] through a virtual call
 }
 
 // The beam's direction from the site and time: the way the light travels, away from the sun.
