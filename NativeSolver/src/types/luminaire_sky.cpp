@@ -171,6 +171,7 @@ daylight::SkySpec sky_spec(const LuminaireChecks& c, const SkyDefinition& s) {
     if (name == from) c.fail(field, rest);
   }
   c.fail("model", what);
+  throw e;  // not reached (fail throws); GCC does not carry [[noreturn]] through a virtual call
 }
 
 void check_sky(const LuminaireChecks& c, Luminaire& l) {
