@@ -21,7 +21,11 @@ export LSAN_OPTIONS="suppressions=$root/Tests/sanitizers/lsan.supp:print_suppres
 # coverage rates and counts at scale, which the main CTest run checks).
 slow='^(CiHonesty\.|Decide\.StoppingAtTheFirstDecidedLook|ObserverAgainstTable\.StandardRoom'
 slow+='|ObserverGridCoverage\.|IntervalCoverage\..*Over500Seeds'
-slow+='|Backends/HardCases\.(EveryPhotonCountedPastFloatResolution|TinyTargetInAHugeHall))'
+slow+='|Backends/HardCases\.(EveryPhotonCountedPastFloatResolution|TinyTargetInAHugeHall)'
+# The sky's and the glazing's emission run under the sanitizers in their shorter traced tests
+# (the 1 cm² skylight, the roof openings); these two trace 10^7 photons through a whole room.
+slow+='|Backends/SkyTraced\.SideLitRoomPortalAndNoPortalAgree'
+slow+='|Backends/GlazingTraced\.VerticalWindowUnderTheOvercastSky)'
 
 start=$(date +%s)
 cmake -S . -B "$dir" -G Ninja -DLIGHTSOLVER_SANITIZE=ON -DCMAKE_BUILD_TYPE=Sanitize \
