@@ -28,6 +28,10 @@ EmissionSupport from_point(const PreparedLuminaire& l, double half_angle_rad);
 GlareShape no_glare(std::string why_not);
 /// Checks `key` as a direction and makes it unit length.
 void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v);
+/// A beam's (directional, sun) `illuminance_lx`: finite, >= 0, at most 10^7 lx.
+void check_beam_illuminance(const LuminaireChecks& c, const Luminaire& l);
+/// A beam's derived `flux_lm` (illuminance x the opening's area across it): at most 10^12 lm.
+void check_beam_flux(const LuminaireChecks& c, const Luminaire& l);
 
 /// The emit hook of a type whose emission both backends run from one text: an LS_EMISSION of
 /// Shaders/shared/luminaires.h, e.g. `shared_emission<shared::emit_point>`.

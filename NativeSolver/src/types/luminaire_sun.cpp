@@ -77,13 +77,7 @@ void check_sun(const LuminaireChecks& c, Luminaire& l) {
     unit_direction(c, "direction", l.direction);
   }
   c.parallelogram(l, "the area is zero");
-  if (!(l.illuminance_lx >= 0.0 && std::isfinite(l.illuminance_lx))) {
-    c.fail("illuminance_lx", "must be a finite value >= 0 (got " + show(l.illuminance_lx) + ")");
-  }
-  if (l.illuminance_lx > limits::kMaxIlluminance_lx) {
-    c.fail("illuminance_lx", "more than 10^7 lx (got " + show(l.illuminance_lx) +
-                                 "; direct sunlight is about 10^5 lx)");
-  }
+  check_beam_illuminance(c, l);
   if (l.glazing) glazing_factor(c, "glazing", *l.glazing, 1.0);  // its keys, even below the horizon
   // Below the horizon (its centre, refraction included) the sun lights nothing: switched off.
   if (l.sun && l.sun->elevation_deg <= 0.0) {
@@ -102,11 +96,7 @@ void check_sun(const LuminaireChecks& c, Luminaire& l) {
   // Glazing: the beam's τ(θ) at the disc's centre (τ is smooth: over the 0.265° disc its mean
   // differs from the centre's by ~τ''α²/4, below 10^-5), times frame and maintenance.
   if (l.glazing) l.flux_lm *= glazing_factor(c, "glazing", *l.glazing, n_dot_d);
-  if (!(l.flux_lm <= limits::kMaxFlux_lm)) {
-    c.fail("illuminance_lx", "the beam carries " + show(l.flux_lm) +
-                                 " lm (illuminance_lx x the opening's area across the beam), "
-                                 "more than 10^12 lm: beyond any physical light source");
-  }
+  check_beam_flux(c, l);
 }
 
 // The record emit_sun reads (Shaders/shared/luminaires.h): axis d (the beam), position u (d's

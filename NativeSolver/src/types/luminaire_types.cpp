@@ -54,6 +54,24 @@ void unit_direction(const LuminaireChecks& c, const char* key, glm::dvec3& v) {
   v = glm::normalize(v);
 }
 
+void check_beam_illuminance(const LuminaireChecks& c, const Luminaire& l) {
+  if (!(l.illuminance_lx >= 0.0 && std::isfinite(l.illuminance_lx))) {
+    c.fail("illuminance_lx", "must be a finite value >= 0 (got " + show(l.illuminance_lx) + ")");
+  }
+  if (l.illuminance_lx > limits::kMaxIlluminance_lx) {
+    c.fail("illuminance_lx", "more than 10^7 lx (got " + show(l.illuminance_lx) +
+                                 "; direct sunlight is about 10^5 lx)");
+  }
+}
+
+void check_beam_flux(const LuminaireChecks& c, const Luminaire& l) {
+  if (!(l.flux_lm <= limits::kMaxFlux_lm)) {
+    c.fail("illuminance_lx", "the beam carries " + show(l.flux_lm) +
+                                 " lm (illuminance_lx x the opening's area across the beam), "
+                                 "more than 10^12 lm: beyond any physical light source");
+  }
+}
+
 }  // namespace luminaire_rows
 
 namespace {
@@ -223,22 +241,12 @@ void read_directional(const JsonNode& n, Luminaire& l, const std::string&) {
 void check_directional(const LuminaireChecks& c, Luminaire& l) {
   unit_direction(c, "direction", l.direction);
   c.parallelogram(l, "the area is zero");
-  if (!(l.illuminance_lx >= 0.0 && std::isfinite(l.illuminance_lx))) {
-    c.fail("illuminance_lx", "must be a finite value >= 0 (got " + show(l.illuminance_lx) + ")");
-  }
-  if (l.illuminance_lx > limits::kMaxIlluminance_lx) {
-    c.fail("illuminance_lx", "more than 10^7 lx (got " + show(l.illuminance_lx) +
-                                 "; direct sunlight is about 10^5 lx)");
-  }
+  check_beam_illuminance(c, l);
   if (std::abs(glm::dot(glm::normalize(glm::cross(l.edge1, l.edge2)), l.direction)) < 1e-9) {
     c.fail("direction", "the beam runs parallel to its parallelogram");
   }
   l.flux_lm = directional_flux_lm(l);
-  if (!(l.flux_lm <= limits::kMaxFlux_lm)) {
-    c.fail("illuminance_lx", "the beam carries " + show(l.flux_lm) +
-                                 " lm (illuminance_lx x the opening's area across the beam), "
-                                 "more than 10^12 lm: beyond any physical light source");
-  }
+  check_beam_flux(c, l);
 }
 
 void prepare_directional(const Luminaire& l, PreparedLuminaire& p) { p.axis = vec3(l.direction); }
