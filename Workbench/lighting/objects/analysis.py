@@ -229,7 +229,10 @@ def decides(analysis: Any) -> bool:
     and some target with a requirement."""
     if not bool(getattr(analysis, "Decide", False)) or float(analysis.TargetAccuracy) > 0.0:
         return False
+    from lighting.objects import daylight_target
+
     return any(float(getattr(t, "RequiredLux", 0.0)) > 0.0
+               or (daylight_target.is_daylight_factor(t) and daylight_target.has_requirements(t))
                or (getattr(t, "TargetType", "") == "Grid"
                    and float(getattr(t, "RequiredUniformity", 0.0)) > 0.0)
                for t in targets(analysis))

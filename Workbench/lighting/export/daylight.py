@@ -1,0 +1,68 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+"""The daylight part of an analysis' scene: its Sky's ``sky`` (and ``sun``) luminaires with
+their portals, the windows the portals replace and the site's north
+(``metadata.north_deg``). export/scene.py calls :func:`build`."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Set
+
+from lighting.export import portals as portals_mod
+from lighting.messages import Report
+from lighting.objects import sky as sky_mod
+
+
+@dataclass
+class Daylight:
+    """What the Sky objects add to a scene."""
+
+    luminaires: List[Dict[str, Any]] = field(default_factory=list)
+    replaced_windows: Set[str] = field(default_factory=set)
+    north_deg: Optional[float] = None
+    labels: Dict[str, str] = field(default_factory=dict)
+
+
+def skies(analysis: Any) -> List[Any]:
+    """The Sky objects an analysis uses (in its group, or in no analysis)."""
+    from lighting.objects import analysis as analysis_mod
+
+    return analysis_mod.members(analysis, sky_mod.TYPE)
+
+
+def build(analysis: Any, report: Report) -> Daylight:
+    """The daylight luminaires of ``analysis``; problems go to ``report`` (errors name the
+    Sky). A scene may hold one sky (a daylight-factor grid needs exactly one)."""
+    out = Daylight()
+    found_skies = skies(analysis)
+    if len(found_skies) > 1:
+        report.add("error", "More than one Sky in the analysis: keep one (a daylight factor "
+                            "is relative to one sky)", found_skies[1].Name)
+        found_skies = found_skies[:1]
+    for sky in found_skies:
+        report.extend(sky_mod.check(sky), sky.Name)
+        found = portals_mod.find_portals(sky)
+        for level, text in found.problems:
+            report.add(level, text, sky.Name)
+        if not found.portals:
+            report.add("error", f"Sky '{sky.Label}' has no portals: host an Arch window in a "
+                                "wall, or add faces to its PortalFaces", sky.Name)
+            continue
+        for window in found.windows:
+            out.replaced_windows.add(window.Name)
+            report.add("info", f"'{window.Label}' is a portal of sky '{sky.Label}': its glass "
+                               "and frame are left out of the scene (the portal's glazing "
+                               "stands for them)", window.Name)
+        site = sky_mod.resolve_site(sky)
+        entries = [p.scene_entry(sky_mod.glazing(
+            sky, p.transmittance if bool(sky.UseWindowGlass) else None)) for p in found.portals]
+        try:
+            out.luminaires.append(sky_mod.sky_entry(sky, entries, site))
+            out.labels[sky.Name] = sky.Label
+            if bool(sky.SunEnabled):
+                out.luminaires.append(sky_mod.sun_entry(sky, entries, site))
+                out.labels[f"{sky.Name}_sun"] = f"{sky.Label} (sun)"
+        except ValueError as exc:
+            report.add("error", str(exc), sky.Name)
+            continue
+        out.north_deg = site.north_deg
+    return out
