@@ -252,3 +252,50 @@ class DaylightFactorGrids(DocTestCase):
         self.assertEqual(json.loads(json.dumps(sky_of(scene)))["portals"][0]["glazing"]["panes"],
                          2)
         self.assertTrue(math.isfinite(scene["metadata"]["north_deg"]))
+
+
+class DaylightFactorDisplay(DocTestCase):
+    """The results table and colours of a DF grid, from a hand-written result in the shared
+    spec's layout (the solver's DF results are another part of issue 26)."""
+
+    @needs_solver
+    def test_a_hand_written_daylight_factor_result_is_read_and_tabled(self):
+        import daylight_fixture
+        from lighting import daylight_results
+        from lighting.solver import store
+
+        doc, analysis, sky, names = office_with_sky()
+        result = lighting.analyze(doc, output_dir=work_dir("daylight-df"))
+        grid = doc.getObject("Workplane")
+        nu, nv = result["Workplane"].cells_uv
+        data = daylight_fixture.add_to_results(json.loads(json.dumps(result.data)), "Workplane",
+                                               sky.Name, nu, nv)
+        shown = store.apply_to_document(analysis, data)
+        df = shown["Workplane"].daylight_factor
+        self.assertIsNotNone(df)
+        self.assertIsNone(shown["Desk top"].daylight_factor)
+        self.assertEqual(len(daylight_results.cells_percent(df)), nu * nv)
+        table = shown.table()
+        print("\n" + table)
+        self.assertIn("DF %", table)
+        self.assertIn(f"{df['mean_percent']:.2f}", table)
+        figures = daylight_results.figure_lines(df)
+        self.assertEqual([f[0] for f in figures], ["DF mean", "DF min", "DF over 50 %",
+                                                   "DF over 95 %", "Outside (sky)"])
+        self.assertEqual(figures[2][1], f"{df['p50_percent']:.2f} %")
+        self.assertEqual(figures[2][2], f"{df['p50_ci_low_percent']:.2f} - "
+                                        f"{df['p50_ci_high_percent']:.2f}")
+        lines = daylight_results.requirement_lines(shown["Workplane"].daylight_entry)
+        self.assertEqual(lines, [("EN 17037 medium at 15900 lx", ""),
+                                 ("DF over 50 % of the area >= 3.14 %", "pass"),
+                                 ("DF over 95 % of the area >= 1.89 %", "undecided")])
+        from lighting.objects import results as results_obj
+
+        stored = results_obj.data(results_obj.of_analysis(analysis))
+        scale = daylight_results.scale(stored, [grid.Name, "Desk top"])
+        from lighting.colormap import nice_max
+
+        top = max(daylight_results.cells_percent(df))
+        self.assertEqual((scale.min_lux, scale.max_lux), (0.0, nice_max(top)))  # %, round top
+        self.assertGreaterEqual(scale.max_lux, top)
+        self.assertEqual(daylight_results.overall_verdict(stored, [grid.Name]), "undecided")
