@@ -5,7 +5,7 @@ with the distance from the window, intervals +-5 %."""
 from typing import Any, Dict, List
 
 
-def cells(nu: int, nv: int, near: float = 6.0, far: float = 0.6) -> List[float]:
+def cells(nu: int, nv: int, near: float = 5.0, far: float = 0.5) -> List[float]:
     """Row-by-row cell DF in %, from ``near`` at the grid's v = 0 edge to ``far`` at v = 1."""
     out = []
     for iv in range(nv):
