@@ -106,6 +106,26 @@ class WindowPortals(DocTestCase):
         self.assertAlmostEqual(outside.corner.y, -200.0, 6)  # the wall's other face
         self.assertIn(walls, window.Hosts)
 
+    def test_a_changed_sky_or_window_changes_the_fingerprint(self):
+        from lighting.export import fingerprint
+
+        doc, analysis, sky, names = office_with_sky()
+        before = fingerprint.of_analysis(analysis)
+        sky.DiffuseHorizontalLux = 20000.0
+        doc.recompute()
+        after = fingerprint.of_analysis(analysis)
+        self.assertEqual(fingerprint.differences(before, after, doc), ["sky 'Sky' changed"])
+        window = doc.getObject(names["window"])
+        placement = window.Placement
+        placement.Base = placement.Base + V(500, 0, 0)
+        window.Placement = placement
+        doc.recompute()
+        moved = fingerprint.differences(after, fingerprint.of_analysis(analysis), doc)
+        self.assertIn("sky 'Sky' changed", moved)  # its portal (drawn) moved with the window
+        portal = portals_mod.find_portals(sky).portals[0]
+        self.assertAlmostEqual(sky.Shape.BoundBox.XMin, min(portal.corner.x,
+                                                             (portal.corner + portal.edge1).x), 6)
+
     def test_glazing_from_the_window_glass_material(self):
         doc, analysis, sky, names = office_with_sky()
         window = doc.getObject(names["window"])
@@ -195,6 +215,13 @@ class SiteAndSun(DocTestCase):
         self.assertEqual(entry["cie_type"], 12)
         for got, expected in zip(entry["sun_direction"], want):
             self.assertAlmostEqual(got, expected, 10)
+        sky.SkyModel = "Perez"
+        entry = sky_of(scene_mod.build_scene(analysis).scene)
+        self.assertEqual(entry["perez"], {"diffuse_horizontal": 15000.0,
+                                          "direct_normal": 40000.0, "units": "lx",
+                                          "day_of_year": 172})
+        self.assertNotIn("diffuse_horizontal_lx", entry)  # the Perez sky takes its own level
+        self.assertIn("sun_direction", entry)
         sky.Time = "23:00"  # night: this sky needs the sun up
         errors = [m.text for m in scene_mod.build_scene(analysis).report.errors]
         self.assertTrue(any("below the horizon" in e for e in errors), errors)
@@ -244,6 +271,13 @@ class DaylightFactorGrids(DocTestCase):
                      if t["name"] == "Workplane")
         self.assertNotIn("quantity", entry)
         self.assertEqual(entry["requirements"], {"em_lux": 500.0, "u0": 0.6})
+
+    def test_a_daylight_factor_grid_without_a_sky_is_an_error(self):
+        doc = build_office(photons=20000)
+        doc.getObject("Workplane").Quantity = "Daylight factor"
+        errors = [m.text for m in scene_mod.build_scene(find_analysis(doc)).report.errors]
+        self.assertTrue(any("reports daylight factors but the analysis has no Sky" in e
+                            for e in errors), errors)
 
     def test_the_scene_file_round_trips(self):
         doc, analysis, sky, names = office_with_sky()

@@ -79,8 +79,8 @@ def requirement_lines(entry: Dict[str, Any]) -> List[Tuple[str, str]]:
     out = []
     wanted = entry.get("requirements", {}) or {}
     if wanted.get("en17037"):
-        out.append((f"EN 17037 {wanted['en17037']} at {float(wanted.get('median_diffuse_lx', 0)):.0f}"
-                    " lx", ""))
+        median = float(wanted.get("median_diffuse_lx", 0))
+        out.append((f"EN 17037 {wanted['en17037']} at {median:.0f} lx", ""))
     for key, verdict in (entry.get("verdicts", {}) or {}).items():
         if key not in VERDICT_NAMES:
             continue

@@ -34,6 +34,7 @@ def build(analysis: Any, report: Report) -> Daylight:
     Sky). A scene may hold one sky (a daylight-factor grid needs exactly one)."""
     out = Daylight()
     found_skies = skies(analysis)
+    _check_daylight_grids(analysis, found_skies, report)
     if len(found_skies) > 1:
         report.add("error", "More than one Sky in the analysis: keep one (a daylight factor "
                             "is relative to one sky)", found_skies[1].Name)
@@ -66,3 +67,17 @@ def build(analysis: Any, report: Report) -> Daylight:
             continue
         out.north_deg = site.north_deg
     return out
+
+
+def _check_daylight_grids(analysis: Any, found_skies: List[Any], report: Report) -> None:
+    """A daylight-factor grid is relative to the analysis' sky: without one it means nothing."""
+    from lighting.objects import analysis as analysis_mod
+    from lighting.objects import daylight_target
+
+    if found_skies:
+        return
+    for tgt in analysis_mod.targets(analysis):
+        if daylight_target.is_daylight_factor(tgt):
+            report.add("error", f"Target '{tgt.Label}' reports daylight factors but the analysis "
+                                "has no Sky: add one (Lighting > Sky) or set its Quantity to "
+                                "Illuminance", tgt.Name)

@@ -15,7 +15,6 @@ portal's glazing stands for its glass (tau_v) and frame (frame factor); a frame 
 the portal's plane would also hide its light behind the frame's faces."""
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
@@ -280,11 +279,3 @@ def portal_shape(portal: Portal) -> Any:
     length = 0.25 * min(a.Length, b.Length)
     arrow = Part.makeLine(middle, middle + portal.inward * length)
     return Part.makeCompound([face, arrow])
-
-
-def describe(found: Found) -> str:
-    """The portals as JSON text (PortalsJson: what the panel lists)."""
-    return json.dumps([{"source": p.source, "label": p.label,
-                        "corner": vec_m(p.corner), "edge1": vec_m(p.edge1),
-                        "edge2": vec_m(p.edge2), "transmittance": p.transmittance}
-                       for p in found.portals])

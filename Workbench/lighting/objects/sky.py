@@ -15,8 +15,6 @@ import math
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Tuple
 
-import FreeCAD
-
 from lighting.compat import get_property, ifc_type
 from lighting.objects.base import HIDDEN, READ_ONLY, BaseProxy, Prop
 
@@ -110,6 +108,9 @@ class Sky(BaseProxy):
                             "Further planar faces that become portals (skylights, openings)"),
         "PortalCount": Prop("App::PropertyInteger", "Portals", "Portals found", 0, READ_ONLY,
                             output=True),
+        "PortalSources": Prop("App::PropertyLinkList", "Portals",
+                              "The windows the portals come from (kept by recompute, so the "
+                              "drawn portals follow a moved window)", None, HIDDEN),
         "GlazingTransmittance": Prop("App::PropertyFloat", "Glazing",
                                      "Visible transmittance tau_v at normal incidence where a "
                                      "window's glass has no material (default 0.75: clear "
@@ -125,8 +126,6 @@ class Sky(BaseProxy):
         "UseWindowGlass": Prop("App::PropertyBool", "Glazing",
                                "Take tau_v from a window's glass material when it gives a "
                                "Transmittance", True),
-        "PortalsJson": Prop("App::PropertyString", "Portals", "Portals of the last recompute",
-                            "", HIDDEN, output=True),
     }
 
     def execute(self, obj: Any) -> None:
@@ -140,6 +139,8 @@ class Sky(BaseProxy):
         obj.Shape = Part.makeCompound(shapes) if shapes else Part.Shape()
         if obj.PortalCount != len(found.portals):
             obj.PortalCount = len(found.portals)
+        if [w.Name for w in obj.PortalSources] != [w.Name for w in found.windows]:
+            obj.PortalSources = list(found.windows)
         site = resolve_site(obj)
         if obj.SiteUsed != site.source:
             obj.SiteUsed = site.source
