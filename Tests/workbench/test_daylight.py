@@ -126,6 +126,18 @@ class WindowPortals(DocTestCase):
         self.assertAlmostEqual(sky.Shape.BoundBox.XMin, min(portal.corner.x,
                                                              (portal.corner + portal.edge1).x), 6)
 
+    def test_the_summary_says_what_the_sky_exports(self):
+        from lighting.export import daylight
+
+        doc, analysis, sky, names = office_with_sky()
+        lines = daylight.summary_lines(sky)
+        print("\n" + "\n".join(lines))
+        self.assertTrue(lines[0].startswith("Sky: CIE overcast, 10000 lx"))
+        self.assertIn("entered values", lines[1])
+        self.assertTrue(any(line.startswith("Portal 'Window': 1.50 x 1.20 m") and
+                            "tau_v 0.75" in line for line in lines), lines)
+        self.assertIn("frame factor 0.8, maintenance factor 0.9", lines[-1])
+
     def test_glazing_from_the_window_glass_material(self):
         doc, analysis, sky, names = office_with_sky()
         window = doc.getObject(names["window"])

@@ -84,6 +84,20 @@ def body() -> None:
     STATUS["portals"] = json.loads(json.dumps(sky.PortalCount))
     expect(sky.PortalCount == 1, f"the window gave {sky.PortalCount} portals")
     expect(sky in analysis.Group, "the sky is not in the active analysis")
+    # Double-click: the Sky's panel says what it exports and which glazing defaults it takes.
+    sky.ViewObject.Proxy.doubleClicked(sky.ViewObject)
+    pump(0.5)
+    from lighting.taskpanels import sync
+
+    shown = [p for p in sync.open_panels() if type(p).__name__ == "SkyPanel"]
+    expect(len(shown) == 1, "double-clicking the sky opened no panel")
+    if shown:
+        text = shown[0].text.text()
+        STATUS["sky_panel"] = text
+        for words in ("Portal 'Window'", "tau_v 0.75", "frame factor 0.8",
+                      "maintenance factor 0.9", "left out of the scene"):
+            expect(words in text, f"the sky's panel does not say {words!r}: {text}")
+        grab_window("daylight_sky_panel")
     grid = doc.getObject("Workplane")
     real = solver_computes_daylight_factors()
     STATUS["solver_computes_daylight_factors"] = real

@@ -81,3 +81,40 @@ def _check_daylight_grids(analysis: Any, found_skies: List[Any], report: Report)
             report.add("error", f"Target '{tgt.Label}' reports daylight factors but the analysis "
                                 "has no Sky: add one (Lighting > Sky) or set its Quantity to "
                                 "Illuminance", tgt.Name)
+
+
+def summary_lines(sky: Any) -> List[str]:
+    """What the Sky exports, in the user's words (its panel shows them): the sky and its level,
+    the site and where it comes from, the sun, each portal with its glazing and the defaults
+    the glazing takes."""
+    from lighting.objects import sky as sky_mod
+
+    site = sky_mod.resolve_site(sky)
+    lines = [f"Sky: {sky.SkyModel}" + (f" type {int(sky.CieType)}"
+                                        if sky.SkyModel == "CIE standard general sky" else "")
+             + ("" if sky.SkyModel == "Perez"
+                else f", {float(sky.DiffuseHorizontalLux):.0f} lx diffuse horizontal")
+             + f", ground reflectance {float(sky.GroundReflectance):g}",
+             f"Site ({site.source}): {site.latitude_deg:.4f}°, {site.longitude_deg:.4f}° "
+             f"(east +), {site.elevation_m:g} m, UTC{site.utc_offset_h:+g} h, north "
+             f"{site.north_deg:g}° from +Y; {sky.Date} {sky.Time}"]
+    if bool(sky.SunEnabled):
+        lines.append(f"Sun: {float(sky.DirectNormalLux):.0f} lx direct normal, through the "
+                     "same portals")
+    found = portals_mod.find_portals(sky)
+    for portal in found.portals:
+        width, height = portal.edge1.Length / 1000.0, portal.edge2.Length / 1000.0
+        use = portal.transmittance if bool(sky.UseWindowGlass) else None
+        glass = (f"tau_v {use:g} from the window's glass" if use is not None
+                 else f"tau_v {float(sky.GlazingTransmittance):g}")
+        lines.append(f"Portal '{portal.label}': {width:.2f} x {height:.2f} m on the wall's "
+                     f"inner face, {glass}")
+    lines += [text for _, text in found.problems]
+    lines.append(f"Glazing: {int(sky.GlazingPanes)} pane(s), frame factor "
+                 f"{float(sky.FrameFactor):g}, maintenance factor "
+                 f"{float(sky.GlazingMaintenanceFactor):g}; without a glass material tau_v "
+                 f"{float(sky.GlazingTransmittance):g} (default: double glazing 0.75, frame "
+                 f"{sky_mod.DEFAULT_FRAME_FACTOR:g}, maintenance "
+                 f"{sky_mod.DEFAULT_MAINTENANCE_FACTOR:g}). The windows' own glass and frames "
+                 "are left out of the scene: the glazing stands for them")
+    return lines

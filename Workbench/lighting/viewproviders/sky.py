@@ -9,9 +9,10 @@ from lighting.viewproviders.base import ViewProviderBase, set_if_exists
 
 class ViewProviderSky(ViewProviderBase):
     """The portals (parallelograms with an arrow into the room); edited in the property
-    editor."""
+    editor, summarised in its panel."""
 
     ICON = "Lighting_Sky"
+    MODELESS = True
 
     def __init__(self, vobj: Any) -> None:
         super().__init__(vobj)
@@ -19,3 +20,9 @@ class ViewProviderSky(ViewProviderBase):
         set_if_exists(vobj, "LineColor", (0.1, 0.3, 0.8))
         set_if_exists(vobj, "LineWidth", 3.0)
         set_if_exists(vobj, "Transparency", 50)
+
+    def task_panel(self, vobj: Any) -> Any:
+        """Double-click: the Sky's summary panel (what it exports, the glazing defaults)."""
+        from lighting.taskpanels.sky_panel import SkyPanel
+
+        return SkyPanel(vobj.Object)
