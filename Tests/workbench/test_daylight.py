@@ -291,6 +291,26 @@ class DaylightFactorGrids(DocTestCase):
         self.assertTrue(any("reports daylight factors but the analysis has no Sky" in e
                             for e in errors), errors)
 
+    def test_a_saved_sky_and_daylight_grid_reopen(self):
+        import os
+
+        doc, analysis, sky, names = office_with_sky()
+        grid = doc.getObject("Workplane")
+        grid.Quantity = "Daylight factor"
+        grid.DaylightLevel = "High"
+        path = os.path.join(work_dir("daylight-save"), "daylight.FCStd")
+        doc.saveAs(path)
+        before = scene_mod.build_scene(analysis).scene
+        sky_name = sky.Name
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(path)
+        analysis = find_analysis(doc)
+        after = scene_mod.build_scene(analysis).scene
+        self.assertEqual(sky_of(after), sky_of(before))
+        self.assertEqual(next(t for t in after["targets"] if t["name"] == "Workplane"),
+                         next(t for t in before["targets"] if t["name"] == "Workplane"))
+        self.assertEqual(doc.getObject(sky_name).PortalCount, 1)
+
     def test_the_scene_file_round_trips(self):
         doc, analysis, sky, names = office_with_sky()
         path = lighting.export_scene(doc, directory=work_dir("daylight-export"))
