@@ -12,6 +12,7 @@ model, and which inputs changed since. It is computed on demand, never by re-tes
   display or visibility), its global placement, its photometric file's size and date;
 - ``target:<Name>``: each target's properties (not its requirements: pass/FAIL is judged
   against the current ones) and the signature of its shape (grid cells, faces);
+- ``sky:<Name>``: each Sky's properties and the signature of its portals' shape;
 - ``object:<Name>``: each exported object (export/collect.py: hidden ones included, excluded
   ones not): type, global placement, shape or mesh signature (counts, bounding box, area,
   volume) and material inputs (Reflectance/Transmittance, IFC type, its Arch material's data).
@@ -243,6 +244,10 @@ def of_analysis(analysis: Any) -> Dict[str, str]:
     for eye in analysis_mod.observers(analysis):
         result[f"observer:{eye.Name}"] = _digest([_properties(eye),
                                                   str(eye.getGlobalPlacement())])
+    from lighting.export import daylight
+
+    for sky in daylight.skies(analysis):  # its settings and its portals (its drawn shape)
+        result[f"sky:{sky.Name}"] = _digest([_properties(sky), _geometry_entry(sky)])
     for obj in collect.exported_objects(analysis.Document):
         result[f"object:{obj.Name}"] = _geometry_entry(obj)
     return result

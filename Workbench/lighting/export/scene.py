@@ -17,7 +17,7 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 import FreeCAD
 
 from lighting import __version__, files
-from lighting.export import collect, defaults, ply
+from lighting.export import collect, daylight, defaults, ply
 from lighting.export.materials import MaterialResolver, MaterialSpec, window_part_kinds
 from lighting.export.tessellate import (FaceTriangles, MeshBuilder, largest_triangle,
                                         mesh_triangles, tessellate_faces, triangle_normal)
@@ -201,12 +201,15 @@ class SceneBuilder:
         # Luminaire objects and the members of layouts (a layout's template is not placed).
         lums = layout_mod.placed_luminaires(self.analysis, self.report)
         tgts = analysis_mod.targets(self.analysis)
-        if not lums:
+        sky = daylight.build(self.analysis, self.report)
+        if not lums and not sky.luminaires:
             self.report.add("error", "No luminaires: add at least one with Lighting > Luminaire")
         if not tgts:
             self.report.add("error", "No targets: add a face target or a calculation grid")
         self._claim_target_faces(tgts)
-        exported = collect.exported_objects(self.doc)
+        # Windows that became a sky's portals: the portal's glazing stands for them.
+        exported = [o for o in collect.exported_objects(self.doc)
+                    if o.Name not in sky.replaced_windows]
         exported_names = {o.Name for o in exported}
         for number, obj in enumerate(exported, 1):
             self._say(f"Tessellating {obj.Label} ({number}/{len(exported)})")
@@ -261,6 +264,8 @@ class SceneBuilder:
             except (OSError, ValueError) as exc:
                 self.report.add("error", f"Luminaire '{lum.Label}': {exc}",
                                 layout_mod.report_name(lum))
+        luminaires.extend(sky.luminaires)
+        self.labels.update(sky.labels)
         for note in self.resolver.notes:
             self.report.add("warning", note)
         dropped = sum(b.dropped for per in self.object_builders.values() for b in per.values())
@@ -275,6 +280,8 @@ class SceneBuilder:
             "settings": analysis_mod.settings(self.analysis),
             "metadata": self._metadata(lums),
         }
+        if sky.north_deg is not None:
+            result.scene["metadata"]["north_deg"] = sky.north_deg
         return result
 
     def _metadata(self, lums: List[Any]) -> Dict[str, Any]:

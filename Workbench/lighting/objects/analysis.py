@@ -182,8 +182,11 @@ def requirements(analysis: Any) -> Dict[str, Dict[str, float]]:
     entries' ``requirements``, objects/target.py), by target name: what the results reader
     judges on the point estimates of targets whose results carry no verdicts of the solver
     (results of older versions, requirements set after the run)."""
+    from lighting.objects import daylight_target
+
+    # A daylight-factor grid's requirements are judged by the solver alone (DF, not lux).
     return {t.Name: dict(target.requirements_entry(t).get("requirements", {}))
-            for t in targets(analysis)}
+            for t in targets(analysis) if not daylight_target.is_daylight_factor(t)}
 
 
 def observers(analysis: Any) -> List[Any]:
@@ -229,7 +232,10 @@ def decides(analysis: Any) -> bool:
     and some target with a requirement."""
     if not bool(getattr(analysis, "Decide", False)) or float(analysis.TargetAccuracy) > 0.0:
         return False
+    from lighting.objects import daylight_target
+
     return any(float(getattr(t, "RequiredLux", 0.0)) > 0.0
+               or (daylight_target.is_daylight_factor(t) and daylight_target.has_requirements(t))
                or (getattr(t, "TargetType", "") == "Grid"
                    and float(getattr(t, "RequiredUniformity", 0.0)) > 0.0)
                for t in targets(analysis))

@@ -231,3 +231,23 @@ def make_placement_domain(doc: Any, base: Any, face: str, resolution_m: float = 
     obj.Template = template
     _add_to_analysis(obj, analysis)
     return obj
+
+
+def make_sky(doc: Any, model: str = "CIE overcast", diffuse_horizontal_lx: float = 10000.0,
+             windows: Optional[Sequence[Any]] = None, name: str = "Sky",
+             analysis: Optional[Any] = None) -> Any:
+    """Create a Sky (objects/sky.py): ``model`` one of its SkyModel choices, at
+    ``diffuse_horizontal_lx``; its portals are the openings of ``windows`` (default: every
+    Arch window hosted in a wall, found at each recompute)."""
+    from lighting.objects.sky import MODELS, Sky
+
+    if model not in MODELS:
+        raise ValueError(f"model must be one of {tuple(MODELS)} (got {model!r})")
+    obj = doc.addObject("Part::FeaturePython", name)
+    Sky(obj)
+    obj.SkyModel = model
+    obj.DiffuseHorizontalLux = float(diffuse_horizontal_lx)
+    if windows:
+        obj.Windows = list(windows)
+    _add_to_analysis(obj, analysis)
+    return obj

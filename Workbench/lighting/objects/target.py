@@ -25,7 +25,9 @@ from lighting import standards
 from lighting.compat import ifc_type
 from lighting.geometry import (face_index, face_normal, global_shape, is_planar,
                                offset_for_display, referenced_faces)
+from lighting.objects import daylight_target
 from lighting.objects.base import BaseProxy, Prop, READ_ONLY
+from lighting.objects.daylight_target import DAYLIGHT_PROPERTIES
 from lighting.units import MM_TO_M, M_TO_MM, vec_m
 
 TYPE = "Lighting::Target"
@@ -117,6 +119,8 @@ class Target(BaseProxy):
                          "EN 12464-1 preset of RequiredLux/RequiredUniformity for the Surface "
                          "kind (walls, ceilings: U0 0.10); Custom = as typed",
                          standards.CUSTOM, items=standards.ACTIVITIES),
+        # Daylight-factor grids (DAYLIGHT_SPEC sections 1 and 5; objects/daylight_target.py).
+        **DAYLIGHT_PROPERTIES,
     }
 
     def onChanged(self, obj: Any, prop: str) -> None:  # noqa: N802 (FreeCAD API name)
@@ -184,6 +188,8 @@ def requirements_entry(obj: Any) -> Dict[str, Any]:
     table row of a task-area preset, so results and reports name it) and ``requirements``
     with the values the document holds (they replace the row's). The solver judges them from
     the intervals; a face target takes only Em. Empty without requirements."""
+    if daylight_target.is_daylight_factor(obj):
+        return daylight_target.requirements_entry(obj)
     entry: Dict[str, Any] = {}
     is_grid = obj.TargetType == "Grid"
     task = standards.task_of(obj.Activity) if "Activity" in obj.PropertiesList else None

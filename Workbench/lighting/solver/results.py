@@ -133,6 +133,10 @@ class TargetResult:
     #: luminance (docs/glare.md).
     ugr: Optional[float] = None
     ugr_ci: Tuple[Optional[float], Optional[float]] = (None, None)
+    #: A daylight-factor grid's ``daylight_factor`` object (DAYLIGHT_SPEC section 2) and its
+    #: whole results entry (requirements echo, DF verdicts); None / {} for other targets.
+    daylight_factor: Optional[Dict[str, Any]] = None
+    daylight_entry: Dict[str, Any] = field(default_factory=dict)
 
     def ugr_text(self) -> Tuple[str, str]:
         """("UGR 17.2", "16.9-17.5") of an observer; "-" where a value is absent."""
@@ -237,15 +241,22 @@ class AnalysisResult:
         (default: the migrated one)."""
         labels = labels or {}
         run = found.run
-        return cls(targets=[TargetResult.from_target(t, labels.get(t.name, ""))
-                            for t in found.targets],
-                   photons=float(run.photons), partial=run.partial, seconds=run.seconds,
-                   backend=run.backend,
-                   confidence=run.confidence if run.confidence is not None else 0.95,
-                   warnings=list(run.warnings), scene_file=scene_file,
-                   results_file=results_file, data=data if data is not None else found.doc,
-                   stop_reason=run.stop_reason or "", verdict=found.verdict,
-                   photons_requested=_float(run.photons_requested))
+        result = cls(targets=[TargetResult.from_target(t, labels.get(t.name, ""))
+                              for t in found.targets],
+                     photons=float(run.photons), partial=run.partial, seconds=run.seconds,
+                     backend=run.backend,
+                     confidence=run.confidence if run.confidence is not None else 0.95,
+                     warnings=list(run.warnings), scene_file=scene_file,
+                     results_file=results_file, data=data if data is not None else found.doc,
+                     stop_reason=run.stop_reason or "", verdict=found.verdict,
+                     photons_requested=_float(run.photons_requested))
+        from lighting import daylight_results
+
+        for target in result.targets:  # DF grids: read from the document as stored
+            entry = daylight_results.target_entry(result.data, target.name)
+            if isinstance(entry.get("daylight_factor"), dict):
+                target.daylight_factor, target.daylight_entry = entry["daylight_factor"], entry
+        return result
 
     def to_json(self) -> str:
         """The results in the CLI's JSON layout."""
@@ -261,6 +272,10 @@ def interval_text(pair: Optional[Tuple[float, float]], digits: int = 1, dash: st
 _ci = interval_text
 
 
+def _df_ci(df: Dict[str, Any], low: str, high: str) -> str:
+    return _ci((float(df[low]), float(df[high])), 2) if low in df and high in df else "-"
+
+
 def format_table(result: AnalysisResult) -> str:
     """Fixed-width text table: Em, Emin, Emax (lx) and U0 with their confidence intervals."""
     level = f"{result.confidence * 100:g}%"
@@ -274,6 +289,13 @@ def format_table(result: AnalysisResult) -> str:
             rows.append((t.label, t.kind, f"{t.mean_lux:.1f}", em_ci, f"{t.min_lux:.1f}",
                          _ci(t.min_ci_lux), f"{t.max_lux:.1f}", _ci(t.max_ci_lux),
                          f"{t.uniformity:.2f}", _ci(t.uniformity_ci, 2), verdict))
+            if t.daylight_factor is not None:  # its DF: mean and minimum in %
+                df = t.daylight_factor
+                rows.append((t.label, "DF %", f"{float(df.get('mean_percent', 0.0)):.2f}",
+                             _df_ci(df, "ci_low_percent", "ci_high_percent"),
+                             f"{float(df.get('min_percent', 0.0)):.2f}",
+                             _df_ci(df, "min_ci_low_percent", "min_ci_high_percent"),
+                             "-", "-", "-", "-", verdict))
         elif t.is_glare:
             rows.append((t.label, t.kind, *t.ugr_text(), "-", "-", "-", "-", "-", "-", verdict))
         else:

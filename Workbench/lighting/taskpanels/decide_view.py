@@ -22,7 +22,8 @@ from lighting.taskpanels.results_table import seconds_text
 #: Budget of a Decide click over the forecast photons (solver/decide.py).
 MARGIN = decide_mod.MARGIN
 #: Names of the requirements in the user's words.
-NAMES = {"em": "Em", "u0": "U0", "emin": "Emin", "ud": "Ud", "ugr": "UGR"}
+NAMES = {"em": "Em", "u0": "U0", "emin": "Emin", "ud": "Ud", "ugr": "UGR",
+         "df_target": "DF over 50 %", "df_minimum": "DF over 95 %"}
 
 
 class Undecided(NamedTuple):
@@ -39,11 +40,12 @@ class Undecided(NamedTuple):
 
     def text(self) -> str:
         """"Workplane Em 502.1 lx, required >= 500: about 1 234 000 photons (0.7 s)"."""
-        unit = " lx" if self.name in ("Em", "Emin") else ""
-        digits = 2 if self.name in ("U0", "Ud") else 1
+        unit = {"Em": " lx", "Emin": " lx"}.get(self.name, " %" if "DF" in self.name else "")
+        digits = 2 if self.name in ("U0", "Ud") or "DF" in self.name else 1
         shown = "-" if self.value is None else f"{self.value:.{digits}f}{unit}"
+        required = f"{self.required:.2f}" if "DF" in self.name else f"{self.required:g}"
         head = (f"{self.target} {self.name} {shown}, required {self.relation} "
-                f"{self.required:g}{unit}")
+                f"{required}{unit}")
         if self.photons is None:
             return head + ": the value sits on the requirement; no run can decide it"
         seconds = f", {seconds_text(self.seconds)}" if self.seconds is not None else ""

@@ -12,6 +12,7 @@ from typing import Any, List, Optional, Tuple
 
 from PySide import QtCore, QtGui
 
+from lighting import daylight_results
 from lighting.solver import results as results_mod
 
 COLUMNS = ("Target", "Type", "Em lx", "Em CI", "Emin lx", "Emin CI", "Emax lx", "Emax CI",
@@ -35,7 +36,10 @@ def rows(result: results_mod.AnalysisResult) -> List[List[str]]:
     for t in result.targets:
         verdict = t.verdict_text()
         ci = _ci((t.ci_low_lux, t.ci_high_lux))
-        if t.kind == "grid":
+        if t.daylight_factor is not None:  # a DF grid: its DF in the Em columns
+            value, interval = daylight_results.table_values(t.daylight_factor)
+            out.append([t.label, "DF grid", value, interval] + ["-"] * 6 + [verdict])
+        elif t.kind == "grid":
             out.append([t.label, t.kind, f"{t.mean_lux:.1f}", ci, f"{t.min_lux:.1f}",
                         _ci(t.min_ci_lux), f"{t.max_lux:.1f}", _ci(t.max_ci_lux),
                         f"{t.uniformity:.2f}", _ci(t.uniformity_ci, 2), verdict])
@@ -54,6 +58,8 @@ _NAMES = {"em": ("Em", " lx"), "emin": ("Emin", " lx"), "u0": ("U0", ""), "ud": 
 def requirement_lines(t: results_mod.TargetResult) -> List[Tuple[str, str]]:
     """("Em >= 500 lx", "pass") per requirement judged; an observer without a limit:
     ("UGR limit", "no limit set")."""
+    if t.daylight_factor is not None:  # EN 17037's daylight factor verdicts
+        return daylight_results.requirement_lines(t.daylight_entry)
     out = []
     for key, verdict in t.verdicts.items():
         name, unit = _NAMES.get(key, (key, ""))
@@ -82,6 +88,8 @@ def figure_lines(t: results_mod.TargetResult) -> List[Tuple[str, str, str]]:
             interval = "-"
         return [(label, value, interval)]
     lines = [("Em", f"{t.mean_lux:.1f} lx", _ci((t.ci_low_lux, t.ci_high_lux)))]
+    if t.daylight_factor is not None:  # the DF figures, then the daylight's lux
+        lines = daylight_results.figure_lines(t.daylight_factor) + lines
     if t.kind == "grid":
         lines += [("Emin", f"{t.min_lux:.1f} lx", _ci(t.min_ci_lux)),
                   ("Emax", f"{t.max_lux:.1f} lx", _ci(t.max_ci_lux)),

@@ -68,7 +68,7 @@ VERDICT_RGB = {"pass": (0.0, 0.55, 0.0), "FAIL": (0.85, 0.0, 0.0), "undecided": 
 
 
 def build_legend(scale: Scale, title: str = "Illuminance [lx]", stale: bool = False,
-                 verdicts: Sequence[Tuple[str, str]] = ()) -> Any:
+                 verdicts: Sequence[Tuple[str, str]] = (), digits: int = 0) -> Any:
     """Coin nodes of a vertical colour bar with tick labels at the left of the view; greyed,
     with a title that says so, when the results are stale. ``verdicts``: (target label,
     verdict word) lines drawn under the bar in the verdict's colour."""
@@ -123,7 +123,7 @@ def build_legend(scale: Scale, title: str = "Illuminance [lx]", stale: bool = Fa
         move.translation = (X1 + 0.01, y - 0.01, 0.0)
         label.addChild(move)
         text = coin.SoText2()
-        text.string = f"{value:.0f}"
+        text.string = f"{value:.{digits}f}"  # a daylight factor's 0.5 % steps: 1 digit
         label.addChild(text)
         text_sep.addChild(label)
     title_sep = coin.SoSeparator()
@@ -209,17 +209,19 @@ class ViewProviderAnalysis(ViewProviderBase):
 
             coloring.refresh_later(obj)
 
-    def update_legend(self, scale: Optional[Scale]) -> None:
-        """Show the legend of ``scale`` (None hides it)."""
+    def update_legend(self, scale: Optional[Scale], title: Optional[str] = None,
+                      digits: int = 0) -> None:
+        """Show the legend of ``scale`` (None hides it); ``title``: another quantity's (a
+        daylight factor's, viewproviders/daylight_coloring.py) instead of the lux one."""
         holder = getattr(self, "legend_holder", None)
         if holder is None:
             return
         holder.removeAllChildren()
         vobj = getattr(self, "ViewObject", None)
         if scale is not None and (vobj is None or vobj.Visibility):
-            holder.addChild(build_legend(scale, title=self.legend_title(),
+            holder.addChild(build_legend(scale, title=title or self.legend_title(),
                                          stale=self.results_stale(),
-                                         verdicts=self.verdict_lines()))
+                                         verdicts=self.verdict_lines(), digits=digits))
 
     def legend_title(self) -> str:
         """The legend's title, with the overall verdict on the requirements when the solver

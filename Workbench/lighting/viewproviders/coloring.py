@@ -121,17 +121,25 @@ def refresh(analysis: Any) -> None:
         refresh_later(analysis)
         return
     try:
+        from lighting.viewproviders import daylight_coloring
+
         scale = scale_for(analysis)
         found = results_mod.of_analysis(analysis)
+        daylight = daylight_coloring.Daylight(analysis, found)  # DF grids: false colours in %
         has_results = False
         for tgt in analysis_mod.targets(analysis):
             mine = found is not None and results_mod.index_of(found, tgt.Name) is not None
             has_results = has_results or mine
-            paint_target(tgt, scale if mine else None, found if mine else None)
+            if not (mine and daylight.paint(tgt)):
+                paint_target(tgt, scale if mine else None, found if mine else None)
         vobj = getattr(analysis, "ViewObject", None)
         proxy = getattr(vobj, "Proxy", None) if vobj is not None else None
         if proxy is not None and hasattr(proxy, "update_legend"):
-            proxy.update_legend(scale if has_results and analysis.ShowLegend else None)
+            shown = has_results and analysis.ShowLegend
+            if shown and daylight.scale is not None:
+                proxy.update_legend(daylight.scale, **daylight.legend())
+            else:
+                proxy.update_legend(scale if shown else None)
     except Exception as exc:  # noqa: BLE001 - painting must never break the document
         FreeCAD.Console.PrintWarning(f"Lighting: cannot paint results: {exc}\n")
 

@@ -35,6 +35,7 @@ VIEW_PROVIDERS: Dict[str, Tuple[str, str]] = {
     "Lighting::LuminaireLayout": ("luminaire_layout", "ViewProviderLuminaireLayout"),
     "Lighting::Observer": ("eye", "ViewProviderObserver"),
     "Lighting::LightScene": ("light_scene", "ViewProviderLightScene"),
+    "Lighting::Sky": ("sky", "ViewProviderSky"),
 }
 
 _observer: Optional["LightingObserver"] = None

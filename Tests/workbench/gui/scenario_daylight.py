@@ -1,0 +1,147 @@
+"""GUI scenario: daylight. From the Start page the user builds the office (a room of Arch walls
+with a window in the south wall), switches its luminaires off, adds a *Sky* from the toolbar
+(nothing selected: the hosted window becomes its portal on the wall's inner face, pointing
+into the room), turns the work-plane grid into a daylight-factor grid with EN 17037's medium
+level at 15 900 lx, and runs the analysis from its panel.
+
+Until the solver computes daylight factors (DAYLIGHT_SPEC section 1, another part of issue
+26: the solver's grid type then lists ``quantity``), the run traces the grid's daylight in lux
+(the sky through the portal, the current solver) and the daylight-factor display is checked
+on a hand-written result in the spec's layout (Tests/workbench/daylight_fixture.py): the grid
+in false colours with the legend in %, the panel's row "DF x.xx %" and the EN 17037 verdicts.
+With a solver that knows ``quantity``, the run itself gives the daylight factors."""
+import json
+import os
+import sys
+
+from guilib import STATUS, expect, grab_window, log, pump, scenario, toolbar_enabled, wait_until
+
+sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def solver_computes_daylight_factors() -> bool:
+    """Whether the solver's grid reads ``quantity`` (the merged DF solver)."""
+    import lightsolver
+
+    grid = next(t for t in lightsolver.target_types() if t["name"] == "grid")
+    return "quantity" in grid["keys"]
+
+
+def run_panel(analysis) -> None:
+    import FreeCADGui
+
+    from lighting.taskpanels import analysis_panel
+
+    before = analysis_panel.last_run()
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(analysis)
+    FreeCADGui.runCommand("Lighting_Run")
+    ok = wait_until(lambda: analysis_panel.last_run() is not before
+                    and analysis_panel.last_run().stage in ("done", "failed", "cancelled"),
+                    120.0)
+    job = analysis_panel.last_run()
+    expect(ok and job.stage == "done", f"the run did not finish: "
+                                       f"{job.stage if job else None} {job.error if job else ''}")
+    pump(0.5)
+
+
+def table_rows() -> dict:
+    from lighting.taskpanels import analysis_panel
+
+    panel = analysis_panel.last_panel()
+    last = panel.table.columnCount() - 1
+    return {panel.table.item(r, 0).text(): (panel.table.item(r, 2).text(),
+                                            panel.table.item(r, last).text())
+            for r in range(panel.table.rowCount())}
+
+
+def body() -> None:
+    import FreeCADGui
+
+    import office_model
+    from lighting.objects import luminaire_layout
+    from lighting.taskpanels import analysis_panel
+
+    doc = office_model.build_office(photons=400000)
+    office_model.show_in_gui(doc)
+    pump(0.5)
+    analysis = doc.getObject(office_model.OBJECTS["analysis"])
+    analysis.Decide = False
+    for lum in luminaire_layout.placed_luminaires(analysis):
+        lum.FluxLumen = 0.0  # daylight only
+    FreeCADGui.Selection.clearSelection()
+    expect(toolbar_enabled("Lighting_Sky"), "the Sky command is not enabled")
+    before = {o.Name for o in doc.Objects}
+    FreeCADGui.runCommand("Lighting_Sky")
+    pump(0.5)
+    skies = [doc.getObject(n) for n in {o.Name for o in doc.Objects} - before]
+    skies = [o for o in skies if type(getattr(o, "Proxy", None)).__name__ == "Sky"]
+    expect(len(skies) == 1, "the Sky command made no sky")
+    if not skies:
+        return
+    sky = skies[0]
+    STATUS["portals"] = json.loads(json.dumps(sky.PortalCount))
+    expect(sky.PortalCount == 1, f"the window gave {sky.PortalCount} portals")
+    expect(sky in analysis.Group, "the sky is not in the active analysis")
+    # Double-click: the Sky's panel says what it exports and which glazing defaults it takes.
+    sky.ViewObject.Proxy.doubleClicked(sky.ViewObject)
+    pump(0.5)
+    from lighting.taskpanels import sync
+
+    shown = [p for p in sync.open_panels() if type(p).__name__ == "SkyPanel"]
+    expect(len(shown) == 1, "double-clicking the sky opened no panel")
+    if shown:
+        text = shown[0].text.text()
+        STATUS["sky_panel"] = text
+        for words in ("Portal 'Window'", "tau_v 0.75", "frame factor 0.8",
+                      "maintenance factor 0.9", "left out of the scene"):
+            expect(words in text, f"the sky's panel does not say {words!r}: {text}")
+        grab_window("daylight_sky_panel")
+    grid = doc.getObject("Workplane")
+    real = solver_computes_daylight_factors()
+    STATUS["solver_computes_daylight_factors"] = real
+    grid.Quantity = "Daylight factor" if real else "Illuminance"
+    grid.DaylightLevel = "Medium"
+    grid.MedianDiffuseLux = 15900.0
+    doc.recompute()
+    run_panel(analysis)
+    rows = table_rows()
+    STATUS["rows_run"] = rows
+    log(f"rows after the run {rows}")
+    if not real:
+        # The daylight reached the grid through the portal (lux from the sky alone).
+        lux = float(rows.get(grid.Label, ("0", ""))[0] or 0.0)
+        expect(lux > 50.0, f"no daylight on the work plane: {rows}")
+        grab_window("daylight_lux")
+        import daylight_fixture
+        from lighting.solver import store
+
+        grid.Quantity = "Daylight factor"
+        doc.recompute()
+        job = analysis_panel.last_run()
+        traced = json.loads(json.dumps(job.data))
+        data = daylight_fixture.add_to_results(traced, grid.Name, sky.Name,
+                                               int(grid.CellsU), int(grid.CellsV))
+        store.apply_to_document(analysis, data, job.scene_file, job.results_file)
+        analysis_panel.last_panel().refresh()
+        pump(1.0)
+        rows = table_rows()
+    STATUS["rows"] = rows
+    value, verdict = rows.get(grid.Label, ("", ""))
+    expect(value.startswith("DF ") and value.endswith(" %"), f"the grid's row shows no DF: {rows}")
+    expect(verdict in ("pass", "FAIL", "undecided"), f"the grid's verdict: {rows}")
+    legend = analysis.ViewObject.Proxy
+    colours = {tuple(round(c, 2) for c in colour[:3]) for colour in grid.ViewObject.DiffuseColor}
+    STATUS["grid_colours"] = len(colours)
+    expect(len(colours) > 3, f"the DF grid is not painted cell by cell: {len(colours)} colours")
+    holder = getattr(legend, "legend_holder", None)
+    expect(holder is not None and holder.getNumChildren() == 1, "no legend shown")
+    view = FreeCADGui.ActiveDocument.ActiveView
+    view.viewTop()  # as a user reads a DF plan: from above, through the see-through ceiling
+    view.fitAll()
+    pump(0.5)
+    grab_window("daylight_df", docs_name="daylight-factor.png")
+
+
+scenario(body)
