@@ -244,7 +244,19 @@ def _site(lat: Optional[float], lon: Optional[float]) -> str:
     """52.52° N, 13.40° E."""
     if lat is None or lon is None:
         return "–"
-    return f"{abs(lat):.2f}° {'N' if lat >= 0 else 'S'}, {abs(lon):.2f}° {'E' if lon >= 0 else 'W'}"
+    north, east = "N" if lat >= 0 else "S", "E" if lon >= 0 else "W"
+    return f"{abs(lat):.2f}° {north}, {abs(lon):.2f}° {east}"
+
+
+def _local_time(text: str) -> str:
+    """ISO 8601 local time with its zone as a client reads it: 2026-03-21 12:00 (UTC+01:00)."""
+    date, _, rest = text.partition("T")
+    for mark in ("+", "-", "Z"):
+        if mark in rest:
+            clock, _, zone = rest.partition(mark)
+            zone = "UTC" if mark == "Z" else f"UTC{mark}{zone}"
+            return f"{date} {clock[:5]} ({zone})"
+    return f"{date} {rest[:5]}".strip()
 
 
 def _sun_row(lum: Dict[str, Any], label: str, north_deg: Optional[float],
@@ -256,7 +268,7 @@ def _sun_row(lum: Dict[str, Any], label: str, north_deg: Optional[float],
     site, time = lum.get("site"), lum.get("time")
     if isinstance(site, dict) and isinstance(time, str):
         lat, lon = finite(site.get("latitude_deg")), finite(site.get("longitude_deg"))
-        row.when = f"{time.replace('T', ' ')}, {_site(lat, lon)}"
+        row.when = f"{_local_time(time)}, {_site(lat, lon)}"
         if sun_position is not None and lat is not None and lon is not None:
             try:
                 pos = sun_position(lat, lon, time, elevation_m=finite(site.get("elevation_m"))
