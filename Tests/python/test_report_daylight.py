@@ -99,6 +99,10 @@ def test_each_df_grid_has_its_page_with_statistics_in_their_intervals(page):
     assert f"about {fmt.sci(undecided['to_decide']['photons'])} light paths" in page
     assert "already" not in text and "alone is still undecided" in text
     assert "Daylight at a glance" in text and "Overall verdict" in text
+    # On the cover, a failed grid is not "decided after" more light paths: it is decided.
+    compliance = section(page, '<table class="grid summary">', "</table>")
+    row = section(compliance, "<td>Reference plane", "</tr>")
+    assert "badge v-fail" in row and "decided after" not in row
 
 
 def test_en17037_requirements_are_derived_and_said(page):
