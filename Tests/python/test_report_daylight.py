@@ -173,6 +173,9 @@ def test_skies_and_suns_are_daylight_not_luminaires(page):
     assert "Overcast sky" not in luminaires and "Sun, 21 March" not in luminaires
     plans = section(page, "Plans and view of the model", "4 Daylight")
     assert "Overcast sky" not in visible_text(plans)  # no sky or sun marked in the room
+    # The picture of the model colours the DF grids by their daylight factor (no lux grid).
+    assert "Daylight-factor grids (cell by cell) in false colours by their daylight factor" \
+        in plans and plans.count("D [%]") == 1
     flux = {lum["name"]: lum["emitted_flux_lm"] for lum in results()["luminaires"]}
     assert f">{fmt.number(flux['sky'], 4)}</td>" in schedule
 
