@@ -248,3 +248,32 @@ def test_pdf_of_the_daylight_report(tmp_path, page):
 
     (pgm,) = tmp_path.glob("df-*.pgm")
     assert 0.02 < _ink_fraction(pgm) < 0.6
+
+
+def test_incomplete_daylight_results_print_dashes_never_nan():
+    res = results()
+    df = res["targets"][0]["daylight_factor"]
+    for key in ("p95_percent", "p95_ci_low_percent", "min_ci_high_percent"):
+        del df[key]
+    df["mean_percent"] = float("nan")
+    df["cells"] = df["cells"][:-1]  # not the grid's shape: no plan rather than a wrong one
+    page = render_html(SCENE, res, date=DATE)
+    part = section(page, "4.1 Daylight factor", "4.2 Daylight factor")
+    assert not re.search(r"\b(nan|inf)\b", visible_text(part), re.I)
+    assert 'id="dfplan0' not in part and 'id="dfplan1' in page
+    rows = section(part, "<tbody>", "</tbody>")
+    assert rows.count("–") >= 3  # the missing mean, D95's value and D_min's interval
+
+
+def test_a_solver_without_df_shows_the_grid_by_its_illuminance():
+    res = results()
+    for target in res["targets"]:
+        for key in ("daylight_factor", "requirements", "verdicts", "verdict"):
+            target.pop(key, None)
+    res.pop("verdict"), res.pop("sunlight_exposure")
+    report = build(SCENE, res, date=DATE)
+    assert not report.daylight_areas and report.sunlight is None
+    assert [a.label for a in report.illuminance_areas] == ["Reference plane",
+                                                          "Desks by the window"]
+    page = render_html(SCENE, res, date=DATE)
+    assert "Daylight factor:" not in page and "Daylight: sky, sun and openings" in page
