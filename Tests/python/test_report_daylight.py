@@ -277,3 +277,16 @@ def test_a_solver_without_df_shows_the_grid_by_its_illuminance():
                                                           "Desks by the window"]
     page = render_html(SCENE, res, date=DATE)
     assert "Daylight factor:" not in page and "Daylight: sky, sun and openings" in page
+
+
+def test_a_suns_opening_faces_the_sun_whichever_way_its_edges_turn():
+    data = scene()
+    sun = next(lum for lum in data["luminaires"] if lum["type"] == "sun")
+    sun["edge1"], sun["edge2"] = sun["edge2"], sun["edge1"]  # edge1 × edge2 now outward
+    (row,) = build(data, results(), scene_path=SCENE, date=DATE).suns
+    assert row.openings[0].facing == "south (180°)"
+    del sun["site"], sun["time"]
+    sun["direction"] = [0, 1, -1]  # from the south, 45° high
+    (row,) = build(data, results(), scene_path=SCENE, date=DATE).suns
+    assert row.elevation_deg == pytest.approx(45.0) and row.azimuth == "south (180°)"
+    assert row.openings[0].facing == "south (180°)" and row.when == ""

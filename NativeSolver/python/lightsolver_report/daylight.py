@@ -175,7 +175,11 @@ def _bearing(d: np.ndarray, north_deg: Optional[float]) -> Optional[str]:
     return compass(90.0 + north_deg - phi)
 
 
-def _openings(entries: Any, north_deg: Optional[float]) -> List[Opening]:
+def _openings(entries: Any, north_deg: Optional[float],
+              toward_sun: Optional[np.ndarray] = None) -> List[Opening]:
+    """Each opening's area, facing and glazing. A portal's edge1 × edge2 points into the room;
+    a sun's own opening (corner, edge1, edge2) has no such sense: it faces the sun
+    (``toward_sun``)."""
     out = []
     for i, portal in enumerate(entries if isinstance(entries, list) else []):
         try:
@@ -186,6 +190,8 @@ def _openings(entries: Any, north_deg: Optional[float]) -> List[Opening]:
         inward = np.cross(e1, e2)
         area = float(np.linalg.norm(inward))
         outward = -inward
+        if toward_sun is not None and float(outward @ toward_sun) < 0.0:
+            outward = inward
         if abs(outward[2]) > 0.98 * max(area, 1e-12):
             facing = "up (roof light)" if outward[2] > 0 else "down"
         else:
@@ -266,6 +272,7 @@ def _sun_row(lum: Dict[str, Any], label: str, north_deg: Optional[float],
     north = finite(lum.get("north_deg"))
     north = north if north is not None else north_deg
     site, time = lum.get("site"), lum.get("time")
+    toward: Optional[np.ndarray] = None
     if isinstance(site, dict) and isinstance(time, str):
         lat, lon = finite(site.get("latitude_deg")), finite(site.get("longitude_deg"))
         row.when = f"{_local_time(time)}, {_site(lat, lon)}"
@@ -275,15 +282,16 @@ def _sun_row(lum: Dict[str, Any], label: str, north_deg: Optional[float],
                                    or 0.0, north_deg=north or 0.0)
                 row.elevation_deg = float(pos["elevation_deg"])
                 row.azimuth = compass(float(pos["azimuth_deg"]))
+                toward = np.asarray(pos["direction"], dtype=float)
             except (ValueError, KeyError, TypeError):
                 pass
     elif lum.get("direction") is not None:
-        d = -np.asarray(lum["direction"], dtype=float)
-        row.elevation_deg, row.azimuth = _toward(d, north)
+        toward = -np.asarray(lum["direction"], dtype=float)
+        row.elevation_deg, row.azimuth = _toward(toward, north)
     if isinstance(lum.get("portals"), list):  # DAYLIGHT_SPEC section 4
         row.openings = _openings(lum["portals"], north_deg)
     else:
-        row.openings = _openings([lum], north_deg)
+        row.openings = _openings([lum], north_deg, toward)
     return row
 
 
