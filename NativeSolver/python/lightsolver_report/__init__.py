@@ -166,16 +166,34 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
         scene, results, scene_name=os.path.basename(str(scene_path)) if scene_path else "",
         base_dir=base_dir, date=report_date(date), solver_version=solver_version, title=title,
         photometry=solver.photometry_summary if solver else None,
-        material_defaults=solver.material_defaults() if solver else None)
+        material_defaults=solver.material_defaults() if solver else None,
+        sun_position=getattr(solver, "sun_position", None) if solver else None)
     report.view_png = guard.view_png(view_png)
     report.signoff = guard.signoff(signoff)
     report.partial = guard.is_partial(results)
     for i, area in enumerate(report.areas):
-        if area.grid is not None and area.grid.lux.size:
+        if area.daylight is not None:
+            daylight_pictures(area, i)
+        elif area.grid is not None and area.grid.lux.size:
             area.plan_svg = plots.plan_svg(area.grid, f"plan{i}")
             area.chart_svg, area.chart_note = plots.chart_svg(area.grid, f"chart{i}")
     pictures.attach(report, scene, base_dir)
     return report
+
+
+def daylight_pictures(area: Any, index: int) -> None:
+    """A daylight-factor grid's plan and value chart in percent (its cells' DF)."""
+    import dataclasses
+
+    from lightsolver_report import plots
+
+    df = area.daylight
+    if area.grid is None or df.percent is None or df.percent.shape != area.grid.lux.shape:
+        return
+    grid = dataclasses.replace(area.grid, lux=df.percent)
+    area.plan_svg = plots.plan_svg(grid, f"dfplan{index}", quantity="D [%]")
+    area.chart_svg, area.chart_note = plots.chart_svg(grid, f"dfchart{index}",
+                                                      text=plots.df_text)
 
 
 def render_html(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,

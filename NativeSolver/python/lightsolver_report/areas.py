@@ -10,12 +10,17 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
+from lightsolver_report.daylight import DaylightFactor, read_daylight_factor
 from lightsolver_report.fmt import finite
 from lightsolver_results import Stat, Target
 
 #: Verdict keys in the order the report lists them, with the requirement key and unit of each.
 QUANTITIES: Tuple[Tuple[str, str, str], ...] = (
     ("em", "em_lux", "lx"), ("emin", "emin_lux", "lx"), ("u0", "u0", ""), ("ud", "ud", ""))
+
+#: Daylight-factor verdicts (DAYLIGHT_SPEC section 2): key, requirement key, in print order.
+DF_QUANTITIES: Tuple[Tuple[str, str], ...] = (("df_target", "df_target_percent"),
+                                              ("df_minimum", "df_minimum_percent"))
 
 Vec = Tuple[float, float, float]
 
@@ -37,6 +42,10 @@ class Verdict:
     @property
     def is_lux(self) -> bool:
         return self.key in ("em", "emin")
+
+    @property
+    def is_df(self) -> bool:
+        return self.key.startswith("df_")
 
 
 @dataclass
@@ -102,6 +111,8 @@ class Area:
     plan_svg: str = ""
     chart_svg: str = ""
     chart_note: str = ""
+    #: A daylight-factor grid's DF (its page in the daylight section), None otherwise.
+    daylight: Optional[DaylightFactor] = None
 
     @property
     def is_glare(self) -> bool:
@@ -156,6 +167,8 @@ def _requirements(req: Optional[Dict[str, Any]]) -> List[Requirement]:
              if finite(req.get(rkey)) is not None]
     if finite(req.get("ugr_max")) is not None:
         items.append(Requirement("ugr", "<=", float(req["ugr_max"])))
+    items += [Requirement(key, ">=", float(req[rkey])) for key, rkey in DF_QUANTITIES
+              if finite(req.get(rkey)) is not None]
     return items
 
 
@@ -163,7 +176,8 @@ def _verdicts(raw: Any) -> List[Verdict]:
     if not isinstance(raw, dict):
         return []
     found = []
-    for key in [k for k, _, _ in QUANTITIES] + sorted(set(raw) - {k for k, _, _ in QUANTITIES}):
+    known = [k for k, _, _ in QUANTITIES] + [k for k, _ in DF_QUANTITIES]
+    for key in known + sorted(set(raw) - set(known)):
         v = raw.get(key)
         if not isinstance(v, dict):
             continue
@@ -255,6 +269,11 @@ def build_area(target: Target, scene_target: Dict[str, Any], labels: Dict[str, s
     if isinstance(req, dict):
         area.task = str(req["task"]) if req.get("task") else scene_target.get("task")
         area.source = str(req["source"]) if req.get("source") else None
+    if target.is_grid and (scene_target.get("quantity") == "daylight_factor"
+                           or "daylight_factor" in target.entry):
+        area.daylight = read_daylight_factor(target.entry.get("daylight_factor"), req,
+                                             area.cells_uv, labels,
+                                             scene_target.get("requirements"))
     area.verdicts = _verdicts(target.entry.get("verdicts"))
     verdict = target.entry.get("verdict")
     area.verdict = str(verdict) if isinstance(verdict, str) else None

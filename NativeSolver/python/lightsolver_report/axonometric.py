@@ -291,10 +291,10 @@ def rasterise(flat: np.ndarray, depth: np.ndarray, colours: np.ndarray,
 
 
 def draw(painting: Painting, lamps: np.ndarray, norm, cmap, salt: str,
-         azimuth_deg: float = AZIMUTH_DEG) -> str:
+         azimuth_deg: float = AZIMUTH_DEG, quantity: str = "E [lx]") -> str:
     """The parallel projection, rendered with a depth buffer into one raster image (RASTER_DPI,
     not antialiased: no seams, a small file), the luminaires over it as outlines and a colour
-    bar in lux when values show."""
+    bar labelled ``quantity`` (lux; the daylight factor in percent) when values show."""
     from matplotlib.collections import PolyCollection
     from matplotlib.cm import ScalarMappable
 
@@ -333,7 +333,7 @@ def draw(painting: Painting, lamps: np.ndarray, norm, cmap, salt: str,
         cax = fig.add_axes(((0.1 + plot_w + 0.25) / width, 0.15 * plot_h / height + 0.1 / height,
                             0.14 / width, 0.7 * plot_h / height))
         colorbar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), cax=cax)
-        colorbar.set_label("E [lx]", fontsize=7)
+        colorbar.set_label(quantity, fontsize=7)
         colorbar.ax.tick_params(labelsize=7, length=2)
         colorbar.outline.set_linewidth(0.6)
     return plots._svg(fig, salt, dpi=RASTER_DPI)
@@ -367,11 +367,14 @@ class ModelPicture:
         if self.view_png:
             return ("The model in the 3D view of the design software, surfaces in false "
                     "colours by their illuminance.")
+        if _results(self.report)[2] != "E [lx]":
+            shown = "Daylight-factor grids (cell by cell) in false colours by their daylight factor"
+        else:
+            shown = ("Calculation grids (cell by cell) and calculation surfaces (their mean) in "
+                     "false colours by their illuminance")
         return (f"Axonometric view of the model from above {_side(self.north_deg, self.angle)}; "
-                "the ceiling "
-                "and the walls nearest the viewer are left out. Calculation grids (cell by "
-                "cell) and calculation surfaces (their mean) in false colours by their "
-                "illuminance; other surfaces in grey, lighter for a higher reflectance; "
+                "the ceiling and the walls nearest the viewer are left out. "
+                f"{shown}; other surfaces in grey, lighter for a higher reflectance; "
                 "glass light blue; luminaires pale yellow.")
 
     def __html__(self) -> str:
@@ -394,7 +397,7 @@ class ModelPicture:
         """What the drawing paints, with its colour scale (``norm``) and map."""
         from matplotlib.colors import Normalize
 
-        surface_lux, grid_lux = _results(self.report)
+        surface_lux, grid_lux, self.quantity = _results(self.report)
         names = {s.name for s in self.items.surfaces} | {g.name for g in self.items.grids}
         values = [v for k, v in surface_lux.items() if k in names]
         for k, lux in grid_lux.items():
@@ -424,7 +427,8 @@ class ModelPicture:
     def _draw(self) -> str:
         painting, norm, cmap = self.painting()
         lamps = _luminaire_polys(self.items, self._lamp_size(), self.angle)
-        return draw(painting, lamps, norm, cmap, self.salt, AZIMUTH_DEG + self.angle)
+        return draw(painting, lamps, norm, cmap, self.salt, AZIMUTH_DEG + self.angle,
+                    self.quantity)
 
 
 def _side(north_deg: Optional[float], angle_deg: float = 0.0) -> str:
@@ -439,12 +443,20 @@ def _side(north_deg: Optional[float], angle_deg: float = 0.0) -> str:
     return f"its {names[int(((bearing + 22.5) % 360.0) // 45.0)]} corner"
 
 
-def _results(report: Any) -> Tuple[Dict[str, float], Dict[str, np.ndarray]]:
-    """Each calculation surface's mean and each grid's cells (lux), from the report's areas."""
-    surfaces, grids = {}, {}
+def _results(report: Any) -> Tuple[Dict[str, float], Dict[str, np.ndarray], str]:
+    """Each calculation surface's mean and each grid's cells (lux), from the report's areas,
+    and the colour bar's label. Daylight-factor grids are coloured by their daylight factor
+    (percent) when no illuminance area is drawn, else left grey (one scale per picture)."""
+    surfaces, grids, daylight = {}, {}, {}
     for area in getattr(report, "areas", []) or []:
-        if area.type == "surface" and area.em is not None and area.em.value is not None:
+        df = getattr(area, "daylight", None)
+        if df is not None:
+            if df.percent is not None and df.percent.size:
+                daylight[area.name] = np.asarray(df.percent, dtype=float)
+        elif area.type == "surface" and area.em is not None and area.em.value is not None:
             surfaces[area.name] = float(area.em.value)
         elif area.type == "grid" and area.grid is not None and area.grid.lux.size:
             grids[area.name] = np.asarray(area.grid.lux, dtype=float)
-    return surfaces, grids
+    if daylight and not surfaces and not grids:
+        return {}, daylight, "D [%]"
+    return surfaces, grids, "E [lx]"

@@ -137,6 +137,23 @@ def azimuth(direction: Any) -> Optional[float]:
     return angle + 0.0  # no "-0"
 
 
+def df(value: Optional[float]) -> str:
+    """A daylight factor in percent (the number only): 2.03, 12.4."""
+    value = finite(value)
+    if value is None:
+        return DASH
+    return f"{value:.2f}" if abs(value) < 10 else f"{value:.1f}"
+
+
+def sunhours(hours: Optional[float]) -> str:
+    """Hours of sunlight as "3 h 12 min"."""
+    hours = finite(hours)
+    if hours is None:
+        return DASH
+    minutes = round(hours * 60.0)
+    return f"{minutes // 60}\u00a0h {minutes % 60:02d}\u00a0min"
+
+
 def stopped(reason: Optional[str]) -> str:
     """How the calculation ended, for a client (the results' ``stop_reason``)."""
     from lightsolver_report.wording import stopped as worded
@@ -146,4 +163,5 @@ def stopped(reason: Optional[str]) -> str:
 
 FILTERS = {"ugr": ugr, "lux": lux, "ratio": ratio, "ratio2": ratio2, "number": number, "sci": sci,
            "count": count, "seconds": seconds, "percent": percent, "metres": metres,
-           "azimuth": azimuth, "stopped": stopped}
+           "azimuth": azimuth, "stopped": stopped, "df": df,
+           "sunhours": sunhours}

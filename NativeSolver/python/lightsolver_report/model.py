@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
 import lightsolver_results
-from lightsolver_report import energy, scenes
+from lightsolver_report import daylight, energy, scenes
 from lightsolver_report.initial import InitialValues, initial_values
 from lightsolver_report.areas import (QUANTITIES, Area, GridData, Requirement,  # noqa: F401
                                       Verdict, build_area)
@@ -71,6 +71,10 @@ class Report:
     energy_inputs: Optional[energy.EnergyInputs] = None
     #: Initial (new-installation) values per area, or why there are none (initial.py).
     initial: InitialValues = field(default_factory=InitialValues)
+    #: Daylight: the skies and suns (not luminaires), sunlight exposure (daylight.py).
+    skies: List[daylight.SkyRow] = field(default_factory=list)
+    suns: List[daylight.SunRow] = field(default_factory=list)
+    sunlight: Optional[daylight.SunlightExposure] = None
 
     # --- what the page asks -------------------------------------------------------------
 
@@ -86,7 +90,17 @@ class Report:
 
     @property
     def illuminance_areas(self) -> List[Area]:
-        return [a for a in self.areas if not a.is_glare]
+        """Areas reported by their illuminance (daylight-factor grids have their own pages)."""
+        return [a for a in self.areas if not a.is_glare and a.daylight is None]
+
+    @property
+    def daylight_areas(self) -> List[Area]:
+        """Daylight-factor grids with the solver's daylight factor."""
+        return [a for a in self.areas if a.daylight is not None]
+
+    @property
+    def has_daylight(self) -> bool:
+        return bool(self.skies or self.suns or self.daylight_areas or self.sunlight)
 
     @property
     def glare_areas(self) -> List[Area]:
@@ -195,7 +209,7 @@ def _loads(report: Report, traced: Optional[Dict[str, Any]], scene: Dict[str, An
         for t in lightsolver_results.read(traced, scene, strict=False, check_schema=False).targets:
             full[t.name] = t.em.value
     for area in report.areas:
-        if area.horizontal and area.area_m2:
+        if area.horizontal and area.area_m2 and area.daylight is None:
             area.power_density_w_m2, area.power_density_w_m2_100lx = energy.power_density(
                 power, area.area_m2, full.get(area.name))
 
@@ -254,11 +268,13 @@ def build_report(scene: Dict[str, Any], results: Dict[str, Any], *, scene_name: 
                  base_dir: str, date: str, solver_version: str, title: Optional[str] = None,
                  photometry: Optional[PhotometryFn] = None,
                  material_defaults: Optional[Dict[str, Dict[str, Any]]] = None,
-                 light_scenes: Any = None, results_sha256: Optional[str] = None) -> Report:
+                 light_scenes: Any = None, results_sha256: Optional[str] = None,
+                 sun_position: Optional[daylight.SunFn] = None) -> Report:
     """The report's content. ``scene_name`` is printed as the scene file (give a base name so
     that the output does not depend on where the files lie). ``light_scenes`` ({name: {group:
     level}}) overrides the scene's ``metadata.light_scenes``; ``results_sha256`` is the results
     file's hash when the caller read one (else the content's canonical hash is printed).
+    ``sun_position`` (``lightsolver.sun_position``) places a sun given by site and time.
     Raises ReportError naming the field for unusable ``metadata.report.energy`` inputs."""
     meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
     labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
@@ -304,4 +320,10 @@ def build_report(scene: Dict[str, Any], results: Dict[str, Any], *, scene_name: 
             name = str(mesh.get("name"))
             roles[str(mesh["file"])] = f"geometry: {labels.get(name, name)}"
     report.provenance = build_provenance(results, roles, results_sha256)
+    flux = {lum.name: lum.emitted_flux_lm for lum in read.luminaires}
+    report.skies, report.suns = daylight.build_schedule(scene, flux, labels, sun_position)
+    report.sunlight = daylight.read_exposure(doc, scene, labels)
+    for area in report.daylight_areas:
+        sky = next((s for s in report.skies if s.label == area.daylight.sky_label), None)
+        area.daylight.sky = sky
     return report

@@ -228,10 +228,12 @@ def plan_items(scene: Dict[str, Any], meshes: Sequence[Mesh],
     """The luminaires and targets of the scene as plan marks, named by their labels."""
     items = PlanItems()
     by_name = {m.name: m for m in meshes}
-    for i, lum in enumerate(scene.get("luminaires", []) or []):
-        if isinstance(lum, dict):
+    for lum in scene.get("luminaires", []) or []:
+        # Skies and suns have no place in the room (their openings are the windows drawn).
+        if isinstance(lum, dict) and lum.get("type") not in ("sky", "sun"):
             name = str(lum.get("name", ""))
-            items.luminaires.append(_luminaire(i + 1, lum, str(labels.get(name, name))))
+            items.luminaires.append(_luminaire(len(items.luminaires) + 1, lum,
+                                               str(labels.get(name, name))))
     for target in scene.get("targets", []) or []:
         if not isinstance(target, dict):
             continue

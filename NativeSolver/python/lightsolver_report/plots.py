@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import io
 import re
-from typing import Dict, List, Optional, Tuple
+from typing import Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -142,9 +142,15 @@ def _extreme_cell(grid: GridData, which) -> Tuple[float, float, float, float]:
     return grid.origin_u_m + iu * du, grid.origin_v_m + iv * dv, du, dv
 
 
-def plan_svg(grid: GridData, salt: str) -> str:
-    """False-colour plan: cells in colour (0 to a round maximum), iso-lux lines labelled in lux,
-    the cell of Emin outlined, a colour bar."""
+def df_text(value: float) -> str:
+    """A daylight factor in a chart cell: two decimals below 10 %, one above."""
+    return f"{value:.2f}" if abs(value) < 10 else f"{value:.1f}"
+
+
+def plan_svg(grid: GridData, salt: str, quantity: str = "E [lx]") -> str:
+    """False-colour plan: cells in colour (0 to a round maximum), iso-lines labelled in the
+    grid's unit (lux; percent for a daylight factor), the cell of the minimum outlined, a colour
+    bar labelled ``quantity``."""
     from matplotlib.colors import Normalize
     from matplotlib.patches import Rectangle
 
@@ -171,7 +177,7 @@ def plan_svg(grid: GridData, salt: str) -> str:
     cax = fig.add_axes(((left + plot_w + 0.18) / width, bottom / height, 0.14 / width,
                         plot_h / height))
     bar = fig.colorbar(mesh, cax=cax)
-    bar.set_label("E [lx]", fontsize=7)
+    bar.set_label(quantity, fontsize=7)
     bar.ax.tick_params(labelsize=7, length=2)
     bar.outline.set_linewidth(0.6)
     return _svg(fig, salt)
@@ -185,9 +191,11 @@ def _stride(n: int, most: int) -> int:
     return max(1, -(-n // most))
 
 
-def chart_svg(grid: GridData, salt: str) -> Tuple[str, str]:
-    """Value chart: the grid's cells with their lux written in them (every k-th cell of large
-    grids), Emin bold on grey, Emax bold. Returns the SVG and a note on what it shows."""
+def chart_svg(grid: GridData, salt: str,
+              text: Callable[[float], str] = fmt_lux) -> Tuple[str, str]:
+    """Value chart: the grid's cells with their value written in them (``text``: lux by
+    default; every k-th cell of large grids), the minimum bold on grey, the maximum bold.
+    Returns the SVG and a note on what it shows."""
     from matplotlib.patches import Rectangle
 
     nv, nu = grid.lux.shape
@@ -220,7 +228,7 @@ def chart_svg(grid: GridData, salt: str) -> Tuple[str, str]:
     shown.update({tuple(int(i) for i in i_min), tuple(int(i) for i in i_max)})
     for iv, iu in sorted(shown):
         bold = (iv, iu) in (tuple(i_min), tuple(i_max))
-        ax.text(u_edges[iu] + 0.5 * du, v_edges[iv] + 0.5 * dv, fmt_lux(float(grid.lux[iv, iu])),
+        ax.text(u_edges[iu] + 0.5 * du, v_edges[iv] + 0.5 * dv, text(float(grid.lux[iv, iu])),
                 ha="center", va="center", fontsize=size, fontweight="bold" if bold else "normal")
     parts = ([f"every {_ordinal(su)} column"] if su > 1 else []) + (
         [f"every {_ordinal(sv)} row"] if sv > 1 else [])

@@ -193,7 +193,8 @@ class PhotometricFiles:
 
 def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
                      traced: Sequence[LuminaireFlux]) -> List[LuminaireRow]:
-    """The schedule (alike luminaires on one row, in scene order), each luminaire at the flux
+    """The schedule of electric light (alike luminaires on one row, in scene order; skies and
+    suns are daylight, reported apart), each luminaire at the flux
     ``traced`` gives it (the results' ``luminaires``, migrated: derived from the scene for
     older results); 0 lm for a luminaire the results do not list."""
     meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
@@ -205,6 +206,8 @@ def build_luminaires(scene: Dict[str, Any], files: PhotometricFiles,
     # luminaire; the table takes seconds).
     tables: Dict[Optional[str], Optional[UgrTableView]] = {}
     for lum in scene.get("luminaires", []):
+        if lum.get("type") in ("sky", "sun"):
+            continue  # daylight: its own schedule (daylight.py), no lumens, watts or MF
         name = str(lum.get("name", ""))
         extra = per_lum.get(name) if isinstance(per_lum.get(name), dict) else {}
         file = lum.get("file") if lum.get("type") == "photometric" else None
