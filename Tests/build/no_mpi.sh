@@ -24,5 +24,6 @@ if command -v mpirun > /dev/null; then
   grep -q "built without MPI" "$build.mpirun.log"
 fi
 PYTHONPATH="$build/NativeSolver/python" LIGHTSOLVER_CLI="$cli" LIGHTSOLVER_SOURCE_DIR="$src" \
-  /usr/bin/python3 -m pytest -q -p no:cacheprovider "$src/Tests/python/test_cli.py" \
+  /usr/bin/python3 -m pytest -q -p no:cacheprovider --basetemp "$build/pytest-tmp" \
+  "$src/Tests/python/test_cli.py" \
   "$src/Tests/python/test_mpi.py" "$src/Tests/python/test_module.py"

@@ -11,9 +11,12 @@ import os
 import threading
 import time
 import traceback
-from typing import Any, Callable, Dict, Optional
+from typing import Any, Callable, Dict, Optional, Tuple
 
 OUT = os.environ.get("LIGHTING_GUI_OUT", os.getcwd())
+#: The repository (the scenarios' examples and the workbench's sources).
+REPO = os.environ.get("LIGHTING_SOURCE_DIR") or os.path.dirname(os.path.dirname(
+    os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 STATUS: Dict[str, Any] = {"errors": [], "log": [], "images": {}, "docs_images": {}}
 
 
@@ -129,6 +132,23 @@ def visible_in_window(widget) -> bool:
     return window.rect().contains(rect)
 
 
+def fits_width(widget) -> bool:
+    """True when the widget's left and right edges lie inside every parent and the window:
+    nothing is cut off sideways (a tall panel may still scroll vertically)."""
+    from PySide import QtCore
+
+    window = main_window()
+    left = widget.mapTo(window, QtCore.QPoint(0, 0)).x()
+    right = left + widget.width()
+    parent = widget.parentWidget()
+    while parent is not None and parent is not window:
+        origin = parent.mapTo(window, QtCore.QPoint(0, 0)).x()
+        if left < origin or right > origin + parent.width():
+            return False
+        parent = parent.parentWidget()
+    return widget.isVisible() and 0 <= left and right <= window.width()
+
+
 def toolbar_enabled(command: str) -> bool:
     """Whether the command's toolbar button is enabled, as the user sees it: FreeCAD updates
     its actions on a timer from Command::testActive, which also asks the open task dialog
@@ -157,6 +177,28 @@ def build_example_file(photons: int) -> str:
     return out
 
 
+def office_without_luminaires() -> Tuple[object, object]:
+    """The example office (Examples/office_model.py, 20 000 photons, seed 1) in a new document
+    with a 3D view, its four luminaires and their placement domain deleted (one undo step), so
+    a scenario lays out its own. Returns the document and the office_model module."""
+    import sys
+
+    import FreeCAD
+    import FreeCADGui
+
+    sys.path.insert(0, os.path.join(REPO, "Examples"))
+    import office_model
+
+    FreeCADGui.activateWorkbench("LightingWorkbench")
+    doc = FreeCAD.newDocument("Office")
+    office_model.build_office(doc, photons=20000, seed=1)
+    doc.openTransaction("Delete luminaires")
+    for name in ("CeilingDomain", "Luminaire01", "Luminaire02", "Luminaire03", "Luminaire04"):
+        doc.removeObject(name)
+    doc.commitTransaction()
+    return doc, office_model
+
+
 def run_macro_file(path: str, globals_: Optional[dict] = None) -> None:
     """Execute a macro file the way FreeCAD's Macro dialog does (in the GUI's interpreter, with
     ``__name__ == '__main__'``)."""
@@ -181,6 +223,31 @@ def run_from_toolbar(doc) -> object:
            f"run did not finish: {job.stage if job else None} {job.error if job else ''}")
     pump(0.5)
     return job
+
+
+def run_and_read_rows(analysis, timeout_s: float) -> Tuple[object, Dict[str, Tuple[str, str]]]:
+    """Select ``analysis`` alone, run it as from the toolbar and wait until the run ends; then
+    read its panel's results table as the user does: {row label: (third column, verdict)}
+    (also kept in STATUS["rows"]). Returns the panel and the rows."""
+    import FreeCADGui
+
+    from lighting.taskpanels import analysis_panel
+
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(analysis)
+    FreeCADGui.runCommand("Lighting_Run")
+    ok = wait_until(lambda: analysis_panel.last_run() is not None
+                    and analysis_panel.last_run().finished, timeout_s)
+    expect(ok, "the run did not finish")
+    pump(0.5)
+    panel = analysis_panel.last_panel()
+    last = panel.table.columnCount() - 1
+    rows = {panel.table.item(r, 0).text(): (panel.table.item(r, 2).text(),
+                                            panel.table.item(r, last).text())
+            for r in range(panel.table.rowCount())}
+    STATUS["rows"] = rows
+    log(f"rows {rows}")
+    return panel, rows
 
 
 def scenario(body: Callable[[], None], delay_ms: int = 1500) -> None:

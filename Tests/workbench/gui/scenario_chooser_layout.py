@@ -7,30 +7,18 @@ one undo step and creates no stray luminaire; the layout itself now shows the fi
 file's flux and the MF, and editing its flux and MF in the property editor changes the
 template (every member); undo takes each step back."""
 import os
-import sys
 
-from guilib import STATUS, expect, grab_window, log, pump, scenario, wait_until
-
-REPO = os.environ.get("LIGHTING_SOURCE_DIR") or os.path.dirname(os.path.dirname(
-    os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-
+from guilib import STATUS, expect, grab_window, log, office_without_luminaires, pump, scenario, \
+    wait_until
 
 def _office_with_layout():
     """The office without its luminaires, plus a 3 x 2 layout over the ceiling's underside."""
     import FreeCAD
     import FreeCADGui
 
-    sys.path.insert(0, os.path.join(REPO, "Examples"))
-    import office_model
     import lighting
 
-    FreeCADGui.activateWorkbench("LightingWorkbench")
-    doc = FreeCAD.newDocument("Office")
-    office_model.build_office(doc, photons=20000, seed=1)
-    doc.openTransaction("Delete luminaires")
-    for name in ("CeilingDomain", "Luminaire01", "Luminaire02", "Luminaire03", "Luminaire04"):
-        doc.removeObject(name)
-    doc.commitTransaction()
+    doc, office_model = office_without_luminaires()
     ceiling = doc.getObject(office_model.OBJECTS["ceiling"])
     face = office_model.find_face(ceiling.Shape, FreeCAD.Vector(0, 0, -1),
                                   FreeCAD.Vector(0, 0, 3000))

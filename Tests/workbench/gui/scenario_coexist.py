@@ -131,7 +131,7 @@ def check_undo(doc, analysis, analysis_panel) -> None:
                    f"the legend does not say {label}: {word}: {texts}")
     grab_window("coexist_undo")
     FreeCADGui.runCommand("Std_Redo")
-    pump(1.5)
+    wait_until(lambda: panel_rows(panel) == second_rows, 10.0)
     expect(panel_rows(panel) == second_rows, "after Redo the panel does not show the 2nd run")
 
 
@@ -297,12 +297,14 @@ def check_run_with_optimize(analysis, analysis_panel) -> None:
     from lighting.taskpanels import optimize_panel
 
     FreeCADGui.runCommand("Lighting_Optimize")
-    pump(1.0)
+    wait_until(lambda: shown(optimize_panel.last_panel()), 10.0)
     expect(shown(optimize_panel.last_panel()), "the Optimize panel did not open")
     previous = analysis_panel.last_run()
     old_panel = analysis_panel.last_panel()
     FreeCADGui.runCommand("Lighting_Run")  # used to fail: 'NoneType' ... 'parentWidget'
-    pump(0.5)
+    wait_until(lambda: analysis_panel.last_panel() is not old_panel
+               and shown(analysis_panel.last_panel())
+               and not shown(optimize_panel.last_panel()), 10.0)
     panel = analysis_panel.last_panel()
     expect(panel is not old_panel and shown(panel),
            "Run analysis did not open the analysis panel over Optimize")
@@ -328,7 +330,8 @@ def check_delete(doc, analysis, analysis_panel) -> None:
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(found)
     FreeCADGui.runCommand("Std_Delete")  # Edit > Delete
-    pump(1.0)
+    wait_until(lambda: doc.getObject(results_name) is None and shown(panel)
+               and panel.table.rowCount() == 0, 10.0)
     expect(doc.getObject(results_name) is None, "Delete did not delete the results")
     expect(shown(panel) and panel.table.rowCount() == 0,
            f"the panel does not follow the deleted results: {panel.table.rowCount()} rows")
@@ -337,14 +340,14 @@ def check_delete(doc, analysis, analysis_panel) -> None:
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(analysis)
     FreeCADGui.runCommand("Std_Delete")
-    pump(1.0)
+    wait_until(lambda: doc.getObject(name) is None and not shown(panel), 10.0)
     timer.stop()
     expect(doc.getObject(name) is None, "Delete did not delete the analysis with its panel open")
     expect(not shown(panel), "the deleted analysis' panel is still open")
     expect(all(doc.getObject(m) is not None for m in members), "the analysis' members were lost")
     grab_window("coexist_delete_analysis")
     FreeCADGui.runCommand("Std_Undo")  # the analysis comes back
-    pump(1.0)
+    wait_until(lambda: doc.getObject(name) is not None, 10.0)
     expect(doc.getObject(name) is not None, "Undo did not bring the analysis back")
 
 

@@ -7,7 +7,7 @@ shows the maximum UGR."""
 import os
 import sys
 
-from guilib import STATUS, expect, grab_window, log, pump, scenario, toolbar_enabled, wait_until
+from guilib import STATUS, expect, grab_window, pump, run_and_read_rows, scenario, toolbar_enabled
 
 sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
 
@@ -16,7 +16,6 @@ def body() -> None:
     import FreeCADGui
 
     import office_model
-    from lighting.taskpanels import analysis_panel
 
     doc = office_model.build_office(photons=200000)
     office_model.show_in_gui(doc)
@@ -51,19 +50,7 @@ def body() -> None:
                f"the grid is {g.GridLength} x {g.GridWidth}")
     analysis = doc.getObject(office_model.OBJECTS["analysis"])
     analysis.Decide = False
-    FreeCADGui.Selection.addSelection(analysis)
-    FreeCADGui.runCommand("Lighting_Run")
-    ok = wait_until(lambda: analysis_panel.last_run() is not None
-                    and analysis_panel.last_run().finished, 120.0)
-    expect(ok, "the run did not finish")
-    pump(0.5)
-    panel = analysis_panel.last_panel()
-    last = panel.table.columnCount() - 1
-    rows = {panel.table.item(r, 0).text(): (panel.table.item(r, 2).text(),
-                                            panel.table.item(r, last).text())
-            for r in range(panel.table.rowCount())}
-    STATUS["rows"] = rows
-    log(f"rows {rows}")
+    rows = run_and_read_rows(analysis, 120.0)[1]
     ugr, verdict = rows.get(eye.Label, ("", ""))
     expect(ugr.startswith("UGR"), f"the observer's row shows no UGR: {rows}")
     expect(verdict in ("pass", "FAIL", "undecided"), f"the observer's verdict: {rows}")

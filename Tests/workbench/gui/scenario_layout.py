@@ -4,48 +4,16 @@ layout", the panel filled in (3 columns x 2 rows, 1 m margins to the walls) at t
 combo-view width, OK (one undo step), the analysis run with few photons. Then a slip: the
 same ceiling face clicked twice with "Luminaire", and Check warns about the two luminaires at
 one point."""
-import os
-import sys
 
-from guilib import STATUS, expect, grab_window, log, main_window, pump, scenario, \
-    visible_in_window, wait_until
-
-REPO = os.environ.get("LIGHTING_SOURCE_DIR") or os.path.dirname(os.path.dirname(
-    os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-
-
-def fits_width(widget) -> bool:
-    """True when the widget's left and right edges lie inside every parent and the window:
-    nothing is cut off sideways (a tall panel may still scroll vertically)."""
-    from PySide import QtCore
-
-    window = main_window()
-    left = widget.mapTo(window, QtCore.QPoint(0, 0)).x()
-    right = left + widget.width()
-    parent = widget.parentWidget()
-    while parent is not None and parent is not window:
-        origin = parent.mapTo(window, QtCore.QPoint(0, 0)).x()
-        if left < origin or right > origin + parent.width():
-            return False
-        parent = parent.parentWidget()
-    return widget.isVisible() and 0 <= left and right <= window.width()
-
+from guilib import STATUS, expect, fits_width, grab_window, log, main_window, \
+    office_without_luminaires, pump, scenario, visible_in_window, wait_until
 
 def _office():
     """The office in a new document (a 3D view exists), without its luminaires."""
     import FreeCAD
     import FreeCADGui
 
-    sys.path.insert(0, os.path.join(REPO, "Examples"))
-    import office_model
-
-    FreeCADGui.activateWorkbench("LightingWorkbench")
-    doc = FreeCAD.newDocument("Office")
-    office_model.build_office(doc, photons=20000, seed=1)
-    doc.openTransaction("Delete luminaires")
-    for name in ("CeilingDomain", "Luminaire01", "Luminaire02", "Luminaire03", "Luminaire04"):
-        doc.removeObject(name)
-    doc.commitTransaction()
+    doc, office_model = office_without_luminaires()
     doc.recompute()
     view = FreeCADGui.ActiveDocument.ActiveView
     view.viewIsometric()

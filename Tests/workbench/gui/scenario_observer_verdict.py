@@ -6,7 +6,7 @@ after a run its row shows its UGR and a verdict."""
 import os
 import sys
 
-from guilib import STATUS, expect, grab_window, log, pump, scenario, wait_until
+from guilib import STATUS, expect, grab_window, pump, run_and_read_rows, scenario
 
 sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
 
@@ -27,10 +27,7 @@ def add_observer(doc):
 
 
 def body() -> None:
-    import FreeCADGui
-
     import office_model
-    from lighting.taskpanels import analysis_panel
 
     doc = office_model.build_office(photons=100000)
     office_model.show_in_gui(doc)
@@ -48,20 +45,7 @@ def body() -> None:
     expect(eye.Activity == OFFICE and float(eye.UgrMax) == 19.0,
            f"the new observer did not take the analysis' activity: {STATUS['observer']}")
     analysis = doc.getObject(office_model.OBJECTS["analysis"])
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(analysis)
-    FreeCADGui.runCommand("Lighting_Run")
-    ok = wait_until(lambda: analysis_panel.last_run() is not None
-                    and analysis_panel.last_run().finished, 180.0)
-    expect(ok, "the run did not finish")
-    pump(0.5)
-    panel = analysis_panel.last_panel()
-    last = panel.table.columnCount() - 1
-    rows = {panel.table.item(r, 0).text(): (panel.table.item(r, 2).text(),
-                                            panel.table.item(r, last).text())
-            for r in range(panel.table.rowCount())}
-    STATUS["rows"] = rows
-    log(f"rows {rows}")
+    panel, rows = run_and_read_rows(analysis, 180.0)
     ugr, verdict = rows.get(eye.Label, ("", ""))
     expect(ugr.startswith("UGR"), f"the new observer's row shows no UGR: {rows}")
     expect(verdict in ("pass", "FAIL", "undecided"), f"the new observer's verdict: {rows}")

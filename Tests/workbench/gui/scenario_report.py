@@ -21,8 +21,8 @@ import shutil
 import subprocess
 import time
 
-from guilib import (OUT, STATUS, expect, grab_window, log, main_window, pump, run_macro_file,
-                    scenario, visible_in_window, wait_until)
+from guilib import (OUT, STATUS, expect, fits_width, grab_window, log, main_window, pump,
+                    run_macro_file, scenario, visible_in_window, wait_until)
 
 PHOTONS = 50000
 #: What the user types into the report panel (field -> text), and the energy inputs.
@@ -129,23 +129,6 @@ def keep_view_picture(report_cmd) -> None:
             STATUS["images"]["report_view"] = os.path.join(OUT, "report_view.png")
         return path
     report_cmd.view_picture = view_picture
-
-
-def fits_width(widget) -> bool:
-    """True when the widget's left and right edges lie inside every parent and the window:
-    nothing is cut off sideways (a tall panel may still scroll vertically)."""
-    from PySide import QtCore
-
-    window = main_window()
-    left = widget.mapTo(window, QtCore.QPoint(0, 0)).x()
-    right = left + widget.width()
-    parent = widget.parentWidget()
-    while parent is not None and parent is not window:
-        origin = parent.mapTo(window, QtCore.QPoint(0, 0)).x()
-        if left < origin or right > origin + parent.width():
-            return False
-        parent = parent.parentWidget()
-    return widget.isVisible() and 0 <= left and right <= window.width()
 
 
 def type_into(widget, text: str) -> None:

@@ -7,8 +7,6 @@ no undo step; the status bar shows one short line. Then the user doubles a lumin
 in the property editor: the panel and the legend say the results are out of date
 (screenshot for the docs); Undo makes them current again. Finally "Exclude from lighting" on the ceiling: Check lists it as
 left out, and the results are stale."""
-import os
-import subprocess
 
 from guilib import (build_example_file, STATUS, expect, grab_window, log, main_window, pump,
                     run_from_toolbar, scenario, wait_until)
