@@ -136,6 +136,10 @@ Warnings validate_sunlight_exposure(const SunlightExposureSpec& s, const std::st
             "3, 4, 5, 6, 10, 12, 15, 20, 30, 60), got " +
                 std::to_string(s.step_minutes));
   c.require(!s.points.empty(), "points", "give at least one reference point");
+  // North is the scene's metadata.north_deg (sun_direction's range).
+  if (!(std::isfinite(s.north_deg) && std::abs(s.north_deg) <= 360.0)) {
+    throw InputError(file, "metadata.north_deg", "must be a number from -360 to 360°");
+  }
   std::set<std::string> names;
   for (std::size_t i = 0; i < s.points.size(); ++i) {
     const SunlightPoint& p = s.points[i];

@@ -276,6 +276,9 @@ TEST(SunlightExposure, BadInputNamesTheField) {
   EXPECT_EQ(error_field(s), "sunlight_exposure.points[1].name");
   s.points.clear();
   EXPECT_EQ(error_field(s), "sunlight_exposure.points");
+  s = paris(kSouth);
+  s.north_deg = 400;
+  EXPECT_EQ(error_field(s), "metadata.north_deg");
   // The computation refuses what validation refuses.
   s = paris(kSouth);
   s.step_minutes = 0;
