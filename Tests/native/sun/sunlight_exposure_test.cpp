@@ -165,6 +165,31 @@ TEST(SunlightExposure, EastWallCutsTheMorningAtTheAzimuthOfItsEdge) {
   EXPECT_NEAR(p.hours * 60.0, ref.minutes, 2);
 }
 
+// The window's own reveals: a 1.2 m wide, 2 m high opening through a 0.3 m thick wall, the
+// point on the inner surface at mid-width and mid-height. The side reveals hide the sun when its
+// horizontal direction is more than atan(0.6 / 0.3) = 63.43° from the window's normal (the top
+// and bottom ones only above atan(1 / 0.3) = 73° of profile angle: never in Paris in March).
+TEST(SunlightExposure, WindowRevealsNarrowTheDay) {
+  const SunlightExposureSpec s = paris(kSouth);
+  Scene scene = scene_with(s);
+  const double w = 0.6, d = 0.3, h = 1.0;
+  scene.meshes = {quad({-w, 0, -h}, {-w, -d, -h}, {-w, -d, h}, {-w, 0, h}),
+                  quad({w, 0, -h}, {w, -d, -h}, {w, -d, h}, {w, 0, h}),
+                  quad({-w, 0, h}, {w, 0, h}, {w, -d, h}, {-w, -d, h}),
+                  quad({-w, 0, -h}, {w, 0, -h}, {w, -d, -h}, {-w, -d, -h})};
+  const double limit = std::atan(w / d) / kDeg;
+  const SunlightPointResult p = sunlight_exposure(scene).points[0];
+  const Reference ref = noaa_minutes(
+      s, kSouth, [&](const Sky& k) { return std::abs(k.azimuth_deg - 180.0) >= limit; });
+  ASSERT_EQ(p.periods.size(), 1u);
+  std::printf("[ sunlight ] reveals: %d–%d min (NOAA %d–%d), %.4f h\n", p.periods[0].start_minute,
+              p.periods[0].end_minute, ref.first, ref.last, p.hours);
+  EXPECT_NEAR(p.periods[0].start_minute, ref.first, 1);
+  EXPECT_NEAR(p.periods[0].end_minute, ref.last, 1);
+  EXPECT_NEAR(p.hours * 60.0, ref.minutes, 2);
+  EXPECT_LT(p.hours, 9.0);  // the reveals cut both ends of the 9.75 h day
+}
+
 TEST(SunlightExposure, PointInsideAClosedBoxGetsNoSun) {
   SunlightExposureSpec s = paris(kSouth);
   s.points[0].position = {10, 20, 3};
