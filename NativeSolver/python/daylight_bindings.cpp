@@ -4,10 +4,13 @@
 
 #include <pybind11/stl.h>
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
 #include "lightsolver/daylight.hpp"
+#include "lightsolver/scene.hpp"
+#include "lightsolver/sunlight.hpp"
 #include "lightsolver/weather.hpp"
 
 namespace py = pybind11;
@@ -84,6 +87,17 @@ py::dict weather_dict(const std::string& path) {
   return r;
 }
 
+// The results' `sunlight_exposure` object as a dict (one writer: sunlight_exposure_json).
+py::dict sunlight_exposure_dict(const Scene& scene) {
+  const std::string text = sunlight_exposure_json(sunlight_exposure(scene)).dump();
+  return py::module_::import("json").attr("loads")(text);
+}
+
+// A scene file, which may have no luminaire and no target (`lightsolver sunlight`'s reading).
+py::dict sunlight_exposure_file_dict(const std::string& path) {
+  return sunlight_exposure_dict(load_sunlight_scene(path));
+}
+
 }  // namespace
 
 void bind_daylight(py::module_& m) {
@@ -106,4 +120,12 @@ void bind_daylight(py::module_& m) {
         "W/m² and illuminances in lx, None where the file marks them missing) and "
         "median_diffuse_illuminance_lx (EN 17037's E_v,d,med; None when an hour's diffuse "
         "illuminance is missing). InputError names the file and line of malformed input.");
+  m.def("sunlight_exposure", &sunlight_exposure_dict, py::arg("scene"),
+        "EN 17037 sunlight exposure of the scene's `sunlight_exposure` reference points "
+        "(docs/daylight.md, 'Sunlight exposure (EN 17037)'): a dict with date, step_minutes, "
+        "min_elevation_deg and points (name, hours, level: high/medium/minimum/none, periods: "
+        "[[\"HH:MM\", \"HH:MM\"], ...] in the site's local time), as a run's results carry it. "
+        "InputError names the field of a bad value, or says the scene has none.");
+  m.def("sunlight_exposure", &sunlight_exposure_file_dict, py::arg("path"),
+        "The same for a scene file's path: the file may have no luminaire and no target.");
 }

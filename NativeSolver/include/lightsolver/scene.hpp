@@ -17,6 +17,7 @@
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/provenance.hpp"
+#include "lightsolver/sunlight.hpp"
 
 namespace lightsolver {
 
@@ -207,6 +208,8 @@ struct Scene {
   /// provenance; absent for a scene built in memory. Changes in memory (Python's add_*,
   /// Simulation::set_luminaire) clear it: the scene is no longer the file's.
   std::optional<SceneSource> source;
+  /// EN 17037 sunlight exposure to compute (the scene's `sunlight_exposure`; sunlight.hpp).
+  std::optional<SunlightExposureSpec> sunlight_exposure;
 
   int find_material(const std::string& name) const;  ///< -1 when absent
   int find_mesh(const std::string& name) const;      ///< -1 when absent

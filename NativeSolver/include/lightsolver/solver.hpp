@@ -17,6 +17,7 @@
 #include "lightsolver/provenance.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/statistics.hpp"
+#include "lightsolver/sunlight.hpp"
 
 namespace lightsolver {
 
@@ -295,6 +296,8 @@ struct Results {
   /// Where the results come from (provenance.hpp): set by every run; absent in results read
   /// from files written before it, and in results combined from group traces.
   std::optional<Provenance> provenance;
+  /// EN 17037 sunlight exposure, when the scene asks for it (sunlight.hpp).
+  std::optional<SunlightExposureResult> sunlight_exposure;
 };
 
 /// Runs the photon tracer. Deterministic: same scene, seed and photons give bit-identical

@@ -9,6 +9,7 @@
 #include "results/groups_io.hpp"
 #include "results/observer_grid_io.hpp"
 #include "scene/provenance.hpp"
+#include "scene/sunlight_json.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/results_io.hpp"
 
@@ -274,6 +275,8 @@ Results results_from_json(const std::string& text, const std::string& source) {
   detail::read_groups_json(root, r);
   // Results written before provenance was recorded have none (null is not written).
   if (root.has("provenance")) r.provenance = detail::read_provenance(root.at("provenance"));
+  if (root.has("sunlight_exposure"))
+    r.sunlight_exposure = detail::read_sunlight_exposure_result(root.at("sunlight_exposure"));
   const JsonNode targets = root.at("targets");
   for (std::size_t i = 0; i < targets.array_size(); ++i) {
     r.targets.push_back(read_target(targets[i], r.groups));

@@ -235,6 +235,7 @@ std::string results_to_json(const Results& r) {
   j["targets"] = std::move(targets);
   detail::add_groups_json(r, j);
   if (r.provenance) j["provenance"] = detail::provenance_json(*r.provenance);
+  if (r.sunlight_exposure) j["sunlight_exposure"] = sunlight_exposure_json(*r.sunlight_exposure);
   return j.dump(2) + "\n";
 }
 
@@ -320,6 +321,7 @@ std::string results_table(const Results& r, bool list_skipped_effects) {
         << "): " << to_string(r.verdict) << "\n";
     verdict_lines(r, out);
   }
+  if (r.sunlight_exposure) out << sunlight_exposure_table(*r.sunlight_exposure);
   out << detail::effects_lines(r.effects, list_skipped_effects);
   for (const auto& w : r.warnings) out << "warning: " << w << "\n";
   return out.str();

@@ -429,6 +429,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   }
   r.warnings.insert(r.warnings.end(), prepared.warnings.begin(), prepared.warnings.end());
   r.warnings.insert(r.warnings.end(), state_->backend_notes.begin(), state_->backend_notes.end());
+  if (scene.sunlight_exposure) r.sunlight_exposure = sunlight_exposure(scene);
   r.seconds = seconds_since(start);
   const int threads =
       state_->threads > 0 ? state_->threads : tbb::this_task_arena::max_concurrency();

@@ -13,6 +13,7 @@
 #include "scene/provenance.hpp"
 #include "scene/requirements_table.hpp"
 #include "scene/scene_document.hpp"
+#include "scene/sunlight_json.hpp"
 #include "types/luminaire_types.hpp"
 #include "types/target_types.hpp"
 #include "lightsolver/run_options.hpp"
@@ -206,12 +207,20 @@ Settings read_settings(const JsonNode& n) {
   return s;
 }
 
+// EN 17037 sunlight exposure (sunlight_json.hpp), north from the metadata the workbench writes.
+void read_scene_sunlight(const JsonNode& root, Scene& scene) {
+  const bool north = root.has("metadata") && root.at("metadata").has("north_deg");
+  const double north_deg = north ? root.at("metadata").at("north_deg").number() : 0.0;
+  scene.sunlight_exposure =
+      detail::read_sunlight_exposure(root.at("sunlight_exposure"), north_deg, scene.warnings);
+}
+
 // The scene of a parsed scene file, validated unless the caller collects validation errors.
 Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::string& base_dir,
                  bool validated = true) {
   const JsonNode root(doc, "", file);
   root.require_object({"format", "materials", "meshes", "luminaires", "targets", "settings",
-                       "optimization", "metadata"});
+                       "optimization", "metadata", "sunlight_exposure"});
   const std::string format = root.at("format").string();
   if (format != kSceneFormat) {
     root.at("format").fail("unsupported format \"" + format + "\" (this solver reads \"" +
@@ -237,6 +246,7 @@ Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::
   }
   if (root.has("settings")) scene.settings = read_settings(root.at("settings"));
   if (root.has("optimization")) root.at("optimization").object();  // read by the optimizer
+  if (root.has("sunlight_exposure")) read_scene_sunlight(root, scene);
   if (validated) validate(scene);
   return scene;
 }
