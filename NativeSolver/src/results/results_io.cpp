@@ -321,6 +321,9 @@ std::string results_table(const Results& r, bool list_skipped_effects) {
         << fmt("%.3g", g.background_ci_high_cd_m2) << "]" << max_place(t) << "\n";
     for (const auto& w : g.warnings) out << "warning: " << w << "\n";
   }
+  for (const auto& t : r.targets) {
+    if (t.daylight_factor) out << detail::daylight_factor_line(t.name, *t.daylight_factor);
+  }
   if (r.judged) {
     out << "verdicts (" << (r.decide ? "traced until decided" : "at the photons traced")
         << "): " << to_string(r.verdict) << "\n";

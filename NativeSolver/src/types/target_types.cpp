@@ -234,7 +234,8 @@ constexpr const char* kGridFields[] = {"cells_uv",
                                        "uniformity_ci_high",
                                        "ud",
                                        "ud_ci_low",
-                                       "ud_ci_high"};
+                                       "ud_ci_high",
+                                       "daylight_factor"};  // daylight-factor grids
 const std::array<TargetType, 4> kTypes = {{
     {.type = T::Surface,
      .name = "surface",
