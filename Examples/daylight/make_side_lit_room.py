@@ -71,7 +71,7 @@ def main() -> None:
                                       "maintenance_factor": 0.9}}]},
         ],
         "targets": [
-            {"name": "daylight factor", "type": "grid", "quantity": "daylight_factor",
+            {"name": "reference plane", "type": "grid", "quantity": "daylight_factor",
              "corner": [band, band, 0.85], "edge1": [W - 2 * band, 0, 0],
              "edge2": [0, D - 2 * band, 0], "cells": [10, 6],
              "requirements": {"en17037": "minimum", "median_diffuse_lx": 15900}},

@@ -201,12 +201,12 @@ struct Contribution {
 /// horizon (exact). Order statistics over the cells (equal in area) with intervals honest for
 /// an order statistic of noisy cells (docs/statistics.md).
 struct DaylightFactorResult {
-  std::string sky;                     ///< the sky luminaire's name
+  std::string sky;                      ///< the sky luminaire's name
   double outside_illuminance_lx = 0.0;  ///< E_out, as traced (a rescale keeps it and D)
-  Estimate mean;                       ///< over the whole grid, percent
-  OrderStatistic min;                  ///< the smallest cell
-  OrderStatistic p50, p95;             ///< reached or exceeded over 50 % / 95 % of the area
-  std::vector<Estimate> cells;         ///< per cell, percent
+  Estimate mean;                        ///< over the whole grid, percent
+  OrderStatistic min;                   ///< the smallest cell
+  OrderStatistic p50, p95;              ///< reached or exceeded over 50 % / 95 % of the area
+  std::vector<Estimate> cells;          ///< per cell, percent
 };
 
 struct TargetResult {

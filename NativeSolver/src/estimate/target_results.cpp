@@ -32,8 +32,8 @@ TargetResult make_target(const Target& t, const std::vector<BinInfo>& bins,
                          const ObserverGridGeometry* observer_grid,
                          const DaylightFactorBasis* daylight) {
   const TargetType& row = target_type(t.type);
-  const TargetTallies at{t,        bins,          tallies, layout, confidence, judged,
-                         luminaires, observer_grid, daylight};
+  const TargetTallies at{t,      bins,       tallies,       layout,  confidence,
+                         judged, luminaires, observer_grid, daylight};
   TargetResult r;
   r.name = t.name;
   r.type = row.name;

@@ -50,16 +50,16 @@ nlohmann::json daylight_factor_json(const DaylightFactorResult& d) {
 std::string daylight_factor_line(const std::string& target, const DaylightFactorResult& d) {
   const auto show = [](double v, double low, double high) {
     char buf[96];
-    std::snprintf(buf, sizeof buf, "%.2f %% [%.2f, %.2f]", v, low, high);
+    std::snprintf(buf, sizeof buf, "%.3f %% [%.3f, %.3f]", v, low, high);
     return std::string(buf);
   };
   char out[64];
   std::snprintf(out, sizeof out, "%.0f lx", d.outside_illuminance_lx);
-  return "daylight factor of " + target + " (sky \"" + d.sky + "\", outside " + out +
-         "): mean " + show(d.mean.mean, d.mean.ci_low, d.mean.ci_high) +
-         ", over 50 % of the area " + show(d.p50.value, d.p50.low, d.p50.high) + ", over 95 % " +
-         show(d.p95.value, d.p95.low, d.p95.high) + ", min " + show(d.min.value, d.min.low, d.min.high) +
-         "\n";
+  return "daylight factor of " + target + " (sky \"" + d.sky + "\", outside " + out + "): mean " +
+         show(d.mean.mean, d.mean.ci_low, d.mean.ci_high) + ", over 50 % of the area " +
+         show(d.p50.value, d.p50.low, d.p50.high) + ", over 95 % " +
+         show(d.p95.value, d.p95.low, d.p95.high) + ", min " +
+         show(d.min.value, d.min.low, d.min.high) + "\n";
 }
 
 DaylightFactorResult read_daylight_factor(const JsonNode& n) {

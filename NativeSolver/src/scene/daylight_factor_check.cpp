@@ -96,11 +96,11 @@ class Checks {
            "a daylight-factor grid needs a sky luminaire (type \"sky\"): the scene has none");
     }
     if (found.size() > 1) {
-      fail("quantity", "a daylight-factor grid needs exactly one sky luminaire (the ratio is to "
-                       "its outside illuminance): the scene has " +
-                           std::to_string(found.size()) + " (luminaires[" +
-                           std::to_string(found[0]) + "] and luminaires[" +
-                           std::to_string(found[1]) + "])");
+      fail("quantity",
+           "a daylight-factor grid needs exactly one sky luminaire (the ratio is to "
+           "its outside illuminance): the scene has " +
+               std::to_string(found.size()) + " (luminaires[" + std::to_string(found[0]) +
+               "] and luminaires[" + std::to_string(found[1]) + "])");
     }
     const Luminaire& sky = s_.luminaires[found[0]];
     for (std::size_t j = 0; j < s_.luminaires.size(); ++j) {

@@ -140,8 +140,7 @@ void read_grid(const JsonNode& n, const Scene&, Target& t) {
     if (q == "daylight_factor") {
       t.quantity = Target::Quantity::DaylightFactor;
     } else if (q != "illuminance") {
-      n.at("quantity").fail("expected \"illuminance\" or \"daylight_factor\", got \"" + q +
-                            "\"");
+      n.at("quantity").fail("expected \"illuminance\" or \"daylight_factor\", got \"" + q + "\"");
     }
   }
 }

@@ -9,12 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "scene_builders.hpp"
-#include "sky_rooms.hpp"
 #include "lightsolver/compliance.hpp"
 #include "lightsolver/rescale.hpp"
 #include "lightsolver/results_io.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "scene_builders.hpp"
+#include "sky_rooms.hpp"
 
 namespace lightsolver::test {
 namespace {
@@ -32,11 +32,12 @@ std::string df_scene(const std::string& target, const std::string& extra_luminai
          (sky_group.empty() ? "" : ", \"group\": \"" + sky_group + "\"") +
          R"(, "portals": [{"corner": [0,0,3], "edge1": [0,1,0], "edge2": [1,0,0]}]})" +
          extra_luminaires + R"(],
-  "targets": [)" + target + "]}";
+  "targets": [)" +
+         target + "]}";
 }
 
-std::string df_target(const std::string& requirements, const std::string& quantity =
-                                                           "daylight_factor") {
+std::string df_target(const std::string& requirements,
+                      const std::string& quantity = "daylight_factor") {
   return R"({"name": "df", "type": "grid", "quantity": ")" + quantity +
          R"(", "corner": [0,0,0.8], "edge1": [1,0,0], "edge2": [0,1,0], "cells": [2,2])" +
          (requirements.empty() ? "" : ", \"requirements\": " + requirements) + "}";
@@ -51,12 +52,13 @@ std::string error_of(const std::string& text) {
   return "<no error>";
 }
 
-const char* kLamp = R"(, {"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]})";
+const char* kLamp =
+    R"(, {"name": "lamp", "type": "point", "flux_lm": 1000, "position": [0.5,0.5,2]})";
 
 TEST(DaylightFactorScene, ReadsTheQuantityAndEn17037Targets) {
-  const Scene s = scene_from_json(
-      df_scene(df_target(R"({"en17037": "medium", "median_diffuse_lx": 15900})")), "scene.json",
-      "");
+  const Scene s =
+      scene_from_json(df_scene(df_target(R"({"en17037": "medium", "median_diffuse_lx": 15900})")),
+                      "scene.json", "");
   const Target& t = s.targets[0];
   EXPECT_EQ(t.quantity, Target::Quantity::DaylightFactor);
   EXPECT_EQ(t.requirements.en17037, En17037Level::Medium);
@@ -98,8 +100,7 @@ TEST(DaylightFactorScene, EveryBadInputIsNamed) {
       // DF keys where there is no daylight factor.
       {df_scene(df_target(R"({"df_target_percent": 2})", "illuminance")),
        "targets[0].requirements.df_target_percent"},
-      {df_scene(df_target(R"({"en17037": "minimum", "median_diffuse_lx": 15900})",
-                          "illuminance")),
+      {df_scene(df_target(R"({"en17037": "minimum", "median_diffuse_lx": 15900})", "illuminance")),
        "targets[0].requirements.en17037"},
       // Illuminance requirements and tasks on a DF grid.
       {df_scene(df_target(R"({"em_lux": 500})")), "targets[0].requirements.em_lux"},
@@ -261,7 +262,8 @@ TEST(DaylightFactorResults, JsonRoundTripAndRescaleKeepTheDaylightFactor) {
   // Factor 1: bit for bit the traced targets.
   EXPECT_EQ(nlohmann::json::parse(rescale_results_json(json, {}))["targets"], j["targets"]);
   // The sky dimmed (E_in and E_out alike) and the lamp brightened: lux move, D does not.
-  const auto dimmed = nlohmann::json::parse(rescale_results_json(json, {{"sky", 0.5}, {"lamp", 2}}));
+  const auto dimmed =
+      nlohmann::json::parse(rescale_results_json(json, {{"sky", 0.5}, {"lamp", 2}}));
   const auto& u = dimmed["targets"][0];
   EXPECT_EQ(u["daylight_factor"], t["daylight_factor"]);
   EXPECT_EQ(u["verdicts"]["df_target"], t["verdicts"]["df_target"]);

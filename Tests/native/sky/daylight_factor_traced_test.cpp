@@ -11,9 +11,9 @@
 #include <functional>
 #include <numbers>
 
+#include "lightsolver/simulation.hpp"
 #include "scene_builders.hpp"
 #include "sky_rooms.hpp"
-#include "lightsolver/simulation.hpp"
 
 namespace lightsolver::test {
 namespace {
@@ -96,7 +96,8 @@ TEST_P(DaylightFactorTraced, RoofOpeningGivesOneHundredTimesTheConfigurationFact
       const int n = 40;
       for (int a = 0; a < n; ++a) {
         for (int b = 0; b < n; ++b) {
-          const dvec3 p = corner + dvec3((iu + (a + 0.5) / n) * cell, (iv + (b + 0.5) / n) * cell, 0);
+          const dvec3 p =
+              corner + dvec3((iu + (a + 0.5) / n) * cell, (iv + (b + 0.5) / n) * cell, 0);
           sum += parallel_rect_factor(1.5 - p.x, 2.5 - p.x, 1.5 - p.y, 2.5 - p.y, 3.0);
         }
       }
@@ -154,9 +155,10 @@ TEST(DaylightFactorCoverage, OrderStatisticsCoverTiedCellsOver500Seeds) {
     }
   }
   const double floor = 0.95 - 4.0 * std::sqrt(0.95 * 0.05 / kRuns);
-  std::printf("[ sky      ] coverage over %d seeds: min %.3f, p50 %.3f, p95 %.3f, mean relative "
-              "p50 width %.3f\n",
-              kRuns, double(min_in) / kRuns, double(p50_in) / kRuns, double(p95_in) / kRuns, width);
+  std::printf(
+      "[ sky      ] coverage over %d seeds: min %.3f, p50 %.3f, p95 %.3f, mean relative "
+      "p50 width %.3f\n",
+      kRuns, double(min_in) / kRuns, double(p50_in) / kRuns, double(p95_in) / kRuns, width);
   EXPECT_GE(double(min_in) / kRuns, floor);
   EXPECT_GE(double(p50_in) / kRuns, floor);
   EXPECT_GE(double(p95_in) / kRuns, floor);
