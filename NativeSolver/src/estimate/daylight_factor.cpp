@@ -29,7 +29,11 @@ DaylightFactorResult daylight_factor_result(const TargetTallies& tt) {
   sky.flux_lm.at(b.group) = b.sky_flux_lm;
   const double percent = 100.0 / b.outside_lx;
   const auto estimate = [&](std::uint32_t bin, double z) {
-    return scaled(sky.group_estimate_z(b.group, bin, tt.bins[bin].area_m2, z), percent);
+    Estimate e = sky.group_estimate_z(b.group, bin, tt.bins[bin].area_m2, z);
+    // No photon of the sky traced yet (a run of fewer photons than groups): nothing is known,
+    // so not [0, 0] but Wilson's [0, 1] of no trial, times the scale.
+    if (sky.photons.at(b.group) == 0) e.ci_high = b.sky_flux_lm / tt.bins[bin].area_m2;
+    return scaled(e, percent);
   };
   const PreparedTarget& at = tt.layout;
   DaylightFactorResult r;
