@@ -20,7 +20,7 @@ export LSAN_OPTIONS="suppressions=$root/Tests/sanitizers/lsan.supp:print_suppres
 # each under ASan; the code they run is run by the shorter tests of the same suites (they check
 # coverage rates and counts at scale, which the main CTest run checks).
 slow='^(CiHonesty\.|Decide\.StoppingAtTheFirstDecidedLook|ObserverAgainstTable\.StandardRoom'
-slow+='|ObserverGridCoverage\.|IntervalCoverage\..*Over500Seeds'
+slow+='|ObserverGridCoverage\.|IntervalCoverage\..*Over500Seeds|DaylightFactorCoverage\.'
 slow+='|Backends/HardCases\.(EveryPhotonCountedPastFloatResolution|TinyTargetInAHugeHall)'
 # The sky's and the glazing's emission run under the sanitizers in their shorter traced tests
 # (the 1 cm² skylight, the roof openings); these two trace 10^7 photons through a whole room.

@@ -224,3 +224,22 @@ def test_a_glare_limit_is_estimated_on_the_ugr():
                           strict=False)["seated"]
         assert eye.estimated and eye.verdict == word and set(eye.verdicts) == {"ugr"}
         assert eye.verdicts["ugr"]["relation"] == "<="
+
+
+def test_daylight_factor_grids_are_read_with_their_statistics():
+    """A daylight-factor grid's block as the reader's view: the sky, E_out, the mean, min, p50
+    and p95 with their intervals, the cells; an illuminance target has none."""
+    scene = lightsolver.load_scene(
+        str(SOURCE_DIR / "Examples" / "daylight" / "side_lit_room.scene.json"))
+    doc = lightsolver.solve(scene, photons=50000, seed=4, backend="embree")
+    results = reader.read(doc)
+    grid, floor = results.targets[0], results.targets[1]
+    df = grid.daylight_factor
+    assert df is not None and floor.daylight_factor is None
+    block = doc["targets"][0]["daylight_factor"]
+    assert df.sky == "overcast sky" and df.outside_illuminance_lx == 10000
+    assert (df.p50.value, df.p50.low, df.p50.high) == (
+        block["p50_percent"], block["p50_ci_low_percent"], block["p50_ci_high_percent"])
+    assert df.min.low <= df.min.value <= df.p95.value <= df.p50.value
+    assert df.cells == [c["percent"] for c in block["cells"]]
+    assert grid.verdict_of("df_target") in ("pass", "fail", "undecided")

@@ -221,3 +221,39 @@ def test_observer_results_follow_the_schema(cli, room_scene, tmp_path):
         bad = copy.deepcopy(r)
         mutate(bad["targets"][-1])
         assert errors(bad), "the schema accepted a broken observer"
+
+
+def test_daylight_factor_results_follow_the_schema(cli, tmp_path):
+    """The side-lit example (a daylight-factor grid with EN 17037's minimum level): the CLI's
+    file and solve() agree, follow the schema, and the schema refuses a DF block broken or
+    misplaced."""
+    scene = SOURCE_DIR / "Examples" / "daylight" / "side_lit_room.scene.json"
+    r = cli_results(cli, scene, tmp_path, "--photons", "100000", "--seed", "3",
+                    "--backend", "embree")
+    assert errors(r) == []
+    grid = r["targets"][0]
+    df = grid["daylight_factor"]
+    assert df["sky"] == "overcast sky" and df["outside_illuminance_lx"] == 10000
+    assert len(df["cells"]) == grid["cells_uv"][0] * grid["cells_uv"][1]
+    for key in ("", "min_", "p50_", "p95_"):
+        value = df["mean_percent" if not key else key + "percent"]
+        assert df[key + "ci_low_percent"] <= value <= df[key + "ci_high_percent"]
+    assert set(grid["verdicts"]) == {"df_target", "df_minimum"}
+    assert grid["verdicts"]["df_target"]["value"] == df["p50_percent"]
+    assert grid["requirements"]["df_target_percent"] == pytest.approx(300 / 159)
+    py = plain(lightsolver.solve(lightsolver.load_scene(str(scene)), photons=100000, seed=3,
+                                 backend="embree"))
+    assert py["targets"][0]["daylight_factor"] == df
+    for mutate in [lambda t: t["daylight_factor"].pop("p50_percent"),
+                   lambda t: t["verdicts"].update(em=t["verdicts"]["df_target"]),
+                   lambda t: t["requirements"].update(em_lux=500),
+                   lambda t: t["daylight_factor"]["cells"][0].update(lux=1.0),
+                   lambda t: t.update(type="surface")]:
+        bad = copy.deepcopy(r)
+        mutate(bad["targets"][0])
+        assert errors(bad), "the schema accepted a broken daylight-factor grid"
+    bad = copy.deepcopy(r)
+    bad["targets"][1]["requirements"] = {"df_target_percent": 2.0}
+    bad["targets"][1]["verdicts"] = {"df_target": grid["verdicts"]["df_target"]}
+    bad["targets"][1]["verdict"] = "pass"
+    assert errors(bad), "the schema accepted DF requirements on a surface"

@@ -8,11 +8,25 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lightsolver/statistics.hpp"
 
 namespace lightsolver {
+
+/// EN 17037:2018's daylight-factor levels (Table A.1, vertical and inclined openings).
+enum class En17037Level { None, Minimum, Medium, High };
+
+/// "minimum", "medium", "high" ("" for None).
+const char* to_string(En17037Level level);
+
+/// The level named `name`, or nullopt for any other text.
+std::optional<En17037Level> en17037_level(const std::string& name);
+
+/// The target illuminances (E_T, E_TM) in lx of a level: (300, 100) minimum, (500, 300)
+/// medium, (750, 500) high; (0, 0) for None.
+std::pair<double, double> en17037_illuminances(En17037Level level);
 
 /// What a target must reach; every value is a lower bound (relation ">="), except ugr_max, an
 /// upper bound (relation "<=", observers only). Any subset.
@@ -24,8 +38,25 @@ struct Requirements {
   std::optional<double> ugr_max;   ///< largest allowed UGR (observers only; EN 12464-1 UGR_L)
   std::string task;                ///< the requirements table row it came from, or empty
   std::string source;              ///< the table's source (e.g. "EN 12464-1:2021 ..."), or empty
+  /// Daylight-factor grids only (docs/scene-format.md, "Targets"): D >= df_target_percent over
+  /// half the grid's area, D >= df_minimum_percent over 95 % of it, as given, or derived from
+  /// the EN 17037 level and the site's median external diffuse illuminance where not given.
+  std::optional<double> df_target_percent, df_minimum_percent;
+  En17037Level en17037 = En17037Level::None;
+  std::optional<double> median_diffuse_lx;  ///< E_v,d,med (lx), with `en17037`
 
-  bool any() const { return em_lux || u0 || emin_lux || ud || ugr_max; }
+  /// D_T and D_TM in force: the explicit value, else E_T (E_TM) / median_diffuse_lx x 100 for
+  /// the EN 17037 level; empty when neither applies.
+  std::optional<double> df_target() const;
+  std::optional<double> df_minimum() const;
+  /// Any daylight-factor key given (df_*_percent, en17037, median_diffuse_lx).
+  bool any_daylight_factor() const {
+    return df_target_percent || df_minimum_percent || en17037 != En17037Level::None ||
+           median_diffuse_lx;
+  }
+  bool any() const {
+    return em_lux || u0 || emin_lux || ud || ugr_max || df_target() || df_minimum();
+  }
 };
 
 /// Outcome of one requirement.
@@ -82,6 +113,23 @@ struct GridSampler {
 /// factors. `min_lux`, `max_lux`, `mean_lux` are the point estimates.
 GridIntervals grid_intervals(const GridSampler& s, double confidence, double min_lux,
                              double max_lux, double mean_lux);
+
+/// The cell rank of the value a grid reaches or exceeds over at least `fraction` (0..1] of its
+/// area, its m cells equal in area: k = ceil(fraction m) (at least 1), the k-th largest cell.
+std::uint32_t area_fraction_rank(std::uint32_t cells, double fraction);
+
+/// An order statistic of a grid's cells with its interval.
+struct OrderStatistic {
+  double value = 0.0, low = 0.0, high = 0.0;
+};
+
+/// The k-th largest cell (k = 1: the largest, k = m: the smallest) with an interval at
+/// `confidence` honest for an order statistic over noisy cells (docs/statistics.md, "Order
+/// statistics of noisy cells"): its lower end the k-th largest of the cells' lower bounds at
+/// one-sided alpha / (2 (m - k + 1)), its upper end the k-th largest of their upper bounds at
+/// one-sided alpha / (2 k). `values`: the cells' estimates (the statistic is theirs).
+OrderStatistic order_statistic(const GridSampler& s, const std::vector<double>& values,
+                               std::uint32_t k, double confidence);
 
 /// The overall verdict of a list: Fail if any fails, else Undecided if any is, else Pass.
 VerdictKind overall(const std::vector<VerdictKind>& verdicts);

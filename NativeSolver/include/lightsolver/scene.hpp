@@ -171,6 +171,10 @@ struct Target {
   std::optional<double> view_step_deg;
   /// What the target must reach (scene keys "requirements" and "task"); none when !any().
   Requirements requirements;
+  /// What a grid reports besides lux (scene key `quantity`): a daylight-factor grid also gives
+  /// the daylight factor of the scene's one sky (docs/daylight.md, "Daylight factor").
+  enum class Quantity { Illuminance, DaylightFactor };
+  Quantity quantity = Quantity::Illuminance;
 };
 
 /// A scene's run settings (scene file `settings`). Each member is a row of the run options

@@ -197,6 +197,19 @@ struct Contribution {
   std::vector<Tally> tallies;
 };
 
+/// A daylight-factor grid's daylight factor D = E_in / E_out x 100 %: E_in the light of the
+/// scene's sky (its group alone), E_out the sky's unobstructed horizontal illuminance above the
+/// horizon (exact). Order statistics over the cells (equal in area) with intervals honest for
+/// an order statistic of noisy cells (docs/statistics.md).
+struct DaylightFactorResult {
+  std::string sky;                      ///< the sky luminaire's name
+  double outside_illuminance_lx = 0.0;  ///< E_out, as traced (a rescale keeps it and D)
+  Estimate mean;                        ///< over the whole grid, percent
+  OrderStatistic min;                   ///< the smallest cell
+  OrderStatistic p50, p95;              ///< reached or exceeded over 50 % / 95 % of the area
+  std::vector<Estimate> cells;          ///< per cell, percent
+};
+
 struct TargetResult {
   std::string name;
   std::string type;  ///< the scene file's target type ("surface", "grid", "observer", ...)
@@ -220,6 +233,8 @@ struct TargetResult {
   VerdictKind verdict = VerdictKind::Undecided;  ///< overall; meaningful with verdicts only
   /// Per luminaire group, in the order of Results::groups, when contributions were asked for.
   std::vector<Contribution> contributions;
+  /// A daylight-factor grid's daylight factor (Target::Quantity::DaylightFactor).
+  std::optional<DaylightFactorResult> daylight_factor;
 };
 
 /// A luminaire group: its own photon stream, traced apart (docs/statistics.md, "Groups").

@@ -32,7 +32,7 @@ from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFl
                         migrate)
 
 __all__ = ["FORMAT", "OPTIMIZATION_FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "DERIVED_FLUX_NOTE",
-           "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "Target", "LuminaireFlux",
+           "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "DaylightFactorView", "Target", "LuminaireFlux",
            "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
            "read", "load", "Provenance", "SourceFile", "without_run_facts"]
 
@@ -115,6 +115,35 @@ def _observer_grid(entry: Dict[str, Any]) -> Optional[ObserverGridView]:
 
 
 @dataclass
+class DaylightFactorView:
+    """A daylight-factor grid's daylight factor in percent (docs/daylight.md, "Daylight factor
+    and EN 17037"): the sky it is of, that sky's outside illuminance, the grid's mean, its
+    smallest cell and the values reached over 50 % and 95 % of its area (each with its
+    interval), and every cell's value row by row."""
+
+    sky: str
+    outside_illuminance_lx: Optional[float]
+    mean: Stat
+    min: Stat
+    p50: Stat
+    p95: Stat
+    cells: List[Optional[float]] = field(default_factory=list)
+
+
+def _daylight_factor(entry: Dict[str, Any]) -> Optional[DaylightFactorView]:
+    df = entry.get("daylight_factor")
+    if not isinstance(df, dict):
+        return None
+    return DaylightFactorView(
+        sky=str(df.get("sky", "")), outside_illuminance_lx=finite(df.get("outside_illuminance_lx")),
+        mean=_stat(df, "mean_percent", "ci_low_percent", "ci_high_percent"),
+        min=_stat(df, "min_percent", "min_ci_low_percent", "min_ci_high_percent"),
+        p50=_stat(df, "p50_percent", "p50_ci_low_percent", "p50_ci_high_percent"),
+        p95=_stat(df, "p95_percent", "p95_ci_low_percent", "p95_ci_high_percent"),
+        cells=[finite(c.get("percent")) for c in df.get("cells") or [] if isinstance(c, dict)])
+
+
+@dataclass
 class Target:
     """One target's results. Every target has ``em`` (its mean illuminance with interval);
     grids add the cells (``cells`` as entries, ``cell_values`` as lists) and Emin, Emax, U0,
@@ -139,14 +168,15 @@ class Target:
     ud: Optional[Stat] = None
     ugr: Optional[Stat] = None
     observer_grid: Optional[ObserverGridView] = None
+    daylight_factor: Optional[DaylightFactorView] = None  # daylight-factor grids
     requirements: Dict[str, Any] = field(default_factory=dict)
     verdicts: Dict[str, Dict[str, Any]] = field(default_factory=dict)
     verdict: Optional[str] = None  # pass, fail, undecided; None when nothing was judged
     estimated: bool = False  # the verdicts are point estimates (never undecided), not judged
 
     def verdict_of(self, name: str) -> Optional[str]:
-        """The verdict on one requirement ("em", "u0", "emin", "ud", "ugr"), or None when it
-        was not judged."""
+        """The verdict on one requirement ("em", "u0", "emin", "ud", "ugr"; a daylight-factor
+        grid's "df_target", "df_minimum"), or None when it was not judged."""
         found = self.verdicts.get(name, {}).get("verdict")
         return str(found) if found in ("pass", "fail", "undecided") else None
 
@@ -188,6 +218,7 @@ def _target(entry: Dict[str, Any], estimated: bool = False) -> Target:
         t.ud = _stat(entry, "ud", "ud_ci_low", "ud_ci_high")
         if t.ud.value is None and t.emin.value is not None and t.emax.value:
             t.ud = Stat(t.emin.value / t.emax.value)
+        t.daylight_factor = _daylight_factor(entry)
     if t.type in GLARE_KINDS:  # an observer grid's: the maximum's
         t.ugr = _stat(entry, "ugr", "ugr_ci_low", "ugr_ci_high")
     if t.type == "observer_grid":

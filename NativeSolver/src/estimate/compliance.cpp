@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -20,6 +21,59 @@ const char* to_string(VerdictKind v) {
       break;
   }
   return "undecided";
+}
+
+const char* to_string(En17037Level level) {
+  switch (level) {
+    case En17037Level::Minimum:
+      return "minimum";
+    case En17037Level::Medium:
+      return "medium";
+    case En17037Level::High:
+      return "high";
+    case En17037Level::None:
+      break;
+  }
+  return "";
+}
+
+std::optional<En17037Level> en17037_level(const std::string& name) {
+  for (const En17037Level l : {En17037Level::Minimum, En17037Level::Medium, En17037Level::High}) {
+    if (name == to_string(l)) return l;
+  }
+  return std::nullopt;
+}
+
+std::pair<double, double> en17037_illuminances(En17037Level level) {
+  switch (level) {  // EN 17037:2018, Table A.1 (vertical and inclined daylight openings)
+    case En17037Level::Minimum:
+      return {300.0, 100.0};
+    case En17037Level::Medium:
+      return {500.0, 300.0};
+    case En17037Level::High:
+      return {750.0, 500.0};
+    case En17037Level::None:
+      break;
+  }
+  return {0.0, 0.0};
+}
+
+namespace {
+// The explicit percentage, else the level's illuminance over the median, in percent.
+std::optional<double> daylight_factor_in_force(const std::optional<double>& given,
+                                               const Requirements& r, bool target) {
+  if (given) return given;
+  if (r.en17037 == En17037Level::None || !r.median_diffuse_lx) return std::nullopt;
+  const auto [e_t, e_tm] = en17037_illuminances(r.en17037);
+  return (target ? e_t : e_tm) / *r.median_diffuse_lx * 100.0;
+}
+}  // namespace
+
+std::optional<double> Requirements::df_target() const {
+  return daylight_factor_in_force(df_target_percent, *this, true);
+}
+std::optional<double> Requirements::df_minimum() const {
+  return daylight_factor_in_force(df_minimum_percent, *this, false);
 }
 
 VerdictKind judge(double ci_low, double ci_high, double required) {
@@ -123,6 +177,42 @@ GridIntervals grid_intervals(const GridSampler& s, double confidence, double min
   std::tie(g.u0_low, g.u0_high) = ratio_interval(
       q_min_low, q_min_high, std::min(em.ci_low, mean_lux), std::max(em.ci_high, mean_lux), u0);
   return g;
+}
+
+std::uint32_t area_fraction_rank(std::uint32_t cells, double fraction) {
+  // The 1e-9 keeps 0.5 x 16 = 8 from rounding up to 9 when the product is 8.000000000001.
+  const double k = std::ceil(fraction * double(cells) - 1e-9);
+  return static_cast<std::uint32_t>(std::clamp(k, 1.0, double(std::max(cells, 1u))));
+}
+
+namespace {
+// The k-th largest (1-based) of `v`.
+double kth_largest(std::vector<double> v, std::uint32_t k) {
+  std::nth_element(v.begin(), v.begin() + (k - 1), v.end(), std::greater<>());
+  return v[k - 1];
+}
+}  // namespace
+
+OrderStatistic order_statistic(const GridSampler& s, const std::vector<double>& values,
+                               std::uint32_t k, double confidence) {
+  if (!(confidence > 0.0 && confidence < 1.0)) {
+    throw std::invalid_argument("order_statistic: confidence must lie in (0, 1)");
+  }
+  const std::uint32_t m = s.cells;
+  if (m == 0 || values.size() != m || k == 0 || k > m) {
+    throw std::invalid_argument("order_statistic: k must lie in 1..cells");
+  }
+  const double alpha = 1.0 - confidence;
+  // One-sided alpha / 2 per end, shared by Bonferroni over the cells that can make that end
+  // miss: the m - k + 1 darkest for the lower end, the k brightest for the upper end.
+  std::vector<double> lows(m), highs(m);
+  for (std::uint32_t c = 0; c < m; ++c) lows[c] = s.cell(c, alpha / double(m - k + 1)).ci_low;
+  for (std::uint32_t c = 0; c < m; ++c) highs[c] = s.cell(c, alpha / double(k)).ci_high;
+  OrderStatistic o;
+  o.value = kth_largest(values, k);
+  o.low = std::min(kth_largest(std::move(lows), k), o.value);
+  o.high = std::max(kth_largest(std::move(highs), k), o.value);
+  return o;
 }
 
 }  // namespace lightsolver

@@ -49,11 +49,22 @@ Verdict ugr_verdict(const ObserverGlare& g, double required) {
 }
 
 // One verdict per requirement, em first. A grid's U0, Emin and Ud use the honest intervals of
-// grid_intervals(); Em uses the target's own interval.
+// grid_intervals(); Em uses the target's own interval. A daylight-factor grid's D_T and D_TM
+// judge the values reached over 50 % and 95 % of its area (order statistics' intervals).
 std::vector<Verdict> verdicts_of(const TargetResult& t) {
   const Requirements& q = t.requirements;
   std::vector<Verdict> out;
   const Estimate& e = t.estimate;
+  if (t.daylight_factor) {  // a daylight-factor grid takes these alone (validate())
+    const DaylightFactorResult& d = *t.daylight_factor;
+    if (const auto r = q.df_target()) {
+      out.push_back(make_verdict("df_target", d.p50.value, d.p50.low, d.p50.high, *r));
+    }
+    if (const auto r = q.df_minimum()) {
+      out.push_back(make_verdict("df_minimum", d.p95.value, d.p95.low, d.p95.high, *r));
+    }
+    return out;
+  }
   if (q.em_lux) out.push_back(make_verdict("em", e.mean, e.ci_low, e.ci_high, *q.em_lux));
   if (q.ugr_max && t.glare) out.push_back(ugr_verdict(*t.glare, *q.ugr_max));
   if (!t.intervals) return out;  // a surface: em only (validate() refuses the others)

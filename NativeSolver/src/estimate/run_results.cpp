@@ -1,6 +1,7 @@
 #include "estimate/run_results.hpp"
 
 #include "types/luminaire_types.hpp"
+#include "estimate/daylight_factor.hpp"
 #include "estimate/target_results.hpp"
 
 namespace lightsolver::detail {
@@ -11,12 +12,14 @@ std::vector<TargetResult> all_targets(const Scene& scene, const PreparedScene& s
                                       const std::vector<Luminaire>* luminaires) {
   std::vector<std::string> names;
   for (const auto& g : s.groups) names.push_back(g.name);
+  const std::optional<DaylightFactorBasis> daylight = daylight_factor_basis(scene, s.groups);
   std::vector<TargetResult> out;
   for (std::size_t i = 0; i < scene.targets.size(); ++i) {
     const Target& target = scene.targets[i];
     const PreparedTarget& at = s.targets[i];
     TargetResult r = make_target(target, s.bins, tallies, at, confidence, judged,
-                                 luminaires != nullptr ? luminaires : &scene.luminaires);
+                                 luminaires != nullptr ? luminaires : &scene.luminaires, nullptr,
+                                 daylight ? &*daylight : nullptr);
     if (contributions) add_contributions(r, s.bins, tallies, at, confidence, names);
     out.push_back(std::move(r));
   }

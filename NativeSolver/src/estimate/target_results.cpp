@@ -29,9 +29,11 @@ void add_eye_contributions(TargetResult& r, const std::vector<BinInfo>& bins,
 TargetResult make_target(const Target& t, const std::vector<BinInfo>& bins,
                          const GroupedTallies& tallies, const PreparedTarget& layout,
                          double confidence, bool judged, const std::vector<Luminaire>* luminaires,
-                         const ObserverGridGeometry* observer_grid) {
+                         const ObserverGridGeometry* observer_grid,
+                         const DaylightFactorBasis* daylight) {
   const TargetType& row = target_type(t.type);
-  const TargetTallies at{t, bins, tallies, layout, confidence, judged, luminaires, observer_grid};
+  const TargetTallies at{t,      bins,       tallies,       layout,  confidence,
+                         judged, luminaires, observer_grid, daylight};
   TargetResult r;
   r.name = t.name;
   r.type = row.name;

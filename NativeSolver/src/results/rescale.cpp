@@ -3,6 +3,7 @@
 // results_io.cpp).
 #include "lightsolver/rescale.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -62,7 +63,29 @@ Target scene_target(const TargetResult& in, std::size_t i, const std::string& so
     t.nv = in.nv;
   }
   t.requirements = in.requirements;
+  if (in.daylight_factor) t.quantity = Target::Quantity::DaylightFactor;
   return t;
+}
+
+// The sky of the results' daylight-factor grids (the first one's; every one reads the one
+// sky): its group, its flux as traced (undimmed) and its outside illuminance. Empty without one.
+std::optional<detail::DaylightFactorBasis> daylight_basis(const Results& in,
+                                                          const std::vector<std::string>& groups,
+                                                          const std::string& source) {
+  for (std::size_t i = 0; i < in.targets.size(); ++i) {
+    if (!in.targets[i].daylight_factor) continue;
+    const DaylightFactorResult& d = *in.targets[i].daylight_factor;
+    for (const LuminaireResult& l : in.luminaires) {
+      if (l.name != d.sky) continue;
+      const auto g = std::find(groups.begin(), groups.end(), l.group);
+      if (g == groups.end()) break;
+      return detail::DaylightFactorBasis{d.sky, std::size_t(g - groups.begin()),
+                                         l.flux_lm * l.tilt_factor, d.outside_illuminance_lx};
+    }
+    throw InputError(source, at(i, "daylight_factor.sky"),
+                     "no luminaire \"" + d.sky + "\" with a group in these results");
+  }
+  return std::nullopt;
 }
 
 // The run's own fields, as traced.
@@ -203,11 +226,13 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
                     &counts[g * bins.size()]);
     }
   }
+  const auto daylight = daylight_basis(in, names, source);
   for (std::size_t i = 0; i < scene_targets.size(); ++i) {
     const auto grid = eyes.find(i);
     TargetResult t = detail::make_target(scene_targets[i], bins, tallies, layout[i], r.confidence,
                                          /*grid_intervals=*/true, nullptr,
-                                         grid == eyes.end() ? nullptr : grid->second.get());
+                                         grid == eyes.end() ? nullptr : grid->second.get(),
+                                         daylight ? &*daylight : nullptr);
     if (t.is_observer && !t.observer_grid) {
       t.glare = glare.observer(in.targets[i].glare.value(), luminaire_factor, t.name, t.estimate,
                                source, at(i));

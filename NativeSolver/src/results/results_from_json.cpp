@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/json_reader.hpp"
+#include "results/daylight_factor_io.hpp"
 #include "results/groups_io.hpp"
 #include "results/observer_grid_io.hpp"
 #include "scene/provenance.hpp"
@@ -64,6 +65,15 @@ Requirements read_requirements(const JsonNode& n) {
   q.ugr_max = optional_number(n, "ugr_max");
   if (n.has("task")) q.task = n.at("task").string();
   if (n.has("source")) q.source = n.at("source").string();
+  // A daylight-factor grid's: the percentages as they were in force, read back as given.
+  q.df_target_percent = optional_number(n, "df_target_percent");
+  q.df_minimum_percent = optional_number(n, "df_minimum_percent");
+  q.median_diffuse_lx = optional_number(n, "median_diffuse_lx");
+  if (n.has("en17037")) {
+    const auto level = en17037_level(n.at("en17037").string());
+    if (!level) n.at("en17037").fail("expected \"minimum\", \"medium\" or \"high\"");
+    q.en17037 = *level;
+  }
   return q;
 }
 
@@ -89,13 +99,16 @@ Verdict read_verdict(const std::string& name, const JsonNode& n) {
   return v;
 }
 
-// In the order the solver judges them (em, u0, emin, ud, ugr), not the JSON's key order.
+// In the order the solver judges them (em, u0, emin, ud, ugr; a daylight-factor grid's
+// df_target, df_minimum), not the JSON's key order.
 std::vector<Verdict> read_verdicts(const JsonNode& n) {
   std::vector<Verdict> out;
-  for (const char* name : {"em", "u0", "emin", "ud", "ugr"}) {
+  for (const char* name : {"df_target", "df_minimum", "em", "u0", "emin", "ud", "ugr"}) {
     if (n.has(name)) out.push_back(read_verdict(name, n.at(name)));
   }
-  if (out.size() != n.object().size()) n.fail("has a verdict other than em, u0, emin, ud, ugr");
+  if (out.size() != n.object().size()) {
+    n.fail("has a verdict other than em, u0, emin, ud, ugr, df_target, df_minimum");
+  }
   return out;
 }
 
@@ -217,6 +230,9 @@ TargetResult read_target(const JsonNode& n, const std::vector<GroupResult>& grou
     }
   }
   if (n.has("contributions")) t.contributions = detail::read_contributions_json(n, t, groups);
+  if (n.has("daylight_factor")) {
+    t.daylight_factor = detail::read_daylight_factor(n.at("daylight_factor"));
+  }
   return t;
 }
 

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "results/daylight_factor_io.hpp"
 #include "results/effects_io.hpp"
 #include "results/groups_io.hpp"
 #include "results/observer_grid_io.hpp"
@@ -32,6 +33,10 @@ nlohmann::json requirements_json(const Requirements& q) {
   if (q.emin_lux) j["emin_lux"] = *q.emin_lux;
   if (q.ud) j["ud"] = *q.ud;
   if (q.ugr_max) j["ugr_max"] = *q.ugr_max;
+  if (q.en17037 != En17037Level::None) j["en17037"] = to_string(q.en17037);
+  if (q.median_diffuse_lx) j["median_diffuse_lx"] = *q.median_diffuse_lx;
+  if (const auto d = q.df_target()) j["df_target_percent"] = *d;  // as in force
+  if (const auto d = q.df_minimum()) j["df_minimum_percent"] = *d;
   if (!q.task.empty()) j["task"] = q.task;
   if (!q.source.empty()) j["source"] = q.source;
   return j;
@@ -178,6 +183,7 @@ nlohmann::json target_json(const TargetResult& t) {
         {{"lux", c.mean}, {"ci_low_lux", c.ci_low}, {"ci_high_lux", c.ci_high}, {"hits", c.hits}});
   }
   j["cells"] = std::move(cells);
+  if (t.daylight_factor) j["daylight_factor"] = detail::daylight_factor_json(*t.daylight_factor);
   return j;
 }
 
@@ -315,6 +321,9 @@ std::string results_table(const Results& r, bool list_skipped_effects) {
         << " cd/m2 [" << fmt("%.3g", g.background_ci_low_cd_m2) << ", "
         << fmt("%.3g", g.background_ci_high_cd_m2) << "]" << max_place(t) << "\n";
     for (const auto& w : g.warnings) out << "warning: " << w << "\n";
+  }
+  for (const auto& t : r.targets) {
+    if (t.daylight_factor) out << detail::daylight_factor_line(t.name, *t.daylight_factor);
   }
   if (r.judged) {
     out << "verdicts (" << (r.decide ? "traced until decided" : "at the photons traced")

@@ -131,12 +131,26 @@ Requirements read_requirements(const JsonNode& n, const std::string& base_dir) {
   if (n.has("task")) apply_task(n.at("task"), base_dir, r);
   if (!n.has("requirements")) return r;
   const JsonNode q = n.at("requirements");
-  q.require_object({"em_lux", "u0", "emin_lux", "ud", "ugr_max"});
+  q.require_object({"em_lux", "u0", "emin_lux", "ud", "ugr_max", "df_target_percent",
+                    "df_minimum_percent", "en17037", "median_diffuse_lx"});
   if (q.has("em_lux")) r.em_lux = q.at("em_lux").number();
   if (q.has("u0")) r.u0 = q.at("u0").number();
   if (q.has("emin_lux")) r.emin_lux = q.at("emin_lux").number();
   if (q.has("ud")) r.ud = q.at("ud").number();
   if (q.has("ugr_max")) r.ugr_max = q.at("ugr_max").number();
+  if (q.has("df_target_percent")) r.df_target_percent = q.at("df_target_percent").number();
+  if (q.has("df_minimum_percent")) r.df_minimum_percent = q.at("df_minimum_percent").number();
+  if (q.has("median_diffuse_lx")) r.median_diffuse_lx = q.at("median_diffuse_lx").number();
+  if (q.has("en17037")) {
+    const std::string level = q.at("en17037").string();
+    const auto l = en17037_level(level);
+    if (!l) {
+      q.at("en17037").fail("expected \"minimum\", \"medium\" or \"high\" (EN 17037:2018), got \"" +
+                           level + "\"");
+    }
+    r.en17037 = *l;
+    r.source = std::string("EN 17037:2018, daylight factor method, ") + level;
+  }
   return r;
 }
 

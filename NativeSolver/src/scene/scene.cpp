@@ -10,6 +10,7 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "scene/daylight_factor_check.hpp"
 #include "types/luminaire_types.hpp"
 #include "types/target_types.hpp"
 #include "lightsolver/photometry.hpp"
@@ -308,6 +309,7 @@ class Validator {
   void target(std::size_t i) {
     Target& t = s_.targets[i];
     requirements(i, t);
+    detail::check_daylight_factor(s_, i);
     detail::target_type(t.type).check(TargetFields(*this, i), t);
   }
 

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "estimate/daylight_factor.hpp"
 #include "io/json_reader.hpp"
 #include "types/target_rows.hpp"
 
@@ -125,8 +126,8 @@ void prepare_surface(const Target& t, const std::vector<double>& mesh_area, Prep
 
 // --- grid: a virtual rectangle of cells (light crossing it from the front) ------------------
 
-constexpr const char* kGridKeys[] = {"name",  "type",  "corner",       "edge1",
-                                     "edge2", "cells", "requirements", "task"};
+constexpr const char* kGridKeys[] = {"name",  "type",         "corner", "edge1",   "edge2",
+                                     "cells", "requirements", "task",   "quantity"};
 
 void read_grid(const JsonNode& n, const Scene&, Target& t) {
   n.require_object(kGridKeys);
@@ -134,6 +135,14 @@ void read_grid(const JsonNode& n, const Scene&, Target& t) {
   t.edge1 = n.at("edge1").vec3();
   t.edge2 = n.at("edge2").vec3();
   read_cells(n, t, limits::kMaxGridCells, "more than 10^7 cells in one grid");
+  if (n.has("quantity")) {
+    const std::string q = n.at("quantity").string();
+    if (q == "daylight_factor") {
+      t.quantity = Target::Quantity::DaylightFactor;
+    } else if (q != "illuminance") {
+      n.at("quantity").fail("expected \"illuminance\" or \"daylight_factor\", got \"" + q + "\"");
+    }
+  }
 }
 
 // Grids divide flux by their cells' areas: sizes below 1 um are below any physical use (a
@@ -202,6 +211,9 @@ void grid_result(const TargetTallies& tt, TargetResult& r) {
     r.intervals =
         grid_intervals(grid_sampler(tt), tt.confidence, r.min_lux, r.max_lux, r.estimate.mean);
   }
+  if (t.quantity == Target::Quantity::DaylightFactor && tt.daylight) {
+    r.daylight_factor = daylight_factor_result(tt);
+  }
 }
 
 using T = Target::Type;
@@ -221,7 +233,8 @@ constexpr const char* kGridFields[] = {"cells_uv",
                                        "uniformity_ci_high",
                                        "ud",
                                        "ud_ci_low",
-                                       "ud_ci_high"};
+                                       "ud_ci_high",
+                                       "daylight_factor"};  // daylight-factor grids
 const std::array<TargetType, 4> kTypes = {{
     {.type = T::Surface,
      .name = "surface",

@@ -59,6 +59,15 @@ enum RequirementKey : unsigned {
   kRequireUgr = 1u << 4,
 };
 
+/// What a daylight-factor grid's result reads: the sky's group (its tallies alone), the sky's
+/// flux as traced (a rescale's dimming leaves the ratio alone) and its outside illuminance.
+struct DaylightFactorBasis {
+  std::string sky;
+  std::size_t group = 0;
+  double sky_flux_lm = 0.0;
+  double outside_lx = 0.0;
+};
+
 /// A target's tallies at the end (or a checkpoint) of a run, for its result hook.
 struct TargetTallies {
   const Target& target;
@@ -74,6 +83,8 @@ struct TargetTallies {
   const std::vector<Luminaire>* luminaires;
   /// An observer grid's geometry read back from results (rescale); null: from `luminaires`.
   const ObserverGridGeometry* observer_grid;
+  /// A daylight-factor grid's sky; null elsewhere (and then no daylight factor is reported).
+  const DaylightFactorBasis* daylight = nullptr;
 
   /// Bin `b`'s illuminance (lux) at the run's confidence, or at the critical value `z`.
   Estimate estimate(std::uint32_t b) const;
