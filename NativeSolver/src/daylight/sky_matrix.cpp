@@ -108,7 +108,12 @@ SkyMatrix sky_matrix(const WeatherFile& weather, const SkyMatrixOptions& options
     const WeatherHour& h = weather.hours[i];
     // The row describes the hour ending at its stamp (standard time): its middle is h − 0.5.
     const CivilTime t{h.year, h.month, h.day, h.hour - 1, 30, 0.0, loc.utc_offset_h};
-    const SunPosition pos = sun_position(site, t, options.sun);
+    SunPosition pos;
+    try {
+      pos = sun_position(site, t, options.sun);
+    } catch (const InputError& e) {  // a date the calendar lacks (29 February of a plain year)
+      throw InputError(weather.file, "line " + std::to_string(h.line), e.what());
+    }
     const glm::dvec3 sun = sun_direction(pos, options.north_deg);
     m.sun_altitude_deg[i] = static_cast<float>(pos.elevation_deg);
     if (!(sun.z > 0.0)) continue;  // status 0: night
