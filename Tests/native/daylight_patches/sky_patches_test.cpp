@@ -34,12 +34,13 @@ struct ReinhartCal {
     if (-a > 0) a += 2 * kPi;
     const double azi = a / DEGREE;
     const double alpha = 90 / (MF * 7 + .5);
+    if (-alt > 0) return 0;  // calc's if() evaluates only the branch it takes
     const int r_row = static_cast<int>(std::floor(alt / alpha));
     const double r_inc = 360.0 / rnaz(r_row);
     const int r_azn = 359.9999 - .5 * r_inc - azi > 0
                           ? static_cast<int>(std::floor((azi + .5 * r_inc) / r_inc))
                           : 0;
-    return -alt > 0 ? 0 : raccum(r_row) + r_azn + 1;
+    return raccum(r_row) + r_azn + 1;
   }
   int nrbins() const { return raccum(7 * MF + 1) + 1; }
 };
