@@ -28,6 +28,7 @@
 #include "run_option_keywords.hpp"
 #include "scene_bindings.hpp"
 #include "simulation_bindings.hpp"
+#include "sky_patches_bindings.hpp"
 #include "types_bindings.hpp"
 
 namespace py = pybind11;
@@ -451,4 +452,5 @@ PYBIND11_MODULE(lightsolver, m) {
   bind_types(m);       // lightsolver.luminaire_types(), target_types()
   bind_provenance(m);  // lightsolver.verify_results
   bind_daylight(m);    // lightsolver.sun_position, read_weather
+  bind_sky_patches(m);  // lightsolver.sky_patches, sky_vectors
 }

@@ -134,6 +134,10 @@ SunPosition sun_position(const Site& site, const CivilTime& time, const SunOptio
   ecliptic_to_equatorial(sun.L, sun.B, kObliquityJ2000Deg, j2000);
   ln_get_equ_prec2(&j2000, kJ2000, jde, &of_date);
   ln_nutation nut;
+  // libnova caches the last nutation and returns it for any date within 0.1 day of it: a call
+  // one day away first makes it compute this date's, so a position depends on its inputs alone,
+  // not on the calls before it (ln_get_parallax's sidereal time then reads this one).
+  ln_get_nutation(jde + 1.0, &nut);
   ln_get_nutation(jde, &nut);  // longitude = Δψ, obliquity = Δε, ecliptic = mean ε
   double lambda = 0, beta = 0;
   equatorial_to_ecliptic(of_date, nut.ecliptic, lambda, beta);

@@ -1,0 +1,30 @@
+#pragma once
+// A numpy .npz file (docs/daylight.md, "skymtx"): a ZIP archive of .npy arrays, stored without
+// compression (numpy.load reads it; NPY format 1.0, little-endian). Built in memory, then written
+// atomically by the caller.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lightsolver::cli {
+
+/// An .npz archive being assembled.
+class NpzWriter {
+ public:
+  /// Adds `name`.npy: `dtype` a numpy descr ("<f4", "<i4", "|u1"), `shape` its dimensions,
+  /// `data` the bytes in C order.
+  void add(const std::string& name, const std::string& dtype, const std::vector<std::size_t>& shape,
+           const void* data, std::size_t bytes);
+  /// The whole archive (central directory appended).
+  std::string finish() const;
+
+ private:
+  struct Entry {
+    std::string name;
+    std::uint32_t crc = 0, size = 0, offset = 0;
+  };
+  std::string body_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace lightsolver::cli
