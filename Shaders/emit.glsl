@@ -68,6 +68,7 @@ LS_EMISSION(emit_sun_gpu) {
     l.cos_half_field = sky_f(p + 13u);
   }
   emit_sun(l, origin, dir);
+  g_opening_push = l.axis;  // its way out is tested (trace.comp, blocked_outside)
 }
 
 // The spot's emission (its entry in LS_LUMINAIRE_TYPES names it): from its position.

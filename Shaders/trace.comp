@@ -32,12 +32,11 @@ uint64_t g_capped = 0ul;
 // Daylight photons from openings, those blocked outside, those blocked by glass (counters 4..6).
 uint64_t g_opening[3] = uint64_t[3](0ul, 0ul, 0ul);
 
-// A daylight photon from an opening (g_opening_push nonzero: emit_sky sets it for a portal, the
-// sun's opening pushes along its beam) is absorbed at birth when its way out, against its
-// direction, meets the scene (shared/luminaires.h, opening_escape_origin; the CPU's
-// blocked_outside in embree_backend.cpp).
-bool blocked_outside(LuminaireGpu l, vec3 o, vec3 d, bool first_pass) {
-  if (HAS_SUN && l.type == 5u) g_opening_push = l.axis;
+// A daylight photon from an opening (g_opening_push nonzero: emit_sky sets it for a portal,
+// emit_sun_gpu for the sun, whose opening pushes along its beam) is absorbed at birth when its
+// way out, against its direction, meets the scene (shared/luminaires.h, opening_escape_origin;
+// the CPU's blocked_outside in embree_backend.cpp).
+bool blocked_outside(vec3 o, vec3 d, bool first_pass) {
   if (!(HAS_SUN || HAS_SKY) || g_opening_push == vec3(0.0)) return false;
   const Hit h = trace_scene(opening_escape_origin(o, g_opening_push), -d);
   if (first_pass) {
@@ -56,10 +55,9 @@ bool blocked_outside(LuminaireGpu l, vec3 o, vec3 d, bool first_pass) {
 void trace_path(uint64_t id, bool first_pass) {
   rng_init(pc.seed, id, pc.group);
   vec3 o, d;
-  const LuminaireGpu l = luminaires[pick_luminaire()];
   g_opening_push = vec3(0.0);
-  emit(l, o, d);
-  if (blocked_outside(l, o, d, first_pass)) return;
+  emit(luminaires[pick_luminaire()], o, d);
+  if (blocked_outside(o, d, first_pass)) return;
   for (uint bounce = 0u;; ++bounce) {
     const Hit h = trace_scene(o, d);
     if (first_pass) ++g_segments;
