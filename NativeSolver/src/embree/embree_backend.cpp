@@ -186,13 +186,15 @@ class EmbreeBackend final : public Backend {
   }
 
   // Starts the lane's next photon that gets into the scene (photons blocked outside their
-  // opening end at birth, with no tally); false when none is left.
+  // opening end at birth, with no tally); false, the lane left inactive, when none is left (a
+  // lane whose last photons were all blocked has no segment to continue).
   bool start_next_path(Lane& lane, std::uint64_t& next, std::uint64_t end, const Photons& seed,
                        RTCIntersectContext& context, TallyBlock& t) const {
     while (next != end) {
       start_path(lane, next++, seed);
       if (!blocked_outside(lane.ray, context, t)) return true;
     }
+    lane.active = false;
     return false;
   }
 
