@@ -49,6 +49,28 @@ vec3 sample_spot(LuminaireGpu l) {
   return cone_direction(g_spot_sample.x, g_spot_sample.y, l.axis);
 }
 
+// The sun (its entry in LS_LUMINAIRE_TYPES names it): emit_sun through its own opening
+// (`photometric` kSunOwnOpening), or through a portal chosen by flux from its record in
+// photo_floats (types/luminaire_sun.cpp, pack_sun_record): the portal count, its thresholds'
+// offset in photo_cdf53[], then per portal facing the sun corner, edge1, edge2 (local), u,
+// n·d and 1 − sin θ cos α (the fields emit_sun reads). The choice draws as the CPU's.
+const uint kSunOwnOpening = 0xFFFFFFFFu;
+const uint kSunPortal = 14u;
+LS_EMISSION(emit_sun_gpu) {
+  if (l.photometric != kSunOwnOpening) {
+    const uint base = l.photometric, portals = sky_u(base);
+    const uint p = base + 2u + kSunPortal * sky_pick(sky_u(base + 1u), portals, portals - 1u);
+    l.corner = sky_v(p);
+    l.edge1 = sky_v(p + 3u);
+    l.edge2 = sky_v(p + 6u);
+    l.position = sky_v(p + 9u);
+    l.half_field_rad = sky_f(p + 12u);
+    l.cos_half_field = sky_f(p + 13u);
+  }
+  emit_sun(l, origin, dir);
+  g_opening_push = l.axis;  // its way out is tested (trace.comp, blocked_outside)
+}
+
 // The spot's emission (its entry in LS_LUMINAIRE_TYPES names it): from its position.
 LS_EMISSION(emit_spot) {
   origin = l.position;

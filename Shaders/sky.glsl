@@ -60,6 +60,9 @@ uint sky_pick(uint off, uint n, uint last) {
   return lo < n ? lo : last;
 }
 
+// The push off the opening of the photon just emitted (trace.comp's blocked_outside; zero: none).
+vec3 g_opening_push;
+
 // The last proposal tried: a private global, not a loop-carried local (g_spot_sample, emit.glsl).
 vec3 g_sky_dir;
 
@@ -100,7 +103,8 @@ LS_EMISSION(emit_sky) {
   const float s = rng_uniform(), t = rng_uniform();
   if (portals > 0u) {
     const vec3 at = sky_v(p) + s * sky_v(p + 3u) + t * sky_v(p + 6u);
-    origin = offset_ray_origin(at, -sky_v(p + 9u));
+    g_opening_push = -sky_v(p + 9u);
+    origin = offset_ray_origin(at, g_opening_push);
     return;
   }
   // The disc of the site's radius across `toward`, that radius beyond the centre.

@@ -29,12 +29,35 @@ layout(local_size_x_id = LS_SPEC_WORKGROUP_SIZE) in;
 
 uint64_t g_segments = 0ul;
 uint64_t g_capped = 0ul;
+// Daylight photons from openings, those blocked outside, those blocked by glass (counters 4..6).
+uint64_t g_opening[3] = uint64_t[3](0ul, 0ul, 0ul);
+
+// A daylight photon from an opening (g_opening_push nonzero: emit_sky sets it for a portal,
+// emit_sun_gpu for the sun, whose opening pushes along its beam) is absorbed at birth when its
+// way out, against its direction, meets the scene (shared/luminaires.h, opening_escape_origin;
+// the CPU's blocked_outside in embree_backend.cpp).
+bool blocked_outside(vec3 o, vec3 d, bool first_pass) {
+  if (!(HAS_SUN || HAS_SKY) || g_opening_push == vec3(0.0)) return false;
+  const Hit h = trace_scene(opening_escape_origin(o, g_opening_push), -d);
+  if (first_pass) {
+    ++g_segments;
+    ++g_opening[0];
+  }
+  if (h.tri == kNone) return false;
+  if (first_pass) {
+    ++g_opening[1];
+    if (materials[meshes[tris[h.tri].mesh].material].type == kGlass) ++g_opening[2];
+  }
+  return true;
+}
 
 // One pass over the path. Statistics are counted on the first pass only.
 void trace_path(uint64_t id, bool first_pass) {
   rng_init(pc.seed, id, pc.group);
   vec3 o, d;
+  g_opening_push = vec3(0.0);
   emit(luminaires[pick_luminaire()], o, d);
+  if (blocked_outside(o, d, first_pass)) return;
   for (uint bounce = 0u;; ++bounce) {
     const Hit h = trace_scene(o, d);
     if (first_pass) ++g_segments;
@@ -67,11 +90,13 @@ uint trace_whole_path(uint offset, uint floor_key) {
   bool first_pass = floor_key == 0u;
   for (;;) {  // one pass per iteration (see deposits.glsl)
     const uint64_t segments = g_segments, capped = g_capped;
+    const uint64_t opening[3] = g_opening;
     deposits_begin(floor_key);
     trace_path(pc.first_path + uint64_t(offset), first_pass);
     if (loop_limit_reached()) {
       g_segments = segments;  // counted when the path is traced anew
       g_capped = capped;
+      g_opening = opening;
       return floor_key + 1u;
     }
     floor_key = deposits_flush();  // loop-free (unrolled), so the limit cannot cut it
@@ -100,4 +125,7 @@ void main() {
   }
   if (g_segments != 0ul) atomicAdd(counters[0], g_segments);
   if (g_capped != 0ul) atomicAdd(counters[1], g_capped);
+  for (uint k = 0u; k < 3u; ++k) {
+    if (g_opening[k] != 0ul) atomicAdd(counters[4u + k], g_opening[k]);
+  }
 }

@@ -18,8 +18,8 @@
 //   LS_SPEC_FIRST_LUMINAIRE + code (trace_bindings.h);
 // - switch: the GLSL name of that constant (on when the scene has the type's emission effect);
 // - emission: the GLSL function emit() calls, of the LS_EMISSION signature. Here for the types
-//   both backends emit alike; the spot's (emit.glsl), the photometric's (photometric.glsl) and
-//   the sky's (sky.glsl) differ from the CPU's on purpose (docs/solver.md, "Physics written
+//   both backends emit alike; the spot's (emit.glsl), the photometric's (photometric.glsl),
+//   the sky's (sky.glsl) and the sun's portal choice (emit.glsl) differ from the CPU's on purpose (docs/solver.md, "Physics written
 //   once").
 // Function-like macros are the one form of code generation glslc's preprocessor and C++'s share.
 #define LS_LUMINAIRE_TYPES(X)                          \
@@ -28,7 +28,7 @@
   X(Area, 2, HAS_AREA, emit_area)                      \
   X(Directional, 3, HAS_DIRECTIONAL, emit_directional) \
   X(Photometric, 4, HAS_PHOTOMETRIC, emit_photometric) \
-  X(Sun, 5, HAS_SUN, emit_sun)                         \
+  X(Sun, 5, HAS_SUN, emit_sun_gpu)                     \
   X(Sky, 6, HAS_SKY, emit_sky)
 
 #ifdef __cplusplus
@@ -67,6 +67,15 @@ struct LuminaireGpu {
 LS_EMISSION(emit_point) {
   origin = l.position;
   dir = sample_sphere(LS_RNG_ONLY_ARG);
+}
+
+// A daylight opening's way out (docs/daylight.md, "Portals and outside obstructions"): a photon
+// that started at `start`, pushed off its opening's plane along `push` (into the room), is kept
+// only if the ray from the opening against its direction escapes the scene. That ray starts as
+// far outside the plane as the photon inside it (offset_ray_origin undone, then done outward),
+// so neither meets the wall the opening is cut in, nor a surface lying in the opening's plane.
+LS_FN vec3 opening_escape_origin(vec3 start, vec3 push) {
+  return offset_ray_origin(offset_ray_origin(start, -push), -push);
 }
 
 // Lambertian from a parallelogram (axis: edge1 x edge2, normalised), pushed off the opening's

@@ -138,7 +138,8 @@ struct Luminaire {
   /// luminaire schedule and W/m2 use it). Empty when not given.
   std::optional<double> power_w;
   /// Sky: its definition, and the sky with its portals as traced (built by validate(); its
-  /// flux is flux_lm, and `position` the point it is anchored at).
+  /// flux is flux_lm, and `position` the point it is anchored at). A sun through portals keeps
+  /// them in `sky.portals` (the same objects as a sky's) instead of corner/edge1/edge2.
   SkyDefinition sky;
   std::shared_ptr<const daylight::SkyEmitter> sky_emitter;
   /// Control group (scene key `group`): luminaires of one group are dimmed together and their

@@ -36,6 +36,7 @@ struct GroupTrace {
   std::uint64_t seed = 0;
   std::vector<Tally> bins;  ///< one per tally bin of the scene (layout internal)
   std::uint64_t ray_segments = 0, capped_paths = 0, cut_paths = 0;
+  OpeningCounts openings;  ///< daylight photons blocked outside their openings
   /// When it was traced and by how many processes (the combined results' provenance).
   std::chrono::system_clock::time_point started{}, finished{};
   int mpi_ranks = 1;

@@ -276,6 +276,19 @@ struct EffectsReport {
   std::vector<SkippedEffect> skipped;
 };
 
+/// Daylight photons that left an opening (a sky's portal, a sun's opening): a photon whose way
+/// out toward its sky (the ray from its opening point against its direction) meets the scene is
+/// blocked outside (absorbed, no tally); `glass`: of those, the ones whose way out met a glass
+/// surface first (a modelled pane outside the opening: docs/daylight.md, "Portals").
+struct OpeningCounts {
+  std::uint64_t photons = 0, blocked = 0, glass = 0;
+  void add(const OpeningCounts& o) {
+    photons += o.photons;
+    blocked += o.blocked;
+    glass += o.glass;
+  }
+};
+
 struct Results {
   std::vector<TargetResult> targets;
   std::uint64_t photons = 0;               ///< traced (== requested when stop_reason is "photons")
@@ -295,6 +308,8 @@ struct Results {
   /// Paths a device's own loop limit stopped even when traced alone (Mesa lavapipe ends a
   /// shader after 65535 loop iterations); their light is missing (bias, warned).
   std::uint64_t cut_paths = 0;
+  /// Daylight photons through openings blocked outside them (warned with their share).
+  OpeningCounts openings;
   double total_flux_lm = 0.0;
   Warnings warnings;
   EffectsReport effects;  ///< effects simulated and skipped (scene analysis before tracing)

@@ -38,6 +38,13 @@ _REWORDED = (
                "requested accuracy."),
     (re.compile(r"^all luminaires have zero flux"),
      lambda m: "Every luminaire is switched off (0 lm): every result is 0 lx."),
+    (re.compile(r"^(?P<p>[\d.e+-]+ %) of the daylight photons entering through portals"),
+     lambda m: (f"{m.group('p')} of the daylight entering through the window openings was "
+                "blocked by surfaces outside them (overhangs, neighbouring buildings): their "
+                "shadows are included, the daylight they reflect into the room is not.")),
+    (re.compile(r"^(?P<p>[\d.e+-]+ %) of the daylight photons through openings met a modelled"),
+     lambda m: (f"{m.group('p')} of the daylight met modelled glass outside a window opening "
+                "and was not counted: the opening's glazing already stands for the glass.")),
 )
 
 

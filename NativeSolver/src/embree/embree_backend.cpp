@@ -24,6 +24,7 @@
 #include "embree/embree_scene.hpp"
 #include "embree/hit_triangles.hpp"
 #include "embree/path_kernel.hpp"
+#include "shared/luminaires.h"
 
 namespace lightsolver::detail {
 namespace {
@@ -83,6 +84,9 @@ class EmbreeBackend final : public Backend {
       out.capped_paths += part.capped_paths;
       out.cut_paths += part.cut_paths;
       out.retried_paths += part.retried_paths;
+      out.opening_photons += part.opening_photons;
+      out.opening_blocked += part.opening_blocked;
+      out.opening_glass += part.opening_glass;
     }
   }
 
@@ -150,8 +154,7 @@ class EmbreeBackend final : public Backend {
     std::array<Lane, kLanes> lanes;
     int active = 0;
     for (Lane& lane : lanes) {
-      if (next == end) break;
-      start_path(lane, next++, seed);
+      if (!start_next_path(lane, next, end, seed, context, t)) break;
       intersect<F>(lane, context, t);
       ++active;
     }
@@ -160,12 +163,11 @@ class EmbreeBackend final : public Backend {
         if (!lane.active) continue;
         if (!continue_path<F>(lane, t)) {
           lane.deposits.flush(t.bins, lane.tally_offset);
-          if (next == end) {
+          if (!start_next_path(lane, next, end, seed, context, t)) {
             lane.active = false;
             --active;
             continue;
           }
-          start_path(lane, next++, seed);
         }
         intersect<F>(lane, context, t);
       }
@@ -181,6 +183,37 @@ class EmbreeBackend final : public Backend {
     lane.ray = emit(s_.luminaires[pick_luminaire(s_.groups[range.group], lane.rng)], lane.rng);
     lane.bounce = 0;
     lane.active = true;
+  }
+
+  // Starts the lane's next photon that gets into the scene (photons blocked outside their
+  // opening end at birth, with no tally); false, the lane left inactive, when none is left (a
+  // lane whose last photons were all blocked has no segment to continue).
+  bool start_next_path(Lane& lane, std::uint64_t& next, std::uint64_t end, const Photons& seed,
+                       RTCIntersectContext& context, TallyBlock& t) const {
+    while (next != end) {
+      start_path(lane, next++, seed);
+      if (!blocked_outside(lane.ray, context, t)) return true;
+    }
+    lane.active = false;
+    return false;
+  }
+
+  // A daylight photon from an opening: does its way out (toward its sky, against its direction)
+  // meet the scene? Then it is absorbed there (docs/daylight.md, "Portals and outside
+  // obstructions"); the count of those says how much the outside blocks.
+  bool blocked_outside(const EmittedRay& ray, RTCIntersectContext& context, TallyBlock& t) const {
+    if (ray.opening_push == vec3(0.0f)) return false;
+    ++t.opening_photons;
+    RTCRayHit rh =
+        make_ray({shared::opening_escape_origin(ray.origin, ray.opening_push), -ray.direction});
+    rtcIntersect1(embree_.handle(), &context, &rh);
+    ++t.ray_segments;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    ++t.opening_blocked;
+    bool instanced = false;
+    const PreparedMesh& m = s_.meshes[embree_.mesh_of(rh.hit, instanced)];
+    if (s_.materials[m.material].type == Material::Type::Glass) ++t.opening_glass;
+    return true;
   }
 
   // Traces the lane's next segment, counts the grids it crosses and starts fetching the record

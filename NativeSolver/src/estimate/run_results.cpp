@@ -1,5 +1,8 @@
 #include "estimate/run_results.hpp"
 
+#include <cstdio>
+#include <string>
+
 #include "types/luminaire_types.hpp"
 #include "estimate/daylight_factor.hpp"
 #include "estimate/target_results.hpp"
@@ -63,6 +66,33 @@ std::vector<LuminaireResult> luminaire_results(const Scene& scene, const Prepare
   return out;
 }
 
+namespace {
+
+// The share of daylight photons blocked outside their openings (docs/daylight.md, "Portals").
+void add_opening_warnings(Results& r) {
+  const OpeningCounts& o = r.openings;
+  if (o.blocked == 0 || o.photons == 0) return;
+  auto percent = [&](std::uint64_t n) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g %%", 100.0 * double(n) / double(o.photons));
+    return std::string(text);
+  };
+  r.warnings.push_back(
+      percent(o.blocked) + " of the daylight photons entering through portals or a sun's " +
+      "opening (" + std::to_string(o.blocked) + " of " + std::to_string(o.photons) +
+      ") were blocked by the scene outside their opening: exterior obstructions cast their " +
+      "shadow but reflect nothing through a portal (a sky without portals also traces their " +
+      "reflections)");
+  if (o.glass > 0) {
+    r.warnings.push_back(
+        percent(o.glass) + " of the daylight photons through openings met a modelled glass " +
+        "surface outside their opening and were blocked: a portal's or sun opening's glazing " +
+        "replaces a modelled pane; leave the pane out or put the opening outside it");
+  }
+}
+
+}  // namespace
+
 void add_warnings(const Scene& scene, Results& r) {
   r.warnings = scene.warnings;
   for (const Luminaire& l : scene.luminaires) {
@@ -83,6 +113,7 @@ void add_warnings(const Scene& scene, Results& r) {
                          "their light is lost, so results are biased low: use the embree backend "
                          "for this scene");
   }
+  add_opening_warnings(r);
   if (r.partial) r.warnings.push_back("run stopped early: results are from the photons traced");
   if (r.decide && r.verdict == VerdictKind::Undecided) {
     r.warnings.push_back(

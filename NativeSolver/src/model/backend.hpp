@@ -20,6 +20,9 @@ struct TallyBlock {
   std::uint64_t capped_paths = 0;   // paths stopped by max_bounces while still alive
   std::uint64_t cut_paths = 0;      // paths a device's loop limit stopped (lavapipe; not counted)
   std::uint64_t retried_paths = 0;  // paths traced again after the loop limit cut them (Vulkan)
+  // Daylight photons leaving an opening (a sky's portal, a sun's opening), those whose way out
+  // met the scene (blocked outside: absorbed, no tally) and, of those, the ones that met glass.
+  std::uint64_t opening_photons = 0, opening_blocked = 0, opening_glass = 0;
 
   explicit TallyBlock(std::size_t n = 0) : bins(n) {}
   void add(const TallyBlock& o) {
@@ -31,6 +34,9 @@ struct TallyBlock {
     capped_paths += o.capped_paths;
     cut_paths += o.cut_paths;
     retried_paths += o.retried_paths;
+    opening_photons += o.opening_photons;
+    opening_blocked += o.opening_blocked;
+    opening_glass += o.opening_glass;
   }
 };
 

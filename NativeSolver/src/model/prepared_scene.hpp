@@ -18,6 +18,11 @@ using glm::vec3;
 
 struct EmittedRay {
   vec3 origin, direction;
+  // A daylight photon leaving an opening (a sky's portal, a sun's opening): the vector its
+  // origin was pushed off the opening along (into the room). Nonzero: the photon is kept only if
+  // its way out, from the opening against `direction`, escapes the scene (opening_escape_origin,
+  // Shaders/shared/luminaires.h). Zero: any other photon.
+  vec3 opening_push{0.0f};
 };
 
 struct PreparedMesh {
@@ -55,6 +60,10 @@ struct PreparedLuminaire {
   const Luminaire* source = nullptr;  // for photometric data and names
   double flux_lm = 0.0;               // emitted as traced (emitted_flux_lm: TILT applied), lm
   vec3 c0{1, 0, 0};                   // photometric frame: gamma=0 along axis, C0 along c0
+  // A sun through portals (luminaire_sun.cpp): each portal facing it as its own record of the
+  // fields emit_sun reads, chosen by the cumulative flux fractions `portal_cdf` (last = 1).
+  std::vector<PreparedLuminaire> portals;
+  std::vector<double> portal_cdf;
 };
 
 // A luminaire group (Luminaire::group_name()): its own photon stream and its own tallies.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -99,12 +100,88 @@ void add_sky_site_warnings(const Scene& scene, Warn&& warn) {
   }
 }
 
+// Whether the ray o + t d (t > 0) meets triangle abc (Möller & Trumbore 1997, in double).
+bool ray_meets(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b,
+               const glm::dvec3& c) {
+  const glm::dvec3 e1 = b - a, e2 = c - a, p = glm::cross(d, e2);
+  const double det = glm::dot(e1, p);
+  if (std::abs(det) < 1e-300) return false;
+  const glm::dvec3 s = o - a;
+  const double u = glm::dot(s, p) / det;
+  if (u < 0.0 || u > 1.0) return false;
+  const glm::dvec3 q = glm::cross(s, e1);
+  const double v = glm::dot(d, q) / det;
+  return v >= 0.0 && u + v <= 1.0 && glm::dot(e2, q) / det > 1e-9;
+}
+
+// A sky without portals lighting a closed room with openings (docs/daylight.md, "Emission"):
+// it is right but slow, every photon that does not pass an opening wasted. Decided from the
+// geometry alone, per grid or observer target: of 256 directions spread evenly over the sphere
+// (a Fibonacci lattice) from its centre, some reach the open sky and at least 3/4 meet a
+// triangle: the target sits in a room open to the sky only through its openings (a room with
+// no opening at all, or a target out in the open, draws no remark). Brute force, so only for
+// scenes of up to 100 000 triangles (a few 10^7 ray-triangle tests at most per target).
+template <class Warn>
+void add_closed_room_warnings(const Scene& scene, Warn&& warn) {
+  constexpr int kDirections = 256;
+  constexpr std::size_t kMaxTriangles = 100'000, kMaxTargets = 8;
+  std::size_t triangles = 0;
+  for (const Mesh& m : scene.meshes) triangles += m.triangles.size();
+  if (triangles == 0 || triangles > kMaxTriangles) return;
+  std::vector<std::size_t> skies;
+  for (std::size_t i = 0; i < scene.luminaires.size(); ++i) {
+    const Luminaire& l = scene.luminaires[i];
+    if (l.type == Luminaire::Type::Sky && l.sky.portals.empty() && l.flux_lm > 0.0) {
+      skies.push_back(i);
+    }
+  }
+  if (skies.empty()) return;
+  std::size_t checked = 0;
+  for (std::size_t t = 0; t < scene.targets.size() && checked < kMaxTargets; ++t) {
+    const Target& target = scene.targets[t];
+    if (target.type == Target::Type::Surface) continue;
+    ++checked;
+    const glm::dvec3 o = target.type == Target::Type::Observer
+                             ? target.position
+                             : target.corner + 0.5 * (target.edge1 + target.edge2);
+    int blocked = 0;
+    for (int k = 0; k < kDirections; ++k) {
+      const double z = 1.0 - (2.0 * k + 1.0) / kDirections, r = std::sqrt(1.0 - z * z);
+      const double phi = 2.399963229728653 * k;  // the golden angle
+      const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), z);
+      bool hit = false;
+      for (const Mesh& m : scene.meshes) {
+        for (const auto& tri : m.triangles) {
+          if (ray_meets(o, d, m.vertices[tri[0]], m.vertices[tri[1]], m.vertices[tri[2]])) {
+            hit = true;
+            break;
+          }
+        }
+        if (hit) break;
+      }
+      blocked += hit ? 1 : 0;
+    }
+    if (blocked == kDirections || 4 * blocked < 3 * kDirections) continue;
+    for (std::size_t i : skies) {
+      warn(at("luminaires", i) + ".portals",
+           "closed room with openings but no portals: from target \"" + target.name + "\" only " +
+               one_decimal(100.0 * (kDirections - blocked) / kDirections) +
+               " % of the directions reach the sky, so most of the sky's photons from its site "
+               "disc are wasted; portals on the openings give the same answer for far less work "
+               "(outside surfaces then act black: docs/daylight.md, \"Portals and outside "
+               "obstructions\")");
+    }
+    return;  // one remark per sky is enough
+  }
+}
+
 // What Simulation would add to Results::warnings before the first photon, per field.
 void add_run_warnings(const Scene& scene, SceneCheck& out) {
   auto warn = [&](std::string field, std::string message) {
     out.warnings.push_back({scene.source_file, std::move(field), 0, std::move(message)});
   };
   add_sky_site_warnings(scene, warn);
+  add_closed_room_warnings(scene, warn);
   // A scene validated before (load_scene's, then check_scene's copy) may repeat a remark.
   Warnings seen;
   for (const std::string& w : scene.warnings) {

@@ -101,6 +101,7 @@ void copy_run(const Results& in, Results& r) {
   r.ray_segments = in.ray_segments;
   r.capped_paths = in.capped_paths;
   r.cut_paths = in.cut_paths;
+  r.openings = in.openings;
   r.warnings = in.warnings;
   r.max_seconds = in.max_seconds;
   r.target_accuracy = in.target_accuracy;

@@ -46,12 +46,13 @@ class SharedTracing {
  private:
   std::vector<std::uint64_t> pack(const TallyBlock& t) const {
     std::vector<std::uint64_t> out;
-    out.reserve(2 * bins_ + 4);
+    out.reserve(2 * bins_ + 7);
     for (const Tally& b : t.bins) {
       out.push_back(b.sum);
       out.push_back(b.sum_sq);
     }
-    out.insert(out.end(), {t.ray_segments, t.capped_paths, t.cut_paths, t.retried_paths});
+    out.insert(out.end(), {t.ray_segments, t.capped_paths, t.cut_paths, t.retried_paths,
+                           t.opening_photons, t.opening_blocked, t.opening_glass});
     return out;
   }
 
@@ -63,6 +64,9 @@ class SharedTracing {
     t.capped_paths = in[at + 1];
     t.cut_paths = in[at + 2];
     t.retried_paths = in[at + 3];
+    t.opening_photons = in[at + 4];
+    t.opening_blocked = in[at + 5];
+    t.opening_glass = in[at + 6];
     return t;
   }
 

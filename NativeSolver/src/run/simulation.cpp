@@ -405,6 +405,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
   r.cut_paths = tallies.cut_paths;
+  r.openings = {tallies.opening_photons, tallies.opening_blocked, tallies.opening_glass};
   // The final results give every grid its Emin/Emax/U0/Ud intervals, judged or not (a report
   // prints them always); the batch looks above compute them only when they judge.
   r.targets = detail::all_targets(scene, prepared, tallies, r.photons, r.confidence,

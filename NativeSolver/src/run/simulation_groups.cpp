@@ -87,6 +87,7 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
   out.ray_segments = block.ray_segments;
   out.capped_paths = block.capped_paths;
   out.cut_paths = block.cut_paths;
+  out.openings = {block.opening_photons, block.opening_blocked, block.opening_glass};
   out.finished = std::chrono::system_clock::now();
   return out;
 }
@@ -124,6 +125,7 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
     r.ray_segments += t->ray_segments;
     r.capped_paths += t->capped_paths;
     r.cut_paths += t->cut_paths;
+    r.openings.add(t->openings);
     if (r.seed == 0) r.seed = t->seed;
     if (flux_lm[g] > 0.0) r.total_flux_lm += flux_lm[g];
   }

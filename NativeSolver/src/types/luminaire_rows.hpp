@@ -50,6 +50,8 @@ LuminaireType photometric_luminaire_type();
 LuminaireType sun_luminaire_type();
 /// The row of luminaire_sky.cpp.
 LuminaireType sky_luminaire_type();
+/// A sky's (or a sun's) `portals` array (luminaire_sky.cpp).
+std::vector<SkyDefinition::Portal> read_portals(const JsonNode& n);
 /// A daylight opening's `glazing` object (luminaire_sky.cpp; the sky's portals, the sun).
 GlazingDefinition read_glazing(const JsonNode& n);
 /// Checks it (errors name `<at>.transmittance` ...) and returns the factor on the opening's light
@@ -57,6 +59,11 @@ GlazingDefinition read_glazing(const JsonNode& n);
 /// maintenance).
 double glazing_factor(const LuminaireChecks& c, const std::string& at, const GlazingDefinition& g,
                       double cos_i);
+/// A sun's GPU record (Shaders/emit.glsl, emit_sun_gpu): through portals, appended to `floats`
+/// (thresholds to `thresholds`) and its offset returned; through its own opening, 0xFFFFFFFF.
+std::uint32_t pack_sun_record(const PreparedLuminaire& l, std::vector<float>& floats,
+                              std::vector<std::uint64_t>& thresholds,
+                              std::uint64_t (*threshold)(double c, double total));
 /// A sky luminaire's GPU record (Shaders/sky.glsl's layout) appended to `floats`, its cell and
 /// portal thresholds to `thresholds` (`threshold(c, total)`: the 53-bit threshold of cumulative
 /// `c` out of `total`, vulkan/gpu_scene.cpp's); returns the record's offset in `floats`.

@@ -75,16 +75,7 @@ void read_sky(const JsonNode& n, Luminaire& l, const std::string&) {
   }
   s.ground_reflectance = n.number_or("ground_reflectance", s.ground_reflectance);
   s.sun_direct_normal_lx = n.number_or("sun_direct_normal_lx", 0.0);
-  if (n.has("portals")) {
-    const JsonNode ps = n.at("portals");
-    for (std::size_t i = 0; i < ps.array_size(); ++i) {
-      const JsonNode p = ps[i];
-      p.require_object(kPortalKeys);
-      s.portals.push_back(
-          {p.at("corner").vec3(), p.at("edge1").vec3(), p.at("edge2").vec3(), std::nullopt});
-      if (p.has("glazing")) s.portals.back().glazing = read_glazing(p.at("glazing"));
-    }
-  }
+  if (n.has("portals")) s.portals = read_portals(n.at("portals"));
   if (n.has("site")) {
     const JsonNode site = n.at("site");
     site.require_object(kSiteKeys);
@@ -226,7 +217,8 @@ EmittedRay emit_sky(const PreparedLuminaire& l, PathRng& rng) {
   const std::size_t k = e.emit([&rng]() { return rng.uniform_double(); }, world, dir);
   const vec3 local = l.position + vec3(world - src.position);
   if (e.portals().empty()) return {local, vec3(dir)};
-  return {offset_ray_origin(local, vec3(e.inward(k))), vec3(dir)};
+  const vec3 inward(e.inward(k));
+  return {offset_ray_origin(local, inward), vec3(dir), inward};
 }
 
 // Through the portals' corners into the room, or from anywhere around the site.
@@ -268,6 +260,18 @@ void move_sky(Luminaire& l, const glm::dvec3& c) {
 glm::dvec3* sky_no_aim(Luminaire&) { return nullptr; }
 
 }  // namespace
+
+std::vector<SkyDefinition::Portal> read_portals(const JsonNode& ps) {
+  std::vector<SkyDefinition::Portal> out;
+  for (std::size_t i = 0; i < ps.array_size(); ++i) {
+    const JsonNode p = ps[i];
+    p.require_object(kPortalKeys);
+    out.push_back(
+        {p.at("corner").vec3(), p.at("edge1").vec3(), p.at("edge2").vec3(), std::nullopt});
+    if (p.has("glazing")) out.back().glazing = read_glazing(p.at("glazing"));
+  }
+  return out;
+}
 
 GlazingDefinition read_glazing(const JsonNode& n) {
   n.require_object(kGlazingKeys);

@@ -256,6 +256,9 @@ void pack_luminaires(const PreparedScene& s, GpuSceneData& d) {
         }
         d.luminaires.back().photometric =
             pack_sky_record(l, d.photo_floats, d.photo_cdf53, scaled_cdf_threshold);
+      } else if (l.type == Luminaire::Type::Sun) {  // its portals, if it has them
+        d.luminaires.back().photometric =
+            pack_sun_record(l, d.photo_floats, d.photo_cdf53, scaled_cdf_threshold);
       }
     }
   }

@@ -25,7 +25,7 @@ constexpr std::uint64_t kPathsPerSubmit = 1u << 16;
 // end the grid-stride loop before an invocation's path was traced).
 static_assert(kPathsPerSubmit <= 65535ull * kWorkgroupSize);
 // Ray segments, capped paths, paths cut for good, paths traced again.
-constexpr std::uint32_t kCounters = 4;
+constexpr std::uint32_t kCounters = 7;
 
 // lavapipe's loop-limit probe (trace.comp): a few iterations of a 32-bit LCG from 0.
 constexpr std::uint32_t kProbeIterations = 4;
@@ -295,6 +295,9 @@ class VulkanBackend final : public Backend {
     out.capped_paths += v[2 * out.bins.size() + 1];
     out.cut_paths += v[2 * out.bins.size() + 2];
     out.retried_paths += v[2 * out.bins.size() + 3];
+    out.opening_photons += v[2 * out.bins.size() + 4];
+    out.opening_blocked += v[2 * out.bins.size() + 5];
+    out.opening_glass += v[2 * out.bins.size() + 6];
   }
 
   const PreparedScene& s_;            // owned by the caller (Simulation), updated in place

@@ -48,5 +48,36 @@ TEST(SkyCheck, SilentWhenTheSiteFitsOrPortalsAreGiven) {
   EXPECT_TRUE(site_warnings(100.0, true).empty());
 }
 
+// The side-lit room of sky_luminaire_test (a 1.5 x 1.2 m window in a 3 x 3 x 2.5 m room): lit
+// from the site's disc, `check` says it is a closed room with openings and names portals; with
+// its window's portal, or without the window (no opening: nothing to point at), it says nothing.
+std::vector<std::string> room_warnings(bool window, bool portal) {
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  const Hole hole = window ? Hole{0.32, 0.8, 0.25, 0.75} : Hole{0, 0, 0, 0};
+  s.meshes.push_back(room_with_hole(0, {0, 0, 0}, {3, 3, 2.5}, false, hole));
+  s.targets.push_back(grid("floor", {0.25, 0.25, 0.8}, {2.5, 0, 0}, {0, 2.5, 0}, 2, 2));
+  Luminaire l = sky("uniform", 1000.0);
+  l.sky.site_centre = {1.5, 1.5, 1.25};
+  l.sky.site_radius_m = 2.6;
+  if (portal) l.sky.portals.push_back({{0.75, 0, 0.8}, {0, 0, 1.2}, {1.5, 0, 0}, std::nullopt});
+  s.luminaires.push_back(l);
+  std::vector<std::string> out;
+  for (const SceneIssue& w : check_scene(s).warnings) {
+    if (w.field == "luminaires[0].portals") out.push_back(w.message);
+  }
+  return out;
+}
+
+TEST(SkyCheck, WarnsAboutAClosedRoomWithOpeningsButNoPortals) {
+  const auto w = room_warnings(true, false);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("closed room with openings but no portals: from target \"floor\" only"),
+            std::string::npos)
+      << w[0];
+  EXPECT_TRUE(room_warnings(true, true).empty());
+  EXPECT_TRUE(room_warnings(false, false).empty());
+}
+
 }  // namespace
 }  // namespace lightsolver::test
