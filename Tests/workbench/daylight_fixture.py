@@ -1,4 +1,4 @@
-"""A hand-written daylight-factor result in DAYLIGHT_SPEC section 2's layout, for testing the
+"""A hand-written daylight-factor result in docs/scene-format.md, "Results"'s layout, for testing the
 workbench's display before the solver writes them (the headless suite and the GUI scenario
 workbench_gui_daylight use it). Its numbers are made up, not a computation: a DF falling
 with the distance from the window, intervals +-5 %."""

@@ -1,6 +1,6 @@
 """Daylight in the workbench: a Sky's portals from Arch windows (the wall's inner face, the
 room's side, the window left out), its glazing, site and sun, and daylight-factor grids'
-export (DAYLIGHT_SPEC sections 1, 4 and 5)."""
+export (docs/scene-format.md, "Targets" and 5)."""
 import json
 import math
 

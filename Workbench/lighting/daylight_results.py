@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""Daylight-factor results as the workbench shows them (DAYLIGHT_SPEC section 2): a DF grid's
+"""Daylight-factor results as the workbench shows them (docs/scene-format.md, "Results"): a DF grid's
 ``daylight_factor`` object of the results document, its cells for the false colours, its
 figures with their intervals for the results table, the EN 17037 verdicts in words, and the
 colour scale in %. App code (no GUI): the 3D view (viewproviders/daylight_coloring.py) and the

@@ -18,7 +18,7 @@ from lightsolver_results import Stat, Target
 QUANTITIES: Tuple[Tuple[str, str, str], ...] = (
     ("em", "em_lux", "lx"), ("emin", "emin_lux", "lx"), ("u0", "u0", ""), ("ud", "ud", ""))
 
-#: Daylight-factor verdicts (DAYLIGHT_SPEC section 2): key, requirement key, in print order.
+#: Daylight-factor verdicts (docs/scene-format.md, "Results"): key, requirement key, in print order.
 DF_QUANTITIES: Tuple[Tuple[str, str], ...] = (("df_target", "df_target_percent"),
                                               ("df_minimum", "df_minimum_percent"))
 

@@ -81,7 +81,7 @@ def _cells(entry: Dict[str, Any], shape: Optional[Tuple[int, int]]) -> Optional[
 
 def read_daylight_factor(entry: Any, req: Any, cells_uv: Optional[Tuple[int, int]],
                          labels: Dict[str, str], scene_req: Any = None) -> Optional[DaylightFactor]:
-    """A grid's ``daylight_factor`` (DAYLIGHT_SPEC section 2), None where there is none.
+    """A grid's ``daylight_factor`` (docs/scene-format.md, "Results"), None where there is none.
     ``req`` is the resolved requirements echo; ``scene_req`` the scene's (which says whether a
     df_*_percent was the designer's own or derived from the level)."""
     if not isinstance(entry, dict):
@@ -288,7 +288,7 @@ def _sun_row(lum: Dict[str, Any], label: str, north_deg: Optional[float],
     elif lum.get("direction") is not None:
         toward = -np.asarray(lum["direction"], dtype=float)
         row.elevation_deg, row.azimuth = _toward(toward, north)
-    if isinstance(lum.get("portals"), list):  # DAYLIGHT_SPEC section 4
+    if isinstance(lum.get("portals"), list):  # docs/scene-format.md, "The sun"
         row.openings = _openings(lum["portals"], north_deg)
     else:
         row.openings = _openings([lum], north_deg, toward)
@@ -350,7 +350,7 @@ class SunlightExposure:
 
 def read_exposure(doc: Dict[str, Any], scene: Dict[str, Any],
                   labels: Dict[str, str]) -> Optional[SunlightExposure]:
-    """The results' ``sunlight_exposure`` (DAYLIGHT_SPEC section 3), None where absent."""
+    """The results' ``sunlight_exposure`` (docs/scene-format.md, "Sunlight exposure"), None where absent."""
     raw = doc.get("sunlight_exposure")
     if not isinstance(raw, dict):
         return None

@@ -4,7 +4,7 @@ with a window in the south wall), switches its luminaires off, adds a *Sky* from
 into the room), turns the work-plane grid into a daylight-factor grid with EN 17037's medium
 level at 15 900 lx, and runs the analysis from its panel.
 
-Until the solver computes daylight factors (DAYLIGHT_SPEC section 1, another part of issue
+Until the solver computes daylight factors (docs/scene-format.md, "Targets"another part of issue
 26: the solver's grid type then lists ``quantity``), the run traces the grid's daylight in lux
 (the sky through the portal, the current solver) and the daylight-factor display is checked
 on a hand-written result in the spec's layout (Tests/workbench/daylight_fixture.py): the grid

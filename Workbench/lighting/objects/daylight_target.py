@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Daylight-factor grids: a grid target's ``Quantity`` and its daylight requirements
-(DAYLIGHT_SPEC sections 1 and 5, docs/scene-format.md "Targets"), kept apart from
+(docs/scene-format.md, "Targets", docs/scene-format.md "Targets"), kept apart from
 objects/target.py's illuminance requirements.
 
 A grid with ``Quantity`` "Daylight factor" exports ``"quantity": "daylight_factor"`` and only

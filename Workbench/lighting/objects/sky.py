@@ -252,7 +252,7 @@ def glazing(obj: Any, transmittance: Optional[float] = None) -> Dict[str, Any]:
 
 def sky_entry(obj: Any, portals: List[Dict[str, Any]], site: Site) -> Dict[str, Any]:
     """The ``sky`` luminaire (docs/scene-format.md): its own group, so daylight-factor grids
-    count only its light (DAYLIGHT_SPEC section 1)."""
+    count only its light (docs/scene-format.md, "Targets")."""
     model = MODELS[obj.SkyModel]
     entry: Dict[str, Any] = {"name": obj.Name, "type": "sky", "group": obj.Name, "model": model}
     if model == "cie":
@@ -280,7 +280,7 @@ def sky_entry(obj: Any, portals: List[Dict[str, Any]], site: Site) -> Dict[str, 
 
 
 def sun_entry(obj: Any, portals: List[Dict[str, Any]], site: Site) -> Dict[str, Any]:
-    """The ``sun`` through the sky's portals (DAYLIGHT_SPEC section 4), in a group of its own."""
+    """The ``sun`` through the sky's portals (docs/scene-format.md, "The sun"), in a group of its own."""
     return {"name": f"{obj.Name}_sun", "type": "sun", "group": f"{obj.Name}_sun",
             "illuminance_lx": float(obj.DirectNormalLux),
             "site": {"latitude_deg": site.latitude_deg, "longitude_deg": site.longitude_deg,

@@ -119,7 +119,7 @@ class Target(BaseProxy):
                          "EN 12464-1 preset of RequiredLux/RequiredUniformity for the Surface "
                          "kind (walls, ceilings: U0 0.10); Custom = as typed",
                          standards.CUSTOM, items=standards.ACTIVITIES),
-        # Daylight-factor grids (DAYLIGHT_SPEC sections 1 and 5; objects/daylight_target.py).
+        # Daylight-factor grids (docs/scene-format.md, "Targets"; objects/daylight_target.py).
         **DAYLIGHT_PROPERTIES,
     }
 

@@ -133,7 +133,7 @@ class TargetResult:
     #: luminance (docs/glare.md).
     ugr: Optional[float] = None
     ugr_ci: Tuple[Optional[float], Optional[float]] = (None, None)
-    #: A daylight-factor grid's ``daylight_factor`` object (DAYLIGHT_SPEC section 2) and its
+    #: A daylight-factor grid's ``daylight_factor`` object (docs/scene-format.md, "Results") and its
     #: whole results entry (requirements echo, DF verdicts); None / {} for other targets.
     daylight_factor: Optional[Dict[str, Any]] = None
     daylight_entry: Dict[str, Any] = field(default_factory=dict)

@@ -2,7 +2,7 @@
 """Paint daylight-factor grids (GUI only): their cells' DF in % on a scale of its own (0 to a
 round maximum over the analysis' DF grids), with iso-DF lines, and the legend in % with the
 DF verdict. The values are the results document's ``daylight_factor`` objects
-(lighting.daylight_results, DAYLIGHT_SPEC section 2); coloring.refresh calls in here."""
+(lighting.daylight_results, docs/scene-format.md, "Results"); coloring.refresh calls in here."""
 from __future__ import annotations
 
 from typing import Any, Dict, Optional
