@@ -320,9 +320,46 @@ class DaylightFactorGrids(DocTestCase):
         self.assertTrue(math.isfinite(scene["metadata"]["north_deg"]))
 
 
+class DaylightFactorTraced(DocTestCase):
+    """A DF grid traced by the solver itself: its daylight factor, the EN 17037 verdicts and
+    the table, read through the results reader (no hand-written result)."""
+
+    @needs_solver
+    def test_the_solver_traces_a_daylight_factor_grid_with_en17037_verdicts(self):
+        from lighting import daylight_results
+
+        doc, analysis, sky, names = office_with_sky()
+        grid = doc.getObject("Workplane")
+        grid.Quantity = "Daylight factor"
+        grid.DaylightLevel = "Minimum"
+        grid.MedianDiffuseLux = 15900.0
+        doc.recompute()
+        result = lighting.analyze(doc, output_dir=work_dir("daylight-traced"))
+        shown = result["Workplane"]
+        df = shown.daylight_factor
+        self.assertIsNotNone(df)
+        self.assertEqual(df.outside_illuminance_lx, 10000.0)  # the sky's level, exact
+        nu, nv = shown.cells_uv
+        cells = daylight_results.cells_percent(df)
+        self.assertEqual(len(cells), nu * nv)
+        self.assertTrue(all(math.isfinite(v) and 0.0 <= v < 100.0 for v in cells))
+        for stat in (df.mean, df.min, df.p50, df.p95):
+            self.assertLessEqual(stat.low, stat.value)
+            self.assertLessEqual(stat.value, stat.high)
+        self.assertLessEqual(df.p95.value, df.p50.value)
+        lines = daylight_results.requirement_lines(shown)
+        self.assertEqual(lines[0], ("EN 17037 minimum at 15900 lx", ""))
+        # D_T = 300 / 15900 = 1.89 %, D_TM = 100 / 15900 = 0.63 %, each judged.
+        self.assertEqual([line[0] for line in lines[1:]],
+                         ["DF over 50 % of the area >= 1.89 %",
+                          "DF over 95 % of the area >= 0.63 %"])
+        self.assertTrue(all(line[1] in ("pass", "FAIL", "undecided") for line in lines[1:]))
+        self.assertIn("DF %", result.table())
+
+
 class DaylightFactorDisplay(DocTestCase):
-    """The results table and colours of a DF grid, from a hand-written result in the shared
-    spec's layout (the solver's DF results are another part of issue 26)."""
+    """The results table and colours of a DF grid, from a hand-written result in the solver's
+    layout with chosen verdicts (one pass, one undecided), so every word is checked."""
 
     @needs_solver
     def test_a_hand_written_daylight_factor_result_is_read_and_tabled(self):
@@ -344,14 +381,13 @@ class DaylightFactorDisplay(DocTestCase):
         table = shown.table()
         print("\n" + table)
         self.assertIn("DF %", table)
-        self.assertIn(f"{df['mean_percent']:.2f}", table)
+        self.assertIn(f"{df.mean.value:.2f}", table)
         figures = daylight_results.figure_lines(df)
         self.assertEqual([f[0] for f in figures], ["DF mean", "DF min", "DF over 50 %",
                                                    "DF over 95 %", "Outside (sky)"])
-        self.assertEqual(figures[2][1], f"{df['p50_percent']:.2f} %")
-        self.assertEqual(figures[2][2], f"{df['p50_ci_low_percent']:.2f} - "
-                                        f"{df['p50_ci_high_percent']:.2f}")
-        lines = daylight_results.requirement_lines(shown["Workplane"].daylight_entry)
+        self.assertEqual(figures[2][1], f"{df.p50.value:.2f} %")
+        self.assertEqual(figures[2][2], f"{df.p50.low:.2f} - {df.p50.high:.2f}")
+        lines = daylight_results.requirement_lines(shown["Workplane"])
         self.assertEqual(lines, [("EN 17037 medium at 15900 lx", ""),
                                  ("DF over 50 % of the area >= 3.14 %", "pass"),
                                  ("DF over 95 % of the area >= 1.89 %", "undecided")])

@@ -133,10 +133,11 @@ class TargetResult:
     #: luminance (docs/glare.md).
     ugr: Optional[float] = None
     ugr_ci: Tuple[Optional[float], Optional[float]] = (None, None)
-    #: A daylight-factor grid's ``daylight_factor`` object (docs/scene-format.md, "Results") and its
-    #: whole results entry (requirements echo, DF verdicts); None / {} for other targets.
-    daylight_factor: Optional[Dict[str, Any]] = None
-    daylight_entry: Dict[str, Any] = field(default_factory=dict)
+    #: A daylight-factor grid's daylight factor (the reader's ``DaylightFactorView``,
+    #: docs/scene-format.md, "Results") and its requirements echo (EN 17037 level, median
+    #: diffuse illuminance, D_T, D_TM); None / {} for other targets.
+    daylight_factor: Optional[Any] = None
+    daylight_requirements: Dict[str, Any] = field(default_factory=dict)
 
     def ugr_text(self) -> Tuple[str, str]:
         """("UGR 17.2", "16.9-17.5") of an observer; "-" where a value is absent."""
@@ -174,6 +175,9 @@ class TargetResult:
                                 if target.verdict_of(k) == "undecided"},
                      verdict_of={k: str(target.verdict_of(k)) for k in target.verdicts},
                      is_glare=target.is_glare)
+        if target.daylight_factor is not None:  # a DF grid's daylight factor, as read
+            result.daylight_factor = target.daylight_factor
+            result.daylight_requirements = dict(wanted)
         if target.is_glare:  # an observer grid's: the maximum's
             result.ugr = target.ugr.value
             result.ugr_ci = (target.ugr.low, target.ugr.high)
@@ -250,12 +254,6 @@ class AnalysisResult:
                      results_file=results_file, data=data if data is not None else found.doc,
                      stop_reason=run.stop_reason or "", verdict=found.verdict,
                      photons_requested=_float(run.photons_requested))
-        from lighting import daylight_results
-
-        for target in result.targets:  # DF grids: read from the document as stored
-            entry = daylight_results.target_entry(result.data, target.name)
-            if isinstance(entry.get("daylight_factor"), dict):
-                target.daylight_factor, target.daylight_entry = entry["daylight_factor"], entry
         return result
 
     def to_json(self) -> str:
@@ -272,8 +270,8 @@ def interval_text(pair: Optional[Tuple[float, float]], digits: int = 1, dash: st
 _ci = interval_text
 
 
-def _df_ci(df: Dict[str, Any], low: str, high: str) -> str:
-    return _ci((float(df[low]), float(df[high])), 2) if low in df and high in df else "-"
+def _df_ci(stat: Any) -> str:
+    return _ci((float(stat.low), float(stat.high)), 2) if stat.has_interval else "-"
 
 
 def format_table(result: AnalysisResult) -> str:
@@ -291,10 +289,9 @@ def format_table(result: AnalysisResult) -> str:
                          f"{t.uniformity:.2f}", _ci(t.uniformity_ci, 2), verdict))
             if t.daylight_factor is not None:  # its DF: mean and minimum in %
                 df = t.daylight_factor
-                rows.append((t.label, "DF %", f"{float(df.get('mean_percent', 0.0)):.2f}",
-                             _df_ci(df, "ci_low_percent", "ci_high_percent"),
-                             f"{float(df.get('min_percent', 0.0)):.2f}",
-                             _df_ci(df, "min_ci_low_percent", "min_ci_high_percent"),
+                rows.append((t.label, "DF %", f"{float(df.mean.value or 0.0):.2f}",
+                             _df_ci(df.mean), f"{float(df.min.value or 0.0):.2f}",
+                             _df_ci(df.min),
                              "-", "-", "-", "-", verdict))
         elif t.is_glare:
             rows.append((t.label, t.kind, *t.ugr_text(), "-", "-", "-", "-", "-", "-", verdict))

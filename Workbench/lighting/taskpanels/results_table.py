@@ -59,7 +59,7 @@ def requirement_lines(t: results_mod.TargetResult) -> List[Tuple[str, str]]:
     """("Em >= 500 lx", "pass") per requirement judged; an observer without a limit:
     ("UGR limit", "no limit set")."""
     if t.daylight_factor is not None:  # EN 17037's daylight factor verdicts
-        return daylight_results.requirement_lines(t.daylight_entry)
+        return daylight_results.requirement_lines(t)
     out = []
     for key, verdict in t.verdicts.items():
         name, unit = _NAMES.get(key, (key, ""))

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Paint daylight-factor grids (GUI only): their cells' DF in % on a scale of its own (0 to a
 round maximum over the analysis' DF grids), with iso-DF lines, and the legend in % with the
-DF verdict. The values are the results document's ``daylight_factor`` objects
+DF verdict. The values are the DF grids' daylight factors as the results reader gives them
 (lighting.daylight_results, docs/scene-format.md, "Results"); coloring.refresh calls in here."""
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ class Daylight:
         if len(cells) == faces:
             colours = self.scale.colours(cells)
         else:
-            colours = [self.scale.colour(float(found.get("mean_percent", 0.0)))] * faces
+            colours = [self.scale.colour(float(found.mean.value or 0.0))] * faces
         coloring._show(vobj, colours[0], colours, 0)
         return True
 
