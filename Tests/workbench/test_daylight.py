@@ -254,6 +254,26 @@ class SiteAndSun(DocTestCase):
         self.assertLess(grid.mean_lux, 2000.0)
 
 
+    @needs_solver
+    def test_the_solver_traces_the_sun_through_the_skys_portals(self):
+        """The Sky's sun (its own group) through the same window: the solver reads the sun's
+        portals, the sun's flux is its direct normal illuminance across the opening, and the
+        work plane gets the sky's light plus the sun's patch."""
+        doc, analysis, sky, names = office_with_sky()
+        for lum in lighting.objects.luminaire_layout.placed_luminaires(analysis):
+            lum.FluxLumen = 0.0  # daylight only
+        analysis.Photons = 200000
+        doc.recompute()
+        without = lighting.analyze(doc, output_dir=work_dir("daylight-nosun"))["Workplane"]
+        sky.SunEnabled = True  # 21 March, noon in Paris: the sun in the south window
+        doc.recompute()
+        result = lighting.analyze(doc, output_dir=work_dir("daylight-sun"))
+        suns = [lum for lum in result.data["luminaires"] if lum["type"] == "sun"]
+        self.assertEqual(len(suns), 1)
+        self.assertGreater(suns[0]["emitted_flux_lm"], 0.0)
+        with_sun = result["Workplane"]
+        self.assertGreater(with_sun.ci_low_lux, without.ci_high_lux)
+
 class DaylightFactorGrids(DocTestCase):
     def test_a_daylight_factor_grid_exports_its_quantity_and_requirements(self):
         doc, analysis, sky, names = office_with_sky()

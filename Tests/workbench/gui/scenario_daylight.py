@@ -4,12 +4,9 @@ with a window in the south wall), switches its luminaires off, adds a *Sky* from
 into the room), turns the work-plane grid into a daylight-factor grid with EN 17037's medium
 level at 15 900 lx, and runs the analysis from its panel.
 
-Until the solver computes daylight factors (docs/scene-format.md, "Targets"another part of issue
-26: the solver's grid type then lists ``quantity``), the run traces the grid's daylight in lux
-(the sky through the portal, the current solver) and the daylight-factor display is checked
-on a hand-written result in the spec's layout (Tests/workbench/daylight_fixture.py): the grid
-in false colours with the legend in %, the panel's row "DF x.xx %" and the EN 17037 verdicts.
-With a solver that knows ``quantity``, the run itself gives the daylight factors."""
+The solver traces the grid's daylight factor (the sky through the portal, E_out exact) and
+judges EN 17037's D_T and D_TM; the user sees the grid in false colours with the legend in %,
+the panel's row "DF x.xx %" and its verdict."""
 import json
 import os
 import sys
@@ -18,14 +15,6 @@ from guilib import STATUS, expect, grab_window, log, pump, scenario, toolbar_ena
 
 sys.path.insert(0, os.path.join(os.environ.get("LIGHTING_SOURCE_DIR", "."), "Examples"))
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def solver_computes_daylight_factors() -> bool:
-    """Whether the solver's grid reads ``quantity`` (the merged DF solver)."""
-    import lightsolver
-
-    grid = next(t for t in lightsolver.target_types() if t["name"] == "grid")
-    return "quantity" in grid["keys"]
 
 
 def run_panel(analysis) -> None:
@@ -61,7 +50,6 @@ def body() -> None:
 
     import office_model
     from lighting.objects import luminaire_layout
-    from lighting.taskpanels import analysis_panel
 
     doc = office_model.build_office(photons=400000)
     office_model.show_in_gui(doc)
@@ -99,9 +87,7 @@ def body() -> None:
             expect(words in text, f"the sky's panel does not say {words!r}: {text}")
         grab_window("daylight_sky_panel")
     grid = doc.getObject("Workplane")
-    real = solver_computes_daylight_factors()
-    STATUS["solver_computes_daylight_factors"] = real
-    grid.Quantity = "Daylight factor" if real else "Illuminance"
+    grid.Quantity = "Daylight factor"
     grid.DaylightLevel = "Medium"
     grid.MedianDiffuseLux = 15900.0
     doc.recompute()
@@ -109,24 +95,6 @@ def body() -> None:
     rows = table_rows()
     STATUS["rows_run"] = rows
     log(f"rows after the run {rows}")
-    if not real:
-        # The daylight reached the grid through the portal (lux from the sky alone).
-        lux = float(rows.get(grid.Label, ("0", ""))[0] or 0.0)
-        expect(lux > 50.0, f"no daylight on the work plane: {rows}")
-        grab_window("daylight_lux")
-        import daylight_fixture
-        from lighting.solver import store
-
-        grid.Quantity = "Daylight factor"
-        doc.recompute()
-        job = analysis_panel.last_run()
-        traced = json.loads(json.dumps(job.data))
-        data = daylight_fixture.add_to_results(traced, grid.Name, sky.Name,
-                                               int(grid.CellsU), int(grid.CellsV))
-        store.apply_to_document(analysis, data, job.scene_file, job.results_file)
-        analysis_panel.last_panel().refresh()
-        pump(1.0)
-        rows = table_rows()
     STATUS["rows"] = rows
     value, verdict = rows.get(grid.Label, ("", ""))
     expect(value.startswith("DF ") and value.endswith(" %"), f"the grid's row shows no DF: {rows}")
