@@ -23,8 +23,10 @@ slow='^(CiHonesty\.|Decide\.StoppingAtTheFirstDecidedLook|ObserverAgainstTable\.
 slow+='|ObserverGridCoverage\.|IntervalCoverage\..*Over500Seeds|DaylightFactorCoverage\.'
 slow+='|Backends/HardCases\.(EveryPhotonCountedPastFloatResolution|TinyTargetInAHugeHall)'
 # The sky's and the glazing's emission run under the sanitizers in their shorter traced tests
-# (the 1 cm² skylight, the roof openings); these two trace 10^7 photons through a whole room.
-slow+='|Backends/SkyTraced\.SideLitRoomPortalAndNoPortalAgree'
+# (the 1 cm² skylight, the roof openings); these two trace 10^7 photons through a whole room,
+# and the fifteen CIE skies are fifteen runs of the clear-sky case that does run under them.
+slow+='|Backends/SkyTraced\.(SideLitRoomPortalAndNoPortalAgree'
+slow+='|FifteenCieSkiesUnobstructedHorizontalIlluminance)'
 slow+='|Backends/GlazingTraced\.VerticalWindowUnderTheOvercastSky)'
 
 start=$(date +%s)
