@@ -243,3 +243,20 @@ def test_daylight_factor_grids_are_read_with_their_statistics():
     assert df.min.low <= df.min.value <= df.p95.value <= df.p50.value
     assert df.cells == [c["percent"] for c in block["cells"]]
     assert grid.verdict_of("df_target") in ("pass", "fail", "undecided")
+
+
+def test_sunlight_exposure_view():
+    """The results' EN 17037 sunlight exposure as a typed view; None without it."""
+    from lightsolver_results.sunlight import sunlight_view
+
+    assert sunlight_view({}) is None
+    view = sunlight_view({"sunlight_exposure": {
+        "date": "2026-03-21", "step_minutes": 1, "min_elevation_deg": 11,
+        "points": [{"name": "South", "hours": 3.2, "level": "medium",
+                    "periods": [["09:14", "12:26"]]},
+                   {"name": "North", "hours": 0.0, "level": "none", "periods": []}]}})
+    assert (view.date, view.step_minutes, view.min_elevation_deg) == ("2026-03-21", 1.0, 11.0)
+    south, north = view.points
+    assert (south.name, south.level, south.periods) == ("South", "medium", (("09:14", "12:26"),))
+    assert south.duration_text() == "3 h 12 min"
+    assert (north.hours, north.level, north.duration_text()) == (0.0, "none", "0 h 00 min")

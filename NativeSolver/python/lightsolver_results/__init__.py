@@ -28,13 +28,15 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, OPTIMIZATION_FORMAT, READ_TYPES,
                      ResultsError, check, finite, plain, schema)
 from .provenance import Provenance, SourceFile, read_provenance, without_run_facts
+from .sunlight import SunlightExposureView, SunlightPoint, sunlight_view
 from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFlux, _migrate,
                         migrate)
 
 __all__ = ["FORMAT", "OPTIMIZATION_FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_TYPES", "DERIVED_FLUX_NOTE",
            "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "DaylightFactorView", "Target", "LuminaireFlux",
            "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
-           "read", "load", "Provenance", "SourceFile", "without_run_facts"]
+           "read", "load", "Provenance", "SourceFile", "without_run_facts",
+           "SunlightExposureView", "SunlightPoint"]
 
 # --- the view ---------------------------------------------------------------------------------
 
@@ -316,6 +318,11 @@ class Results:
         empty for results as traced."""
         factors = self.doc.get("rescaled")
         return {str(k): float(v) for k, v in factors.items()} if isinstance(factors, dict) else {}
+
+    @property
+    def sunlight_exposure(self) -> Optional[SunlightExposureView]:
+        """EN 17037 sunlight exposure at the scene's reference points; None without it."""
+        return sunlight_view(self.doc)
 
     def luminaire(self, name: str) -> Optional[LuminaireFlux]:
         return next((lum for lum in self.luminaires if lum.name == name), None)

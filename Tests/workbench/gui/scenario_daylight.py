@@ -45,6 +45,28 @@ def table_rows() -> dict:
             for r in range(panel.table.rowCount())}
 
 
+def check_sunlight() -> None:
+    """The panel's sunlight line for the south window and the value column's header, which
+    names the DF row under it."""
+    import re
+
+    from lighting.taskpanels import analysis_panel
+
+    panel = analysis_panel.last_panel()
+    view = panel.results_view
+    text = view.sunlight.text()
+    STATUS["sunlight"] = text
+    expect(not view.sunlight.isHidden(), "the sunlight exposure is not shown")
+    expect(re.search(r"^Window: \d+ h \d\d min, (none \(under 1.5 h\)|minimum|medium|high)$",
+                     text, re.M) is not None, f"no sunlight line for the window: {text!r}")
+    header = view.table.horizontalHeaderItem(2).text()
+    STATUS["value_header"] = header
+    expect("DF %" in header, f"the value column's header {header!r} does not name DF")
+    panel.scroll.ensureWidgetVisible(view.sunlight)  # as a user scrolls to it
+    pump(0.3)
+    grab_window("daylight_sunlight")
+
+
 def body() -> None:
     import FreeCADGui
 
@@ -90,8 +112,10 @@ def body() -> None:
     grid.Quantity = "Daylight factor"
     grid.DaylightLevel = "Medium"
     grid.MedianDiffuseLux = 15900.0
+    sky.SunlightExposure = True  # EN 17037 sunlight exposure at the window (property editor)
     doc.recompute()
     run_panel(analysis)
+    check_sunlight()
     rows = table_rows()
     STATUS["rows_run"] = rows
     log(f"rows after the run {rows}")

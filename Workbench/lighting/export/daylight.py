@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Set
 
 from lighting.export import portals as portals_mod
+from lighting.export import sunlight as sunlight_mod
 from lighting.messages import Report
 from lighting.objects import sky as sky_mod
 
@@ -20,6 +21,8 @@ class Daylight:
     replaced_windows: Set[str] = field(default_factory=set)
     north_deg: Optional[float] = None
     labels: Dict[str, str] = field(default_factory=dict)
+    #: The scene's top-level ``sunlight_exposure`` (None: not asked).
+    sunlight: Optional[Dict[str, Any]] = None
 
 
 def skies(analysis: Any) -> List[Any]:
@@ -66,6 +69,14 @@ def build(analysis: Any, report: Report) -> Daylight:
             report.add("error", str(exc), sky.Name)
             continue
         out.north_deg = site.north_deg
+        if bool(getattr(sky, "SunlightExposure", False)):
+            try:
+                out.sunlight, problems = sunlight_mod.exposure(sky, found, site)
+            except ValueError as exc:
+                report.add("error", str(exc), sky.Name)
+                continue
+            for level, text in problems:
+                report.add(level, text, sky.Name)
     return out
 
 
@@ -101,6 +112,11 @@ def summary_lines(sky: Any) -> List[str]:
     if bool(sky.SunEnabled):
         lines.append(f"Sun: {float(sky.DirectNormalLux):.0f} lx direct normal, through the "
                      "same portals")
+    if bool(getattr(sky, "SunlightExposure", False)):
+        day = str(sky.SunlightDate).strip() or "21 March"
+        lines.append(f"Sunlight exposure (EN 17037): {day}, sun above "
+                     f"{float(sky.SunlightMinAltitude):g}°, {int(sky.SunlightStepMinutes)} min "
+                     "steps; a reference point in each window")
     found = portals_mod.find_portals(sky)
     for portal in found.portals:
         width, height = portal.edge1.Length / 1000.0, portal.edge2.Length / 1000.0

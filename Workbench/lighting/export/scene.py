@@ -282,6 +282,8 @@ class SceneBuilder:
         }
         if sky.north_deg is not None:
             result.scene["metadata"]["north_deg"] = sky.north_deg
+        if sky.sunlight is not None:
+            result.scene["sunlight_exposure"] = sky.sunlight
         return result
 
     def _metadata(self, lums: List[Any]) -> Dict[str, Any]:

@@ -25,6 +25,11 @@ DEFAULT_TRANSMITTANCE = 0.75
 DEFAULT_PANES = 2
 DEFAULT_FRAME_FACTOR = 0.8
 DEFAULT_MAINTENANCE_FACTOR = 0.9
+#: EN 17037 sunlight exposure: the solver's default minimum solar altitude (11 degrees,
+#: kDefaultSunlightMinElevation_deg; docs/daylight.md says where it comes from and that the
+#: site's own value from the standard's table belongs here) and its default step (1 min).
+DEFAULT_SUNLIGHT_MIN_ALTITUDE = 11.0
+DEFAULT_SUNLIGHT_STEP_MINUTES = 1
 
 
 @dataclass(frozen=True)
@@ -101,6 +106,20 @@ class Sky(BaseProxy):
         "DirectNormalLux": Prop("App::PropertyFloat", "Sun",
                                 "The sun's direct normal illuminance in lx (clear sky ~ 80 000)",
                                 80000.0),
+        "SunlightExposure": Prop("App::PropertyBool", "Sunlight",
+                                 "EN 17037 sunlight exposure: hours of possible sunlight at a "
+                                 "reference point in each window that is a portal", False),
+        "SunlightDate": Prop("App::PropertyString", "Sunlight",
+                             "Assessment day YYYY-MM-DD (EN 17037: 1 February ... 21 March); "
+                             "empty = 21 March of Date's year", ""),
+        "SunlightMinAltitude": Prop("App::PropertyFloat", "Sunlight",
+                                    "Minimum solar altitude in degrees (the site's value from "
+                                    "EN 17037's table; 11 = the solver's default, not a "
+                                    "site's)", DEFAULT_SUNLIGHT_MIN_ALTITUDE),
+        "SunlightStepMinutes": Prop("App::PropertyInteger", "Sunlight",
+                                    "Time step in minutes (1 ... 60, dividing 1440): each "
+                                    "period's ends are known to one step",
+                                    DEFAULT_SUNLIGHT_STEP_MINUTES),
         "Windows": Prop("App::PropertyLinkList", "Portals",
                         "Arch windows that become portals; empty = every window hosted in a "
                         "wall"),

@@ -216,6 +216,8 @@ class AnalysisResult:
     #: The photons the run was allowed (its budget: a decide run or an accuracy goal may
     #: stop before it); 0 when the results do not say.
     photons_requested: float = 0.0
+    #: EN 17037 sunlight exposure (the reader's ``SunlightExposureView``); None without it.
+    sunlight: Optional[Any] = None
 
     def __getitem__(self, key: str) -> TargetResult:
         """The target with this object name or label."""
@@ -253,7 +255,8 @@ class AnalysisResult:
                      warnings=list(run.warnings), scene_file=scene_file,
                      results_file=results_file, data=data if data is not None else found.doc,
                      stop_reason=run.stop_reason or "", verdict=found.verdict,
-                     photons_requested=_float(run.photons_requested))
+                     photons_requested=_float(run.photons_requested),
+                     sunlight=getattr(found, "sunlight_exposure", None))
         return result
 
     def to_json(self) -> str:
@@ -274,11 +277,43 @@ def _df_ci(stat: Any) -> str:
     return _ci((float(stat.low), float(stat.high)), 2) if stat.has_interval else "-"
 
 
+def value_header(result: AnalysisResult, grid_lux: bool = True) -> str:
+    """The value column's header, right for the rows under it: "Em lx" for illuminance only,
+    else the kinds present ("Em lx / DF %", "UGR", ...). ``grid_lux``: a DF grid's row shows
+    its lux too (the text table) rather than its DF only (the panel)."""
+    kinds = []
+    for t in result.targets:
+        if t.is_glare:
+            kinds.append("UGR")
+        elif t.daylight_factor is not None:
+            kinds += ["Em lx", "DF %"] if grid_lux else ["DF %"]
+        else:
+            kinds.append("Em lx")
+    present = [k for k in ("Em lx", "DF %", "UGR") if k in kinds]
+    return " / ".join(present) or "Em lx"
+
+
+def sunlight_lines(view: Optional[Any]) -> List[str]:
+    """EN 17037 sunlight exposure, a line per window ("Window: 3 h 12 min, medium") under a
+    title with the day and the minimum solar altitude; [] without it (``view``: the reader's
+    ``SunlightExposureView``)."""
+    if view is None:
+        return []
+    altitude = (f", sun above {view.min_elevation_deg:g}°"
+                if view.min_elevation_deg is not None else "")
+    lines = [f"Sunlight exposure (EN 17037), {view.date}{altitude}:"]
+    for point in view.points:
+        level = "none (under 1.5 h)" if point.level == "none" else point.level
+        lines.append(f"{point.name}: {point.duration_text()}, {level}")
+    return lines
+
+
 def format_table(result: AnalysisResult) -> str:
-    """Fixed-width text table: Em, Emin, Emax (lx) and U0 with their confidence intervals."""
+    """Fixed-width text table: Em, Emin, Emax (lx) and U0 with their confidence intervals (a
+    DF grid adds its DF row, an observer its UGR), then the sunlight exposure per window."""
     level = f"{result.confidence * 100:g}%"
-    header = ("Target", "Type", "Em lx", f"Em {level} CI", "Emin lx", "Emin CI", "Emax lx",
-              "Emax CI", "U0", "U0 CI", "Check")
+    header = ("Target", "Type", value_header(result), f"Em {level} CI", "Emin lx", "Emin CI",
+              "Emax lx", "Emax CI", "U0", "U0 CI", "Check")
     rows = [header]
     for t in result.targets:
         verdict = t.verdict_text()
@@ -301,6 +336,7 @@ def format_table(result: AnalysisResult) -> str:
     widths = [max(len(str(r[i])) for r in rows) for i in range(len(header))]
     lines = ["  ".join(str(c).ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
     lines.insert(1, "  ".join("-" * w for w in widths))
+    lines += sunlight_lines(result.sunlight)
     facts = f"{result.photons:.0f} photons, {result.seconds:.2f} s"
     if result.backend:
         facts += f", backend {result.backend}"

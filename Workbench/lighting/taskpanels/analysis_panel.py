@@ -106,7 +106,7 @@ class AnalysisTaskPanel(ModelessPanel):
         self.scroll.setWidget(body)
         outer.addWidget(self.scroll, 1)
         self.add_section("settings", "Run settings", self._build_settings())
-        self.add_section("results", "Results (maintained illuminance)", self._build_results())
+        self.add_section("results", "Results", self._build_results())
         self.decide_view = DecideView(self.decide_now)
         undecided = QtGui.QVBoxLayout()
         undecided.addWidget(self.decide_view)

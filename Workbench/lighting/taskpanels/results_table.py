@@ -278,6 +278,11 @@ class ResultsTable(QtGui.QWidget):
         self.details.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAlwaysOff)
         self.details.setSelectionMode(QtGui.QAbstractItemView.NoSelection)
         layout.addWidget(self.details)
+        # EN 17037 sunlight exposure, a line per window (hidden without it).
+        self.sunlight = QtGui.QLabel("")
+        self.sunlight.setWordWrap(True)
+        self.sunlight.setVisible(False)
+        layout.addWidget(self.sunlight)
         self.facts = QtGui.QLabel("")
         self.facts.setWordWrap(True)
         layout.addWidget(self.facts)
@@ -286,6 +291,13 @@ class ResultsTable(QtGui.QWidget):
     def show_result(self, result: Optional[results_mod.AnalysisResult], facts: str) -> None:
         """Fill the table from ``result`` (empty: "No results yet") with ``facts`` under it."""
         self.table.setRowCount(0)
+        lines = results_mod.sunlight_lines(result.sunlight) if result is not None else []
+        self.sunlight.setText("\n".join(lines))
+        self.sunlight.setVisible(bool(lines))
+        # The value column's header names what its rows hold (lux, DF %, UGR).
+        header = results_mod.value_header(result, grid_lux=False) if result else "Em lx"
+        self.table.setHorizontalHeaderItem(COLUMNS.index("Em lx"),
+                                           QtGui.QTableWidgetItem(header))
         if result is None:
             self.layout_table()
             self.facts.setText("No results yet: press Run.")
