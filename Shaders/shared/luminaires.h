@@ -104,8 +104,57 @@ LS_FN vec3 sun_cross(vec3 a, vec3 b) {
   return vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 
+// The disc straddling the opening's plane (|n·d| < sin α; docs/daylight.md, "The sun as a
+// luminaire"): only its part in front (n·ω > 0, n = edge1 × edge2 into the room) passes, again
+// uniform in projected solid angle. In the opening's elevation e (sin e = n·ω) and azimuth ψ from
+// u, that measure is sin e cos e de dψ = q dq dψ (q = sin e): q is drawn ∝ q on [0, sin(e_c + α)]
+// (e_c the centre's elevation, sin e_c = n·d) and ψ uniform in [−ψ_h, ψ_h], the cap's widest
+// azimuth at e ≥ 0, and a point outside the cap is drawn again. The bounding box holds at least
+// half of it (acceptance ≥ 0.53 over the whole straddling range), so 64 tries fail with
+// probability < 10⁻¹⁷. The test 1 − ω·d ≤ 1 − cos α is written in small quantities (haversines,
+// sin(e − e_c)), free of float cancellation. The record: half_field_rad n·d (n = +edge1 × edge2),
+// cos_half_field −sin(e_c + α) (negative: this mode), from the host in double.
+LS_FN void emit_sun_straddling(vec3 u, vec3 n, float t, float q_hi, float r,
+                               LS_OUT(vec3) dir LS_RNG_PARAM) {
+  const float cos_c = sqrt(1.0f - t * t), cos_a = sqrt(1.0f - r * r);
+  const float one_minus_cos_a = r * r / (1.0f + cos_a);
+  // ψ_h = asin(x) (e_c ≥ 0: the cap's widest azimuth) or 2 asin(x) (e_c < 0: its width at e = 0,
+  // cos ψ = cos α / cos e_c), bounded above by x (1 + x²/5) for x < 0.01, with a 10⁻⁴ margin.
+  float psi_h;
+  if (t >= 0.0f) {
+    const float x = r / cos_c;
+    psi_h = x * (1.0f + 0.2f * x * x);
+  } else {
+    const float s_minus = r * cos_c - cos_a * t;  // sin(α − e_c), no cancellation (t < 0)
+    const float h_plus = q_hi / sqrt(2.0f * (1.0f + sqrt(1.0f - q_hi * q_hi)));
+    const float h_minus = s_minus / sqrt(2.0f * (1.0f + sqrt(1.0f - s_minus * s_minus)));
+    const float x = sqrt(h_plus * h_minus / cos_c);
+    psi_h = 2.0f * x * (1.0f + 0.2f * x * x);
+  }
+  psi_h *= 1.0001f;
+  const vec3 w = sun_cross(n, u);
+  dir = q_hi * n + sqrt(1.0f - q_hi * q_hi) * u;  // not reached in practice (see above)
+  for (int i = 0; i < 64; ++i) {
+    const float q = q_hi * sqrt(LS_UNIFORM());
+    const float psi = psi_h * (2.0f * LS_UNIFORM() - 1.0f);
+    const float cos_e = sqrt(1.0f - q * q), hs = sin(0.5f * psi);
+    const float delta = q * cos_c - t * cos_e;  // sin(e − e_c)
+    const float off =
+        delta * delta / (1.0f + cos_e * cos_c + q * t) + 2.0f * cos_c * cos_e * hs * hs;
+    if (off <= one_minus_cos_a) {
+      dir = normalize(cos_e * cos(psi) * u + cos_e * sin(psi) * w + q * n);
+      break;
+    }
+  }
+}
+
 LS_EMISSION(emit_sun) {
   origin = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2 LS_RNG_ARG), l.axis);
+  if (l.cos_half_field < 0.0f) {
+    emit_sun_straddling(l.position, normalize(sun_cross(l.edge1, l.edge2)), l.half_field_rad,
+                        -l.cos_half_field, l.half_beam_rad, dir LS_RNG_ARG);
+    return;
+  }
   const float rho = sqrt(LS_UNIFORM());
   const float phi = 2.0f * kPi * LS_UNIFORM();
   const float x = rho * cos(phi), y = rho * sin(phi);

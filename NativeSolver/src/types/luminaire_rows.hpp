@@ -59,6 +59,10 @@ GlazingDefinition read_glazing(const JsonNode& n);
 /// maintenance).
 double glazing_factor(const LuminaireChecks& c, const std::string& at, const GlazingDefinition& g,
                       double cos_i);
+/// The sun's disc (0.53°) through an opening whose normal (into the room) makes n·d = `t` with
+/// the beam: (1 / (π sin²α)) ∫_disc max(0, n·ω) dω, so that the flux is E · area · share; t for
+/// the disc wholly in front, 0 wholly behind, the exact cut cap in between (docs/daylight.md).
+double sun_disc_share(double t);
 /// A sun's GPU record (Shaders/emit.glsl, emit_sun_gpu): through portals, appended to `floats`
 /// (thresholds to `thresholds`) and its offset returned; through its own opening, 0xFFFFFFFF.
 std::uint32_t pack_sun_record(const PreparedLuminaire& l, std::vector<float>& floats,
