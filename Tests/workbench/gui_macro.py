@@ -152,7 +152,9 @@ def cancel_run(doc):
     timer.timeout.connect(poll)
     timer.start()
     FreeCADGui.runCommand("Lighting_Run")
-    QtCore.QTimer.singleShot(60000, loop.quit)
+    # The first progress report comes after the first batch: on lavapipe beside another CTest
+    # entry (GUI scenarios no longer run alone) that took over 60 s once; wait longer for it.
+    QtCore.QTimer.singleShot(240000, loop.quit)
     loop.exec_()
     timer.stop()
     job = analysis_panel.last_run()

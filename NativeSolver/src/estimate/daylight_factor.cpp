@@ -3,8 +3,7 @@
 
 #include <algorithm>
 
-#include "daylight/sky_sampler.hpp"
-#include "scene/daylight_factor_check.hpp"
+#include "types/sky_daylight.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -71,12 +70,13 @@ std::optional<DaylightFactorBasis> daylight_factor_basis(const Scene& scene,
   const auto g = std::find_if(groups.begin(), groups.end(), [&](const PreparedGroup& p) {
     return std::find(p.luminaires.begin(), p.luminaires.end(), *sky) != p.luminaires.end();
   });
-  if (g == groups.end() || !l.sky_emitter) return std::nullopt;
+  const double outside_lx = sky_outside_illuminance_lx(l);
+  if (g == groups.end() || !(outside_lx > 0.0)) return std::nullopt;
   DaylightFactorBasis b;
   b.sky = l.name;
   b.group = static_cast<std::size_t>(g - groups.begin());
   b.sky_flux_lm = l.flux_lm;
-  b.outside_lx = l.sky_emitter->sky().diffuse_horizontal_lx();
+  b.outside_lx = outside_lx;
   return b;
 }
 

@@ -124,11 +124,6 @@ class Checks {
 
 }  // namespace
 
-std::optional<std::size_t> daylight_factor_sky(const Scene& s) {
-  const std::vector<std::size_t> found = skies(s);
-  if (found.size() != 1) return std::nullopt;
-  return found[0];
-}
 
 void check_daylight_factor(const Scene& s, std::size_t i) {
   const Checks c(s, i);

@@ -5,11 +5,9 @@
 #include <optional>
 
 #include "lightsolver/scene.hpp"
+#include "types/sky_daylight.hpp"  // daylight_factor_sky
 
 namespace lightsolver::detail {
-
-/// The index of the scene's sky luminaire when it has exactly one, else empty.
-std::optional<std::size_t> daylight_factor_sky(const Scene& s);
 
 /// Checks target `i`'s daylight-factor keys: on a daylight-factor grid, exactly one sky whose
 /// group holds nothing else, a positive outside illuminance, no illuminance requirement, DF

@@ -11,7 +11,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "estimate/daylight_factor.hpp"
 #include "io/json_reader.hpp"
 #include "types/target_rows.hpp"
 
@@ -211,9 +210,8 @@ void grid_result(const TargetTallies& tt, TargetResult& r) {
     r.intervals =
         grid_intervals(grid_sampler(tt), tt.confidence, r.min_lux, r.max_lux, r.estimate.mean);
   }
-  if (t.quantity == Target::Quantity::DaylightFactor && tt.daylight) {
-    r.daylight_factor = daylight_factor_result(tt);
-  }
+  // A daylight-factor grid's daylight factor is the estimate layer's, added by the table
+  // (src/tables/target_table.cpp).
 }
 
 using T = Target::Type;

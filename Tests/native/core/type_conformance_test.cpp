@@ -53,7 +53,9 @@ Luminaire example_luminaire(Luminaire::Type type) {
     case Luminaire::Type::Area:
     case Luminaire::Type::Directional:
     case Luminaire::Type::Sun:
-      l.corner = {1.5, 1.5, 2.9};
+      // The sun's opening (as a sky's portal below) lies in the ceiling's plane: an opening
+      // under the closed ceiling would see it outside and, rightly, pass no light.
+      l.corner = {1.5, 1.5, type == Luminaire::Type::Sun ? 3.0 : 2.9};
       l.edge1 = {0, 1, 0};  // edge1 x edge2 = -z
       l.edge2 = {1, 0, 0};
       l.direction = {0, 0, -1};
@@ -69,7 +71,7 @@ Luminaire example_luminaire(Luminaire::Type type) {
     case Luminaire::Type::Sky:  // the uniform sky through a 1 m² opening in the ceiling
       l.sky.model = "uniform";
       l.sky.zenith_luminance_cd_m2 = 1000.0;
-      l.sky.portals.push_back({{1.5, 1.5, 2.9}, {0, 1, 0}, {1, 0, 0}});
+      l.sky.portals.push_back({{1.5, 1.5, 3.0}, {0, 1, 0}, {1, 0, 0}});
       break;
   }
   return l;

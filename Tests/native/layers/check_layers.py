@@ -43,7 +43,7 @@ LAYERS: dict[str, set[str]] = {
     "glare": {"io", "model", "types", "estimate", "results"},
     "embree": {"io", "model", "types", "prepare"},
     "vulkan": {"io", "model", "types", "prepare"},
-    "tables": {"io", "model", "types", "results", "glare"},
+    "tables": {"io", "model", "types", "estimate", "results", "glare"},
     "optimizer": set(_CORE) | {"glare"},
 }
 
