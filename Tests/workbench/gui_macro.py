@@ -137,10 +137,14 @@ def cancel_run(doc):
     FreeCADGui.Selection.addSelection(analysis)
     loop = QtCore.QEventLoop()
     state = {"clicked": None}
+    # The run before this one: until the new run is registered, last_run() is still that
+    # finished job, and taking it for the new one quit the loop at once (seen on a loaded
+    # machine, where the new run registers later than the first poll).
+    before = analysis_panel.last_run()
 
     def poll():
         job = analysis_panel.last_run()
-        if job is None:
+        if job is None or job is before:
             return
         if state["clicked"] is None and job.stage == "solve" and job.done > 0:
             analysis_panel.last_panel().buttons["cancel"].click()
@@ -152,9 +156,7 @@ def cancel_run(doc):
     timer.timeout.connect(poll)
     timer.start()
     FreeCADGui.runCommand("Lighting_Run")
-    # The first progress report comes after the first batch: on lavapipe beside another CTest
-    # entry (GUI scenarios no longer run alone) that took over 60 s once; wait longer for it.
-    QtCore.QTimer.singleShot(240000, loop.quit)
+    QtCore.QTimer.singleShot(120000, loop.quit)
     loop.exec_()
     timer.stop()
     job = analysis_panel.last_run()

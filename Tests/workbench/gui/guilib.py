@@ -233,10 +233,12 @@ def run_and_read_rows(analysis, timeout_s: float) -> Tuple[object, Dict[str, Tup
 
     from lighting.taskpanels import analysis_panel
 
+    before = analysis_panel.last_run()  # a finished earlier run is not this one
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(analysis)
     FreeCADGui.runCommand("Lighting_Run")
     ok = wait_until(lambda: analysis_panel.last_run() is not None
+                    and analysis_panel.last_run() is not before
                     and analysis_panel.last_run().finished, timeout_s)
     expect(ok, "the run did not finish")
     pump(0.5)

@@ -100,9 +100,11 @@ def _run(doc):
     from lighting.taskpanels import analysis_panel
 
     doc.getObject("LightingAnalysis").Photons = 20000
+    before = analysis_panel.last_run()  # a finished earlier run is not this one
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.runCommand("Lighting_Run")
     done = wait_until(lambda: analysis_panel.last_run() is not None
+                      and analysis_panel.last_run() is not before
                       and analysis_panel.last_run().stage in ("done", "failed", "cancelled"), 240)
     pump(1.0)
     run = analysis_panel.last_run()

@@ -49,8 +49,10 @@ def body() -> None:
     expect(len(scenes) == 1 and analysis.Contributions, "the command made no light scene")
     if not scenes:
         return
+    before = analysis_panel.last_run()  # a finished earlier run is not this one
     FreeCADGui.runCommand("Lighting_Run")
     ok = wait_until(lambda: analysis_panel.last_run() is not None
+                    and analysis_panel.last_run() is not before
                     and analysis_panel.last_run().finished, 120.0)
     expect(ok, "the run did not finish")
     pump(0.5)
