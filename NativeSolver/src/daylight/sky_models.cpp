@@ -2,6 +2,8 @@
 // model's tables are in sky_perez.cpp).
 #include "daylight/sky_models.hpp"
 
+#include "daylight/gauss_legendre.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -42,34 +44,7 @@ constexpr std::array<CieRow, 15> kCieGeneral = {{
 double dot(const Direction& p, const Direction& q) { return p.x * q.x + p.y * q.y + p.z * q.z; }
 
 // Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n, Numerical Recipes' gauleg).
-struct Rule {
-  std::vector<double> x, w;
-};
-Rule gauss_legendre(int n) {
-  Rule r;
-  r.x.resize(n);
-  r.w.resize(n);
-  for (int i = 0; i < (n + 1) / 2; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p1 = 1.0, p2 = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double p3 = p2;
-        p2 = p1;
-        p1 = ((2.0 * j - 1.0) * z * p2 - (j - 1.0) * p3) / j;
-      }
-      dp = n * (z * p1 - p2) / (z * z - 1.0);
-      const double step = p1 / dp;
-      z -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    const double w = 2.0 / ((1.0 - z * z) * dp * dp);
-    r.x[i] = 0.5 * (1.0 - z);
-    r.x[n - 1 - i] = 0.5 * (1.0 + z);
-    r.w[i] = r.w[n - 1 - i] = 0.5 * w;
-  }
-  return r;
-}
+using Rule = GaussRule;
 
 // Panel edges on [lo, hi] with `split` among them (if inside): n panels on each side in
 // proportion to their lengths, at least one.

@@ -3,6 +3,8 @@
 // model is not smooth so that every kink lies on an edge.
 #include "daylight/sky_vector.hpp"
 
+#include "daylight/gauss_legendre.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -17,37 +19,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
 
-struct Rule {
-  std::vector<double> x, w;  // on [0, 1]
-};
-
-// Gauss–Legendre on [0, 1] (Newton on P_n).
-Rule gauss_legendre(int n) {
-  Rule r;
-  r.x.resize(static_cast<std::size_t>(n));
-  r.w.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < (n + 1) / 2; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1.0;
-    for (int it = 0; it < 100; ++it) {
-      double p1 = 1.0, p2 = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double p3 = p2;
-        p2 = p1;
-        p1 = ((2.0 * j - 1.0) * z * p2 - (j - 1.0) * p3) / j;
-      }
-      dp = n * (z * p1 - p2) / (z * z - 1.0);
-      const double step = p1 / dp;
-      z -= step;
-      if (std::abs(step) < 1e-15) break;
-    }
-    const auto a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(n - 1 - i);
-    r.x[a] = 0.5 * (1.0 - z);
-    r.x[b] = 0.5 * (1.0 + z);
-    r.w[a] = r.w[b] = 1.0 / ((1.0 - z * z) * dp * dp);
-  }
-  if (n == 1) r.x[0] = 0.5, r.w[0] = 1.0;
-  return r;
-}
+using Rule = GaussRule;
 
 const Rule& rule(int n) {
   static const std::array<Rule, 33> rules = [] {
