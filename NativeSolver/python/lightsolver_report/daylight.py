@@ -14,14 +14,13 @@ import numpy as np
 
 from lightsolver_report.fmt import finite
 from lightsolver_results import Stat
+from lightsolver_results.sunlight import sunlight_view
 
 #: Luminaire types that are daylight: the daylight schedule lists them, the luminaire
 #: schedule, installed power and LENI leave them out.
 DAYLIGHT_TYPES = ("sky", "sun")
 #: EN 17037:2018 Table A.1 (vertical and inclined openings): (E_T, E_TM) in lx per level.
 EN17037 = {"minimum": (300.0, 100.0), "medium": (500.0, 300.0), "high": (750.0, 500.0)}
-#: EN 17037's sunlight exposure levels: the least hours of the day for each.
-SUN_HOURS = {"minimum": 1.5, "medium": 3.0, "high": 4.0}
 COMPASS16 = ("north", "north-north-east", "north-east", "east-north-east", "east",
              "east-south-east", "south-east", "south-south-east", "south", "south-south-west",
              "south-west", "west-south-west", "west", "west-north-west", "north-west",
@@ -351,22 +350,13 @@ class SunlightExposure:
 def read_exposure(doc: Dict[str, Any], scene: Dict[str, Any],
                   labels: Dict[str, str]) -> Optional[SunlightExposure]:
     """The results' ``sunlight_exposure`` (docs/scene-format.md, "Sunlight exposure"), None where absent."""
-    raw = doc.get("sunlight_exposure")
-    if not isinstance(raw, dict):
+    view = sunlight_view(doc)  # the results reader's one reading of the key
+    if view is None:
         return None
-    points = []
-    for p in raw.get("points", []):
-        if not isinstance(p, dict):
-            continue
-        name = str(p.get("name", ""))
-        periods = [(str(pair[0]), str(pair[1])) for pair in p.get("periods", [])
-                   if isinstance(pair, (list, tuple)) and len(pair) == 2]
-        level = str(p.get("level", "none"))
-        points.append(ExposurePoint(labels.get(name, name), finite(p.get("hours")),
-                                    level if level in SUN_HOURS else "none", periods))
-    out = SunlightExposure(date=str(raw.get("date", "–")),
-                           min_elevation_deg=finite(raw.get("min_elevation_deg")),
-                           step_minutes=finite(raw.get("step_minutes")), points=points)
+    points = [ExposurePoint(labels.get(p.name, p.name), p.hours, p.level, list(p.periods))
+              for p in view.points]
+    out = SunlightExposure(date=view.date or "–", min_elevation_deg=view.min_elevation_deg,
+                           step_minutes=view.step_minutes, points=points)
     spec = scene.get("sunlight_exposure")
     site = spec.get("site") if isinstance(spec, dict) else None
     if isinstance(site, dict):

@@ -18,12 +18,14 @@ class SunlightPoint:
     (local ``hh:mm`` pairs)."""
 
     name: str
-    hours: float
+    hours: Optional[float]  # None where the results give no number
     level: str
     periods: Tuple[Tuple[str, str], ...] = ()
 
     def duration_text(self) -> str:
-        """The hours as ``3 h 12 min`` (rounded to the minute)."""
+        """The hours as ``3 h 12 min`` (rounded to the minute); "–" without a number."""
+        if self.hours is None:
+            return "–"
         minutes = int(round(self.hours * 60.0))
         return f"{minutes // 60} h {minutes % 60:02d} min"
 
@@ -51,7 +53,7 @@ def sunlight_view(doc: Dict[str, Any]) -> Optional[SunlightExposureView]:
         level = str(point.get("level", "none"))
         periods = tuple((str(p[0]), str(p[1])) for p in point.get("periods", [])
                         if isinstance(p, (list, tuple)) and len(p) == 2)
-        points.append(SunlightPoint(str(point.get("name", "")), 0.0 if hours is None else hours,
+        points.append(SunlightPoint(str(point.get("name", "")), hours,
                                     level if level in LEVELS else "none", periods))
     return SunlightExposureView(str(entry.get("date", "")), finite(entry.get("step_minutes")),
                                 finite(entry.get("min_elevation_deg")), points)
