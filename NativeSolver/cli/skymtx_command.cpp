@@ -92,10 +92,7 @@ int run_skymtx(const SkymtxArgs& a) {
       std::printf("written    %s\n", a.out.c_str());
     }
     return 0;
-  } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // InputError too: the message names file and field
     std::cerr << "error: " << e.what() << "\n";
     return 1;
   }

@@ -32,9 +32,7 @@ int run_sunlight(const SunlightArgs& a) {
     for (const std::string& w : scene.warnings) std::cerr << "warning: " << w << "\n";
     std::cout << (a.json ? text : sunlight_exposure_table(r));
     return 0;
-  } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // InputError too: the message names file and field
     std::cerr << "error: " << e.what() << "\n";
   }
   return 1;
