@@ -12,11 +12,12 @@
 // Header floats (uints stored as their bits): 0..6 a b m c d e k, 7 scale (cd/m² per raw unit),
 // 8..10 the sun, 11 ground luminance, 12 portals (0: the disc), 13 bands, 14 sectors,
 // 15 the portals' thresholds in photo_cdf53[], 16..18 the site's centre (local), 19 its radius,
-// 20 the floor of cos Z where b > 0. Then per portal (or the disc) 20 floats: 0..2 corner (local),
+// 20 the floor of cos Z where b > 0, 21..24 the region (a sky patch: altitude0, its span, azimuth0,
+// its span, radians), 25 1 for a region (0: the whole sphere). Then per portal (or the disc) 20 floats: 0..2 corner (local),
 // 3..5 edge1, 6..8 edge2, 9..11 the outward normal (toward the sky; 0 for the disc),
 // 12 majorants in photo_floats[], 13 thresholds in photo_cdf53[], 14 cells, 15 the last cell
 // with light, 16 the glazing's scale τv / T(0), 17 its panes (0: none; shared/glazing.h).
-const uint kSkyHeader = 24u;
+const uint kSkyHeader = 28u;
 const uint kSkyPortal = 20u;
 const int kSkyMaxTries = 1000;  // acceptance is ~1/2 or better: only stops a broken table
 
@@ -41,8 +42,13 @@ float sky_luminance(uint base, vec3 w) {
   return sky_f(base + 7u) * max(0.0, phi * f);
 }
 
-// sin of band edge k (SkyDirections: the middle edge exactly 0, the ends -1 and 1).
-float sky_band_u(uint k, uint bands) {
+// sin of band edge k (SkyDirections: the middle edge exactly 0, the ends -1 and 1; a region's
+// bands cut its altitudes evenly).
+float sky_band_u(uint base, uint k, uint bands) {
+  if (sky_u(base + 25u) != 0u) {
+    const float a = sky_f(base + 21u) + sky_f(base + 22u) * float(k) / float(bands);
+    return abs(a) < 1e-7 ? 0.0 : clamp(sin(a), -1.0, 1.0);
+  }
   if (k == 0u) return -1.0;
   if (k == bands) return 1.0;
   if (2u * k == bands) return 0.0;
@@ -76,9 +82,12 @@ vec3 sky_direction(uint base, uint p) {
   for (int attempt = 0; attempt < kSkyMaxTries && !accepted; ++attempt) {
     const uint cell = sky_pick(sky_u(p + 13u), sky_u(p + 14u), sky_u(p + 15u));
     const uint band = cell / sectors, sector = cell % sectors;
-    const float u0 = sky_band_u(band, bands), u1 = sky_band_u(band + 1u, bands);
+    const float u0 = sky_band_u(base, band, bands), u1 = sky_band_u(base, band + 1u, bands);
     const float u = u0 + rng_uniform() * (u1 - u0);
-    const float az = (float(sector) + rng_uniform()) * (2.0 * kPi / float(sectors));
+    const bool region = sky_u(base + 25u) != 0u;
+    const float span = region ? sky_f(base + 24u) : 2.0 * kPi;
+    const float az = (region ? sky_f(base + 23u) : 0.0) +
+                     (float(sector) + rng_uniform()) * (span / float(sectors));
     const float s = sqrt(max(0.0, 1.0 - u * u));
     const vec3 w = vec3(s * cos(az), s * sin(az), u);
     float weight = sky_luminance(base, w);

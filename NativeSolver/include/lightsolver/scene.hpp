@@ -100,6 +100,15 @@ struct SkyDefinition {
   std::vector<Portal> portals;
   glm::dvec3 site_centre{0.0};
   double site_radius_m = 0.0;
+  /// Only the light of one Reinhart sky patch (docs/daylight.md, "Daylight coefficients"):
+  /// subdivision `mf`, patch `index` (0: the ground) in the frame whose true north is
+  /// `north_deg` from +y (SkyPatches). Empty: the whole sky.
+  struct Patch {
+    int mf = 1;
+    int index = 0;
+    double north_deg = 0.0;
+  };
+  std::optional<Patch> patch;
 };
 
 struct Luminaire {

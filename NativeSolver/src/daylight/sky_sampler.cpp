@@ -32,19 +32,52 @@ glm::dvec3 SkyDirections::direction(double u, double phi) {
 
 SkyDirections::Cell SkyDirections::cell(std::size_t i) const {
   const std::size_t band = i / n_az_, sector = i % n_az_;
-  const double dphi = 2.0 * kPi / n_az_;
-  return {alt_edges_u_[band], alt_edges_u_[band + 1], sector * dphi, (sector + 1) * dphi};
+  if (region_.whole()) {  // the whole sphere's cells as they always were (results unchanged)
+    const double dphi = 2.0 * kPi / n_az_;
+    return {alt_edges_u_[band], alt_edges_u_[band + 1], sector * dphi, (sector + 1) * dphi};
+  }
+  const double dphi = region_.azimuth_span / n_az_;
+  return {alt_edges_u_[band], alt_edges_u_[band + 1], region_.azimuth0 + sector * dphi,
+          region_.azimuth0 + (sector + 1) * dphi};
 }
 
-SkyDirections::SkyDirections(Weight w, const std::vector<glm::dvec3>& peaks, int n_alt, int n_az)
-    : w_(std::move(w)), n_alt_(n_alt), n_az_(n_az) {
-  if (n_alt < 2 || n_alt % 2 != 0 || n_az < 1) throw std::invalid_argument("sky table size");
-  alt_edges_u_.resize(n_alt + 1);
-  for (int i = 0; i <= n_alt; ++i) {
-    alt_edges_u_[i] = i == n_alt / 2 ? 0.0 : std::sin(-kPi / 2 + kPi * i / n_alt);
+bool SkyDirections::inside_azimuth(const glm::dvec3& p, const Cell& c) const {
+  if (region_.whole()) {
+    const double phi = wrap_azimuth(std::atan2(p.y, p.x));
+    return phi >= c.phi0 && phi <= c.phi1;
   }
-  alt_edges_u_.front() = -1.0;
-  alt_edges_u_.back() = 1.0;
+  return wrap_azimuth(std::atan2(p.y, p.x) - c.phi0) <= c.phi1 - c.phi0;  // from the cell's start
+}
+
+void SkyDirections::set_band_edges() {
+  alt_edges_u_.resize(n_alt_ + 1);
+  if (region_.whole()) {
+    for (int i = 0; i <= n_alt_; ++i) {
+      alt_edges_u_[i] = i == n_alt_ / 2 ? 0.0 : std::sin(-kPi / 2 + kPi * i / n_alt_);
+    }
+    alt_edges_u_.front() = -1.0;
+    alt_edges_u_.back() = 1.0;
+    return;
+  }
+  for (int i = 0; i <= n_alt_; ++i) {
+    const double a = region_.altitude0 + region_.altitude_span * i / n_alt_;
+    // The horizon and the poles exactly: a patch's band must not leak across them.
+    alt_edges_u_[i] = std::abs(a) < 1e-15 ? 0.0 : std::clamp(std::sin(a), -1.0, 1.0);
+  }
+}
+
+SkyDirections::SkyDirections(Weight w, const std::vector<glm::dvec3>& peaks, int n_alt, int n_az,
+                             Region region)
+    : w_(std::move(w)), n_alt_(n_alt), n_az_(n_az), region_(region) {
+  const bool sizes_ok = region.whole() ? n_alt >= 2 && n_alt % 2 == 0 : n_alt >= 1;
+  if (!sizes_ok || n_az < 1) throw std::invalid_argument("sky table size");
+  if (!(region.altitude_span > 0.0) || !(region.azimuth_span > 0.0) ||
+      region.altitude0 < -0.5 * kPi - 1e-12 ||
+      region.altitude0 + region.altitude_span > 0.5 * kPi + 1e-12 ||
+      region.azimuth_span > 2.0 * kPi + 1e-12) {
+    throw std::invalid_argument("sky region out of the sphere");
+  }
+  set_band_edges();
   const std::size_t cells = static_cast<std::size_t>(n_alt) * n_az;
   bound_.resize(cells);
   cdf_.resize(cells);
@@ -63,8 +96,7 @@ SkyDirections::SkyDirections(Weight w, const std::vector<glm::dvec3>& peaks, int
       }
     }
     for (const glm::dvec3& p : peaks) {
-      const double phi = wrap_azimuth(std::atan2(p.y, p.x));
-      if (p.z >= c.u0 && p.z <= c.u1 && phi >= c.phi0 && phi <= c.phi1) {
+      if (p.z >= c.u0 && p.z <= c.u1 && inside_azimuth(p, c)) {
         hi = std::max(hi, w_(p));
       }
     }
@@ -111,8 +143,22 @@ double SkyDirections::worst_bound_ratio(int n) const {
   return worst;
 }
 
+namespace {
+// A region's table: cells of about 2° (the whole sky's 90 x 180), at least 2 x 2.
+std::unique_ptr<SkyDirections> directions_in(SkyDirections::Weight w,
+                                             const std::vector<glm::dvec3>& peaks,
+                                             const SkyDirections::Region& r) {
+  if (r.whole()) return std::make_unique<SkyDirections>(std::move(w), peaks);
+  const double cell = kPi / 90.0;
+  const int bands = std::max(2, static_cast<int>(std::ceil(r.altitude_span / cell - 1e-9)));
+  const int sectors = std::max(2, static_cast<int>(std::ceil(r.azimuth_span / cell - 1e-9)));
+  return std::make_unique<SkyDirections>(std::move(w), peaks, bands, sectors, r);
+}
+}  // namespace
+
 SkyEmitter::SkyEmitter(std::shared_ptr<const Sky> sky, std::vector<Portal> portals,
-                       glm::dvec3 site_centre, double site_radius_m)
+                       glm::dvec3 site_centre, double site_radius_m,
+                       const SkyDirections::Region& region)
     : sky_(std::move(sky)),
       portals_(std::move(portals)),
       centre_(site_centre),
@@ -132,8 +178,7 @@ SkyEmitter::SkyEmitter(std::shared_ptr<const Sky> sky, std::vector<Portal> porta
   };
   if (portals_.empty()) {
     if (!(radius_ > 0.0)) throw std::invalid_argument("site radius must be > 0 without portals");
-    add(std::make_unique<SkyDirections>(luminance, std::vector<glm::dvec3>{sun, {0, 0, 1}}),
-        kPi * radius_ * radius_);
+    add(directions_in(luminance, {sun, {0, 0, 1}}, region), kPi * radius_ * radius_);
   }
   for (const Portal& p : portals_) {
     const glm::dvec3 n = glm::cross(p.edge1, p.edge2);
@@ -149,8 +194,7 @@ SkyEmitter::SkyEmitter(std::shared_ptr<const Sky> sky, std::vector<Portal> porta
       return c > 0.0 ? luminance(d) * c * shared::glazing_transmittance<double>(c, scale, panes)
                      : 0.0;
     };
-    add(std::make_unique<SkyDirections>(w, std::vector<glm::dvec3>{sun, out, {0, 0, 1}}),
-        area * p.glazing.factor());
+    add(directions_in(w, {sun, out, {0, 0, 1}}, region), area * p.glazing.factor());
   }
   flux_lm_ = total;
   flux_error_ = total > 0.0 ? err / total : 0.0;

@@ -17,6 +17,19 @@
 
 namespace lightsolver::daylight {
 
+/// Where directions may fall: altitudes [altitude0, altitude0 + altitude_span] and azimuths
+/// [azimuth0, azimuth0 + azimuth_span] (radians; azimuth atan2(y, x), counter-clockwise from
+/// +x). The default is the whole sphere; a sky patch (docs/daylight.md, "Daylight
+/// coefficients") is one such box, and its bands and sectors then cut the box evenly.
+struct SkyRegion {
+  double altitude0 = -0.5 * 3.141592653589793, altitude_span = 3.141592653589793;
+  double azimuth0 = 0.0, azimuth_span = 2.0 * 3.141592653589793;
+  bool whole() const {
+    return altitude0 == -0.5 * 3.141592653589793 && altitude_span == 3.141592653589793 &&
+           azimuth0 == 0.0 && azimuth_span == 2.0 * 3.141592653589793;
+  }
+};
+
 /// Directions ω (unit, toward the sky) drawn ∝ w(ω) over the sphere.
 ///
 /// The sphere is cut into n_alt altitude bands (the horizon is a band edge, where the sky meets
@@ -29,7 +42,9 @@ namespace lightsolver::daylight {
 class SkyDirections {
  public:
   using Weight = std::function<double(const glm::dvec3&)>;
-  SkyDirections(Weight w, const std::vector<glm::dvec3>& peaks, int n_alt = 90, int n_az = 180);
+  using Region = SkyRegion;
+  SkyDirections(Weight w, const std::vector<glm::dvec3>& peaks, int n_alt = 90, int n_az = 180,
+                Region region = {});
 
   /// ∫ w dω over the sphere: Gauss-Legendre 4 x 4 in each cell.
   double integral() const { return integral_; }
@@ -43,7 +58,9 @@ class SkyDirections {
   double worst_bound_ratio(int n) const;
   /// The table, for the GPU: bands, sectors, each cell's majorant and the cumulative
   /// majorant x solid angle (cell i = band i / n_az, sector i % n_az; band edges at
-  /// sin(-pi/2 + pi k / n_alt), the middle one exactly 0).
+  /// sin(-pi/2 + pi k / n_alt), the middle one exactly 0, over the whole sphere; at
+  /// sin(altitude0 + altitude_span k / n_alt) in a region).
+  const Region& region() const { return region_; }
   int bands() const { return n_alt_; }
   int sectors() const { return n_az_; }
   const std::vector<double>& bounds() const { return bound_; }
@@ -58,10 +75,13 @@ class SkyDirections {
     double u0, u1, phi0, phi1;
   };
   Cell cell(std::size_t i) const;
+  bool inside_azimuth(const glm::dvec3& p, const Cell& c) const;
+  void set_band_edges();
   static glm::dvec3 direction(double u, double phi);
 
   Weight w_;
   int n_alt_, n_az_;
+  Region region_;
   std::vector<double> alt_edges_u_;  ///< sin(altitude) at band edges, n_alt + 1
   std::vector<double> bound_;        ///< majorant per cell
   std::vector<double> cdf_;          ///< cumulative majorant x solid angle
@@ -78,8 +98,10 @@ class SkyEmitter {
     glm::dvec3 corner, edge1, edge2;
     Glazing glazing{};  ///< τ(θ) weights the directions; frame x maintenance the flux
   };
+  /// `region`: only the sky within it shines (a sky patch: docs/daylight.md, "Daylight
+  /// coefficients"); its table has cells of about 2° as the whole sky's.
   SkyEmitter(std::shared_ptr<const Sky> sky, std::vector<Portal> portals, glm::dvec3 site_centre,
-             double site_radius_m);
+             double site_radius_m, const SkyDirections::Region& region = {});
 
   /// Flux entering through the portals (or leaving the disc), lm: A f ∫ L cos τ(θ) dω per
   /// portal (f = frame x maintenance, τ the glazing's transmittance; 1 without glazing), or

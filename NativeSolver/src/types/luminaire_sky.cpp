@@ -15,6 +15,7 @@
 
 #include "daylight/sky_sampler.hpp"
 #include "io/json_reader.hpp"
+#include "lightsolver/sky_patches.hpp"
 #include "model/sampling.hpp"
 #include "types/luminaire_rows.hpp"
 
@@ -34,13 +35,15 @@ constexpr const char* kSkyKeys[] = {"name",
                                     "ground_reflectance",
                                     "sun_direct_normal_lx",
                                     "portals",
-                                    "site"};
+                                    "site",
+                                    "patch"};
 constexpr const char* kPerezKeys[] = {"diffuse_horizontal", "direct_normal", "units", "day_of_year",
                                       "dew_point_c"};
 constexpr const char* kPortalKeys[] = {"corner", "edge1", "edge2", "glazing"};
 constexpr const char* kGlazingKeys[] = {"transmittance", "panes", "frame_factor",
                                         "maintenance_factor"};
 constexpr const char* kSiteKeys[] = {"centre", "radius_m"};
+constexpr const char* kPatchKeys[] = {"mf", "index", "north_deg"};
 
 int whole_number(const JsonNode& n) {
   const double v = n.number();
@@ -76,6 +79,12 @@ void read_sky(const JsonNode& n, Luminaire& l, const std::string&) {
   s.ground_reflectance = n.number_or("ground_reflectance", s.ground_reflectance);
   s.sun_direct_normal_lx = n.number_or("sun_direct_normal_lx", 0.0);
   if (n.has("portals")) s.portals = read_portals(n.at("portals"));
+  if (n.has("patch")) {
+    const JsonNode p = n.at("patch");
+    p.require_object(kPatchKeys);
+    s.patch = SkyDefinition::Patch{whole_number(p.at("mf")), whole_number(p.at("index")),
+                                   p.number_or("north_deg", 0.0)};
+  }
   if (n.has("site")) {
     const JsonNode site = n.at("site");
     site.require_object(kSiteKeys);
@@ -165,6 +174,33 @@ daylight::SkySpec sky_spec(const LuminaireChecks& c, const SkyDefinition& s) {
   throw e;  // not reached (fail throws); GCC does not carry [[noreturn]] through a virtual call
 }
 
+// A patch's box of directions in the sampler's frame (azimuth atan2(y, x)): the patch's
+// azimuth A (from north toward east) is 90° + north − A there.
+daylight::SkyDirections::Region patch_region(const LuminaireChecks& c,
+                                             const SkyDefinition::Patch& p) {
+  if (p.mf < 1 || p.mf > 64) {
+    c.fail("patch.mf", "the Reinhart subdivision must be 1 … 64, got " + std::to_string(p.mf));
+  }
+  if (!std::isfinite(p.north_deg)) c.fail("patch.north_deg", "must be a finite number");
+  const SkyPatches patches(p.mf, p.north_deg);
+  if (p.index < 0 || p.index >= patches.count()) {
+    c.fail("patch.index", "must be 0 (the ground) … " + std::to_string(patches.count() - 1) +
+                              " for MF " + std::to_string(p.mf) + ", got " +
+                              std::to_string(p.index));
+  }
+  const SkyPatch& sp = patches.patch(p.index);
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  daylight::SkyDirections::Region r;
+  r.altitude0 = sp.altitude_min_deg * kDeg;
+  r.altitude_span = (sp.altitude_max_deg - sp.altitude_min_deg) * kDeg;
+  if (sp.azimuth_width_deg < 360.0) {
+    const double a0 = 90.0 + p.north_deg - sp.azimuth_deg - 0.5 * sp.azimuth_width_deg;
+    r.azimuth0 = std::fmod(std::fmod(a0, 360.0) + 360.0, 360.0) * kDeg;
+    r.azimuth_span = sp.azimuth_width_deg * kDeg;
+  }
+  return r;
+}
+
 void check_sky(const LuminaireChecks& c, Luminaire& l) {
   SkyDefinition& s = l.sky;
   const daylight::SkySpec spec = sky_spec(c, s);
@@ -189,10 +225,12 @@ void check_sky(const LuminaireChecks& c, Luminaire& l) {
              "<= 10^6 m) covering the scene");
     }
   }
+  const daylight::SkyDirections::Region region =
+      s.patch ? patch_region(c, *s.patch) : daylight::SkyDirections::Region{};
   try {
     auto sky = std::make_shared<const daylight::Sky>(spec);
-    l.sky_emitter =
-        std::make_shared<const daylight::SkyEmitter>(sky, portals, s.site_centre, s.site_radius_m);
+    l.sky_emitter = std::make_shared<const daylight::SkyEmitter>(sky, portals, s.site_centre,
+                                                                 s.site_radius_m, region);
   } catch (const std::invalid_argument& e) {
     fail_from(c, s, e);
   }
@@ -323,7 +361,10 @@ std::uint32_t pack_sky_record(const PreparedLuminaire& l, std::vector<float>& fl
   v3(e.site_centre() + shift);
   f(e.site_radius_m());
   f(daylight::kMinCosZ);
-  while (floats.size() < base + 24) f(0.0);
+  const daylight::SkyDirections::Region& r = e.directions(0).region();
+  for (double x : {r.altitude0, r.altitude_span, r.azimuth0, r.azimuth_span}) f(x);
+  u(r.whole() ? 0 : 1);
+  while (floats.size() < base + 28) f(0.0);
   const std::size_t tables = std::max<std::size_t>(portals, 1);
   const auto first_portal = floats.size();
   floats.resize(first_portal + kSkyPortalFloats * tables, 0.0f);
