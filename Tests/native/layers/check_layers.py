@@ -26,7 +26,8 @@ from pathlib import Path
 # (the results file and rescale). Glare sits above estimate and results and is never included by
 # them; the backends implement model's Backend over the prepared scene and never see each other;
 # tables assemble the type tables from the rows of types and glare; the optimizer drives runs
-# from above. photometry, daylight (sun position, sky models) and mpi stand alone.
+# from above, as the annual daylight coefficients do. photometry, daylight (sun position, sky
+# models) and mpi stand alone.
 _CORE = ["io", "model", "types", "scene", "prepare", "estimate", "run", "results"]
 LAYERS: dict[str, set[str]] = {
     "photometry": set(),
@@ -45,6 +46,7 @@ LAYERS: dict[str, set[str]] = {
     "vulkan": {"io", "model", "types", "prepare"},
     "tables": {"io", "model", "types", "estimate", "results", "glare"},
     "optimizer": set(_CORE) | {"glare"},
+    "annual": set(_CORE) | {"daylight"},
 }
 
 # Why a rule exists, for the message.
