@@ -8,7 +8,7 @@ export DEBIAN_FRONTEND=noninteractive
 PKGS=(
   build-essential cmake ninja-build pkg-config git
   libembree-dev libtbb-dev libglm-dev nlohmann-json3-dev libcli11-dev libassimp-dev librandom123-dev
-  libboost-math-dev libssl-dev libnova-dev libeigen3-dev
+  libboost-math-dev libssl-dev libnova-dev libeigen3-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-jsonschema
   libvulkan-dev mesa-vulkan-drivers glslc glslang-tools spirv-tools vulkan-tools

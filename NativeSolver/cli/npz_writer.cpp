@@ -1,27 +1,35 @@
-// A stored (uncompressed) ZIP of NPY 1.0 arrays: PKWARE's APPNOTE local headers, central
-// directory and end record; the CRC-32 of ZIP (polynomial 0xEDB88320).
+// A ZIP of NPY 1.0 arrays, stored or deflated (zlib): PKWARE's APPNOTE local headers, central
+// directory and end record.
 #include "npz_writer.hpp"
 
-#include <array>
+#include <zlib.h>
+
 #include <stdexcept>
 
 namespace lightsolver::cli {
 
 namespace {
 
-std::uint32_t crc32(const std::string& s) {
-  static const std::array<std::uint32_t, 256> table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t i = 0; i < 256; ++i) {
-      std::uint32_t c = i;
-      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[i] = c;
-    }
-    return t;
-  }();
-  std::uint32_t c = 0xFFFFFFFFu;
-  for (unsigned char b : s) c = table[(c ^ b) & 0xFFu] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
+std::uint32_t crc_of(const std::string& s) {
+  return static_cast<std::uint32_t>(
+      crc32(0L, reinterpret_cast<const Bytef*>(s.data()), static_cast<uInt>(s.size())));
+}
+
+// Raw deflate (no zlib header: ZIP's method 8), by zlib.
+std::string deflated(const std::string& in) {
+  z_stream z{};
+  if (deflateInit2(&z, 6, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+    throw std::runtime_error("zlib: deflateInit2 failed");
+  std::string out(deflateBound(&z, static_cast<uLong>(in.size())), '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in.data()));
+  z.avail_in = static_cast<uInt>(in.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = static_cast<uInt>(out.size());
+  const int rc = deflate(&z, Z_FINISH);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  if (rc != Z_STREAM_END) throw std::runtime_error("zlib: deflate did not finish");
+  return out;
 }
 
 void put16(std::string& s, std::uint32_t v) {
@@ -56,23 +64,28 @@ std::string npy(const std::string& dtype, const std::vector<std::size_t>& shape,
 void NpzWriter::add(const std::string& name, const std::string& dtype,
                     const std::vector<std::size_t>& shape, const void* data, std::size_t bytes) {
   const std::string file = npy(dtype, shape, data, bytes);
-  if (body_.size() + file.size() > 0xFFFFFFF0u)
+  if (file.size() > 0xFFFFFFF0u)
+    throw std::runtime_error("an array of the .npz would exceed 4 GB (ZIP64 is not written)");
+  const std::string packed = deflate_ ? deflated(file) : std::string();
+  const std::string& stored = deflate_ ? packed : file;
+  if (body_.size() + stored.size() > 0xFFFFFFF0u)
     throw std::runtime_error("the .npz would exceed 4 GB (ZIP64 is not written)");
-  Entry e{name + ".npy", crc32(file), static_cast<std::uint32_t>(file.size()),
-          static_cast<std::uint32_t>(body_.size())};
+  Entry e{name + ".npy", crc_of(file), static_cast<std::uint32_t>(file.size()),
+          static_cast<std::uint32_t>(stored.size()), static_cast<std::uint32_t>(body_.size()),
+          deflate_ ? 8u : 0u};
   put32(body_, 0x04034b50u);  // local file header
   put16(body_, 20);           // version needed
   put16(body_, 0);            // flags
-  put16(body_, 0);            // stored
+  put16(body_, e.method);     // 0 stored, 8 deflated
   put16(body_, 0);            // time
   put16(body_, 0x21);         // date: 1980-01-01
   put32(body_, e.crc);
-  put32(body_, e.size);
+  put32(body_, e.packed);
   put32(body_, e.size);
   put16(body_, static_cast<std::uint32_t>(e.name.size()));
   put16(body_, 0);
   body_ += e.name;
-  body_ += file;
+  body_ += stored;
   entries_.push_back(e);
 }
 
@@ -82,12 +95,12 @@ std::string NpzWriter::finish() const {
     put32(dir, 0x02014b50u);  // central directory header
     put16(dir, 20);           // made by
     put16(dir, 20);           // needed
-    put16(dir, 0);
-    put16(dir, 0);
+    put16(dir, 0);         // flags
+    put16(dir, e.method);  // 0 stored, 8 deflated
     put16(dir, 0);
     put16(dir, 0x21);
     put32(dir, e.crc);
-    put32(dir, e.size);
+    put32(dir, e.packed);
     put32(dir, e.size);
     put16(dir, static_cast<std::uint32_t>(e.name.size()));
     put16(dir, 0);  // extra

@@ -1,7 +1,7 @@
 #pragma once
-// A numpy .npz file (docs/daylight.md, "skymtx"): a ZIP archive of .npy arrays, stored without
-// compression (numpy.load reads it; NPY format 1.0, little-endian). Built in memory, then written
-// atomically by the caller.
+// A numpy .npz file (docs/daylight.md, "skymtx"): a ZIP archive of .npy arrays, stored, or
+// deflated as numpy.savez_compressed writes them (numpy.load reads both; NPY format 1.0,
+// little-endian). Built in memory, then written atomically by the caller.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,6 +11,8 @@ namespace lightsolver::cli {
 /// An .npz archive being assembled.
 class NpzWriter {
  public:
+  /// `deflate`: each array compressed (zlib, ZIP method 8); else stored.
+  explicit NpzWriter(bool deflate = false) : deflate_(deflate) {}
   /// Adds `name`.npy: `dtype` a numpy descr ("<f4", "<i4", "|u1"), `shape` its dimensions,
   /// `data` the bytes in C order.
   void add(const std::string& name, const std::string& dtype, const std::vector<std::size_t>& shape,
@@ -21,8 +23,9 @@ class NpzWriter {
  private:
   struct Entry {
     std::string name;
-    std::uint32_t crc = 0, size = 0, offset = 0;
+    std::uint32_t crc = 0, size = 0, packed = 0, offset = 0, method = 0;
   };
+  bool deflate_ = false;
   std::string body_;
   std::vector<Entry> entries_;
 };
