@@ -82,6 +82,26 @@ def main() -> None:
     out = Path(__file__).with_name("side_lit_room.scene.json")
     out.write_text(json.dumps(scene, indent=1) + "\n")
     print(f"wrote {out}")
+    write_annual(scene)
+
+
+def write_annual(scene: dict) -> None:
+    """The same room for a year of daylight: its window faces south (north +y), a 20 x 15 cell
+    work plane (300 cells, the annual benchmark's), the sky's model unused (the weather file's)."""
+    annual = json.loads(json.dumps(scene))
+    annual["metadata"]["description"] = (
+        "6 x 4 x 3 m side-lit room, one 2.4 x 1.5 m double-glazed south window (north +y), a "
+        "300-cell work plane: a year of daylight with lightsolver annual --weather FILE.epw")
+    annual["luminaires"][0]["name"] = "sky"
+    grid = annual["targets"][0]
+    grid.pop("quantity")
+    grid.pop("requirements")
+    grid["name"] = "work plane"
+    grid["cells"] = [20, 15]
+    annual["targets"] = [grid]
+    out = Path(__file__).with_name("annual_side_lit_room.scene.json")
+    out.write_text(json.dumps(annual, indent=1) + "\n")
+    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,6 +87,25 @@ Scene coefficient_scene(const Scene& scene, const SkyMatrix& year,
 /// every lit group to get some.
 DaylightCoefficients trace_daylight_coefficients(const Scene& scene, const SkyMatrix& year,
                                                  const DaylightCoefficientOptions& options);
+
+/// The same, kept open for more photons (`annual --decide`): each trace() continues the previous
+/// one (photon i is photon i: the same as one trace of that many photons with the seed).
+class CoefficientTracer {
+ public:
+  /// InputError as trace_daylight_coefficients.
+  CoefficientTracer(const Scene& scene, const SkyMatrix& year,
+                    const DaylightCoefficientOptions& options);
+  ~CoefficientTracer();
+  CoefficientTracer(const CoefficientTracer&) = delete;
+  CoefficientTracer& operator=(const CoefficientTracer&) = delete;
+  /// Traces up to `photons` in all (at least the previous count) and returns the coefficients
+  /// with their ends at `z`.
+  DaylightCoefficients trace(std::uint64_t photons, double z);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 /// A grid's illuminance at every hour of the year: hours × cells, row-major, float32.
 /// At hour h, cell c the interval at two-sided critical value z is [mean − z·spread_low,

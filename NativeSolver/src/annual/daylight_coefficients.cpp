@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -113,34 +114,55 @@ std::size_t DaylightCoefficients::bytes() const {
   return b;
 }
 
-DaylightCoefficients trace_daylight_coefficients(const Scene& scene, const SkyMatrix& year,
-                                                 const DaylightCoefficientOptions& o) {
-  if (!(o.z > 0.0) || !std::isfinite(o.z)) {
-    throw InputError(scene.source_file, "z", "the intervals' critical value must be > 0");
-  }
-  Scene s = coefficient_scene(scene, year, o);
+struct CoefficientTracer::State {
+  Scene scene;  // the traced scene: patches and suns
+  DaylightCoefficients base;
+  std::optional<Simulation> sim;
+  std::uint64_t traced = 0;
+  std::uint64_t seed = 1;
+  DaylightCoefficientOptions options;
+};
+
+CoefficientTracer::CoefficientTracer(const Scene& scene, const SkyMatrix& year,
+                                     const DaylightCoefficientOptions& o)
+    : state_(std::make_unique<State>()) {
+  State& st = *state_;
+  st.options = o;
+  st.scene = coefficient_scene(scene, year, o);
+  st.seed = o.seed.value_or(scene.settings.seed);
   const SkyPatches patches(o.mf, o.north_deg);
-  DaylightCoefficients dc;
+  DaylightCoefficients& dc = st.base;
   dc.mf = o.mf;
   dc.north_deg = o.north_deg;
   dc.patches = year.patch_count;
-  dc.z = o.z;
   dc.patch_luminance = rms_luminance(year, patches);
   for (int p = 0; p < year.patch_count; ++p) {
-    s.luminaires[p].sky.zenith_luminance_cd_m2 = dc.patch_luminance[p];
+    st.scene.luminaires[p].sky.zenith_luminance_cd_m2 = dc.patch_luminance[p];
   }
-  for (std::size_t k = year.patch_count; k < s.luminaires.size(); ++k) {
-    dc.sun_hours.push_back(std::stoi(s.luminaires[k].name.substr(9)));  // "sun hour N"
+  for (std::size_t k = year.patch_count; k < st.scene.luminaires.size(); ++k) {
+    dc.sun_hours.push_back(std::stoi(st.scene.luminaires[k].name.substr(9)));  // "sun hour N"
   }
-  Simulation sim(s, Simulation::Options{o.backend, o.threads, {}});
-  sim.fix_photon_shares(share_weights(sim, year, dc.patch_luminance, patches, dc.sun_hours));
+  st.sim.emplace(st.scene, Simulation::Options{o.backend, o.threads, {}});
+  st.sim->fix_photon_shares(share_weights(*st.sim, year, dc.patch_luminance, patches, dc.sun_hours));
+}
+
+CoefficientTracer::~CoefficientTracer() = default;
+
+DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z) {
+  State& st = *state_;
+  if (!(z > 0.0) || !std::isfinite(z)) {
+    throw InputError(st.scene.source_file, "z", "the intervals' critical value must be > 0");
+  }
   SolveOptions so;
-  so.photons = o.photons;
-  so.seed = o.seed;
+  so.photons = std::max(photons, st.traced);
+  so.seed = st.seed;
   so.contributions = true;
-  so.threads = o.threads;
-  so.backend = o.backend;
-  dc.trace = sim.run(so);
+  so.threads = st.options.threads;
+  so.backend = st.options.backend;
+  DaylightCoefficients dc = st.base;
+  dc.z = z;
+  dc.trace = st.traced == 0 ? st.sim->run(so) : st.sim->refine(so);
+  st.traced = dc.trace.photons;
   std::unordered_map<std::string, std::size_t> group_row;
   std::size_t unlit = 0;
   for (std::size_t g = 0; g < dc.trace.groups.size(); ++g) {
@@ -148,18 +170,24 @@ DaylightCoefficients trace_daylight_coefficients(const Scene& scene, const SkyMa
     if (dc.trace.groups[g].flux_lm > 0.0 && dc.trace.groups[g].photons == 0) ++unlit;
   }
   if (unlit > 0) {
-    throw InputError(scene.source_file, "photons",
+    throw InputError(st.scene.source_file, "photons",
                      std::to_string(unlit) + " of the " + std::to_string(dc.trace.groups.size()) +
                          " sky patch and sun groups got no photon: trace more photons (at "
                          "least " + std::to_string(20 * dc.trace.groups.size()) + ")");
   }
   std::size_t t = 0;
-  for (const Target& target : s.targets) {
+  for (const Target& target : st.scene.targets) {
     CoefficientGrid g = grid_of(target);
-    fill_grid(g, dc.trace.targets.at(t++), dc.trace, o.z, group_row);
+    fill_grid(g, dc.trace.targets.at(t++), dc.trace, z, group_row);
     dc.grids.push_back(std::move(g));
   }
   return dc;
+}
+
+DaylightCoefficients trace_daylight_coefficients(const Scene& scene, const SkyMatrix& year,
+                                                 const DaylightCoefficientOptions& o) {
+  CoefficientTracer tracer(scene, year, o);
+  return tracer.trace(o.photons, o.z);
 }
 
 }  // namespace lightsolver

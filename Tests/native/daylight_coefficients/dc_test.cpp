@@ -194,6 +194,28 @@ TEST(DaylightCoefficients, OpenProbeReadsTheSkyAndSunEveryHour) {
   EXPECT_NEAR(ours / file, 1.0, 0.03);  // the sky matrix' +1.7 % (irradiance + Perez efficacy)
 }
 
+// `annual --decide` continues a trace: 2·10⁵ then 4·10⁵ photons give the coefficients of one
+// trace of 4·10⁵, bit for bit.
+TEST(DaylightCoefficients, ContinuedTraceEqualsOneTrace) {
+  WeatherFile few = chicago();
+  few.hours.assign(chicago().hours.begin() + 4000, chicago().hours.begin() + 4024);
+  const SkyMatrix y = sky_matrix(few, SkyMatrixOptions{});
+  const Scene room = side_lit_room();
+  DaylightCoefficientOptions o;
+  o.backend = "embree";
+  o.seed = 9;
+  CoefficientTracer tracer(room, y, o);
+  tracer.trace(200'000, 3.0);
+  const DaylightCoefficients continued = tracer.trace(400'000, 3.0);
+  o.photons = 400'000;
+  o.z = 3.0;
+  const DaylightCoefficients once = trace_daylight_coefficients(room, y, o);
+  EXPECT_EQ(continued.trace.photons, 400'000u);
+  EXPECT_EQ(continued.grids[0].mean, once.grids[0].mean);
+  EXPECT_EQ(continued.grids[0].above, once.grids[0].above);
+  EXPECT_GT(continued.sun_hours.size(), 0u);
+}
+
 TEST(DaylightCoefficients, SceneWithoutSkyOrGridIsNamed) {
   SkyMatrixOptions mo;
   WeatherFile few = chicago();
