@@ -52,8 +52,10 @@ void tally(Count& c, const HourValue& v, const Band& b) {
   c.high += b.above_lo(v.high) && b.below_hi(v.low);  // [low, high] meets the band
 }
 
-MetricInterval scaled(const Count& c, double per) {
-  return {c.estimate * per, c.low * per, c.high * per};
+// A count over `of` hours (1: the count itself). Division, not a product with 1/of: a count of
+// exactly half the hours must give exactly 0.5 against sDA's 50 %.
+MetricInterval fraction(const Count& c, double of) {
+  return {c.estimate / of, c.low / of, c.high / of};
 }
 
 // The bands of one cell's counts, in a fixed order: DA, the five UDI bands, the thresholds.
@@ -168,7 +170,7 @@ void en17037(const HourlyGrid& g, const std::vector<std::uint8_t>& daylight_hour
     }
   }
   const auto criterion = [&](const Count& c, double lx, double area) {
-    En17037Criterion r{lx, area, scaled(c, 1.0 / daylight)};
+    En17037Criterion r{lx, area, fraction(c, daylight)};
     r.verdict = judge(r.hours_fraction.low, r.hours_fraction.high, o.en17037_hours);
     return r;
   };
@@ -247,15 +249,15 @@ AnnualMetrics annual_metrics(const HourlyGrid& grid, const std::vector<std::uint
     MetricInterval* fractions[] = {&cm.da,        &cm.udi_below,      &cm.udi_useful,
                                    &cm.udi_above, &cm.udi_useful_alt, &cm.udi_above_alt};
     for (std::size_t b = 0; b < bands.size(); ++b) {
-      const double per = b < kThresholds ? 1.0 / h_occ : 1.0;  // fractions, or hours
+      const double of = b < kThresholds ? h_occ : 1.0;  // fractions, or hours
       if (b < kThresholds)
-        *fractions[b] = scaled(k.at_cell[b], per);
+        *fractions[b] = fraction(k.at_cell[b], of);
       else
-        cm.hours_above.push_back(scaled(k.at_cell[b], per));
-      means[b].add(scaled(k.at_grid[b], per), a);
+        cm.hours_above.push_back(fraction(k.at_cell[b], of));
+      means[b].add(fraction(k.at_grid[b], of), a);
     }
     // sDA's cells decided at the grid's level: its ends hold when every cell-hour's does.
-    const MetricInterval da = scaled(k.at_grid[kDa], 1.0 / h_occ);
+    const MetricInterval da = fraction(k.at_grid[kDa], h_occ);
     cm.sda = judge(da.low, da.high, options.sda_fraction);
     sda += a * (cm.da.estimate >= options.sda_fraction);
     sda_low += a * (cm.sda == VerdictKind::Pass);

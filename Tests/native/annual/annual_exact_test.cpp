@@ -203,6 +203,17 @@ TEST(AnnualExact, AreasWeightTheGridValues) {
   expect_exact(m.da, 0.25);
 }
 
+// DA at exactly half the hours meets sDA's 50 % (49 of 98: 49 × (1/98) rounds below 0.5).
+TEST(AnnualExact, HalfTheHoursIsExactlyFiftyPercent) {
+  ASSERT_LT(49.0 * (1.0 / 98.0), 0.5);
+  HourlyGrid g = flat_grid(98, 1, 0.0f);
+  for (int h = 0; h < 49; ++h) set(g, 2 * h, 0, 400.0f);
+  const AnnualMetrics m = annual_metrics(g, all_hours(98), all_hours(98), {});
+  EXPECT_EQ(m.cell[0].da.estimate, 0.5);
+  EXPECT_EQ(m.cell[0].sda, VerdictKind::Pass);
+  expect_exact(m.sda, 1.0);
+}
+
 // The caller's level for Wilson ends covers every critical value the metrics use.
 TEST(AnnualExact, StrictestZCoversEveryLevel) {
   const AnnualOptions o;
