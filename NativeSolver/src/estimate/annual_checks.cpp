@@ -13,9 +13,9 @@ namespace {
   throw InputError("", where, what);
 }
 
-void check_range(const std::string& name, double v, double lo, double hi) {
-  if (!(v >= lo && v <= hi && std::isfinite(v)))
-    fail("options." + name, "must lie in " + std::to_string(lo) + " … " + std::to_string(hi));
+// A fraction of hours or area: 0 … 1.
+void check_fraction(const std::string& name, double v) {
+  if (!(v >= 0.0 && v <= 1.0)) fail("options." + name, "must be a fraction from 0 to 1");
 }
 
 void check_lux(const std::string& name, double v) {
@@ -31,7 +31,7 @@ void check_options(const AnnualOptions& o) {
                                 {"ase_maximum", o.ase_maximum},
                                 {"blinds_area_fraction", o.blinds_area_fraction},
                                 {"en17037_hours", o.en17037_hours}})
-    check_range(name, v, 0.0, 1.0);
+    check_fraction(name, v);
   for (const auto& [name, v] : {std::pair{"en17037_target_area", o.en17037_target_area},
                                 {"en17037_minimum_area", o.en17037_minimum_area}})
     if (!(v > 0.0 && v <= 1.0)) fail(std::string("options.") + name, "must lie in (0, 1]");
