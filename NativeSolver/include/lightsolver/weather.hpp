@@ -3,6 +3,7 @@
 /// Weather files (docs/daylight.md, "Weather"): the EnergyPlus weather format (EPW), its location
 /// and hourly daylight columns, and the median external diffuse illuminance EN 17037 needs.
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -51,11 +52,17 @@ WeatherFile read_epw(const std::filesystem::path& path);
 /// The same from text in memory; `file` names it in errors.
 WeatherFile parse_epw(std::string_view text, const std::string& file);
 
+/// EN 17037's daylight hours of a year: the half of its hours (⌊n/2⌋, 4380 of 8760) with the
+/// highest diffuse horizontal illuminance (lx, one value per hour), as a mask (1: a daylight
+/// hour); ties at the boundary go to the earlier hour. InputError naming
+/// `diffuse_horizontal_lx[i]` for a negative or non-finite value, and for fewer than 2 hours.
+std::vector<std::uint8_t> en17037_daylight_hours(const std::vector<double>& diffuse_horizontal_lx);
+
 /// EN 17037's median external diffuse horizontal illuminance E_v,d,med (lx) from a year of
 /// hours: the median over its daylight hours, which EN 17037 takes as the half of the year's
-/// hours (4380 of 8760) with the highest diffuse horizontal illuminance (so it is the year's
-/// 75th percentile). InputError naming the file and line of the first hour whose diffuse
-/// illuminance is missing.
+/// hours (4380 of 8760) with the highest diffuse horizontal illuminance (en17037_daylight_hours;
+/// so it is the year's 75th percentile). InputError naming the file and line of the first hour
+/// whose diffuse illuminance is missing.
 double median_external_diffuse_illuminance(const WeatherFile& weather);
 
 }  // namespace lightsolver

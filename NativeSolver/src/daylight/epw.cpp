@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -210,6 +211,27 @@ WeatherFile read_epw(const std::filesystem::path& path) {
   return parse_epw(text.str(), path.string());
 }
 
+std::vector<std::uint8_t> en17037_daylight_hours(const std::vector<double>& diffuse_horizontal_lx) {
+  const std::size_t n = diffuse_horizontal_lx.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = diffuse_horizontal_lx[i];
+    if (!(v >= 0.0 && std::isfinite(v)))
+      throw InputError("", "diffuse_horizontal_lx[" + std::to_string(i) + "]",
+                       "an illuminance must be a finite number >= 0");
+  }
+  if (n < 2) throw InputError("", "diffuse_horizontal_lx", "fewer than 2 hours: no daylight hours");
+  // The brighter half, ties taken in the order of the hours (a stable sort), so the mask is
+  // the same on every platform.
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return diffuse_horizontal_lx[a] > diffuse_horizontal_lx[b];
+  });
+  std::vector<std::uint8_t> mask(n, 0);
+  for (std::size_t i = 0; i < n / 2; ++i) mask[order[i]] = 1;
+  return mask;
+}
+
 double median_external_diffuse_illuminance(const WeatherFile& weather) {
   std::vector<double> lux;
   lux.reserve(weather.hours.size());
@@ -222,12 +244,15 @@ double median_external_diffuse_illuminance(const WeatherFile& weather) {
   }
   if (lux.size() < 2)
     throw InputError(weather.file, "", "no hours to take the median diffuse illuminance of");
-  // The daylight hours: the brighter half. Their median is the mean of the middle two (or the
-  // middle one) of that half, sorted.
-  std::sort(lux.begin(), lux.end());
-  const size_t half = lux.size() / 2, first = lux.size() - half;
-  const size_t mid = first + half / 2;
-  return half % 2 == 0 ? 0.5 * (lux[mid - 1] + lux[mid]) : lux[mid];
+  // The median over the daylight hours (the brighter half): the mean of the middle two (or
+  // the middle one) of them, sorted.
+  const std::vector<std::uint8_t> daylight = en17037_daylight_hours(lux);
+  std::vector<double> bright;
+  for (std::size_t i = 0; i < lux.size(); ++i)
+    if (daylight[i]) bright.push_back(lux[i]);
+  std::sort(bright.begin(), bright.end());
+  const std::size_t half = bright.size(), mid = half / 2;
+  return half % 2 == 0 ? 0.5 * (bright[mid - 1] + bright[mid]) : bright[mid];
 }
 
 }  // namespace lightsolver
