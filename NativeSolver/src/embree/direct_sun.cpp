@@ -12,9 +12,9 @@
 #include <limits>
 #include <string>
 
-#include "daylight/sky_glazing.hpp"
 #include "embree/occluder.hpp"
 #include "lightsolver/sky_patches.hpp"
+#include "types/luminaire_rows.hpp"
 
 namespace lightsolver {
 namespace {
@@ -96,15 +96,14 @@ void check_inputs(const std::vector<SunOpening>& openings, const std::vector<glm
   }
 }
 
-// One opening, ready for the ray test: the parallelogram's plane and its glazing's factors.
+// One opening, ready for the ray test: the parallelogram's plane and its glazing.
 struct PreparedOpening {
   glm::dvec3 corner, edge1, edge2;
   glm::dvec3 m;          // edge1 × edge2 (into the room for a portal)
   double inv_m2 = 0.0;   // 1 / |m|²
   double inv_len = 0.0;  // 1 / |m|
   bool two_sided = false;
-  bool glazed = false;
-  daylight::Glazing glazing;
+  std::optional<GlazingDefinition> glazing;
 };
 
 PreparedOpening prepare(const SunOpening& o) {
@@ -116,12 +115,7 @@ PreparedOpening prepare(const SunOpening& o) {
   p.inv_m2 = 1.0 / glm::dot(p.m, p.m);
   p.inv_len = std::sqrt(p.inv_m2);
   p.two_sided = o.two_sided;
-  if (o.glazing) {  // as the sun's flux builds it (types/luminaire_sun.cpp, beam_glazing)
-    const GlazingDefinition& g = *o.glazing;
-    p.glazed = true;
-    p.glazing = {g.transmittance, static_cast<unsigned>(g.panes), g.frame_factor,
-                 g.maintenance_factor};
-  }
+  p.glazing = o.glazing;
   return p;
 }
 
@@ -139,11 +133,11 @@ double crossing(const PreparedOpening& o, const glm::dvec3& x, const glm::dvec3&
   return (u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0) ? t : -1.0;
 }
 
-// τ × frame × maintenance of the beam along s through o (1 for an open hole).
+// τ × frame × maintenance of the beam along s through o, as the sun's flux takes it (1 for an
+// open hole).
 double transmittance(const PreparedOpening& o, const glm::dvec3& s) {
-  if (!o.glazed) return 1.0;
-  const double cos_i = std::abs(glm::dot(o.m, s)) * o.inv_len;
-  return o.glazing.tau(cos_i) * o.glazing.factor();
+  if (!o.glazing) return 1.0;
+  return detail::beam_glazing(o.glazing, std::abs(glm::dot(o.m, s)) * o.inv_len);
 }
 
 // The share of the beam reaching `x` toward `s`: 0 when blocked, τ of its opening otherwise.
