@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "daylight_bindings.hpp"
+#include "direct_sun_bindings.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/cost.hpp"
 #include "lightsolver/defaults.hpp"
@@ -453,4 +454,6 @@ PYBIND11_MODULE(lightsolver, m) {
   bind_provenance(m);  // lightsolver.verify_results
   bind_daylight(m);    // lightsolver.sun_position, read_weather
   bind_sky_patches(m);  // lightsolver.sky_patches, sky_vectors
+  // lightsolver.direct_sun
+  bind_direct_sun(m);
 }

@@ -3,6 +3,7 @@
 // and the point, spot, area and directional rows; luminaire_photometric.cpp the photometric row).
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,10 @@ GlazingDefinition read_glazing(const JsonNode& n);
 /// maintenance).
 double glazing_factor(const LuminaireChecks& c, const std::string& at, const GlazingDefinition& g,
                       double cos_i);
+/// The factor a checked glazing puts on a beam at cos θ = `cos_i` to its opening's normal:
+/// τ(θ) × frame × maintenance (luminaire_sun.cpp; the sun's flux and the direct sun at points,
+/// src/embree/direct_sun.cpp); 1 without glazing (an open hole).
+double beam_glazing(const std::optional<GlazingDefinition>& g, double cos_i);
 /// The sun's disc (0.53°) through an opening whose normal (into the room) makes n·d = `t` with
 /// the beam: (1 / (π sin²α)) ∫_disc max(0, n·ω) dω, so that the flux is E · area · share; t for
 /// the disc wholly in front, 0 wholly behind, the exact cut cap in between (docs/daylight.md).

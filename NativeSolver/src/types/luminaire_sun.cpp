@@ -87,16 +87,15 @@ void position_the_sun(const LuminaireChecks& c, Luminaire& l) {
   }
 }
 
-// The factor glazing puts on a beam at cos θ = `cos_i` to its opening (1: an open hole); the
-// glazing was checked (check_sun).
+}  // namespace
+
+// The glazing was checked (check_sun; direct_sun_lx checks its own openings').
 double beam_glazing(const std::optional<GlazingDefinition>& g, double cos_i) {
   if (!g) return 1.0;
   const daylight::Glazing glazing{g->transmittance, static_cast<unsigned>(g->panes),
                                   g->frame_factor, g->maintenance_factor};
   return glazing.tau(cos_i) * glazing.factor();
 }
-
-}  // namespace
 
 // The disc's share through an opening whose normal n (into the room) makes cos θ = t = n·d with
 // the beam: (1 / (π sin²α)) ∫_disc max(0, n·ω) dω, so that Φ = E · A · share. The disc wholly in
