@@ -28,6 +28,7 @@
 #include "run_option_flags.hpp"
 #include "study_command.hpp"
 #include "skymtx_command.hpp"
+#include "annual_command.hpp"
 #include "sun_command.hpp"
 #include "sunlight_command.hpp"
 #include "verify_command.hpp"
@@ -287,6 +288,7 @@ int run_command_line(int argc, char** argv) {
   lightsolver::cli::add_weather_command(app);   // runs from its own callback
   lightsolver::cli::add_sunlight_command(app);  // runs from its own callback
   lightsolver::cli::add_skymtx_command(app);    // runs from its own callback
+  lightsolver::cli::add_annual_command(app);    // runs from its own callback
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(ra);

@@ -30,6 +30,7 @@
 #include "scene_bindings.hpp"
 #include "simulation_bindings.hpp"
 #include "sky_patches_bindings.hpp"
+#include "annual_bindings.hpp"
 #include "types_bindings.hpp"
 
 namespace py = pybind11;
@@ -454,6 +455,7 @@ PYBIND11_MODULE(lightsolver, m) {
   bind_provenance(m);  // lightsolver.verify_results
   bind_daylight(m);    // lightsolver.sun_position, read_weather
   bind_sky_patches(m);  // lightsolver.sky_patches, sky_vectors
+  bind_annual(m);       // lightsolver.annual
   // lightsolver.direct_sun
   bind_direct_sun(m);
 }

@@ -2,10 +2,13 @@
 /// \file daylight_coefficients.hpp
 /// A year of daylight in one trace (docs/daylight.md, "Daylight coefficients"): the scene's sky
 /// cut into Reinhart patches (the ground first), each patch a luminaire group of uniform
-/// luminance, and the sun of every sun hour of the year its own group; one trace of all of them,
-/// then each hour's illuminance per grid cell is the sky vector times the patches' coefficients
-/// plus the hour's sun group, with an interval from the groups' own (independent photon streams:
-/// their variances add).
+/// luminance, and the year's sun positions binned into fine Reinhart patches, each bin a sun
+/// group at its hours' mean direction, all traced once; every grid counted twice (all light,
+/// and light reflected at least once). An hour's illuminance per grid cell is the sky vector
+/// times the patches' full coefficients, plus the hour's direct normal illuminance times its sun
+/// bin's reflected coefficient, plus the sun's direct beam by shadow rays at the hour's own sun
+/// position, with an interval: the groups' (independent photon streams: variances add) and the
+/// direct beam's bounds over each cell.
 
 #include <cstddef>
 #include <cstdint>
@@ -34,57 +37,71 @@ struct DaylightCoefficientOptions {
   /// Critical value (two-sided standard normal) of the groups' interval ends the coefficients
   /// keep: the strictest level the annual metrics use (their spreads scale down from it).
   double z = 1.959963984540054;
+  /// The direct sun over each cell: shadow rays at the corners of k × k sub-squares.
+  int direct_subdivision = 8;
+  /// The Reinhart subdivision whose patches bin the year's sun positions for the sun's reflected
+  /// light (4: ~3° bins, 410 of them for Chicago).
+  int sun_mf = 4;
 };
 
-/// One grid's coefficients: rows are the groups (patches, then sun hours), columns its cells
-/// (row by row, index = iv * nu + iu); lux at the group's traced level.
+/// One grid's coefficients: rows are the groups (patches, 0 the ground, then sun bins), columns
+/// its cells (row by row, index = iv * nu + iu); lux at the group's traced level.
 struct CoefficientGrid {
   std::string name;
   std::uint32_t nu = 1, nv = 1;
   std::vector<double> cell_area_m2;
   std::vector<glm::dvec3> cell_centre;  ///< the scene's coordinates
   glm::dvec3 normal{0.0, 0.0, 1.0};     ///< the side the grid counts light arriving on
-  /// groups × cells, float32: each group's estimate and its distances down and up to its interval
-  /// ends at DaylightCoefficients::z (Wilson or per-path, as every estimate of the solver).
+  /// patches × cells, float32: each group's estimate and its distances down and up to its
+  /// interval ends at DaylightCoefficients::z (Wilson or per-path, as every estimate of the
+  /// solver), for all light and for light reflected at least once.
   std::vector<float> mean, below, above;
+  std::vector<float> reflected_mean, reflected_below, reflected_above;
+  /// hours × cells, float32, lx: the sun's direct beam over each cell (shadow rays at the corners
+  /// of k × k sub-squares: the mean of each sub-square's corners, and bounds from their minimum
+  /// and maximum) and at its centre (IES LM-83's sensor point, for ASE). Empty without sun.
+  std::vector<float> direct, direct_low, direct_high, direct_centre;
 };
 
 /// The traced coefficients of every grid of the scene.
 struct DaylightCoefficients {
   int mf = 1;
   double north_deg = 0.0;
-  int patches = 0;  ///< 144 MF² + 2: group p < patches is patch p (0 the ground)
-  /// Each patch's traced uniform luminance (cd/m²): the root mean square of its luminance over
-  /// the year's sky hours (0: a patch never lit, not traced).
+  int patches = 0;  ///< 144 MF² + 2: group p is patch p (0 the ground)
+  /// Each patch's traced uniform luminance (cd/m²): the root mean square over the year's sky
+  /// hours of its luminance (0: a patch never lit).
   std::vector<double> patch_luminance;
-  /// Group patches + k is the sun of hour sun_hours[k], traced at that hour's direct normal
-  /// illuminance (so its weight in that hour is 1).
-  std::vector<int> sun_hours;
+  /// Group patches + b is sun bin b: its direction (toward the sun, the mean of its hours'),
+  /// traced at kSunBinLx of direct normal illuminance.
+  std::vector<glm::dvec3> sun_bins;
+  std::vector<int> sun_bin_of_hour;  ///< per hour, its bin or −1 (no sun)
+  static constexpr double kSunBinLx = 1000.0;
   double z = 1.959963984540054;
   std::vector<CoefficientGrid> grids;
   /// The trace's own results (photons, groups and their photons, backend, seconds, warnings,
-  /// provenance); its targets are the grids, its groups the patches and suns.
+  /// provenance); its targets are the grids and their reflected-only twins.
   Results trace;
-  /// Bytes of the coefficient arrays.
+  /// Bytes of the coefficient and direct-sun arrays.
   std::size_t bytes() const;
-  std::size_t groups() const { return static_cast<std::size_t>(patches) + sun_hours.size(); }
 };
 
 /// The scene the coefficients are traced in (docs/daylight.md, "Daylight coefficients"): the
-/// scene's meshes and materials, its grid targets (as plain illuminance grids), one sky per
-/// patch with the scene's sky's portals (or site) and glazing, and one sun per hour of `year`
-/// with its sun up and light in its beam, through the scene's sun's opening, else the sky's
-/// portals, else a square across the beam covering the sky's site. Electric luminaires are left
+/// scene's meshes and materials, its grid targets (as plain illuminance grids) each followed by
+/// its reflected-only twin, one sky per patch with the scene's sky's portals (or site) and
+/// glazing, and one sun per direction of `sun_bins` through the scene's sun's opening, else the
+/// sky's portals, else a square across the beam covering the site. Electric luminaires are left
 /// out. InputError naming `luminaires` without exactly one sky, with more than one sun, and
 /// `targets` without a grid.
 Scene coefficient_scene(const Scene& scene, const SkyMatrix& year,
-                        const DaylightCoefficientOptions& options);
+                        const DaylightCoefficientOptions& options,
+                        const std::vector<glm::dvec3>& sun_bins = {});
 
 /// Traces the coefficients: `coefficient_scene`, photons shared by each group's importance over
 /// the year (its flux × the root sum of squares of its hourly weights, each hour relative to its
-/// global horizontal illuminance), every group's estimate per cell at `options.z`. InputError for
-/// a scene as `coefficient_scene`, a sky matrix of another MF or north, or too few photons for
-/// every lit group to get some.
+/// global horizontal illuminance), every group's estimate per cell at `options.z`; the direct
+/// sun by shadow rays through the scene's sun openings (sun_openings). InputError for a scene as
+/// `coefficient_scene`, a sky matrix of another MF, or too few photons for every lit group to
+/// get some.
 DaylightCoefficients trace_daylight_coefficients(const Scene& scene, const SkyMatrix& year,
                                                  const DaylightCoefficientOptions& options);
 
@@ -108,20 +125,23 @@ class CoefficientTracer {
 };
 
 /// A grid's illuminance at every hour of the year: hours × cells, row-major, float32.
-/// At hour h, cell c the interval at two-sided critical value z is [mean − z·spread_low,
-/// mean + z·spread_high] (its lower end clamped at 0): the groups' distances to their ends,
-/// each scaled by the hour's weight of the group, root-sum-squared, divided by the z they were
-/// taken at (exact scaling for per-path normal ends; conservative for Wilson ends, which widen
-/// faster than z, when z is below the coefficients' own).
+/// At hour h, cell c the interval at two-sided critical value z is
+/// [mean − z·spread_low − direct_below, mean + z·spread_high + direct_above] (its lower end
+/// clamped at 0): the spreads are the groups' distances to their ends, each scaled by the
+/// hour's weight of the group, root-sum-squared, divided by the z they were taken at (exact
+/// scaling for per-path normal ends; conservative for Wilson ends, which widen faster than z,
+/// when z is below the coefficients' own); direct_below and direct_above the direct beam's
+/// bounds, which do not scale with z.
 struct HourlyIlluminance {
   int hours = 0, cells = 0;
-  std::vector<float> mean, spread_low, spread_high;
+  std::vector<float> mean, spread_low, spread_high, direct_below, direct_above;
   std::vector<double> cell_area_m2;
 };
 
-/// Grid `grid`'s hourly illuminance: E[h] = Σ_p w_hp C_p + C_sun(h), w_hp the hour's sky vector
-/// entry over (Ω_p × the patch's traced luminance). `sun` false: the sky alone (the sun's groups
-/// left out, e.g. for blinds that stop the beam).
+/// Grid `grid`'s hourly illuminance: E_h = Σ_p w_hp C_p + (E_n,h / kSunBinLx) R_b(h) + D_h, w_hp
+/// the hour's sky vector entry over (Ω_p × the patch's traced luminance), C the patches' full
+/// coefficients, R_b the reflected coefficient of the hour's sun bin, D the direct beam. `sun`
+/// false: the sky alone (R and D left out, e.g. for blinds that stop the beam).
 HourlyIlluminance hourly_illuminance(const DaylightCoefficients& dc, const SkyMatrix& year,
                                      std::size_t grid, bool sun = true);
 

@@ -185,6 +185,10 @@ struct Target {
   /// the daylight factor of the scene's one sky (docs/daylight.md, "Daylight factor").
   enum class Quantity { Illuminance, DaylightFactor };
   Quantity quantity = Quantity::Illuminance;
+  /// A grid that counts only light reflected at least once (no scene key: the annual run's twin
+  /// of each grid, whose daylight coefficients' reflected part carries the sun's indirect light;
+  /// docs/daylight.md, "Daylight coefficients").
+  bool reflected_only = false;
 };
 
 /// A scene's run settings (scene file `settings`). Each member is a row of the run options

@@ -1,7 +1,9 @@
 // The scene daylight coefficients are traced in (lightsolver/daylight_coefficients.hpp): the
-// scene's sky replaced by one uniform sky per Reinhart patch and its sun by one sun per sun hour
-// of the year, each its own luminaire group, so that one trace gives every group's light apart
-// and an hour is a weighted sum of them (docs/daylight.md, "Daylight coefficients").
+// scene's sky replaced by one uniform sky per Reinhart patch and its sun by one sun per bin of
+// the year's sun positions, each its own luminaire group, so that one trace gives every group's
+// light apart and an hour is a weighted sum of them; every grid followed by a reflected-only twin
+// (the sun's reflected light comes from its bin's group, its beam from shadow rays:
+// docs/daylight.md, "Daylight coefficients").
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <string>
@@ -45,11 +47,11 @@ Luminaire patch_sky(const Luminaire& sky, int mf, int index, double north_deg, d
   return l;
 }
 
-// The sun of one hour: beam along −toward at the hour's direct normal illuminance, through the
-// scene's sun's opening, else the sky's portals, else a square across the beam that covers the
-// site's sphere (2R wide, R beyond its centre: every point of the sphere is in the beam).
-Luminaire hour_sun(const Luminaire* sun, const Luminaire& sky, int hour, const glm::dvec3& toward,
-                   double normal_lx) {
+// A sun bin's sun: beam along −toward at kSunBinLx, through the scene's sun's opening, else the
+// sky's portals, else a square across the beam that covers the site's sphere (2R wide, R beyond
+// its centre: every point of the sphere is in the beam).
+Luminaire bin_sun(const Luminaire* sun, const Luminaire& sky, std::size_t bin,
+                  const glm::dvec3& toward) {
   Luminaire l;
   if (sun) {
     l.corner = sun->corner;
@@ -69,21 +71,22 @@ Luminaire hour_sun(const Luminaire* sun, const Luminaire& sky, int hour, const g
     l.edge1 = 2.0 * r * e1;
     l.edge2 = 2.0 * r * e2;
   }
-  l.name = "sun hour " + std::to_string(hour);
+  l.name = "sun bin " + std::to_string(bin);
   l.type = Luminaire::Type::Sun;
   l.direction = -toward;
-  l.illuminance_lx = normal_lx;
+  l.illuminance_lx = DaylightCoefficients::kSunBinLx;
   return l;
 }
 
 }  // namespace
 
 Scene coefficient_scene(const Scene& scene, const SkyMatrix& year,
-                        const DaylightCoefficientOptions& o) {
+                        const DaylightCoefficientOptions& o,
+                        const std::vector<glm::dvec3>& sun_bins) {
   const Luminaire* sky = nullptr;
   const Luminaire* sun = nullptr;
   the_one(scene, Luminaire::Type::Sky, "sky", true, &sky);
-  the_one(scene, Luminaire::Type::Sun, "sun", false, &sun);
+  the_one(scene, Luminaire::Type::Sun, "sun", false, &sun);  // at most one: its openings
   if (year.mf != o.mf) {
     throw InputError(scene.source_file, "mf",
                      "the sky matrix has MF " + std::to_string(year.mf) + ", the options " +
@@ -103,6 +106,9 @@ Scene coefficient_scene(const Scene& scene, const SkyMatrix& year,
     g.requirements = {};
     g.quantity = Target::Quantity::Illuminance;
     s.targets.push_back(g);
+    g.name += " (reflected)";
+    g.reflected_only = true;
+    s.targets.push_back(g);
   }
   if (s.targets.empty()) {
     throw InputError(scene.source_file, "targets",
@@ -113,12 +119,8 @@ Scene coefficient_scene(const Scene& scene, const SkyMatrix& year,
   for (int p = 0; p < year.patch_count; ++p) {
     s.luminaires.push_back(patch_sky(*sky, o.mf, p, o.north_deg, 1.0));
   }
-  for (int h = 0; h < year.hours; ++h) {
-    const float en = year.sun_direct_normal_lx[h];
-    if (!(en > 0.0f) || !(year.sun_altitude_deg[h] > 0.0f)) continue;
-    const float* d = &year.sun_direction[3 * static_cast<std::size_t>(h)];
-    const glm::dvec3 toward = glm::normalize(glm::dvec3(d[0], d[1], d[2]));
-    s.luminaires.push_back(hour_sun(sun, *sky, h, toward, en));
+  for (std::size_t b = 0; b < sun_bins.size(); ++b) {
+    s.luminaires.push_back(bin_sun(sun, *sky, b, sun_bins[b]));
   }
   return s;
 }

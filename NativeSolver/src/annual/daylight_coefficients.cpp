@@ -1,6 +1,7 @@
-// Tracing daylight coefficients (lightsolver/daylight_coefficients.hpp): the patch and sun groups
-// of coefficient_scene() in one run, photons shared by each group's importance over the year,
-// and every group's estimate per grid cell kept as float32 rows.
+// Tracing daylight coefficients (lightsolver/daylight_coefficients.hpp): the patch groups of
+// coefficient_scene() in one run, photons shared by each patch's importance over the year, every
+// group's estimate per grid cell (all light and reflected light) kept as float32 rows, and the
+// sun's direct beam over every cell by shadow rays (direct_sun.cpp).
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -8,6 +9,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "annual/sun_parts.hpp"
 #include "lightsolver/daylight_coefficients.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/simulation.hpp"
@@ -23,15 +25,15 @@ double global_lx(const SkyMatrix& y, int h) {
   return y.diffuse_horizontal_lx[h] + y.sun_direct_normal_lx[h] * std::max(0.0, std::sin(alt));
 }
 
-// Each patch's luminance per hour is sky[h][p] / Ω_p; its root mean square over the sky hours
-// is the luminance it is traced at (so its hourly weights have mean square 1).
+// Each patch's luminance per hour is sky[h][p] / Ω_p; its root mean square over the sky hours is
+// the luminance it is traced at (so its hourly weights have mean square 1).
 std::vector<double> rms_luminance(const SkyMatrix& y, const SkyPatches& patches) {
   std::vector<double> sum(y.patch_count, 0.0);
   int n = 0;
   for (int h = 0; h < y.hours; ++h) {
     if (y.status[h] != 2) continue;
     ++n;
-    const float* row = &y.sky[static_cast<std::size_t>(h) * y.patch_count];
+    const float* row = &y.sky[std::size_t(h) * y.patch_count];
     for (int p = 0; p < y.patch_count; ++p) {
       const double l = row[p] / patches.patch(p).solid_angle_sr;
       sum[p] += l * l;
@@ -43,27 +45,42 @@ std::vector<double> rms_luminance(const SkyMatrix& y, const SkyPatches& patches)
 
 // Photon weights: a group's flux × the root sum of squares of its hourly weights relative to the
 // hour's global illuminance (the share that minimises Σ_h Var(E_h) / G_h² for equal per-photon
-// variance).
+// variance): a patch's weights are its sky entries over Ω_p L_p, a sun bin's E_n / kSunBinLx in
+// its hours.
 std::vector<double> share_weights(const Simulation& sim, const SkyMatrix& y,
                                   const std::vector<double>& luminance,
-                                  const SkyPatches& patches, const std::vector<int>& sun_hours) {
+                                  const SkyPatches& patches, const std::vector<int>& bin_of_hour) {
   const std::vector<LuminaireGroup> groups = sim.groups();
-  std::vector<double> w(groups.size(), 0.0);
-  for (int p = 0; p < y.patch_count; ++p) {
-    if (!(luminance[p] > 0.0)) continue;
-    double ss = 0.0;
-    for (int h = 0; h < y.hours; ++h) {
-      if (y.status[h] != 2) continue;
-      const double f = y.sky[static_cast<std::size_t>(h) * y.patch_count + p] /
-                       (patches.patch(p).solid_angle_sr * luminance[p] * global_lx(y, h));
-      ss += f * f;
+  std::vector<double> ss(groups.size(), 0.0);
+  for (int h = 0; h < y.hours; ++h) {
+    if (y.status[h] != 2) continue;
+    const double g = global_lx(y, h);
+    const float* row = &y.sky[std::size_t(h) * y.patch_count];
+    for (int p = 0; p < y.patch_count; ++p) {
+      if (!(luminance[p] > 0.0)) continue;
+      const double f = row[p] / (patches.patch(p).solid_angle_sr * luminance[p] * g);
+      ss[p] += f * f;
     }
-    w[p] = groups[p].flux_lm * std::sqrt(ss);
+    if (bin_of_hour[h] >= 0) {
+      const double f = y.sun_direct_normal_lx[h] / (DaylightCoefficients::kSunBinLx * g);
+      ss[y.patch_count + bin_of_hour[h]] += f * f;
+    }
   }
-  for (std::size_t k = 0; k < sun_hours.size(); ++k) {
-    w[y.patch_count + k] = groups[y.patch_count + k].flux_lm / global_lx(y, sun_hours[k]);
-  }
+  std::vector<double> w(groups.size(), 0.0);
+  for (std::size_t k = 0; k < groups.size(); ++k) w[k] = groups[k].flux_lm * std::sqrt(ss[k]);
   return w;
+}
+
+// Can any surface send light on (so that a grid gets reflected light)? Glass always counts.
+bool reflects(const Scene& s) {
+  for (const Mesh& m : s.meshes) {
+    if (m.triangles.empty() || m.material < 0) continue;
+    const Material& mat = s.materials.at(std::size_t(m.material));
+    if (mat.type == Material::Type::Glass || mat.reflectance > 0.0 ||
+        (mat.type == Material::Type::Glossy && mat.specular > 0.0))
+      return true;
+  }
+  return false;
 }
 
 CoefficientGrid grid_of(const Target& t) {
@@ -84,24 +101,26 @@ CoefficientGrid grid_of(const Target& t) {
 }
 
 // Every group's estimate of every cell at z, from the run's per-group tallies.
-void fill_grid(CoefficientGrid& g, const TargetResult& tr, const Results& r, double z,
+void fill_rows(std::vector<float>& mean, std::vector<float>& below, std::vector<float>& above,
+               std::size_t cells, const TargetResult& tr, const Results& r, double z,
+               const std::vector<double>& cell_area_m2,
                const std::unordered_map<std::string, std::size_t>& group_row) {
-  const std::size_t cells = g.cell_area_m2.size(), rows = r.groups.size();
-  g.mean.assign(rows * cells, 0.0f);
-  g.below.assign(rows * cells, 0.0f);
-  g.above.assign(rows * cells, 0.0f);
+  const std::size_t rows = r.groups.size();
+  mean.assign(rows * cells, 0.0f);
+  below.assign(rows * cells, 0.0f);
+  above.assign(rows * cells, 0.0f);
   for (const Contribution& c : tr.contributions) {
     const std::size_t row = group_row.at(c.group);
     const GroupResult& gr = r.groups[row];
     if (gr.photons == 0 || !(gr.flux_lm > 0.0)) continue;  // no light: exactly zero
     for (std::size_t k = 0; k < cells; ++k) {
       const Estimate e =
-          make_estimate_z(c.tallies.at(1 + k), gr.photons, gr.flux_lm / g.cell_area_m2[k], z);
+          make_estimate_z(c.tallies.at(1 + k), gr.photons, gr.flux_lm / cell_area_m2[k], z);
       const std::size_t at = row * cells + k;
-      g.mean[at] = static_cast<float>(e.mean);
+      mean[at] = static_cast<float>(e.mean);
       // Rounded outward: float must not narrow an interval.
-      g.below[at] = std::nextafter(static_cast<float>(e.mean - e.ci_low), 1e30f);
-      g.above[at] = std::nextafter(static_cast<float>(e.ci_high - e.mean), 1e30f);
+      below[at] = std::nextafter(static_cast<float>(e.mean - e.ci_low), 1e30f);
+      above[at] = std::nextafter(static_cast<float>(e.ci_high - e.mean), 1e30f);
     }
   }
 }
@@ -110,12 +129,18 @@ void fill_grid(CoefficientGrid& g, const TargetResult& tr, const Results& r, dou
 
 std::size_t DaylightCoefficients::bytes() const {
   std::size_t b = 0;
-  for (const auto& g : grids) b += (g.mean.size() + g.below.size() + g.above.size()) * sizeof(float);
+  for (const auto& g : grids) {
+    for (const auto* v : {&g.mean, &g.below, &g.above, &g.reflected_mean, &g.reflected_below,
+                          &g.reflected_above, &g.direct, &g.direct_low, &g.direct_high,
+                          &g.direct_centre}) {
+      b += v->size() * sizeof(float);
+    }
+  }
   return b;
 }
 
 struct CoefficientTracer::State {
-  Scene scene;  // the traced scene: patches and suns
+  Scene scene;  // the traced scene: patches, grids and their reflected twins
   DaylightCoefficients base;
   std::optional<Simulation> sim;
   std::uint64_t traced = 0;
@@ -123,27 +148,43 @@ struct CoefficientTracer::State {
   DaylightCoefficientOptions options;
 };
 
-CoefficientTracer::CoefficientTracer(const Scene& scene, const SkyMatrix& year,
+CoefficientTracer::CoefficientTracer(const Scene& scene_in, const SkyMatrix& year,
                                      const DaylightCoefficientOptions& o)
     : state_(std::make_unique<State>()) {
+  if (o.direct_subdivision < 1 || o.direct_subdivision > 64) {
+    throw InputError(scene_in.source_file, "direct_subdivision", "must be 1 … 64");
+  }
+  Scene scene = scene_in;
+  validate(scene);
   State& st = *state_;
   st.options = o;
-  st.scene = coefficient_scene(scene, year, o);
   st.seed = o.seed.value_or(scene.settings.seed);
   const SkyPatches patches(o.mf, o.north_deg);
+  if (o.sun_mf < 1 || o.sun_mf > 64) {
+    throw InputError(scene_in.source_file, "sun_mf", "must be 1 … 64");
+  }
+  // Nothing reflects: the sun's reflected light is exactly zero, no sun bin is traced (the beam
+  // itself is the shadow rays').
+  SunBins bins = reflects(scene) ? sun_bins(year, o.sun_mf, o.north_deg)
+                                 : SunBins{{}, std::vector<int>(year.hours, -1)};
   DaylightCoefficients& dc = st.base;
   dc.mf = o.mf;
   dc.north_deg = o.north_deg;
   dc.patches = year.patch_count;
   dc.patch_luminance = rms_luminance(year, patches);
+  dc.sun_bins = std::move(bins.direction);
+  dc.sun_bin_of_hour = std::move(bins.of_hour);
+  st.scene = coefficient_scene(scene, year, o, dc.sun_bins);
   for (int p = 0; p < year.patch_count; ++p) {
     st.scene.luminaires[p].sky.zenith_luminance_cd_m2 = dc.patch_luminance[p];
   }
-  for (std::size_t k = year.patch_count; k < st.scene.luminaires.size(); ++k) {
-    dc.sun_hours.push_back(std::stoi(st.scene.luminaires[k].name.substr(9)));  // "sun hour N"
+  for (std::size_t t = 0; t < st.scene.targets.size(); t += 2) {
+    dc.grids.push_back(grid_of(st.scene.targets[t]));
+    direct_sun_cells(scene, st.scene.targets[t], year, o.direct_subdivision, dc.grids.back());
   }
   st.sim.emplace(st.scene, Simulation::Options{o.backend, o.threads, {}});
-  st.sim->fix_photon_shares(share_weights(*st.sim, year, dc.patch_luminance, patches, dc.sun_hours));
+  st.sim->fix_photon_shares(
+      share_weights(*st.sim, year, dc.patch_luminance, patches, dc.sun_bin_of_hour));
 }
 
 CoefficientTracer::~CoefficientTracer() = default;
@@ -172,14 +213,16 @@ DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z) {
   if (unlit > 0) {
     throw InputError(st.scene.source_file, "photons",
                      std::to_string(unlit) + " of the " + std::to_string(dc.trace.groups.size()) +
-                         " sky patch and sun groups got no photon: trace more photons (at "
-                         "least " + std::to_string(20 * dc.trace.groups.size()) + ")");
+                         " sky patch and sun bin groups got no photon: trace more photons (at least " +
+                         std::to_string(20 * dc.trace.groups.size()) + ")");
   }
-  std::size_t t = 0;
-  for (const Target& target : st.scene.targets) {
-    CoefficientGrid g = grid_of(target);
-    fill_grid(g, dc.trace.targets.at(t++), dc.trace, z, group_row);
-    dc.grids.push_back(std::move(g));
+  for (std::size_t g = 0; g < dc.grids.size(); ++g) {
+    CoefficientGrid& cg = dc.grids[g];
+    const std::size_t cells = cg.cell_area_m2.size();
+    fill_rows(cg.mean, cg.below, cg.above, cells, dc.trace.targets.at(2 * g), dc.trace, z,
+              cg.cell_area_m2, group_row);
+    fill_rows(cg.reflected_mean, cg.reflected_below, cg.reflected_above, cells,
+              dc.trace.targets.at(2 * g + 1), dc.trace, z, cg.cell_area_m2, group_row);
   }
   return dc;
 }

@@ -176,6 +176,7 @@ void prepare_grid_target(const Target& t, const std::vector<double>&, PreparedSc
   rec.first_grid = static_cast<std::uint32_t>(out.grids.size());
   rec.grid_rows = 1;
   out.grids.push_back(prepare_grid(t, out.origin, rec.bin));
+  out.grids.back().indirect_only = t.reflected_only ? 1 : 0;
   out.targets.push_back(rec);
 }
 

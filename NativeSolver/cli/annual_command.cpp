@@ -1,0 +1,146 @@
+// `lightsolver annual SCENE --weather FILE.epw [--out-dir DIR]`: the scene's year of daylight
+// (lightsolver/annual_run.hpp): a summary on stdout; annual.json (the metrics) and annual.npz
+// (every hour of every grid, deflated) written whole into DIR, created only once they exist.
+#include "annual_command.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "lightsolver/annual_run.hpp"
+#include "lightsolver/error.hpp"
+#include "lightsolver/output_file.hpp"
+#include "lightsolver/scene_io.hpp"
+#include "npz_writer.hpp"
+
+namespace lightsolver::cli {
+
+namespace {
+
+struct AnnualArgs {
+  std::string scene, out_dir;
+  AnnualRunOptions options;
+  std::uint64_t seed = 0;
+  double blinds = 0.0;
+};
+
+template <class T>
+void add(NpzWriter& z, const std::string& name, const char* dtype, const std::vector<T>& v,
+         std::vector<std::size_t> shape) {
+  z.add(name, dtype, shape, v.data(), v.size() * sizeof(T));
+}
+
+// Arrays per grid i: g<i>_mean, g<i>_low, g<i>_high (hours × cells, lx, float32; the hour's
+// interval at the run's confidence) and g<i>_direct_sun (with a sun); month_day_hour.
+std::string npz(const AnnualResult& r) {
+  NpzWriter z(true);
+  const std::size_t hours = r.month_day_hour.size() / 3;
+  add(z, "month_day_hour", "<i4", r.month_day_hour, {hours, 3});
+  for (std::size_t i = 0; i < r.grids.size(); ++i) {
+    const AnnualGrid& g = r.grids[i];
+    const std::string p = "g" + std::to_string(i) + "_";
+    const std::vector<std::size_t> shape{hours, static_cast<std::size_t>(g.hourly.cells)};
+    add(z, p + "mean", "<f4", g.hourly.mean, shape);
+    add(z, p + "low", "<f4", g.low, shape);
+    add(z, p + "high", "<f4", g.high, shape);
+    if (!g.direct_sun.empty()) add(z, p + "direct_sun", "<f4", g.direct_sun, shape);
+  }
+  return z.finish();
+}
+
+std::string interval(const nlohmann::json& m, double scale, const char* unit) {
+  char b[96];
+  std::snprintf(b, sizeof b, "%.1f%s [%.1f, %.1f]", scale * m["estimate"].get<double>(), unit,
+                scale * m["low"].get<double>(), scale * m["high"].get<double>());
+  return b;
+}
+
+void print_summary(const nlohmann::json& s) {
+  const auto& w = s["weather"];
+  std::printf("weather    %s (%s), %d hours, %d with a sky\n",
+              w["location"].get<std::string>().c_str(), w["file"].get<std::string>().c_str(),
+              w["hours"].get<int>(), w["sky_hours"].get<int>());
+  const auto& t = s["trace"];
+  std::printf("trace      %llu photons on %s: %d sky patch groups, coefficients and direct sun "
+              "%.1f MB, %s\n",
+              static_cast<unsigned long long>(t["photons"].get<std::uint64_t>()),
+              t["backend"].get<std::string>().c_str(), t["sky_patch_groups"].get<int>(),
+              t["coefficient_bytes"].get<double>() / 1e6,
+              t["stop_reason"].get<std::string>().c_str());
+  const auto& sec = s["seconds"];
+  std::printf("time       sky matrix %.2f s, trace %.2f s, hours and metrics %.2f s, total %.2f s\n",
+              sec["sky_matrix"].get<double>(), sec["trace"].get<double>(),
+              sec["hours_and_metrics"].get<double>(), sec["total"].get<double>());
+  for (const auto& g : s["grids"]) {
+    const auto& m = g["metrics"];
+    std::printf("grid       %s (%d cells): sDA300/50%% %s (%s), ASE1000,250h %s, mean DA300 %s, "
+                "UDI 100-2000 %s\n",
+                g["name"].get<std::string>().c_str(), g["cells"].get<int>(),
+                interval(m["sda_percent"], 1.0, " %").c_str(),
+                m["sda_nominal_verdict"].get<std::string>().c_str(),
+                m["ase_percent"].is_null()
+                    ? "-"
+                    : (std::to_string(m["ase_percent"].get<double>()).substr(0, 5) + " %").c_str(),
+                interval(m["da_fraction"], 100.0, " %").c_str(),
+                interval(m["udi_useful_fraction"], 100.0, " %").c_str());
+  }
+}
+
+int run_annual_command(AnnualArgs& a) {
+  try {
+    if (a.seed > 0) a.options.seed = a.seed;
+    if (a.blinds > 0.0) a.options.blinds_transmittance = a.blinds;
+    const Scene scene = load_scene(a.scene);
+    const AnnualResult r = run_annual(scene, a.options);
+    print_summary(r.summary);
+    if (!a.out_dir.empty()) {
+      const std::string json = r.summary.dump(1) + "\n", arrays = npz(r);
+      std::filesystem::create_directories(a.out_dir);
+      write_file_atomically((std::filesystem::path(a.out_dir) / "annual.npz").string(), arrays);
+      write_file_atomically((std::filesystem::path(a.out_dir) / "annual.json").string(), json);
+      std::printf("written    %s/annual.json, annual.npz\n", a.out_dir.c_str());
+    }
+    return 0;
+  } catch (const std::exception& e) {  // InputError too: the message names file and field
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace
+
+void add_annual_command(CLI::App& app) {
+  auto a = std::make_shared<AnnualArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "annual",
+      "A year of daylight by daylight coefficients: sky patches and the year's suns traced once, "
+      "every hour rebuilt with its interval, annual metrics (DA, sDA, ASE, UDI, EN 17037)");
+  cmd->add_option("scene", a->scene, "Scene file (its sky's openings, grids, meshes)")->required();
+  cmd->add_option("--weather", a->options.weather, "EnergyPlus weather file (.epw)")->required();
+  cmd->add_option("--mf", a->options.sky.mf, "Reinhart subdivision (1: 145 patches, 2: 577, 4: 2305)")
+      ->capture_default_str();
+  cmd->add_option("--north-deg", a->options.sky.north_deg,
+                  "True north from +y, counter-clockwise seen from above")
+      ->capture_default_str();
+  cmd->add_option("--ground-reflectance", a->options.ground_reflectance,
+                  "The ground's ρ (default: the scene's sky's ground_reflectance)");
+  cmd->add_flag("--illuminance", a->options.sky.use_illuminance,
+                "The Perez sky from the illuminance columns (default: irradiance with Perez' "
+                "efficacies, as gendaymtx)");
+  cmd->add_option("--photons", a->options.photons, "Photons of the one trace, all groups")
+      ->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Random seed (default: the scene's)");
+  cmd->add_option("--backend", a->options.backend, "auto, embree or vulkan")->capture_default_str();
+  cmd->add_option("--threads", a->options.threads, "CPU threads (0: all)")->capture_default_str();
+  cmd->add_option("--confidence", a->options.confidence, "Of every interval")->capture_default_str();
+  cmd->add_option("--blinds-transmittance", a->blinds,
+                  "LM-83's blinds rule: blinds-closed hours get the sky's light times this");
+  cmd->add_option("--out-dir", a->out_dir, "Write annual.json and annual.npz into this folder");
+  cmd->callback([a] {
+    if (const int rc = run_annual_command(*a); rc != 0) throw CLI::RuntimeError(rc);
+  });
+}
+
+}  // namespace lightsolver::cli
