@@ -130,3 +130,23 @@ def test_bad_input_is_named_and_writes_nothing(tmp_path):
     assert not out.exists()
     with pytest.raises(lightsolver.InputError, match="blinds_transmittance"):
         lightsolver.annual(str(ROOM), str(CHICAGO), blinds_transmittance=0.0)
+
+
+def test_results_reader_views_the_annual_files(tmp_path):
+    import lightsolver_results as lr
+    out = tmp_path / "out"
+    r = cli("annual", str(ROOM), "--weather", str(CHICAGO), "--photons", "1000000",
+            "--out-dir", str(out))
+    assert r.returncode == 0, r.stderr
+    view = lr.read_annual(out / "annual.json")
+    assert view.weather.file == CHICAGO.name and view.weather.sky_hours == 4414
+    assert view.occupied_hours == 3650 and view.mf == 1 and view.photons == 1000000
+    g = view.grid("work plane")
+    assert (g.nu, g.nv) == (20, 15) and len(g.cell_da_fraction.estimate) == 300
+    assert g.sda_percent.low <= g.sda_percent.estimate <= g.sda_percent.high
+    assert g.sda_nominal_verdict in lr.annual.VERDICTS and len(g.en17037) == 3
+    assert sorted(g.hours_above) == [100.0, 300.0, 500.0, 750.0, 1000.0, 2000.0, 3000.0]
+    hours = lr.load_hours(out / "annual.npz", 0)
+    assert hours["mean"].shape == (8760, 300) and hours["direct_sun"].shape == (8760, 300)
+    with pytest.raises(lr.ResultsError):
+        lr.read_annual({"format": "lightsolver.results/1"})

@@ -29,6 +29,7 @@ from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, OPTIMIZATION_FORMAT, READ
                      ResultsError, check, finite, plain, schema)
 from .provenance import Provenance, SourceFile, read_provenance, without_run_facts
 from .sunlight import SunlightExposureView, SunlightPoint, sunlight_view
+from .annual import (ANNUAL_FORMAT, AnnualGrid, AnnualResults, read_annual, load_hours)
 from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFlux, _migrate,
                         migrate)
 
@@ -36,7 +37,8 @@ __all__ = ["FORMAT", "OPTIMIZATION_FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_
            "ESTIMATED_NOTE", "ResultsError", "Stat", "Cells", "DaylightFactorView", "Target", "LuminaireFlux",
            "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
            "read", "load", "Provenance", "SourceFile", "without_run_facts",
-           "SunlightExposureView", "SunlightPoint"]
+           "SunlightExposureView", "SunlightPoint", "ANNUAL_FORMAT", "AnnualGrid",
+           "AnnualResults", "read_annual", "load_hours"]
 
 # --- the view ---------------------------------------------------------------------------------
 
