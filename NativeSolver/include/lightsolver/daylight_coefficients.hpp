@@ -81,6 +81,8 @@ struct DaylightCoefficients {
   /// The trace's own results (photons, groups and their photons, backend, seconds, warnings,
   /// provenance); its targets are the grids and their reflected-only twins.
   Results trace;
+  double direct_seconds = 0.0;  ///< the beam's shadow rays and clipping (once per tracer)
+  double setup_seconds = 0.0;   ///< the traced scene's validation and preparation
   /// Bytes of the coefficient and direct-sun arrays.
   std::size_t bytes() const;
 };

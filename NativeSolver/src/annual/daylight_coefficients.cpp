@@ -3,6 +3,7 @@
 // group's estimate per grid cell (all light and reflected light) kept as float32 rows, and the
 // sun's direct beam over every cell by shadow rays (direct_sun.cpp).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <optional>
@@ -178,13 +179,18 @@ CoefficientTracer::CoefficientTracer(const Scene& scene_in, const SkyMatrix& yea
   for (int p = 0; p < year.patch_count; ++p) {
     st.scene.luminaires[p].sky.zenith_luminance_cd_m2 = dc.patch_luminance[p];
   }
+  const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t t = 0; t < st.scene.targets.size(); t += 2) {
     dc.grids.push_back(grid_of(st.scene.targets[t]));
     direct_sun_cells(scene, st.scene.targets[t], year, o.direct_subdivision, dc.grids.back());
   }
+  const auto t1 = std::chrono::steady_clock::now();
+  dc.direct_seconds = std::chrono::duration<double>(t1 - t0).count();
   st.sim.emplace(st.scene, Simulation::Options{o.backend, o.threads, {}});
   st.sim->fix_photon_shares(
       share_weights(*st.sim, year, dc.patch_luminance, patches, dc.sun_bin_of_hour));
+  dc.setup_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }
 
 CoefficientTracer::~CoefficientTracer() = default;
