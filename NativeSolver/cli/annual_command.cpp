@@ -23,6 +23,7 @@ struct AnnualArgs {
   std::string scene, out_dir;
   AnnualRunOptions options;
   std::uint64_t seed = 0;
+  std::uint64_t max_photons = 0;
   double blinds = 0.0;
 };
 
@@ -63,28 +64,30 @@ void print_summary(const nlohmann::json& s) {
               w["location"].get<std::string>().c_str(), w["file"].get<std::string>().c_str(),
               w["hours"].get<int>(), w["sky_hours"].get<int>());
   const auto& t = s["trace"];
-  std::printf("trace      %llu photons on %s: %d sky patch groups, coefficients and direct sun "
-              "%.1f MB, %s\n",
-              static_cast<unsigned long long>(t["photons"].get<std::uint64_t>()),
-              t["backend"].get<std::string>().c_str(), t["sky_patch_groups"].get<int>(),
-              t["coefficient_bytes"].get<double>() / 1e6,
-              t["stop_reason"].get<std::string>().c_str());
+  std::printf(
+      "trace      %llu photons on %s: %d sky patch groups, coefficients and direct sun "
+      "%.1f MB, %s\n",
+      static_cast<unsigned long long>(t["photons"].get<std::uint64_t>()),
+      t["backend"].get<std::string>().c_str(), t["sky_patch_groups"].get<int>(),
+      t["coefficient_bytes"].get<double>() / 1e6, t["stop_reason"].get<std::string>().c_str());
   const auto& sec = s["seconds"];
-  std::printf("time       sky matrix %.2f s, trace %.2f s, hours and metrics %.2f s, total %.2f s\n",
-              sec["sky_matrix"].get<double>(), sec["trace"].get<double>(),
-              sec["hours_and_metrics"].get<double>(), sec["total"].get<double>());
+  std::printf(
+      "time       sky matrix %.2f s, trace %.2f s, hours and metrics %.2f s, total %.2f s\n",
+      sec["sky_matrix"].get<double>(), sec["trace"].get<double>(),
+      sec["hours_and_metrics"].get<double>(), sec["total"].get<double>());
   for (const auto& g : s["grids"]) {
     const auto& m = g["metrics"];
-    std::printf("grid       %s (%d cells): sDA300/50%% %s (%s), ASE1000,250h %s, mean DA300 %s, "
-                "UDI 100-2000 %s\n",
-                g["name"].get<std::string>().c_str(), g["cells"].get<int>(),
-                interval(m["sda_percent"], 1.0, " %").c_str(),
-                m["sda_nominal_verdict"].get<std::string>().c_str(),
-                m["ase_percent"].is_null()
-                    ? "-"
-                    : (std::to_string(m["ase_percent"].get<double>()).substr(0, 5) + " %").c_str(),
-                interval(m["da_fraction"], 100.0, " %").c_str(),
-                interval(m["udi_useful_fraction"], 100.0, " %").c_str());
+    std::printf(
+        "grid       %s (%d cells): sDA300/50%% %s (%s), ASE1000,250h %s, mean DA300 %s, "
+        "UDI 100-2000 %s\n",
+        g["name"].get<std::string>().c_str(), g["cells"].get<int>(),
+        interval(m["sda_percent"], 1.0, " %").c_str(),
+        m["sda_nominal_verdict"].get<std::string>().c_str(),
+        m["ase_percent"].is_null()
+            ? "-"
+            : (std::to_string(m["ase_percent"].get<double>()).substr(0, 5) + " %").c_str(),
+        interval(m["da_fraction"], 100.0, " %").c_str(),
+        interval(m["udi_useful_fraction"], 100.0, " %").c_str());
   }
 }
 
@@ -92,6 +95,7 @@ int run_annual_command(AnnualArgs& a) {
   try {
     if (a.seed > 0) a.options.seed = a.seed;
     if (a.blinds > 0.0) a.options.blinds_transmittance = a.blinds;
+    if (a.max_photons > 0) a.options.max_photons = a.max_photons;
     const Scene scene = load_scene(a.scene);
     const AnnualResult r = run_annual(scene, a.options);
     print_summary(r.summary);
@@ -119,7 +123,8 @@ void add_annual_command(CLI::App& app) {
       "every hour rebuilt with its interval, annual metrics (DA, sDA, ASE, UDI, EN 17037)");
   cmd->add_option("scene", a->scene, "Scene file (its sky's openings, grids, meshes)")->required();
   cmd->add_option("--weather", a->options.weather, "EnergyPlus weather file (.epw)")->required();
-  cmd->add_option("--mf", a->options.sky.mf, "Reinhart subdivision (1: 145 patches, 2: 577, 4: 2305)")
+  cmd->add_option("--mf", a->options.sky.mf,
+                  "Reinhart subdivision (1: 145 patches, 2: 577, 4: 2305)")
       ->capture_default_str();
   cmd->add_option("--north-deg", a->options.sky.north_deg,
                   "True north from +y, counter-clockwise seen from above")
@@ -134,9 +139,14 @@ void add_annual_command(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "Random seed (default: the scene's)");
   cmd->add_option("--backend", a->options.backend, "auto, embree or vulkan")->capture_default_str();
   cmd->add_option("--threads", a->options.threads, "CPU threads (0: all)")->capture_default_str();
-  cmd->add_option("--confidence", a->options.confidence, "Of every interval")->capture_default_str();
+  cmd->add_option("--confidence", a->options.confidence, "Of every interval")
+      ->capture_default_str();
   cmd->add_option("--blinds-transmittance", a->blinds,
                   "LM-83's blinds rule: blinds-closed hours get the sky's light times this");
+  cmd->add_flag("--decide", a->options.decide,
+                "Trace on (twice the photons per look) until every sDA and EN 17037 verdict is "
+                "decided, within --max-photons");
+  cmd->add_option("--max-photons", a->max_photons, "--decide's budget (default 16 x --photons)");
   cmd->add_option("--out-dir", a->out_dir, "Write annual.json and annual.npz into this folder");
   cmd->callback([a] {
     if (const int rc = run_annual_command(*a); rc != 0) throw CLI::RuntimeError(rc);

@@ -1,6 +1,6 @@
 #pragma once
 // `lightsolver annual SCENE --weather FILE.epw`: a year of daylight by daylight coefficients
-// (lightsolver/annual_run.hpp; docs/daylight.md, "A year of daylight").
+// (lightsolver/annual_run.hpp; docs/daylight.md, "Daylight coefficients: a year in one trace").
 #include <CLI/CLI.hpp>
 
 namespace lightsolver::cli {

@@ -70,8 +70,11 @@ void NpzWriter::add(const std::string& name, const std::string& dtype,
   const std::string& stored = deflate_ ? packed : file;
   if (body_.size() + stored.size() > 0xFFFFFFF0u)
     throw std::runtime_error("the .npz would exceed 4 GB (ZIP64 is not written)");
-  Entry e{name + ".npy", crc_of(file), static_cast<std::uint32_t>(file.size()),
-          static_cast<std::uint32_t>(stored.size()), static_cast<std::uint32_t>(body_.size()),
+  Entry e{name + ".npy",
+          crc_of(file),
+          static_cast<std::uint32_t>(file.size()),
+          static_cast<std::uint32_t>(stored.size()),
+          static_cast<std::uint32_t>(body_.size()),
           deflate_ ? 8u : 0u};
   put32(body_, 0x04034b50u);  // local file header
   put16(body_, 20);           // version needed
@@ -95,8 +98,8 @@ std::string NpzWriter::finish() const {
     put32(dir, 0x02014b50u);  // central directory header
     put16(dir, 20);           // made by
     put16(dir, 20);           // needed
-    put16(dir, 0);         // flags
-    put16(dir, e.method);  // 0 stored, 8 deflated
+    put16(dir, 0);            // flags
+    put16(dir, e.method);     // 0 stored, 8 deflated
     put16(dir, 0);
     put16(dir, 0x21);
     put32(dir, e.crc);

@@ -1,6 +1,6 @@
-// lightsolver.annual (docs/daylight.md, "A year of daylight"): the annual run of
-// lightsolver/annual_run.hpp; the summary as annual.json holds it (a dict), every grid's hours as
-// float32 numpy arrays (hours × cells). Bad input raises lightsolver.InputError.
+// lightsolver.annual (docs/daylight.md, "Daylight coefficients: a year in one trace"): the annual
+// run of lightsolver/annual_run.hpp; the summary as annual.json holds it (a dict), every grid's
+// hours as float32 numpy arrays (hours × cells). Bad input raises lightsolver.InputError.
 #include "annual_bindings.hpp"
 
 #include <pybind11/numpy.h>
@@ -30,7 +30,8 @@ py::dict annual_dict(const Scene& scene, const std::filesystem::path& weather, i
                      double north_deg, std::optional<double> ground_reflectance, bool illuminance,
                      std::uint64_t photons, std::optional<std::uint64_t> seed,
                      const std::string& backend, int threads, double confidence,
-                     std::optional<double> blinds_transmittance) {
+                     std::optional<double> blinds_transmittance, bool decide,
+                     std::optional<std::uint64_t> max_photons) {
   AnnualRunOptions o;
   o.weather = weather;
   o.sky.mf = mf;
@@ -43,6 +44,8 @@ py::dict annual_dict(const Scene& scene, const std::filesystem::path& weather, i
   o.threads = threads;
   o.confidence = confidence;
   o.blinds_transmittance = blinds_transmittance;
+  o.decide = decide;
+  o.max_photons = max_photons;
   AnnualResult r;
   {
     py::gil_scoped_release release;
@@ -73,10 +76,11 @@ py::dict annual_dict(const Scene& scene, const std::filesystem::path& weather, i
 
 void bind_annual(py::module_& m) {
   const char* doc =
-      "annual(scene, weather, *, mf=1, north_deg=0, ground_reflectance=None (the scene's sky's), illuminance=False, "
-      "photons=20_000_000, seed=None, backend='auto', threads=0, confidence=0.95, "
-      "blinds_transmittance=None): a year of daylight by daylight coefficients (docs/daylight.md, "
-      "'A year of daylight'). `scene` a Scene or a scene file's path (its one sky's openings, its "
+      "annual(scene, weather, *, mf=1, north_deg=0, ground_reflectance=None (the scene's sky's), "
+      "illuminance=False, photons=20_000_000, seed=None, backend='auto', threads=0, "
+      "confidence=0.95, blinds_transmittance=None, decide=False, max_photons=None): a year of "
+      "daylight by daylight coefficients (docs/daylight.md, 'Daylight coefficients: a year in "
+      "one trace'). `scene` a Scene or a scene file's path (its one sky's openings, its "
       "grids), `weather` an EPW file. Returns a dict: summary (annual.json: weather with its "
       "sha256, sky, trace, seconds, occupancy, grids with their metrics), grids (name, mean, low, "
       "high, direct_sun: float32 hours x cells, lx) and month_day_hour. InputError names the "
@@ -85,22 +89,26 @@ void bind_annual(py::module_& m) {
     m.def(
         "annual",
         [](decltype(scene_arg) scene, const std::filesystem::path& weather, int mf,
-           double north_deg, std::optional<double> ground_reflectance, bool illuminance, std::uint64_t photons,
-           std::optional<std::uint64_t> seed, const std::string& backend, int threads,
-           double confidence, std::optional<double> blinds) {
+           double north_deg, std::optional<double> ground_reflectance, bool illuminance,
+           std::uint64_t photons, std::optional<std::uint64_t> seed, const std::string& backend,
+           int threads, double confidence, std::optional<double> blinds, bool decide,
+           std::optional<std::uint64_t> max_photons) {
           if constexpr (std::is_same_v<decltype(scene_arg), std::string>) {
             return annual_dict(load_scene(scene), weather, mf, north_deg, ground_reflectance,
-                               illuminance, photons, seed, backend, threads, confidence, blinds);
+                               illuminance, photons, seed, backend, threads, confidence, blinds,
+                               decide, max_photons);
           } else {
             return annual_dict(scene, weather, mf, north_deg, ground_reflectance, illuminance,
-                               photons, seed, backend, threads, confidence, blinds);
+                               photons, seed, backend, threads, confidence, blinds, decide,
+                               max_photons);
           }
         },
         py::arg("scene"), py::arg("weather"), py::kw_only(), py::arg("mf") = 1,
         py::arg("north_deg") = 0.0, py::arg("ground_reflectance") = py::none(),
         py::arg("illuminance") = false, py::arg("photons") = 20'000'000,
         py::arg("seed") = py::none(), py::arg("backend") = "auto", py::arg("threads") = 0,
-        py::arg("confidence") = 0.95, py::arg("blinds_transmittance") = py::none(), doc);
+        py::arg("confidence") = 0.95, py::arg("blinds_transmittance") = py::none(),
+        py::arg("decide") = false, py::arg("max_photons") = py::none(), doc);
   };
   bind(Scene{});
   bind(std::string{});

@@ -1,5 +1,5 @@
 #pragma once
-// lightsolver.annual (docs/daylight.md, "A year of daylight").
+// lightsolver.annual (docs/daylight.md, "Daylight coefficients: a year in one trace").
 #include <pybind11/pybind11.h>
 
 /// Adds lightsolver.annual.

@@ -150,3 +150,25 @@ def test_results_reader_views_the_annual_files(tmp_path):
     assert hours["mean"].shape == (8760, 300) and hours["direct_sun"].shape == (8760, 300)
     with pytest.raises(lr.ResultsError):
         lr.read_annual({"format": "lightsolver.results/1"})
+
+
+def test_decide_traces_on_until_the_verdicts_are_decided_or_the_budget_ends():
+    def undecided(summary):
+        m = summary["grids"][0]["metrics"]
+        verdicts = [m["sda_nominal_verdict"], m["sda_preferred_verdict"]]
+        verdicts += [e["verdict"] for e in m["en17037"]]
+        return sum(v == "undecided" for v in verdicts)
+
+    once = lightsolver.annual(str(ROOM), str(CHICAGO), north_deg=135, photons=300_000, seed=3)
+    assert undecided(once["summary"]) > 0  # something to decide
+    r = lightsolver.annual(str(ROOM), str(CHICAGO), north_deg=135, photons=300_000, seed=3,
+                           decide=True, max_photons=2_400_000)
+    t = r["summary"]["trace"]
+    assert t["decide"] and t["looks"] >= 2
+    assert t["photons"] == min(300_000 * 2 ** (t["looks"] - 1), 2_400_000)
+    assert t["stop_reason"] in ("decided", "photons")
+    if t["stop_reason"] == "decided":
+        assert undecided(r["summary"]) == 0
+    else:
+        assert t["photons"] == 2_400_000
+    assert undecided(r["summary"]) < undecided(once["summary"])

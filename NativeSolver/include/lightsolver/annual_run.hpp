@@ -1,9 +1,9 @@
 #pragma once
 /// \file annual_run.hpp
-/// A year of daylight (`lightsolver annual`, docs/daylight.md, "A year of daylight"): the weather
-/// file's skies, the daylight coefficients traced once, every hour of every grid rebuilt with
-/// its interval, and the annual metrics with theirs. What the CLI writes (annual.json and
-/// annual.npz) and Python's `lightsolver.annual` returns.
+/// A year of daylight (`lightsolver annual`, docs/daylight.md, "Daylight coefficients: a year in
+/// one trace"): the weather file's skies, the daylight coefficients traced once, every hour of
+/// every grid rebuilt with its interval, and the annual metrics with theirs. What the CLI writes
+/// (annual.json and annual.npz) and Python's `lightsolver.annual` returns.
 
 #include <cstdint>
 #include <filesystem>

@@ -1,5 +1,7 @@
 // An annual run (lightsolver/annual_run.hpp): weather → sky matrix → daylight coefficients →
 // every hour of every grid → the annual metrics, and annual.json's summary of it all.
+#include "lightsolver/annual_run.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,12 +9,11 @@
 #include <iterator>
 #include <string>
 
+#include "estimate/decide.hpp"
 #include "lightsolver/annual.hpp"
-#include "lightsolver/annual_run.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/statistics.hpp"
 #include "lightsolver/weather.hpp"
-#include "estimate/decide.hpp"
 #include "scene/provenance.hpp"
 
 namespace lightsolver {
@@ -184,8 +185,8 @@ void check_options(const Scene& scene, const AnnualRunOptions& o) {
     throw InputError(f, "blinds_transmittance", "must be more than 0 and at most 1");
   }
   if (o.max_photons && *o.max_photons < o.photons) {
-    throw InputError(f, "max_photons", "must be at least photons (" + std::to_string(o.photons) +
-                                           ")");
+    throw InputError(f, "max_photons",
+                     "must be at least photons (" + std::to_string(o.photons) + ")");
   }
 }
 

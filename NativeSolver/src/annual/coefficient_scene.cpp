@@ -23,9 +23,9 @@ const Luminaire& the_one(const Scene& s, Luminaire::Type type, const char* what,
   }
   if ((needed && count != 1) || count > 1) {
     throw InputError(s.source_file, "luminaires",
-                     std::string("an annual run needs ") + (needed ? "exactly one " : "at most one ") +
-                         what + " luminaire (its openings), the scene has " +
-                         std::to_string(count));
+                     std::string("an annual run needs ") +
+                         (needed ? "exactly one " : "at most one ") + what +
+                         " luminaire (its openings), the scene has " + std::to_string(count));
   }
   return **out;
 }
@@ -63,8 +63,7 @@ Luminaire bin_sun(const Luminaire* sun, const Luminaire& sky, std::size_t bin,
     l.sky.portals = sky.sky.portals;
   } else {
     const double r = sky.sky.site_radius_m;
-    const glm::dvec3 helper =
-        std::abs(toward.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 helper = std::abs(toward.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
     const glm::dvec3 e1 = glm::normalize(glm::cross(helper, toward));
     const glm::dvec3 e2 = glm::cross(toward, e1);
     l.corner = sky.sky.site_centre + r * toward - r * e1 - r * e2;

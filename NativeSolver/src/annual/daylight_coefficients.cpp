@@ -2,6 +2,8 @@
 // coefficient_scene() in one run, photons shared by each patch's importance over the year, every
 // group's estimate per grid cell (all light and reflected light) kept as float32 rows, and the
 // sun's direct beam over every cell by shadow rays (direct_sun.cpp).
+#include "lightsolver/daylight_coefficients.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,7 +13,6 @@
 #include <unordered_map>
 
 #include "annual/sun_parts.hpp"
-#include "lightsolver/daylight_coefficients.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/statistics.hpp"
@@ -49,8 +50,8 @@ std::vector<double> rms_luminance(const SkyMatrix& y, const SkyPatches& patches)
 // variance): a patch's weights are its sky entries over Ω_p L_p, a sun bin's E_n / kSunBinLx in
 // its hours.
 std::vector<double> share_weights(const Simulation& sim, const SkyMatrix& y,
-                                  const std::vector<double>& luminance,
-                                  const SkyPatches& patches, const std::vector<int>& bin_of_hour) {
+                                  const std::vector<double>& luminance, const SkyPatches& patches,
+                                  const std::vector<int>& bin_of_hour) {
   const std::vector<LuminaireGroup> groups = sim.groups();
   std::vector<double> ss(groups.size(), 0.0);
   for (int h = 0; h < y.hours; ++h) {
@@ -131,9 +132,9 @@ void fill_rows(std::vector<float>& mean, std::vector<float>& below, std::vector<
 std::size_t DaylightCoefficients::bytes() const {
   std::size_t b = 0;
   for (const auto& g : grids) {
-    for (const auto* v : {&g.mean, &g.below, &g.above, &g.reflected_mean, &g.reflected_below,
-                          &g.reflected_above, &g.direct, &g.direct_low, &g.direct_high,
-                          &g.direct_centre}) {
+    for (const auto* v :
+         {&g.mean, &g.below, &g.above, &g.reflected_mean, &g.reflected_below, &g.reflected_above,
+          &g.direct, &g.direct_low, &g.direct_high, &g.direct_centre}) {
       b += v->size() * sizeof(float);
     }
   }
@@ -189,8 +190,7 @@ CoefficientTracer::CoefficientTracer(const Scene& scene_in, const SkyMatrix& yea
   st.sim.emplace(st.scene, Simulation::Options{o.backend, o.threads, {}});
   st.sim->fix_photon_shares(
       share_weights(*st.sim, year, dc.patch_luminance, patches, dc.sun_bin_of_hour));
-  dc.setup_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  dc.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
 }
 
 CoefficientTracer::~CoefficientTracer() = default;
@@ -217,10 +217,11 @@ DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z) {
     if (dc.trace.groups[g].flux_lm > 0.0 && dc.trace.groups[g].photons == 0) ++unlit;
   }
   if (unlit > 0) {
-    throw InputError(st.scene.source_file, "photons",
-                     std::to_string(unlit) + " of the " + std::to_string(dc.trace.groups.size()) +
-                         " sky patch and sun bin groups got no photon: trace more photons (at least " +
-                         std::to_string(20 * dc.trace.groups.size()) + ")");
+    throw InputError(
+        st.scene.source_file, "photons",
+        std::to_string(unlit) + " of the " + std::to_string(dc.trace.groups.size()) +
+            " sky patch and sun bin groups got no photon: trace more photons (at least " +
+            std::to_string(20 * dc.trace.groups.size()) + ")");
   }
   for (std::size_t g = 0; g < dc.grids.size(); ++g) {
     CoefficientGrid& cg = dc.grids[g];

@@ -57,9 +57,9 @@ HourlyIlluminance hourly_illuminance(const DaylightCoefficients& dc, const SkyMa
   if (grid >= dc.grids.size()) throw std::out_of_range("hourly_illuminance: no such grid");
   if (y.patch_count != dc.patches || y.mf != dc.mf ||
       static_cast<int>(dc.sun_bin_of_hour.size()) != y.hours) {
-    throw InputError("", "sky matrix", "its patches are not the coefficients' (MF " +
-                                           std::to_string(y.mf) + " vs " +
-                                           std::to_string(dc.mf) + ")");
+    throw InputError("", "sky matrix",
+                     "its patches are not the coefficients' (MF " + std::to_string(y.mf) + " vs " +
+                         std::to_string(dc.mf) + ")");
   }
   const CoefficientGrid& g = dc.grids[grid];
   const int cells = static_cast<int>(g.cell_area_m2.size()), p = dc.patches;
@@ -86,8 +86,8 @@ HourlyIlluminance hourly_illuminance(const DaylightCoefficients& dc, const SkyMa
   out.cells = cells;
   out.cell_area_m2 = g.cell_area_m2;
   const std::size_t n = static_cast<std::size_t>(y.hours) * cells;
-  for (auto* v : {&out.mean, &out.spread_low, &out.spread_high, &out.direct_below,
-                  &out.direct_above}) {
+  for (auto* v :
+       {&out.mean, &out.spread_low, &out.spread_high, &out.direct_below, &out.direct_above}) {
     v->assign(n, 0.0f);
   }
   const float inv_z = static_cast<float>(1.0 / dc.z);

@@ -48,7 +48,10 @@ struct GridFrame {
   glm::dvec3 corner, e1, e2, n;
   double g11, g12, g22, det;
   explicit GridFrame(const Target& t)
-      : corner(t.corner), e1(t.edge1), e2(t.edge2), n(glm::normalize(glm::cross(t.edge1, t.edge2))) {
+      : corner(t.corner),
+        e1(t.edge1),
+        e2(t.edge2),
+        n(glm::normalize(glm::cross(t.edge1, t.edge2))) {
     g11 = glm::dot(e1, e1), g12 = glm::dot(e1, e2), g22 = glm::dot(e2, e2);
     det = g11 * g22 - g12 * g12;
   }

@@ -86,7 +86,8 @@ std::vector<std::size_t> chosen_hours(const WeatherFile& w) {
   double best_sun = 0.0, best_diffuse = 0.0, best_behind = 0.0;
   for (std::size_t i = 0; i < w.hours.size(); ++i) {
     const WeatherHour& r = w.hours[i];
-    const double dni = r.direct_normal_w_m2.value_or(0), dhi = r.diffuse_horizontal_w_m2.value_or(0);
+    const double dni = r.direct_normal_w_m2.value_or(0),
+                 dhi = r.diffuse_horizontal_w_m2.value_or(0);
     if (r.month == 1 && r.hour == 13 && dni > best_sun) best_sun = dni, sunny = i;
     if (dni == 0.0 && dhi > best_diffuse) best_diffuse = dhi, overcast = i;
     if (r.month == 6 && r.hour == 8 && dni > best_behind) best_behind = dni, behind = i;
@@ -137,10 +138,11 @@ TEST_P(DaylightCoefficientsTraced, HoursEqualPointInTimeRuns) {
                                       : z * e.spread_high[at] + e.direct_above[at];
       const double pit_side = diff > 0 ? p.ci_high - p.mean : p.mean - p.ci_low;
       const double allowed = std::hypot(dc_side, pit_side) + 0.01 * p.mean;
-      std::printf("[ dc       ] hour %d cell %d: coefficients %.1f (−%.1f +%.1f; direct −%.1f "
-                  "+%.1f), point in time %.1f [%.1f, %.1f]\n",
-                  h, c, e.mean[at], z * e.spread_low[at], z * e.spread_high[at],
-                  e.direct_below[at], e.direct_above[at], p.mean, p.ci_low, p.ci_high);
+      std::printf(
+          "[ dc       ] hour %d cell %d: coefficients %.1f (−%.1f +%.1f; direct −%.1f "
+          "+%.1f), point in time %.1f [%.1f, %.1f]\n",
+          h, c, e.mean[at], z * e.spread_low[at], z * e.spread_high[at], e.direct_below[at],
+          e.direct_above[at], p.mean, p.ci_low, p.ci_high);
       EXPECT_LE(std::abs(diff), allowed) << "hour " << h << " cell " << c;
     }
   }
@@ -188,10 +190,11 @@ TEST(DaylightCoefficients, OpenProbeReadsTheSkyAndSunEveryHour) {
     worst = std::max(worst, std::abs(diff) / exact);
     if (std::abs(diff) > side + 0.006 * y.diffuse_horizontal_lx[h]) ++outside;
   }
-  std::printf("[ dc       ] open probe: %d sky hours, worst relative difference %.3f %%; year "
-              "%.5g lx·h, the file's %.5g (%+.2f %%); coefficients %.1f MB, %zu groups, %.1f s\n",
-              sky_hours, 100.0 * worst, ours, file, 100.0 * (ours / file - 1.0),
-              dc.bytes() / 1e6, dc.trace.groups.size(), dc.trace.seconds);
+  std::printf(
+      "[ dc       ] open probe: %d sky hours, worst relative difference %.3f %%; year "
+      "%.5g lx·h, the file's %.5g (%+.2f %%); coefficients %.1f MB, %zu groups, %.1f s\n",
+      sky_hours, 100.0 * worst, ours, file, 100.0 * (ours / file - 1.0), dc.bytes() / 1e6,
+      dc.trace.groups.size(), dc.trace.seconds);
   EXPECT_EQ(outside, 0);
   EXPECT_NEAR(ours / file, 1.0, 0.03);  // the sky matrix' +1.7 % (irradiance + Perez efficacy)
 }

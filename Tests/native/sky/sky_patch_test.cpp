@@ -49,7 +49,7 @@ TEST(SkyPatch, PatchFluxesAddUpToTheWholeSky) {
   dbl.panes = 2;
   const std::vector<std::vector<SkyDefinition::Portal>> openings = {
       {{{0, 0, 3}, {0, 1, 0}, {1, 0, 0}, std::nullopt}},  // skylight, light going down
-      {{{0, 0, 0}, {1.5, 0, 0}, {0, 0, 1.2}, dbl}},        // window in y = 0 facing -y
+      {{{0, 0, 0}, {1.5, 0, 0}, {0, 0, 1.2}, dbl}},       // window in y = 0 facing -y
   };
   for (const auto& portals : openings) {
     // MF 2 for one case only: each patch builds its own CIE sky (~10 ms of quadrature).
