@@ -172,3 +172,29 @@ def test_decide_traces_on_until_the_verdicts_are_decided_or_the_budget_ends():
     else:
         assert t["photons"] == 2_400_000
     assert undecided(r["summary"]) < undecided(once["summary"])
+
+
+def test_electric_light_beside_the_daylight(tmp_path):
+    scene = json.loads(ROOM.read_text())
+    scene["luminaires"].append({"name": "panel", "type": "area", "flux_lm": 6000,
+                                "corner": [2.4, 1.4, 2.99], "edge1": [1.2, 0, 0],
+                                "edge2": [0, 1.2, 0]})
+    scene["targets"][0]["requirements"] = {"em_lux": 500}
+    path = tmp_path / "lit.scene.json"
+    path.write_text(json.dumps(scene))
+    r = lightsolver.annual(str(path), str(CHICAGO), photons=1_000_000, seed=2)
+    e = r["summary"]["grids"][0]["electric"]
+    assert e["target_lx"] == 500 and e["occupied_hours"] == 3650
+    el = e["electric_lx"]
+    assert 0 < el["low"] <= el["estimate"] <= el["high"]
+    for key, top in (("hours_below_target", 3650), ("mean_output_fraction", 1.0)):
+        m = e[key]
+        assert 0 <= m["low"] <= m["estimate"] <= m["high"] <= top
+    # The daylight grid means, hour by hour, recount the estimate.
+    grid = r["grids"][0]
+    occupied = (r["month_day_hour"][:, 2] >= 9) & (r["month_day_hour"][:, 2] <= 18)
+    assert e["hours_below_target"]["estimate"] == int(np.sum(grid["mean"].mean(axis=1)[occupied]
+                                                            < 500))
+    # Without electric luminaires there is nothing to report.
+    plain = lightsolver.annual(str(ROOM), str(CHICAGO), photons=300_000)
+    assert plain["summary"]["grids"][0]["electric"] is None

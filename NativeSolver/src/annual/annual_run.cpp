@@ -9,6 +9,7 @@
 #include <iterator>
 #include <string>
 
+#include "annual/electric.hpp"
 #include "estimate/decide.hpp"
 #include "lightsolver/annual.hpp"
 #include "lightsolver/error.hpp"
@@ -233,6 +234,16 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
   const auto t2 = Clock::now();
   GridYears years = grid_years(dc, y, o, o.confidence);
   const double t_hours = since(t2);
+  // The scene's electric light beside the daylight: its own trace at 1 − α/2 (the hours get the
+  // other half of α: electric_year).
+  const auto t3 = Clock::now();
+  const std::optional<Results> electric = trace_electric(scene, o.photons, o.seed, o.backend,
+                                                         o.threads, 1.0 - (1.0 - o.confidence) / 2);
+  std::vector<const Target*> grid_targets;
+  for (const Target& t : scene.targets) {
+    if (t.type == Target::Type::Grid) grid_targets.push_back(&t);
+  }
+  const double t_electric = since(t3);
   AnnualResult r;
   r.month_day_hour = y.month_day_hour;
   nlohmann::json grids = nlohmann::json::array();
@@ -241,12 +252,17 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
     const CoefficientGrid& cg = dc.grids[g];
     double area = 0.0;
     for (double a : cg.cell_area_m2) area += a;
-    grids.push_back({{"name", cg.name},
-                     {"nu", cg.nu},
-                     {"nv", cg.nv},
-                     {"cells", cg.cell_area_m2.size()},
-                     {"area_m2", area},
-                     {"metrics", annual_metrics_json(years.metrics[g])}});
+    nlohmann::json entry = {
+        {"name", cg.name},    {"nu", cg.nu},
+        {"nv", cg.nv},        {"cells", cg.cell_area_m2.size()},
+        {"area_m2", area},    {"metrics", annual_metrics_json(years.metrics[g])},
+        {"electric", nullptr}};
+    if (electric) {
+      const HourlyGrid day = as_grid(years.grids[g].hourly, z_for_confidence(o.confidence));
+      entry["electric"] = electric_json(electric_year(
+          *grid_targets[g], electric->targets.at(g).estimate, day, y.occupied, o.confidence));
+    }
+    grids.push_back(std::move(entry));
     hourly_bytes += 5 * years.grids[g].hourly.mean.size() * sizeof(float) +
                     years.grids[g].direct_sun.size() * sizeof(float);
   }
@@ -280,6 +296,7 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
         {"of_which_setup", dc.setup_seconds},
         {"of_which_photons", tr.seconds},
         {"hours_and_metrics", t_hours},
+        {"electric", t_electric},
         {"total", since(t0)}}},
       {"occupancy",
        {{"schedule", "IES LM-83: 8:00-18:00 local standard time"}, {"hours", y.occupied_hours}}},
