@@ -73,7 +73,11 @@ class AnnualObject(DocTestCase):
                 doc.removeObject(lum.Name)
         doc.recompute()
         job = annual_run.AnnualRun(annual, work_dir("annual"))
-        job.check()  # no "No luminaires" error: the annual run traces daylight only
+        report = job.check()  # no "No luminaires" error: the annual run traces daylight only
+        # The Sky's default site is Paris: the Chicago file is another place's year.
+        warnings = [m.text for m in report.messages if m.level == "warning"]
+        self.assertTrue(any("far from the site" in w and "Chicago" in w for w in warnings),
+                        warnings)
         path = job.prepare()
         scene = load_scene(path)
         skies = [lum for lum in scene["luminaires"] if lum["type"] == "sky"]
@@ -87,9 +91,12 @@ class AnnualRunStored(DocTestCase):
     def test_a_year_is_stored_read_and_mapped(self):
         doc, analysis, sky, annual, names = office_with_annual()
         sky.North = 30.0  # no Arch Site: the Sky's North is the run's
+        sky.Latitude, sky.Longitude, sky.TimeZone = 41.98, -87.92, -6.0  # Chicago
         doc.recompute()
         out = work_dir("annual")
-        summary = lighting.run_annual(annual, out)
+        logged = []
+        summary = lighting.run_annual(annual, out, log=lambda level, text: logged.append(text))
+        self.assertFalse([t for t in logged if "far from the site" in t])
         typed = annual_results.read(summary)
         self.assertIsNotNone(typed)
         digest = hashlib.sha256(open(CHICAGO, "rb").read()).hexdigest()
@@ -147,3 +154,22 @@ class AnnualRunStored(DocTestCase):
         wp.WorkplaneHeight = float(wp.WorkplaneHeight) + 100.0
         doc.recompute()
         self.assertFalse(annual_run.is_current(again))
+
+
+class AnnualMaps(DocTestCase):
+    def test_no_or_foreign_summary_reads_as_none(self):
+        self.assertIsNone(annual_results.read(None))
+        self.assertIsNone(annual_results.read({"format": "lightsolver.results/1"}))
+        self.assertEqual(annual_results.summary_lines(None), [])
+
+    def test_the_verdict_map_has_three_distinct_colours(self):
+        scale = annual_results.scale("sDA verdict", [0.0, 1.0, 2.0])
+        colours = [scale.colour(annual_results.VERDICT_VALUE[v])
+                   for v in ("fail", "undecided", "pass")]
+        self.assertEqual(len(set(colours)), 3)
+        self.assertEqual(scale.ticks(), [0.0, 1.0, 2.0])
+        # ASE: at least 500 h, so LM-83's 250 h sits mid-scale or lower.
+        self.assertEqual(annual_results.scale("ASE hours", [10.0, 40.0]).max_lux, 500.0)
+        self.assertGreaterEqual(annual_results.scale("ASE hours", [1800.0]).max_lux, 1800.0)
+        with self.assertRaises(ValueError):
+            annual_results.cell_values(None, "Run illuminance")

@@ -69,6 +69,29 @@ def is_current(obj: Any) -> Optional[bool]:
     return os.path.isfile(path) and sha256_of(path) == obj.WeatherSha256
 
 
+#: How far (degrees of latitude or longitude) the weather file's station may lie from the
+#: Sky's site before Check warns: about 100 km, a neighbouring city's airport.
+SITE_TOLERANCE_DEG = 1.0
+
+
+def site_mismatch(weather_file: str, site: Any) -> str:
+    """Why the weather file seems to be another place's than the Sky's site ("" when it is
+    near, or when its LOCATION line cannot be read: the solver reports a malformed file). The
+    run takes the file's hours as they are, so a file of another city gives that city's year."""
+    try:
+        with open(weather_file, encoding="latin-1") as stream:
+            fields = stream.readline().strip().split(",")
+        lat, lon = float(fields[6]), float(fields[7])
+    except (OSError, ValueError, IndexError):
+        return ""
+    if (abs(lat - site.latitude_deg) <= SITE_TOLERANCE_DEG and
+            abs(lon - site.longitude_deg) <= SITE_TOLERANCE_DEG):
+        return ""
+    return (f"the weather file's station ({fields[1]}, {lat:.2f}, {lon:.2f}) is far from the "
+            f"site ({site.source}: {site.latitude_deg:.2f}, {site.longitude_deg:.2f}); the year "
+            "is the station's")
+
+
 class AnnualRun:
     """State and stages of one annual run: ``check()``, ``prepare()``, ``solve()`` (or
     ``start()`` + poll ``finished``), then ``apply()``."""
@@ -123,6 +146,10 @@ class AnnualRun:
             self._set_status("check failed")
             raise CheckError(report)
         self._copy_settings(skies[0])
+        far = site_mismatch(str(self.annual.WeatherFile), sky_mod.resolve_site(skies[0]))
+        if far:
+            report.add("warning", f"{self.annual.Label}: {far}", self.annual.Name)
+            self.log("warning", far)
         return report
 
     def _copy_settings(self, sky: Any) -> None:
