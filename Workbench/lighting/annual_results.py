@@ -36,9 +36,13 @@ def read(summary: Optional[Dict[str, Any]]) -> Optional[Any]:
     (none, or one the reader refuses)."""
     if not summary:
         return None
+    from lighting.messages import LightingError
     from lighting.solver.results import reader
 
-    module = reader()
+    try:
+        module = reader()
+    except LightingError:  # no reader: the stored summary stays, unread until there is one
+        return None
     try:
         return module.read_annual(summary)
     except module.ResultsError:

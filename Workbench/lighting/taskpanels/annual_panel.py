@@ -141,8 +141,12 @@ class AnnualPanel(ModelessPanel):
 
         if self.job is not None:
             return
-        log = lambda level, text: FreeCAD.Console.PrintMessage(f"Lighting: {text}\n") \
-            if level != "error" else FreeCAD.Console.PrintError(f"Lighting: {text}\n")
+        def log(level: str, text: str) -> None:
+            if level == "error":
+                FreeCAD.Console.PrintError(f"Lighting: {text}\n")
+            else:
+                FreeCAD.Console.PrintMessage(f"Lighting: {text}\n")
+
         try:
             job = annual_run.AnnualRun(self.annual, log=log)
             self.status.setText("Checking ...")
@@ -156,7 +160,9 @@ class AnnualPanel(ModelessPanel):
         job.start()
         self.run_button.setEnabled(False)
         self.cancel_button.setEnabled(True)
-        self.status.setText(f"Tracing the year ({int(self.annual.Photons):,} photons) ...")
+        warnings = [m.text for m in job.report.messages if m.level == "warning"]
+        self.status.setText("\n".join([f"Tracing the year ({int(self.annual.Photons):,} "
+                                        "photons) ..."] + [f"Warning: {w}" for w in warnings]))
         self.timer.start()
 
     def cancel(self) -> None:
