@@ -12,7 +12,8 @@ Works headless (``freecadcmd``) and in the GUI::
 Objects: :func:`make_analysis`, :func:`make_luminaire`, :func:`make_face_target`,
 :func:`make_grid_target`, :func:`make_placement_domain`,
 :func:`add_luminaire_layout`, :func:`make_observer`, :func:`make_light_scene`, :func:`make_sky`
-(shown with :func:`show_light_scene`). Stages on their own:
+(shown with :func:`show_light_scene`), :func:`make_annual_daylight` (a year of daylight, run by
+:func:`run_annual`). Stages on their own:
 :func:`check`, :func:`export_scene`, :func:`solver_available`. Model state: :func:`exclude`,
 :func:`left_out`, :func:`results_state`. Errors derive from
 :class:`LightingError` and carry a message meant for the user.
@@ -53,6 +54,8 @@ _EXPORTS = {
     "make_observer": "lighting.objects.factory",
     "make_light_scene": "lighting.objects.factory",
     "make_sky": "lighting.objects.factory",
+    "make_annual_daylight": "lighting.objects.annual",
+    "run_annual": "lighting.solver.annual",
     "show_light_scene": "lighting.objects.factory",
     "grid_spacing_m": "lighting.standards",
     "LightingError": "lighting.messages",

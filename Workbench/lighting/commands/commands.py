@@ -329,7 +329,7 @@ ALL = (CommandAnalysis, CommandLuminaire, CommandTarget, CommandGrid, CommandPla
 MODEL_COMMANDS = ["Lighting_Analysis", "Lighting_Luminaire", "Lighting_ChooseLuminaire",
                   "Lighting_LuminaireLayout", "Lighting_Target", "Lighting_Grid",
                   "Lighting_Observer", "Lighting_ObserverGrid", "Lighting_LightScene",
-                  "Lighting_PlacementDomain", "Lighting_Sky"]
+                  "Lighting_PlacementDomain", "Lighting_Sky", "Lighting_AnnualDaylight"]
 RUN_COMMANDS = ["Lighting_Check", "Lighting_Export", "Lighting_Run", "Lighting_Live",
                 "Lighting_Optimize",
                 "Lighting_Results", "Lighting_Report", "Lighting_ClearResults"]
@@ -349,11 +349,11 @@ EXCLUSION_COMMANDS = exclusion.NAMES
 
 def register() -> None:
     """Add every command to FreeCAD (once)."""
-    from lighting.commands import chooser, daylight, glare, light_scene, live, report
+    from lighting.commands import annual, chooser, daylight, glare, light_scene, live, report
     from lighting.commands.layout import CommandLuminaireLayout
 
     more = (CommandLuminaireLayout, chooser.CommandChooseLuminaire, report.CommandReport,
-            *glare.ALL, *light_scene.ALL, *live.ALL, *daylight.ALL)
+            *glare.ALL, *light_scene.ALL, *live.ALL, *daylight.ALL, *annual.ALL)
     for cls in ALL + exclusion.ALL + more:
         if cls.NAME not in COMMANDS:
             FreeCADGui.addCommand(cls.NAME, cls())

@@ -121,13 +121,18 @@ def refresh(analysis: Any) -> None:
         refresh_later(analysis)
         return
     try:
-        from lighting.viewproviders import daylight_coloring
+        from lighting.viewproviders import annual_coloring, daylight_coloring
 
         scale = scale_for(analysis)
         found = results_mod.of_analysis(analysis)
         daylight = daylight_coloring.Daylight(analysis, found)  # DF grids: false colours in %
+        annual = annual_coloring.Annual(analysis)  # a year's maps, when its Map asks for one
         has_results = False
+        painted_annual = False
         for tgt in analysis_mod.targets(analysis):
+            if annual.paint(tgt):
+                painted_annual = True
+                continue
             mine = found is not None and results_mod.index_of(found, tgt.Name) is not None
             has_results = has_results or mine
             if not (mine and daylight.paint(tgt)):
@@ -135,8 +140,10 @@ def refresh(analysis: Any) -> None:
         vobj = getattr(analysis, "ViewObject", None)
         proxy = getattr(vobj, "Proxy", None) if vobj is not None else None
         if proxy is not None and hasattr(proxy, "update_legend"):
-            shown = has_results and analysis.ShowLegend
-            if shown and daylight.scale is not None:
+            shown = (has_results or painted_annual) and analysis.ShowLegend
+            if shown and painted_annual:
+                proxy.update_legend(annual.scale, **annual.legend())
+            elif shown and daylight.scale is not None:
                 proxy.update_legend(daylight.scale, **daylight.legend())
             else:
                 proxy.update_legend(scale if shown else None)

@@ -36,6 +36,7 @@ VIEW_PROVIDERS: Dict[str, Tuple[str, str]] = {
     "Lighting::Observer": ("eye", "ViewProviderObserver"),
     "Lighting::LightScene": ("light_scene", "ViewProviderLightScene"),
     "Lighting::Sky": ("sky", "ViewProviderSky"),
+    "Lighting::AnnualDaylight": ("annual", "ViewProviderAnnual"),
 }
 
 _observer: Optional["LightingObserver"] = None
