@@ -8,11 +8,13 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <exception>
 #include <optional>
 #include <string>
 
 #include "lightsolver/annual_run.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "simulation_bindings.hpp"
 
 namespace py = pybind11;
 using namespace lightsolver;
@@ -31,7 +33,8 @@ py::dict annual_dict(const Scene& scene, const std::filesystem::path& weather, i
                      std::uint64_t photons, std::optional<std::uint64_t> seed,
                      const std::string& backend, int threads, double confidence,
                      std::optional<double> blinds_transmittance, bool decide,
-                     std::optional<std::uint64_t> max_photons) {
+                     std::optional<std::uint64_t> max_photons, const py::object& progress,
+                     const py::object& cancel) {
   AnnualRunOptions o;
   o.weather = weather;
   o.sky.mf = mf;
@@ -46,11 +49,25 @@ py::dict annual_dict(const Scene& scene, const std::filesystem::path& weather, i
   o.blinds_transmittance = blinds_transmittance;
   o.decide = decide;
   o.max_photons = max_photons;
+  // progress(done, total) may return False; a CancelToken (or anything with `cancelled`) stops
+  // the trace too. Both under the GIL; an exception in progress is raised after the run.
+  std::exception_ptr callback_error;
+  const ProgressFn user = python_progress(progress, callback_error);
+  if (user || !cancel.is_none()) {
+    o.progress = [&user, &cancel](std::uint64_t done, std::uint64_t total) {
+      if (!cancel.is_none()) {
+        py::gil_scoped_acquire gil;
+        if (cancel.attr("cancelled").cast<bool>()) return false;
+      }
+      return user ? user(done, total) : true;
+    };
+  }
   AnnualResult r;
   {
     py::gil_scoped_release release;
     r = run_annual(scene, o);
   }
+  if (callback_error) std::rethrow_exception(callback_error);
   const std::size_t hours = r.month_day_hour.size() / 3;
   py::list grids;
   for (const AnnualGrid& g : r.grids) {
@@ -78,7 +95,8 @@ void bind_annual(py::module_& m) {
   const char* doc =
       "annual(scene, weather, *, mf=1, north_deg=0, ground_reflectance=None (the scene's sky's), "
       "illuminance=False, photons=20_000_000, seed=None, backend='auto', threads=0, "
-      "confidence=0.95, blinds_transmittance=None, decide=False, max_photons=None): a year of "
+      "confidence=0.95, blinds_transmittance=None, decide=False, max_photons=None, "
+      "progress=None, cancel=None): a year of "
       "daylight by daylight coefficients (docs/daylight.md, 'Daylight coefficients: a year in "
       "one trace'). `scene` a Scene or a scene file's path (its one sky's openings, its "
       "grids), `weather` an EPW file. Returns a dict: summary (annual.json: weather with its "
@@ -92,15 +110,16 @@ void bind_annual(py::module_& m) {
            double north_deg, std::optional<double> ground_reflectance, bool illuminance,
            std::uint64_t photons, std::optional<std::uint64_t> seed, const std::string& backend,
            int threads, double confidence, std::optional<double> blinds, bool decide,
-           std::optional<std::uint64_t> max_photons) {
+           std::optional<std::uint64_t> max_photons, const py::object& progress,
+           const py::object& cancel) {
           if constexpr (std::is_same_v<decltype(scene_arg), std::string>) {
             return annual_dict(load_scene(scene), weather, mf, north_deg, ground_reflectance,
                                illuminance, photons, seed, backend, threads, confidence, blinds,
-                               decide, max_photons);
+                               decide, max_photons, progress, cancel);
           } else {
             return annual_dict(scene, weather, mf, north_deg, ground_reflectance, illuminance,
                                photons, seed, backend, threads, confidence, blinds, decide,
-                               max_photons);
+                               max_photons, progress, cancel);
           }
         },
         py::arg("scene"), py::arg("weather"), py::kw_only(), py::arg("mf") = 1,
@@ -108,7 +127,8 @@ void bind_annual(py::module_& m) {
         py::arg("illuminance") = false, py::arg("photons") = 20'000'000,
         py::arg("seed") = py::none(), py::arg("backend") = "auto", py::arg("threads") = 0,
         py::arg("confidence") = 0.95, py::arg("blinds_transmittance") = py::none(),
-        py::arg("decide") = false, py::arg("max_photons") = py::none(), doc);
+        py::arg("decide") = false, py::arg("max_photons") = py::none(),
+        py::arg("progress") = py::none(), py::arg("cancel") = py::none(), doc);
   };
   bind(Scene{});
   bind(std::string{});

@@ -198,3 +198,28 @@ def test_electric_light_beside_the_daylight(tmp_path):
     # Without electric luminaires there is nothing to report.
     plain = lightsolver.annual(str(ROOM), str(CHICAGO), photons=300_000)
     assert plain["summary"]["grids"][0]["electric"] is None
+
+
+def test_progress_and_cancel_stop_the_trace(tmp_path):
+    scene = str(open_site_scene(tmp_path))
+    seen = []
+
+    def progress(done, total):
+        seen.append((done, total))
+        return len(seen) < 2  # stop after the second batch
+
+    r = lightsolver.annual(scene, str(CHICAGO), photons=4_000_000, progress=progress)
+    t = r["summary"]["trace"]
+    assert t["stop_reason"] == "cancelled" and 0 < t["photons"] < 4_000_000
+    m = r["summary"]["grids"][0]["metrics"]["sda_percent"]
+    assert m["low"] <= m["estimate"] <= m["high"]  # a year from the photons traced
+    token = lightsolver.CancelToken()
+    token.cancel()
+    r = lightsolver.annual(scene, str(CHICAGO), photons=4_000_000, cancel=token)
+    assert r["summary"]["trace"]["stop_reason"] == "cancelled"
+
+    def boom(done, total):
+        raise RuntimeError("from progress")
+
+    with pytest.raises(RuntimeError, match="from progress"):
+        lightsolver.annual(scene, str(CHICAGO), photons=4_000_000, progress=boom)

@@ -39,6 +39,10 @@ struct AnnualRunOptions {
   /// are then reported at `confidence` from the last look's trace.
   bool decide = false;
   std::optional<std::uint64_t> max_photons;  ///< decide's budget; default 16 × photons
+  /// Called between the trace's batches (photons so far, of the look's total); false stops the
+  /// trace there: the year is then computed from the photons traced, its stop reason
+  /// "cancelled". The direct sun's shadow rays (a few seconds) run before it and are not cut.
+  ProgressFn progress;
 };
 
 /// One grid's year.

@@ -119,7 +119,7 @@ class CoefficientTracer {
   CoefficientTracer& operator=(const CoefficientTracer&) = delete;
   /// Traces up to `photons` in all (at least the previous count) and returns the coefficients
   /// with their ends at `z`.
-  DaylightCoefficients trace(std::uint64_t photons, double z);
+  DaylightCoefficients trace(std::uint64_t photons, double z, const ProgressFn& progress = {});
 
  private:
   struct State;

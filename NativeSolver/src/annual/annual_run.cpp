@@ -222,7 +222,11 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
   for (std::uint64_t n = o.photons;; n = std::min(budget, 2 * n)) {
     ++looks;
     const double c = o.decide ? detail::look_confidence(o.confidence, looks) : o.confidence;
-    dc = tracer.trace(n, strictest(std::min(c, o.confidence)));
+    dc = tracer.trace(n, strictest(std::min(c, o.confidence)), o.progress);
+    if (dc.trace.stop_reason == "cancelled") {
+      stop = "cancelled";
+      break;
+    }
     if (!o.decide) break;
     if (decided(grid_years(dc, y, o, c).metrics)) {
       stop = "decided";

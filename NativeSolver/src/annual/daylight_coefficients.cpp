@@ -195,7 +195,8 @@ CoefficientTracer::CoefficientTracer(const Scene& scene_in, const SkyMatrix& yea
 
 CoefficientTracer::~CoefficientTracer() = default;
 
-DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z) {
+DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z,
+                                              const ProgressFn& progress) {
   State& st = *state_;
   if (!(z > 0.0) || !std::isfinite(z)) {
     throw InputError(st.scene.source_file, "z", "the intervals' critical value must be > 0");
@@ -208,7 +209,7 @@ DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z) {
   so.backend = st.options.backend;
   DaylightCoefficients dc = st.base;
   dc.z = z;
-  dc.trace = st.traced == 0 ? st.sim->run(so) : st.sim->refine(so);
+  dc.trace = st.traced == 0 ? st.sim->run(so, progress) : st.sim->refine(so, progress);
   st.traced = dc.trace.photons;
   std::unordered_map<std::string, std::size_t> group_row;
   std::size_t unlit = 0;
