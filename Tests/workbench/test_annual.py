@@ -86,6 +86,25 @@ class AnnualObject(DocTestCase):
         self.assertEqual(os.path.basename(os.path.dirname(path)), annual_run.SUBFOLDER)
 
 
+class AnnualCancel(DocTestCase):
+    @needs_solver
+    def test_cancel_stops_the_trace_and_changes_nothing(self):
+        from lighting.messages import CancelledError
+
+        doc, analysis, _, annual, _ = office_with_annual()
+        annual.Photons = 2_000_000_000  # far more than the test waits for
+        doc.recompute()
+        job = annual_run.AnnualRun(annual, work_dir("annual_cancel"))
+        job.check()
+        job.prepare()
+        job.start()
+        job.cancel()
+        self.assertTrue(job.wait(120.0), "the cancelled trace did not stop")
+        self.assertIsInstance(job.error, CancelledError)
+        self.assertEqual(annual.SummaryJson, "")
+        self.assertEqual(list(annual.SummaryLines), [])
+
+
 class AnnualRunStored(DocTestCase):
     @needs_solver
     def test_a_year_is_stored_read_and_mapped(self):

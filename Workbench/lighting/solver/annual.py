@@ -8,9 +8,9 @@ luminaires are not needed: the annual run traces daylight only), the annual obje
 and at least one grid; Prepare exports the scene as a run does, into ``<output>/annual``. Solve
 calls ``lightsolver.annual`` on the scene file and the weather file (it releases the GIL, so it
 runs on a worker thread) and writes ``annual.json`` and ``annual.npz`` beside the scene (the
-CLI's layout: docs/daylight.md). ``lightsolver.annual`` takes neither a progress callback nor a
-cancel token: Cancel cannot stop the trace; it drops the results when the trace returns, so a
-cancelled run never changes the document. Results are stored in one undo step."""
+CLI's layout: docs/daylight.md). Cancel stops the trace between its batches
+(``lightsolver.annual``'s ``cancel`` token; the direct sun's shadow rays before it are not cut)
+and drops the results, so a cancelled run never changes the document. Results are stored in one undo step."""
 from __future__ import annotations
 
 import hashlib
@@ -114,6 +114,7 @@ class AnnualRun:
         self.error: Optional[BaseException] = None
         self.created = time.monotonic()
         self._cancelled = False
+        self._token: Optional[Any] = None
         self._thread: Optional[threading.Thread] = None
         # Settings copied on the main thread; the worker never reads the document.
         self._settings: Dict[str, Any] = {}
@@ -193,6 +194,11 @@ class AnnualRun:
         except OSError as exc:
             raise SolverError(str(exc)) from exc
         module = run.load_module()
+        self._token = run.make_cancel_token()
+        if self._token is not None:
+            s["cancel"] = self._token
+            if self._cancelled:
+                self._token.cancel()
         try:
             result = module.annual(self.scene_file, weather, **s)
         except Exception as exc:  # noqa: BLE001 - the solver's own message names the field
@@ -253,8 +259,10 @@ class AnnualRun:
         return self.finished
 
     def cancel(self) -> None:
-        """Drop the results when the trace returns (the annual run cannot be stopped)."""
+        """Stop the trace at its next batch and drop the results."""
         self._cancelled = True
+        if self._token is not None:
+            self._token.cancel()
 
     def fail(self, exc: BaseException) -> str:
         """Record a failure in Status; returns the message for the user."""
