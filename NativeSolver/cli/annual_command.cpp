@@ -14,6 +14,7 @@
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "npz_writer.hpp"
+#include "processes.hpp"
 
 namespace lightsolver::cli {
 
@@ -97,7 +98,9 @@ int run_annual_command(AnnualArgs& a) {
     if (a.blinds > 0.0) a.options.blinds_transmittance = a.blinds;
     if (a.max_photons > 0) a.options.max_photons = a.max_photons;
     const Scene scene = load_scene(a.scene);
+    a.options.processes = processes();  // under mpirun: every rank traces, rank 0 writes
     const AnnualResult r = run_annual(scene, a.options);
+    if (!reports()) return 0;
     print_summary(r.summary);
     if (!a.out_dir.empty()) {
       const std::string json = r.summary.dump(1) + "\n", arrays = npz(r);

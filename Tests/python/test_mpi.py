@@ -208,3 +208,28 @@ def test_a_failing_rank_fails_the_job_in_bounded_time(cli, room_scene, tmp_path,
     assert not out.exists(), "a failed job wrote a results file"
     if how == "hangs":
         assert "no answer from the other processes within 3 s" in stderr
+
+
+def test_annual_under_mpirun_is_the_lone_processs_year(tmp_path):
+    """`mpirun -np 2 lightsolver annual`: each rank traces a slice of every batch; rank 0 writes
+    the same year a lone process writes (docs/daylight.md, "Daylight coefficients")."""
+    root = Path(__file__).resolve().parents[2]
+    scene = root / "Examples/daylight/annual_side_lit_room.scene.json"
+    epw = root / "Tests/native/sun/data/USA_IL_Chicago-OHare.Intl.AP.725300_TMY3.epw"
+    cli = os.environ["LIGHTSOLVER_CLI"]
+    args = ["annual", str(scene), "--weather", str(epw), "--photons", "300000", "--seed", "5",
+            "--backend", "embree"]
+    alone = subprocess.run([cli, *args, "--out-dir", str(tmp_path / "alone")],
+                           capture_output=True, text=True)
+    assert alone.returncode == 0, alone.stderr
+    done = mpirun(2, cli, *args, "--out-dir", str(tmp_path / "shared"))
+    assert done.returncode == 0, done.stderr
+
+    def year(folder: str) -> dict:
+        data = json.loads((tmp_path / folder / "annual.json").read_text())
+        data.pop("seconds")
+        return data
+
+    assert year("shared") == year("alone")
+    a, b = (tmp_path / f / "annual.npz" for f in ("alone", "shared"))
+    assert a.read_bytes() == b.read_bytes()

@@ -8,11 +8,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "lightsolver/daylight_coefficients.hpp"
+#include "lightsolver/process_group.hpp"
 #include "lightsolver/scene.hpp"
 
 namespace lightsolver {
@@ -43,6 +45,9 @@ struct AnnualRunOptions {
   /// trace there: the year is then computed from the photons traced, its stop reason
   /// "cancelled". The direct sun's shadow rays (a few seconds) run before it and are not cut.
   ProgressFn progress;
+  /// MPI ranks sharing the trace (docs/cluster.md): each traces a slice of every batch and all
+  /// get the same year; null: this process alone. Every rank calls run_annual alike.
+  std::shared_ptr<ProcessGroup> processes;
 };
 
 /// One grid's year.

@@ -119,7 +119,9 @@ class CoefficientTracer {
   CoefficientTracer& operator=(const CoefficientTracer&) = delete;
   /// Traces up to `photons` in all (at least the previous count) and returns the coefficients
   /// with their ends at `z`.
-  DaylightCoefficients trace(std::uint64_t photons, double z, const ProgressFn& progress = {});
+  /// `processes`: MPI ranks sharing the trace (null: alone).
+  DaylightCoefficients trace(std::uint64_t photons, double z, const ProgressFn& progress = {},
+                             std::shared_ptr<ProcessGroup> processes = nullptr);
 
  private:
   struct State;

@@ -222,7 +222,7 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
   for (std::uint64_t n = o.photons;; n = std::min(budget, 2 * n)) {
     ++looks;
     const double c = o.decide ? detail::look_confidence(o.confidence, looks) : o.confidence;
-    dc = tracer.trace(n, strictest(std::min(c, o.confidence)), o.progress);
+    dc = tracer.trace(n, strictest(std::min(c, o.confidence)), o.progress, o.processes);
     if (dc.trace.stop_reason == "cancelled") {
       stop = "cancelled";
       break;
@@ -241,8 +241,9 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
   // The scene's electric light beside the daylight: its own trace at 1 − α/2 (the hours get the
   // other half of α: electric_year).
   const auto t3 = Clock::now();
-  const std::optional<Results> electric = trace_electric(scene, o.photons, o.seed, o.backend,
-                                                         o.threads, 1.0 - (1.0 - o.confidence) / 2);
+  const std::optional<Results> electric =
+      trace_electric(scene, o.photons, o.seed, o.backend, o.threads,
+                     1.0 - (1.0 - o.confidence) / 2, o.processes);
   std::vector<const Target*> grid_targets;
   for (const Target& t : scene.targets) {
     if (t.type == Target::Type::Grid) grid_targets.push_back(&t);

@@ -196,7 +196,8 @@ CoefficientTracer::CoefficientTracer(const Scene& scene_in, const SkyMatrix& yea
 CoefficientTracer::~CoefficientTracer() = default;
 
 DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z,
-                                              const ProgressFn& progress) {
+                                              const ProgressFn& progress,
+                                              std::shared_ptr<ProcessGroup> processes) {
   State& st = *state_;
   if (!(z > 0.0) || !std::isfinite(z)) {
     throw InputError(st.scene.source_file, "z", "the intervals' critical value must be > 0");
@@ -207,6 +208,7 @@ DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z,
   so.contributions = true;
   so.threads = st.options.threads;
   so.backend = st.options.backend;
+  so.processes = std::move(processes);
   DaylightCoefficients dc = st.base;
   dc.z = z;
   dc.trace = st.traced == 0 ? st.sim->run(so, progress) : st.sim->refine(so, progress);

@@ -40,7 +40,8 @@ GridMean grid_mean(const HourlyGrid& g, int h, double z) {
 
 std::optional<Results> trace_electric(const Scene& scene, std::uint64_t photons,
                                       std::optional<std::uint64_t> seed, const std::string& backend,
-                                      int threads, double confidence) {
+                                      int threads, double confidence,
+                                      std::shared_ptr<ProcessGroup> processes) {
   Scene s = scene;
   s.luminaires.clear();
   for (const Luminaire& l : scene.luminaires) {
@@ -60,6 +61,7 @@ std::optional<Results> trace_electric(const Scene& scene, std::uint64_t photons,
   o.backend = backend;
   o.threads = threads;
   o.confidence = confidence;
+  o.processes = std::move(processes);
   return solve(s, o);
 }
 

@@ -3,12 +3,14 @@
 // the hours the electric lighting must supplement daylight to keep the task's illuminance, and
 // the mean output a daylight-linked dimmer would need: an input for LENI's daylight dependency.
 #include <cstdint>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "lightsolver/annual.hpp"
+#include "lightsolver/process_group.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/solver.hpp"
 
@@ -34,7 +36,8 @@ struct ElectricYear {
 /// `confidence`; none when the scene has no electric luminaire.
 std::optional<Results> trace_electric(const Scene& scene, std::uint64_t photons,
                                       std::optional<std::uint64_t> seed, const std::string& backend,
-                                      int threads, double confidence);
+                                      int threads, double confidence,
+                                      std::shared_ptr<ProcessGroup> processes = nullptr);
 
 /// `electric`: the grid's electric estimate with its interval at 1 − α/2; `day` its hours. The
 /// counts' ends take each hour at α/(2 H): Bonferroni over the hours and the electric estimate,
