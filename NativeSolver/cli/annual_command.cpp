@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -25,6 +26,7 @@ struct AnnualArgs {
   AnnualRunOptions options;
   std::uint64_t seed = 0;
   std::uint64_t max_photons = 0;
+  std::string occupied, occupancy_file;
   double blinds = 0.0;
 };
 
@@ -50,6 +52,39 @@ std::string npz(const AnnualResult& r) {
     if (!g.direct_sun.empty()) add(z, p + "direct_sun", "<f4", g.direct_sun, shape);
   }
   return z.finish();
+}
+
+// "9-18": the EPW hour stamps of the day's first and last occupied hours.
+void occupied_hours(const std::string& text, AnnualRunOptions& o) {
+  int first = 0, last = 0;
+  char dash = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d %c %d %c", &first, &dash, &last, &extra) != 3 || dash != '-' ||
+      first < 1 || last > 24 || first > last) {
+    throw InputError(
+        "", "--occupied-hours",
+        "give FIRST-LAST EPW hour stamps, 1 <= FIRST <= LAST <= 24 (got \"" + text + "\")");
+  }
+  o.occupied_first = first;
+  o.occupied_last = last;
+}
+
+// One 0 or 1 per line (blank lines and # comments skipped).
+std::vector<std::uint8_t> occupancy_values(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot read the occupancy file");
+  std::vector<std::uint8_t> v;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    const auto b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos || line[b] == '#') continue;
+    const auto e = line.find_last_not_of(" \t\r");
+    const std::string value = line.substr(b, e - b + 1);
+    if (value != "0" && value != "1") {
+      throw InputError(path, "line " + std::to_string(n), "must be 0 or 1, got \"" + value + "\"");
+    }
+    v.push_back(value == "1" ? 1 : 0);
+  }
+  return v;
 }
 
 std::string interval(const nlohmann::json& m, double scale, const char* unit) {
@@ -97,6 +132,8 @@ int run_annual_command(AnnualArgs& a) {
     if (a.seed > 0) a.options.seed = a.seed;
     if (a.blinds > 0.0) a.options.blinds_transmittance = a.blinds;
     if (a.max_photons > 0) a.options.max_photons = a.max_photons;
+    if (!a.occupied.empty()) occupied_hours(a.occupied, a.options);
+    if (!a.occupancy_file.empty()) a.options.occupancy = occupancy_values(a.occupancy_file);
     const Scene scene = load_scene(a.scene);
     a.options.processes = processes();  // under mpirun: every rank traces, rank 0 writes
     const AnnualResult r = run_annual(scene, a.options);
@@ -146,6 +183,11 @@ void add_annual_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--blinds-transmittance", a->blinds,
                   "LM-83's blinds rule: blinds-closed hours get the sky's light times this");
+  cmd->add_option("--occupied-hours", a->occupied,
+                  "Occupied every day from the EPW hour stamp FIRST to LAST, as FIRST-LAST "
+                  "(default 9-18: IES LM-83's 8:00-18:00)");
+  cmd->add_option("--occupancy", a->occupancy_file,
+                  "A file of one 0 or 1 per hour of the weather file (the occupied hours)");
   cmd->add_flag("--decide", a->options.decide,
                 "Trace on (twice the photons per look) until every sDA and EN 17037 verdict is "
                 "decided, within --max-photons");

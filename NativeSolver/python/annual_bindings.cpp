@@ -34,7 +34,8 @@ py::dict annual_dict(const Scene& scene, const std::filesystem::path& weather, i
                      const std::string& backend, int threads, double confidence,
                      std::optional<double> blinds_transmittance, bool decide,
                      std::optional<std::uint64_t> max_photons, const py::object& progress,
-                     const py::object& cancel) {
+                     const py::object& cancel, const std::vector<std::uint8_t>& occupancy,
+                     std::pair<int, int> occupied_hours) {
   AnnualRunOptions o;
   o.weather = weather;
   o.sky.mf = mf;
@@ -49,6 +50,9 @@ py::dict annual_dict(const Scene& scene, const std::filesystem::path& weather, i
   o.blinds_transmittance = blinds_transmittance;
   o.decide = decide;
   o.max_photons = max_photons;
+  o.occupancy = occupancy;
+  o.occupied_first = occupied_hours.first;
+  o.occupied_last = occupied_hours.second;
   // progress(done, total) may return False; a CancelToken (or anything with `cancelled`) stops
   // the trace too. Both under the GIL; an exception in progress is raised after the run.
   std::exception_ptr callback_error;
@@ -96,7 +100,8 @@ void bind_annual(py::module_& m) {
       "annual(scene, weather, *, mf=1, north_deg=0, ground_reflectance=None (the scene's sky's), "
       "illuminance=False, photons=20_000_000, seed=None, backend='auto', threads=0, "
       "confidence=0.95, blinds_transmittance=None, decide=False, max_photons=None, "
-      "progress=None, cancel=None): a year of "
+      "progress=None, cancel=None, occupancy=[] (one 0/1 per hour), occupied_hours=(9, 18) "
+      "(EPW hour stamps, LM-83's 8:00-18:00)): a year of "
       "daylight by daylight coefficients (docs/daylight.md, 'Daylight coefficients: a year in "
       "one trace'). `scene` a Scene or a scene file's path (its one sky's openings, its "
       "grids), `weather` an EPW file. Returns a dict: summary (annual.json: weather with its "
@@ -111,15 +116,16 @@ void bind_annual(py::module_& m) {
            std::uint64_t photons, std::optional<std::uint64_t> seed, const std::string& backend,
            int threads, double confidence, std::optional<double> blinds, bool decide,
            std::optional<std::uint64_t> max_photons, const py::object& progress,
-           const py::object& cancel) {
+           const py::object& cancel, const std::vector<std::uint8_t>& occupancy,
+           std::pair<int, int> occupied_hours) {
           if constexpr (std::is_same_v<decltype(scene_arg), std::string>) {
             return annual_dict(load_scene(scene), weather, mf, north_deg, ground_reflectance,
                                illuminance, photons, seed, backend, threads, confidence, blinds,
-                               decide, max_photons, progress, cancel);
+                               decide, max_photons, progress, cancel, occupancy, occupied_hours);
           } else {
             return annual_dict(scene, weather, mf, north_deg, ground_reflectance, illuminance,
                                photons, seed, backend, threads, confidence, blinds, decide,
-                               max_photons, progress, cancel);
+                               max_photons, progress, cancel, occupancy, occupied_hours);
           }
         },
         py::arg("scene"), py::arg("weather"), py::kw_only(), py::arg("mf") = 1,
@@ -128,7 +134,9 @@ void bind_annual(py::module_& m) {
         py::arg("seed") = py::none(), py::arg("backend") = "auto", py::arg("threads") = 0,
         py::arg("confidence") = 0.95, py::arg("blinds_transmittance") = py::none(),
         py::arg("decide") = false, py::arg("max_photons") = py::none(),
-        py::arg("progress") = py::none(), py::arg("cancel") = py::none(), doc);
+        py::arg("progress") = py::none(), py::arg("cancel") = py::none(),
+        py::arg("occupancy") = std::vector<std::uint8_t>{},
+        py::arg("occupied_hours") = std::pair<int, int>{9, 18}, doc);
   };
   bind(Scene{});
   bind(std::string{});

@@ -223,3 +223,23 @@ def test_progress_and_cancel_stop_the_trace(tmp_path):
 
     with pytest.raises(RuntimeError, match="from progress"):
         lightsolver.annual(scene, str(CHICAGO), photons=4_000_000, progress=boom)
+
+
+def test_occupancy_is_an_input(tmp_path):
+    scene = str(open_site_scene(tmp_path))
+    late = lightsolver.annual(scene, str(CHICAGO), photons=200_000, occupied_hours=(13, 20))
+    assert late["summary"]["occupancy"]["hours"] == 8 * 365
+    assert "12:00-20:00" in late["summary"]["occupancy"]["schedule"]
+    mask = np.zeros(8760, dtype=np.uint8)
+    mask[4000:4100] = 1
+    r = lightsolver.annual(scene, str(CHICAGO), photons=200_000, occupancy=mask.tolist())
+    assert r["summary"]["occupancy"]["hours"] == 100
+    assert r["summary"]["grids"][0]["metrics"]["occupied_hours"] == 100
+    with pytest.raises(lightsolver.InputError, match="occupancy"):
+        lightsolver.annual(scene, str(CHICAGO), occupancy=[1] * 10)
+    path = tmp_path / "occupancy.txt"
+    path.write_text("# one per hour\n" + "1\n" * 8759 + "2\n")
+    out = cli("annual", scene, "--weather", str(CHICAGO), "--occupancy", str(path))
+    assert out.returncode != 0 and "line 8761" in out.stderr
+    out = cli("annual", scene, "--weather", str(CHICAGO), "--occupied-hours", "18-9")
+    assert out.returncode != 0 and "--occupied-hours" in out.stderr

@@ -31,6 +31,10 @@ struct AnnualRunOptions {
   std::string backend = "auto";
   int threads = 0;
   double confidence = 0.95;  ///< of every reported interval
+  /// The occupied hours: one 0/1 per hour of the weather file; empty: every day from the EPW
+  /// hour stamp `occupied_first` to `occupied_last` (IES LM-83: 9 … 18, i.e. 8:00–18:00).
+  std::vector<std::uint8_t> occupancy;
+  int occupied_first = 9, occupied_last = 18;
   /// LM-83's blinds rule: with a value, an occupied hour at which more than 2 % of a grid gets
   /// more than 1000 lx of direct sun takes, for DA and sDA, the blinds-closed illuminance: the
   /// sky's light (the sun's beam stopped) times this transmittance. None: blinds open always.

@@ -101,6 +101,15 @@ struct Year {
   int occupied_hours = 0, daylight_hours = 0;
 };
 
+std::string schedule_text(const AnnualRunOptions& o) {
+  if (!o.occupancy.empty()) return "given hour by hour";
+  if (o.occupied_first == 9 && o.occupied_last == 18) {
+    return "IES LM-83: 8:00-18:00 local standard time";
+  }
+  return std::to_string(o.occupied_first - 1) + ":00-" + std::to_string(o.occupied_last) +
+         ":00 local standard time";
+}
+
 // The ground reflectance: the option, else the scene's sky's.
 double ground_of(const Scene& scene, const AnnualRunOptions& o) {
   if (o.ground_reflectance) return *o.ground_reflectance;
@@ -122,7 +131,22 @@ Year read_year(const Scene& scene, AnnualRunOptions o) {
     diffuse.push_back(h.diffuse_horizontal_lx.value_or(0.0));
     y.month_day_hour.insert(y.month_day_hour.end(), {h.month, h.day, h.hour});
   }
-  y.occupied = lm83_occupancy(stamps);
+  if (o.occupancy.empty()) {
+    y.occupied = lm83_occupancy(stamps, o.occupied_first, o.occupied_last);
+  } else {
+    if (o.occupancy.size() != y.weather.hours.size()) {
+      throw InputError(o.weather.string(), "occupancy",
+                       "one value per hour of the weather file is needed (" +
+                           std::to_string(y.weather.hours.size()) + "), got " +
+                           std::to_string(o.occupancy.size()));
+    }
+    for (std::size_t h = 0; h < o.occupancy.size(); ++h) {
+      if (o.occupancy[h] > 1) {
+        throw InputError("", "occupancy[" + std::to_string(h) + "]", "must be 0 or 1");
+      }
+    }
+    y.occupied = o.occupancy;
+  }
   y.daylight = en17037_daylight_hours(diffuse);
   y.occupied_hours = static_cast<int>(std::count(y.occupied.begin(), y.occupied.end(), 1));
   y.daylight_hours = static_cast<int>(std::count(y.daylight.begin(), y.daylight.end(), 1));
@@ -241,9 +265,8 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
   // The scene's electric light beside the daylight: its own trace at 1 − α/2 (the hours get the
   // other half of α: electric_year).
   const auto t3 = Clock::now();
-  const std::optional<Results> electric =
-      trace_electric(scene, o.photons, o.seed, o.backend, o.threads,
-                     1.0 - (1.0 - o.confidence) / 2, o.processes);
+  const std::optional<Results> electric = trace_electric(
+      scene, o.photons, o.seed, o.backend, o.threads, 1.0 - (1.0 - o.confidence) / 2, o.processes);
   std::vector<const Target*> grid_targets;
   for (const Target& t : scene.targets) {
     if (t.type == Target::Type::Grid) grid_targets.push_back(&t);
@@ -303,8 +326,7 @@ AnnualResult run_annual(const Scene& scene_in, const AnnualRunOptions& o) {
         {"hours_and_metrics", t_hours},
         {"electric", t_electric},
         {"total", since(t0)}}},
-      {"occupancy",
-       {{"schedule", "IES LM-83: 8:00-18:00 local standard time"}, {"hours", y.occupied_hours}}},
+      {"occupancy", {{"schedule", schedule_text(o)}, {"hours", y.occupied_hours}}},
       {"daylight_hours", y.daylight_hours},
       {"confidence", o.confidence},
       {"blinds_transmittance",
