@@ -297,3 +297,17 @@ def test_the_scene_fixture_is_the_example_room():
     scene = json.loads(SCENE.read_text())
     assert scene["meshes"] == example["meshes"] and scene["materials"] == example["materials"]
     assert copy.deepcopy(scene["luminaires"]) == example["luminaires"]
+
+
+def test_lightsolver_report_passes_annual_on(cli, tmp_path):
+    out = tmp_path / "r.html"
+    r = subprocess.run([cli, "report", str(SCENE), "--results", str(RESULTS), "--annual",
+                        str(ANNUAL), "--date", DATE, "--out", str(out)], capture_output=True,
+                       text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert out.read_text(encoding="utf-8") == render_html(SCENE, results(), date=DATE,
+                                                          annual=ANNUAL)
+    r = subprocess.run([cli, "report", str(SCENE), "--results", str(RESULTS), "--annual",
+                        str(tmp_path / "none.json"), "--out", str(tmp_path / "s.html")],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode != 0 and "none.json" in r.stderr and not (tmp_path / "s.html").exists()

@@ -228,8 +228,6 @@ def render_html(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any],
     """The report as one self-contained HTML page (styles and SVG pictures inline). Unchecked:
     :func:`render` refuses results that do not belong before it calls this. ``annual``: an
     annual.json (or its dict) for the section "A year of daylight"."""
-    from lightsolver_report import annual as annual_part
-
     jinja2 = _require("jinja2")
     report = build(scene, results, scene_path=scene_path, date=date, title=title,
                    solver_version=solver_version, view_png=view_png, signoff=signoff,
@@ -238,7 +236,6 @@ def render_html(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any],
                              undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True, keep_trailing_newline=True)
     env.filters.update(fmt.FILTERS)
-    env.filters.update(annual_part.FILTERS)
     return env.get_template("report.html.j2").render(
         report=report, css=(TEMPLATES / "report.css").read_text(encoding="utf-8"))
 

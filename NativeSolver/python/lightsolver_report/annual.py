@@ -11,7 +11,6 @@ The annual results must belong to the scene: each of their grids a grid of the s
 same cells (they record no hash of the scene, so this is the check there is)."""
 from __future__ import annotations
 
-import math
 import os
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple, Union
@@ -19,6 +18,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 import numpy as np
 
 import lightsolver_results
+from lightsolver_report import fmt
 from lightsolver_results.annual import AnnualGrid, AnnualResults, Interval
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -227,27 +227,8 @@ def read_section(source: Union[PathLike, Dict[str, Any]], scene: Dict[str, Any],
         warnings=list(view.warnings))
 
 
-def fraction_text(value: Optional[float]) -> str:
-    """A fraction of hours or of the area in percent with one decimal: 82.0."""
-    if value is None or not math.isfinite(value):
-        return "–"
-    return f"{100.0 * value:.1f}"
-
-
-def percent_text(value: Optional[float]) -> str:
-    """A percentage (already in percent) with one decimal: 99.3."""
-    if value is None or not math.isfinite(value):
-        return "–"
-    return f"{value:.1f}"
-
-
-def hours_text(value: Optional[float]) -> str:
-    if value is None or not math.isfinite(value):
-        return "–"
-    return f"{value:,.0f}".replace(",", "\u202f")
-
-
-FILTERS = {"frac": fraction_text, "pct": percent_text, "hours": hours_text}
+#: The section's number formats (lightsolver_report.fmt, where the templates get them).
+fraction_text, percent_text = fmt.frac, fmt.pct
 
 
 def attach_pictures(section: AnnualSection) -> None:
