@@ -190,8 +190,10 @@ def _belongs(grid: AnnualGrid, grids: Dict[str, Dict[str, Any]], where: str) -> 
         raise AnnualError(f"{where}: grid '{grid.name}' is not a grid of the scene: the annual "
                           "results were calculated for another model")
     cells = target.get("cells")
-    if not (isinstance(cells, list) and len(cells) == 2 and [int(c) for c in cells]
-            == [grid.nu, grid.nv]):
+    same = (isinstance(cells, list) and len(cells) == 2
+            and all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in cells)
+            and [int(c) for c in cells] == [grid.nu, grid.nv])
+    if not same:
         raise AnnualError(f"{where}: grid '{grid.name}' has {grid.nu} × {grid.nv} cells, the "
                           f"scene's {cells}: the annual results were calculated for another "
                           "state of the model")
