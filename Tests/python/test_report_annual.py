@@ -211,6 +211,15 @@ def test_the_trace_facts_in_the_appendix(page):
     assert "Traced until decided no" in text
 
 
+def test_the_annual_traces_remarks_are_worded_for_the_client():
+    doc = annual()
+    doc["warnings"] = ['target "work plane": 3 cells received no photon']
+    page = render_html(SCENE, results(), date=DATE, annual=doc)
+    notes = section(page, '<table class="facts run tech annual-trace">', "</ul>")
+    assert "Target “Work plane”: 3 cells received no photon" in notes
+    assert "work plane" not in notes
+
+
 def test_no_internal_keys_or_file_names_other_than_the_weathers(page):
     body = visible_text(page[:page.index("Appendix: technical notes")])
     for word in ("sda_percent", "udi_", "en17037", "annual.json", "annual.npz", ".json",

@@ -19,6 +19,7 @@ import numpy as np
 
 import lightsolver_results
 from lightsolver_report import fmt
+from lightsolver_report.wording import Namer, client_notes
 from lightsolver_results.annual import AnnualGrid, AnnualResults, Interval
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -108,6 +109,7 @@ class AnnualSection:
     stop_reason: str
     seconds: Dict[str, float]
     grids: List[AnnualGridView]
+    #: The annual trace's remarks in the client's words (wording.client_notes).
     warnings: List[str]
 
     @property
@@ -226,7 +228,7 @@ def read_section(source: Union[PathLike, Dict[str, Any]], scene: Dict[str, Any],
         photons=view.photons, seed=view.seed, backend=view.backend, decide=view.decide,
         stop_reason=view.stop_reason, seconds=dict(view.seconds),
         grids=[_grid_view(g, _belongs(g, grids, where), labels) for g in view.grids],
-        warnings=list(view.warnings))
+        warnings=[n.text for n in client_notes(view.warnings, Namer(labels))])
 
 
 #: The section's number formats (lightsolver_report.fmt, where the templates get them).
