@@ -173,7 +173,8 @@ def pct(value: Optional[float]) -> str:
     return DASH if value is None else f"{value:.1f}"
 
 
-FILTERS = {"frac": frac, "pct": pct, "ugr": ugr, "lux": lux, "ratio": ratio, "ratio2": ratio2, "number": number, "sci": sci,
+FILTERS = {"frac": frac, "pct": pct, "ugr": ugr, "lux": lux, "ratio": ratio, "ratio2": ratio2,
+           "number": number, "sci": sci,
            "count": count, "seconds": seconds, "percent": percent, "metres": metres,
            "azimuth": azimuth, "stopped": stopped, "df": df,
            "sunhours": sunhours}

@@ -20,8 +20,8 @@ from typing import Any, Callable, Dict, Mapping, Optional, Union
 import lightsolver_results
 
 __all__ = ["ReportError", "SUFFIXES", "SIGNOFF_KEYS", "output_path", "results_document",
-           "describe", "annual_document", "is_partial", "refuse_partial", "check_provenance", "signoff", "view_png",
-           "write_atomically"]
+           "describe", "annual_document", "is_partial", "refuse_partial", "check_provenance",
+           "signoff", "view_png", "write_atomically"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 #: The report's file types by suffix.
