@@ -30,6 +30,7 @@ constexpr const char* kDefaultPython = "/usr/bin/python3";
 
 struct ReportArgs {
   std::string scene, results, out, date, title, save_results, backend = kAutoBackend;
+  std::string annual;  // annual.json of `lightsolver annual`: the section "A year of daylight"
   std::string project, author, checked_by, project_number, client;  // the sign-off block
   std::optional<std::uint64_t> photons, seed;
   bool allow_partial = false, allow_unverified = false;
@@ -72,6 +73,7 @@ std::vector<std::string> python_arguments(const std::string& python, const Repor
     if (!value.empty()) argv.insert(argv.end(), {flag, value});
   };
   add("--results", a.results);
+  add("--annual", a.annual);
   add("--date", a.date);
   add("--title", a.title);
   add("--save-results", a.save_results);
@@ -123,6 +125,10 @@ void add_report_command(CLI::App& app) {
                   "with its settings")
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "Report file: .html or .pdf")->required();
+  cmd->add_option("--annual", args->annual,
+                  "Annual results of the scene (annual.json of lightsolver annual --out-dir): "
+                  "the report gets a section on its year of daylight")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--date", args->date,
                   "Date printed on the report, YYYY-MM-DD (default: SOURCE_DATE_EPOCH, else "
                   "today), for reproducible output");

@@ -145,14 +145,17 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
           scene_path: Optional[PathLike] = None, date: Union[None, str, datetime.date] = None,
           title: Optional[str] = None, solver_version: Optional[str] = None,
           view_png: Optional[PathLike] = None,
-          signoff: Optional[Dict[str, Any]] = None) -> Report:
+          signoff: Optional[Dict[str, Any]] = None,
+          annual: Union[None, PathLike, Dict[str, Any]] = None) -> Report:
     """The report's content (:class:`lightsolver_report.model.Report`) with its pictures.
 
     Besides what the scene and results give, the model carries what the caller adds:
     ``report.view_png`` (a false-colour picture of the model, absolute path, or None),
     ``report.signoff`` (project, author, checked_by; "" where not given) and
-    ``report.partial`` (the results are a cancelled run's: every page says so). They are set
-    before the pictures are drawn, which may use them."""
+    ``report.partial`` (the results are a cancelled run's: every page says so) and
+    ``report.annual`` (a year of daylight: ``annual``, an annual.json of ``lightsolver annual``
+    or its dict, read by lightsolver_report.annual; None without). They are set before the
+    pictures are drawn, which may use them."""
     from lightsolver_report import pictures, plots
 
     if not isinstance(scene, dict):
@@ -171,6 +174,7 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
     report.view_png = guard.view_png(view_png)
     report.signoff = guard.signoff(signoff)
     report.partial = guard.is_partial(results)
+    report.annual = annual_section(annual, scene)
     for i, area in enumerate(report.areas):
         if area.daylight is not None:
             daylight_pictures(area, i)
@@ -179,6 +183,25 @@ def build(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any], *,
             area.chart_svg, area.chart_note = plots.chart_svg(area.grid, f"chart{i}")
     pictures.attach(report, scene, base_dir)
     return report
+
+
+def annual_section(annual: Union[None, PathLike, Dict[str, Any]],
+                   scene: Dict[str, Any]) -> Optional[Any]:
+    """The annual section (lightsolver_report.annual.AnnualSection) with its plans, None
+    without annual results; ReportError for annual results that cannot be read or are not of
+    this scene."""
+    if annual is None:
+        return None
+    from lightsolver_report import annual as annual_part
+
+    meta = scene.get("metadata") if isinstance(scene.get("metadata"), dict) else {}
+    labels = meta.get("labels") if isinstance(meta.get("labels"), dict) else {}
+    try:
+        section = annual_part.read_section(annual, scene, labels)
+    except annual_part.AnnualError as exc:
+        raise ReportError(str(exc)) from exc
+    annual_part.attach_pictures(section)
+    return section
 
 
 def daylight_pictures(area: Any, index: int) -> None:
@@ -200,12 +223,15 @@ def render_html(scene: Union[PathLike, Dict[str, Any]], results: Dict[str, Any],
                 scene_path: Optional[PathLike] = None,
                 date: Union[None, str, datetime.date] = None, title: Optional[str] = None,
                 solver_version: Optional[str] = None, view_png: Optional[PathLike] = None,
-                signoff: Optional[Dict[str, Any]] = None) -> str:
+                signoff: Optional[Dict[str, Any]] = None,
+                annual: Union[None, PathLike, Dict[str, Any]] = None) -> str:
     """The report as one self-contained HTML page (styles and SVG pictures inline). Unchecked:
-    :func:`render` refuses results that do not belong before it calls this."""
+    :func:`render` refuses results that do not belong before it calls this. ``annual``: an
+    annual.json (or its dict) for the section "A year of daylight"."""
     jinja2 = _require("jinja2")
     report = build(scene, results, scene_path=scene_path, date=date, title=title,
-                   solver_version=solver_version, view_png=view_png, signoff=signoff)
+                   solver_version=solver_version, view_png=view_png, signoff=signoff,
+                   annual=annual)
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(TEMPLATES)), autoescape=True,
                              undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True, keep_trailing_newline=True)
@@ -230,14 +256,18 @@ def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike
            seed: Optional[int] = None, backend: str = "auto",
            view_png: Optional[PathLike] = None, allow_partial: bool = False,
            signoff: Optional[Dict[str, Any]] = None, allow_unverified: bool = False,
-           allow_stale: bool = False) -> Path:
+           allow_stale: bool = False,
+           annual: Union[None, PathLike, Dict[str, Any]] = None) -> Path:
     """Write the report of ``scene`` (a path, or a scene dict with ``scene_path`` naming where
     its relative files lie) to ``out_path``: ``.html``/``.htm`` or ``.pdf``.
 
     ``results``: a results dict or file; None traces the scene first (its settings; ``photons``,
     ``seed``, ``backend`` override them). ``date`` (YYYY-MM-DD) makes the output reproducible.
     ``view_png``: a false-colour picture of the model (PNG) for the report; ``signoff``:
-    {project, author, checked_by} for the sign-off block.
+    {project, author, checked_by} for the sign-off block. ``annual``: the annual.json of
+    ``lightsolver annual`` for this scene (or its dict): the report gets its section "A year of
+    daylight"; refused like the results (unreadable, breaking the annual schema, no grid, grids
+    that are not the scene's).
 
     Refused with ReportError, before anything is written (docs/report.md, "What the report
     refuses"): an output folder that does not exist (it is never created) or another suffix;
@@ -250,6 +280,7 @@ def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike
     Returns the path written."""
     out = guard.output_path(out_path)
     signoff = guard.signoff(signoff)
+    annual = guard.annual_document(annual)
     view_png = guard.view_png(view_png)
     if not isinstance(scene, dict):
         scene_path = scene
@@ -269,7 +300,8 @@ def render(scene: Union[PathLike, Dict[str, Any]], results: Union[None, PathLike
     if not allow_partial:
         guard.refuse_partial(results, where)
     html = render_html(scene, results, scene_path=scene_path, date=date, title=title,
-                       solver_version=solver_version, view_png=view_png, signoff=signoff)
+                       solver_version=solver_version, view_png=view_png, signoff=signoff,
+                       annual=annual)
     if guard.SUFFIXES[out.suffix.lower()] == "pdf":
         write = lambda temporary: write_pdf(html, temporary)  # noqa: E731
     else:

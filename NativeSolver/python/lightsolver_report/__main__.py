@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
-"""``python3 -m lightsolver_report SCENE.json [--results R.json] --out report.pdf|.html``
+"""``python3 -m lightsolver_report SCENE.json [--results R.json] [--annual annual.json]
+--out report.pdf|.html``
 (also run by ``lightsolver report``). Exit status 0, or 1 with a message on stderr."""
 from __future__ import annotations
 
@@ -22,6 +23,9 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--results", help="results file of the scene (lightsolver run --out); "
                                      "without it the scene is traced with its settings")
     p.add_argument("--out", required=True, help="report file: .html or .pdf")
+    p.add_argument("--annual", metavar="DIR/annual.json",
+                   help="annual results of the scene (lightsolver annual --out-dir DIR): the "
+                        "report gets a section on its year of daylight")
     p.add_argument("--date", help="date printed on the report, YYYY-MM-DD (default: "
                                   "SOURCE_DATE_EPOCH, else today), for reproducible output")
     p.add_argument("--title", help="title (default: the scene's metadata, else its file name)")
@@ -52,6 +56,7 @@ def main(argv: Optional[List[str]] = None) -> int:
                "project_number": args.project_number, "client": args.client}
     try:
         guard.output_path(args.out)  # before tracing: an hour's run must not end in a typo
+        guard.annual_document(args.annual)
         if args.save_results and not os.path.isdir(os.path.dirname(
                 os.path.abspath(args.save_results))):
             raise ReportError(f"{args.save_results}: its folder does not exist")
@@ -67,7 +72,7 @@ def main(argv: Optional[List[str]] = None) -> int:
                                        lambda temporary: temporary.write_text(text, "utf-8"))
         out = render(args.scene, results, args.out, date=args.date, title=args.title,
                      allow_partial=args.allow_partial, signoff=signoff,
-                     allow_unverified=args.allow_unverified)
+                     allow_unverified=args.allow_unverified, annual=args.annual)
     except ReportError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 1

@@ -161,7 +161,20 @@ def stopped(reason: Optional[str]) -> str:
     return worded(reason)
 
 
-FILTERS = {"ugr": ugr, "lux": lux, "ratio": ratio, "ratio2": ratio2, "number": number, "sci": sci,
+def frac(value: Optional[float]) -> str:
+    """A fraction of hours or of an area in percent, one decimal (the number only): 82.0."""
+    value = finite(value)
+    return DASH if value is None else f"{100.0 * value:.1f}"
+
+
+def pct(value: Optional[float]) -> str:
+    """A value already in percent, one decimal (the number only): 99.3."""
+    value = finite(value)
+    return DASH if value is None else f"{value:.1f}"
+
+
+FILTERS = {"frac": frac, "pct": pct, "ugr": ugr, "lux": lux, "ratio": ratio, "ratio2": ratio2,
+           "number": number, "sci": sci,
            "count": count, "seconds": seconds, "percent": percent, "metres": metres,
            "azimuth": azimuth, "stopped": stopped, "df": df,
            "sunhours": sunhours}

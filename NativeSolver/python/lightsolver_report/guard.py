@@ -20,8 +20,8 @@ from typing import Any, Callable, Dict, Mapping, Optional, Union
 import lightsolver_results
 
 __all__ = ["ReportError", "SUFFIXES", "SIGNOFF_KEYS", "output_path", "results_document",
-           "describe", "is_partial", "refuse_partial", "check_provenance", "signoff", "view_png",
-           "write_atomically"]
+           "describe", "annual_document", "is_partial", "refuse_partial", "check_provenance",
+           "signoff", "view_png", "write_atomically"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 #: The report's file types by suffix.
@@ -97,6 +97,25 @@ def results_document(source: Union[PathLike, Dict[str, Any]],
     except (AttributeError, TypeError, ValueError, KeyError) as exc:  # a field's wrong shape
         raise ReportError(f"{where}: the results are malformed: {exc!r}") from exc
     return lightsolver_results.plain(doc)
+
+
+def annual_document(source: Union[None, PathLike, Dict[str, Any]]
+                    ) -> Union[None, PathLike, Dict[str, Any]]:
+    """``source`` (an annual.json of ``lightsolver annual``, or its dict) once the results
+    reader accepts it (``lightsolver_results.read_annual``: readable JSON of the annual format
+    that keeps docs/schemas/annual.schema.json, where jsonschema is installed) and it holds a
+    grid; None stays None. Whether its grids are the scene's is checked when the section is
+    built (lightsolver_report.annual.read_section)."""
+    if source is None:
+        return None
+    try:
+        view = lightsolver_results.read_annual(source)
+    except lightsolver_results.ResultsError as exc:
+        raise ReportError(str(exc)) from exc
+    if not view.grids:
+        raise ReportError(f"{describe(source)}: the annual results hold no grid: there is "
+                          "nothing to report")
+    return source
 
 
 def is_partial(results: Mapping[str, Any]) -> bool:

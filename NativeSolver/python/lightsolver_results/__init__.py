@@ -29,7 +29,8 @@ from .layout import (CELL_ARRAYS, FORMAT, GLARE_KINDS, OPTIMIZATION_FORMAT, READ
                      ResultsError, check, finite, plain, schema)
 from .provenance import Provenance, SourceFile, read_provenance, without_run_facts
 from .sunlight import SunlightExposureView, SunlightPoint, sunlight_view
-from .annual import (ANNUAL_FORMAT, AnnualGrid, AnnualResults, read_annual, load_hours)
+from .annual import (ANNUAL_FORMAT, AnnualGrid, AnnualResults, check_annual, read_annual,
+                     load_hours)
 from .migration import (DERIVED_FLUX_NOTE, ESTIMATED_NOTE, Requirements, SceneFlux, _migrate,
                         migrate)
 
@@ -38,7 +39,7 @@ __all__ = ["FORMAT", "OPTIMIZATION_FORMAT", "CELL_ARRAYS", "GLARE_KINDS", "READ_
            "ObserverGridView", "RunFacts", "Results", "plain", "schema", "check", "migrate",
            "read", "load", "Provenance", "SourceFile", "without_run_facts",
            "SunlightExposureView", "SunlightPoint", "ANNUAL_FORMAT", "AnnualGrid",
-           "AnnualResults", "read_annual", "load_hours"]
+           "AnnualResults", "read_annual", "load_hours", "check_annual"]
 
 # --- the view ---------------------------------------------------------------------------------
 

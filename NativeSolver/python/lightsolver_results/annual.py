@@ -12,9 +12,13 @@ import os
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Union
 
+from pathlib import Path
+
 from .layout import ResultsError, finite
 
 ANNUAL_FORMAT = "lightsolver.annual/1"
+#: The schema's file name (docs/schemas/; copied beside this package by CMake).
+SCHEMA_NAME = "annual.schema.json"
 VERDICTS = ("pass", "fail", "undecided")
 
 
@@ -120,6 +124,8 @@ class AnnualResults:
     blinds_transmittance: Optional[float]
     grids: List[AnnualGrid]
     warnings: List[str]
+    seed: Optional[int] = None
+    decide: bool = False
 
     def grid(self, name: str) -> AnnualGrid:
         for g in self.grids:
@@ -181,13 +187,49 @@ def _grid(entry: Dict[str, Any]) -> AnnualGrid:
         cell_da_fraction=_cells(cells.get("da_fraction")),
         cell_udi_useful_fraction=_cells(cells.get("udi_useful_fraction")),
         cell_sda_verdict=[_verdict(v) for v in cells.get("sda_verdict", [])],
-        cell_ase_hours=[int(v) for v in cells.get("ase_hours", [])],
+        cell_ase_hours=[int(v) for v in cells.get("ase_hours") or []],
         cell_hours_above=cell_hours)
 
 
-def read_annual(source: Union[str, os.PathLike, Dict[str, Any]]) -> AnnualResults:
-    """The view of an annual.json (a path, or the parsed dict). ResultsError for another format
-    or a file that is not JSON."""
+_SCHEMA: Optional[Dict[str, Any]] = None
+
+
+def annual_schema() -> Optional[Dict[str, Any]]:
+    """docs/schemas/annual.schema.json, or None where neither copy is found."""
+    global _SCHEMA
+    if _SCHEMA is None:
+        here = Path(__file__).resolve().parent
+        for path in (here / SCHEMA_NAME, here.parents[2] / "docs" / "schemas" / SCHEMA_NAME):
+            if path.is_file():
+                _SCHEMA = json.loads(path.read_text(encoding="utf-8"))
+                break
+    return _SCHEMA
+
+
+def check_annual(doc: Any) -> List[str]:
+    """What in ``doc`` breaks the annual schema ("path: message" each; empty: none). Without
+    ``jsonschema`` or the schema file only the format is checked."""
+    if not isinstance(doc, dict):
+        return ["not a JSON object"]
+    if doc.get("format") != ANNUAL_FORMAT:
+        return [f"format: expected {ANNUAL_FORMAT!r}, got {doc.get('format')!r}"]
+    found = annual_schema()
+    try:
+        import jsonschema
+    except ImportError:
+        return []
+    if found is None:
+        return []
+    validator = jsonschema.Draft202012Validator(found)
+    return [f"{'/'.join(map(str, e.absolute_path)) or '(top)'}: {e.message}"
+            for e in sorted(validator.iter_errors(doc), key=lambda e: list(e.absolute_path))]
+
+
+def read_annual(source: Union[str, os.PathLike, Dict[str, Any]],
+                check_schema: bool = True) -> AnnualResults:
+    """The view of an annual.json (a path, or the parsed dict). ResultsError for another format,
+    a file that is not JSON, or (``check_schema``, where jsonschema is installed) a document
+    that breaks docs/schemas/annual.schema.json, naming the first fields that do."""
     if isinstance(source, dict):
         doc = source
     else:
@@ -196,9 +238,15 @@ def read_annual(source: Union[str, os.PathLike, Dict[str, Any]]) -> AnnualResult
                 doc = json.load(f)
         except (OSError, ValueError) as e:
             raise ResultsError(f"{source}: not an annual results file ({e})") from e
+    where = "the annual results" if isinstance(source, dict) else str(source)
     if not isinstance(doc, dict) or doc.get("format") != ANNUAL_FORMAT:
-        raise ResultsError(f"not {ANNUAL_FORMAT} (format {doc.get('format')!r})"
-                           if isinstance(doc, dict) else "not a JSON object")
+        raise ResultsError(f"{where}: not {ANNUAL_FORMAT} (format {doc.get('format')!r})"
+                           if isinstance(doc, dict) else f"{where}: not a JSON object")
+    problems = check_annual(doc) if check_schema else []
+    if problems:
+        more = f" (and {len(problems) - 3} more)" if len(problems) > 3 else ""
+        raise ResultsError(f"{where}: breaks the annual results schema: "
+                           f"{'; '.join(problems[:3])}{more}")
     w = doc.get("weather", {})
     weather = Weather(str(w.get("file", "")), str(w.get("sha256", "")), str(w.get("location", "")),
                       str(w.get("region", "")), str(w.get("country", "")), str(w.get("source", "")),
@@ -218,7 +266,8 @@ def read_annual(source: Union[str, os.PathLike, Dict[str, Any]]) -> AnnualResult
         daylight_hours=_int(doc.get("daylight_hours")), confidence=finite(doc.get("confidence")),
         blinds_transmittance=finite(doc.get("blinds_transmittance")),
         grids=[_grid(g) for g in doc.get("grids", []) if isinstance(g, dict)],
-        warnings=[str(x) for x in doc.get("warnings", [])])
+        warnings=[str(x) for x in doc.get("warnings", [])], seed=_int(trace.get("seed")),
+        decide=trace.get("decide") is True)
 
 
 def load_hours(npz_path: Union[str, os.PathLike], grid_index: int) -> Dict[str, Any]:
