@@ -320,3 +320,18 @@ def test_lightsolver_report_passes_annual_on(cli, tmp_path):
                         str(tmp_path / "none.json"), "--out", str(tmp_path / "s.html")],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode != 0 and "none.json" in r.stderr and not (tmp_path / "s.html").exists()
+
+
+def test_electric_light_beside_daylight_when_the_run_has_it():
+    doc = annual()
+    doc["grids"][0]["electric"] = {
+        "target_lx": 500.0, "occupied_hours": 3650, "critical_value_hour": 4.5,
+        "electric_lx": {"estimate": 612.0, "low": 598.0, "high": 626.0},
+        "hours_below_target": {"estimate": 1234.0, "low": 1180.0, "high": 1301.0},
+        "mean_output_fraction": {"estimate": 0.183, "low": 0.171, "high": 0.197}}
+    page = render_html(SCENE, results(), date=DATE, annual=doc)
+    assert "Electric light beside daylight" in page
+    assert "1234" in page and "[1180, 1301]" in page and "of 3650" in page
+    assert "18.3" in page
+    assert "Electric light beside daylight" not in render_html(SCENE, results(), date=DATE,
+                                                              annual=annual())

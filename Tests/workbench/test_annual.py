@@ -148,7 +148,8 @@ class AnnualRunStored(DocTestCase):
         # The panel's lines: sDA with its interval and verdicts, ASE, UDI, EN 17037, weather.
         text = "\n".join(annual.SummaryLines)
         for words in ("sDA300/50%: ", "LM-83 nominal", "ASE1000,250h: ", "mean UDI 100-2000 lx",
-                      "EN 17037 minimum", "Chicago Ohare", digest[:16]):
+                      "EN 17037 minimum", "Chicago Ohare", digest[:16],
+                      "electric beside daylight: daylight below"):  # the office's luminaires
             self.assertIn(words, text)
         # The files beside the scene: the summary and the hourly values (the CLI's layout).
         folder = annual.OutputFolder

@@ -100,6 +100,15 @@ def grid_lines(grid: Any, label: str) -> List[str]:
     lines.append(f"  mean UDI 100-2000 lx: {interval_text(grid.udi_useful_fraction, 100.0)} "
                  f"(below {_percent(grid.udi_below_fraction.estimate, 100.0)}, above "
                  f"{_percent(grid.udi_above_fraction.estimate, 100.0)})")
+    electric = getattr(grid, "electric", None)
+    if electric is not None:
+        h = electric.hours_below_target
+        hours = "-" if h.estimate is None else (
+            f"{h.estimate:.0f} h" + ("" if h.low is None or h.high is None
+                                     else f" ({h.low:.0f} - {h.high:.0f} h)"))
+        lines.append(f"  electric beside daylight: daylight below {electric.target_lx or 0:.0f} lx "
+                     f"in {hours} of {electric.occupied_hours} occupied hours; dimmer output "
+                     f"{interval_text(electric.mean_output_fraction, 100.0)}")
     for level in grid.en17037:
         t, m = level.target, level.minimum
         lines.append(f"  EN 17037 {level.level}: {verdict_word(level.verdict)} "

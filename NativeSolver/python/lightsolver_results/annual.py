@@ -60,6 +60,28 @@ class En17037Level:
 
 
 @dataclass(frozen=True)
+class ElectricBeside:
+    """The grid's electric light beside the daylight (annual.json ``grids[i].electric``): the
+    task's illuminance, the electric light at full output, the occupied hours at which daylight
+    misses the target and the mean output a daylight-linked dimmer would need (0 … 1)."""
+
+    target_lx: Optional[float]
+    electric_lx: Interval
+    occupied_hours: Optional[int]
+    hours_below_target: Interval
+    mean_output_fraction: Interval
+
+
+def _electric(entry: Any) -> Optional[ElectricBeside]:
+    if not isinstance(entry, dict):
+        return None
+    return ElectricBeside(finite(entry.get("target_lx")), _interval(entry.get("electric_lx")),
+                          _int(entry.get("occupied_hours")),
+                          _interval(entry.get("hours_below_target")),
+                          _interval(entry.get("mean_output_fraction")))
+
+
+@dataclass(frozen=True)
 class AnnualGrid:
     """One grid's year."""
 
@@ -88,6 +110,7 @@ class AnnualGrid:
     cell_sda_verdict: List[str]
     cell_ase_hours: List[int]
     cell_hours_above: Dict[float, CellIntervals] = field(default_factory=dict)
+    electric: Optional[ElectricBeside] = None  # None: the scene has no electric luminaire
 
 
 @dataclass(frozen=True)
@@ -188,7 +211,7 @@ def _grid(entry: Dict[str, Any]) -> AnnualGrid:
         cell_udi_useful_fraction=_cells(cells.get("udi_useful_fraction")),
         cell_sda_verdict=[_verdict(v) for v in cells.get("sda_verdict", [])],
         cell_ase_hours=[int(v) for v in cells.get("ase_hours") or []],
-        cell_hours_above=cell_hours)
+        cell_hours_above=cell_hours, electric=_electric(entry.get("electric")))
 
 
 _SCHEMA: Optional[Dict[str, Any]] = None
