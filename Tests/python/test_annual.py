@@ -98,18 +98,21 @@ def test_shaded_grid_has_no_sda(tmp_path):
 
 def test_sda_interval_covers_a_16_times_longer_trace():
     # The room turned so that its window faces north-east: partly daylit, sDA neither 0 nor 100.
-    short = lightsolver.annual(str(ROOM), str(CHICAGO), north_deg=135, photons=1_000_000, seed=3)
-    long = lightsolver.annual(str(ROOM), str(CHICAGO), north_deg=135, photons=16_000_000, seed=4)
+    short = lightsolver.annual(str(ROOM), str(CHICAGO), north_deg=135, photons=500_000, seed=3)
+    long = lightsolver.annual(str(ROOM), str(CHICAGO), north_deg=135, photons=8_000_000, seed=4)
     s = short["summary"]["grids"][0]["metrics"]["sda_percent"]
     best = long["summary"]["grids"][0]["metrics"]["sda_percent"]["estimate"]
     assert 0.0 < best < 100.0
     assert s["low"] <= best <= s["high"], (s, best)
-    # The per-cell DA intervals of the short trace hold the long trace's estimates.
+    # The per-cell DA intervals of the short trace hold the long trace's estimates: each cell's
+    # at 95 % (not simultaneous over the cells), so at most n (1 − c) + 4 sqrt(n c (1 − c))
+    # may miss (30 of 300); the long trace's own noise only adds misses.
     da_short = short["summary"]["grids"][0]["metrics"]["cells"]["da_fraction"]
     da_long = long["summary"]["grids"][0]["metrics"]["cells"]["da_fraction"]
-    held = sum(lo <= est <= hi for lo, hi, est in
-               zip(da_short["low"], da_short["high"], da_long["estimate"]))
-    assert held == len(da_long["estimate"])
+    n = len(da_long["estimate"])
+    missed = n - sum(lo <= est <= hi for lo, hi, est in
+                     zip(da_short["low"], da_short["high"], da_long["estimate"]))
+    assert missed <= n * 0.05 + 4 * math.sqrt(n * 0.05 * 0.95), missed
 
 
 def test_bad_input_is_named_and_writes_nothing(tmp_path):
@@ -182,7 +185,7 @@ def test_electric_light_beside_the_daylight(tmp_path):
     scene["targets"][0]["requirements"] = {"em_lux": 500}
     path = tmp_path / "lit.scene.json"
     path.write_text(json.dumps(scene))
-    r = lightsolver.annual(str(path), str(CHICAGO), photons=1_000_000, seed=2)
+    r = lightsolver.annual(str(path), str(CHICAGO), photons=300_000, seed=2)
     e = r["summary"]["grids"][0]["electric"]
     assert e["target_lx"] == 500 and e["occupied_hours"] == 3650
     el = e["electric_lx"]
@@ -196,7 +199,7 @@ def test_electric_light_beside_the_daylight(tmp_path):
     assert e["hours_below_target"]["estimate"] == int(np.sum(grid["mean"].mean(axis=1)[occupied]
                                                             < 500))
     # Without electric luminaires there is nothing to report.
-    plain = lightsolver.annual(str(ROOM), str(CHICAGO), photons=300_000)
+    plain = lightsolver.annual(str(open_site_scene(tmp_path)), str(CHICAGO), photons=100_000)
     assert plain["summary"]["grids"][0]["electric"] is None
 
 

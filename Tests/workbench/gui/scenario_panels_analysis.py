@@ -129,8 +129,10 @@ def body() -> None:
     for name in ("check", "run", "cancel"):
         expect(geometry["visible"][name], f"the {name} button is not visible after the run")
     # The legend: scrolled to as a user would, whole and wide enough to read.
+    # Waited for, not slept on: under load (GUI entries run beside others) the scroll and the
+    # layout can take more than a fixed 0.2 s (CI saw the legend not yet in view).
     panel.scroll.ensureWidgetVisible(panel.legend)
-    pump(0.2)
+    wait_until(lambda: visible_in_window(panel.legend), 10.0)
     expect(visible_in_window(panel.legend) and panel.legend.width() >= 150,
            f"the legend is not readable: {panel.legend.width()} px")
     panel.scroll.ensureWidgetVisible(panel.table)
