@@ -14,8 +14,10 @@
 namespace lightsolver {
 namespace {
 
-const Luminaire& the_one(const Scene& s, Luminaire::Type type, const char* what, bool needed,
-                         const Luminaire** out) {
+// The scene's luminaire of `type` into *out (null when none and not `needed`); InputError when
+// there is none but one is needed, or more than one.
+void the_one(const Scene& s, Luminaire::Type type, const char* what, bool needed,
+             const Luminaire** out) {
   int count = 0;
   for (const Luminaire& l : s.luminaires) {
     if (l.type != type) continue;
@@ -27,7 +29,6 @@ const Luminaire& the_one(const Scene& s, Luminaire::Type type, const char* what,
                          (needed ? "exactly one " : "at most one ") + what +
                          " luminaire (its openings), the scene has " + std::to_string(count));
   }
-  return **out;
 }
 
 // Patch p's sky: the scene's sky's openings and glazing, uniform luminance `luminance` over the
