@@ -61,6 +61,26 @@ class EmbreeBackend final : public Backend {
 
   KernelFeatures kernel() const { return kernel_; }
 
+  bool traces_shadow_rays() const override { return true; }
+
+  void visible(std::span<const ShadowRay> rays, std::vector<std::uint8_t>& out) override {
+    out.assign(rays.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        const unsigned ftz = _MM_GET_FLUSH_ZERO_MODE();
+                        const unsigned daz = _MM_GET_DENORMALS_ZERO_MODE();
+                        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+                        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+                        RTCIntersectContext context;
+                        rtcInitIntersectContext(&context);
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                          out[i] = occluded(rays[i], context) ? 0 : 1;
+                        }
+                        _MM_SET_FLUSH_ZERO_MODE(ftz);
+                        _MM_SET_DENORMALS_ZERO_MODE(daz);
+                      });
+  }
+
   void set_mesh_transform(std::size_t mesh, const glm::mat4& transform) override {
     embree_.set_transform(mesh, transform);
   }
@@ -140,6 +160,7 @@ class EmbreeBackend final : public Backend {
     std::size_t tally_offset = 0;  // the path's group's first tally
     EmittedRay ray;
     std::uint32_t bounce = 0;
+    std::uint32_t first_bounce = 0;  // 1: its group's direct light is by next-event estimation
     RTCRayHit rh;
     PathDeposits deposits;
     bool active = false;
@@ -182,6 +203,7 @@ class EmbreeBackend final : public Backend {
     lane.tally_offset = p.by_group ? std::size_t(range.group) * s_.bins.size() : 0;
     lane.ray = emit(s_.luminaires[pick_luminaire(s_.groups[range.group], lane.rng)], lane.rng);
     lane.bounce = 0;
+    lane.first_bounce = s_.groups[range.group].next_event ? 1 : 0;
     lane.active = true;
   }
 
@@ -224,7 +246,7 @@ class EmbreeBackend final : public Backend {
     rtcIntersect1(embree_.handle(), &context, &lane.rh);
     ++t.ray_segments;
     cross_grids_with<F>(s_.grids, lane.ray.origin, lane.ray.direction, lane.rh.ray.tfar,
-                        lane.bounce, lane.deposits);
+                        lane.bounce, lane.deposits, lane.first_bounce);
     if (lane.rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     bool instanced = false;
     const unsigned mesh = embree_.mesh_of(lane.rh.hit, instanced);
@@ -251,7 +273,9 @@ class EmbreeBackend final : public Backend {
     EmittedRay& ray = lane.ray;
     vec3 n = tri.n;
     if (instanced) n = glm::normalize(glm::mat3(m.transform) * n);  // rigid: no inverse needed
-    if (m.bin >= 0 && glm::dot(ray.direction, n) < 0.0f) lane.deposits.add(m.bin);
+    if (m.bin >= 0 && lane.bounce >= lane.first_bounce && glm::dot(ray.direction, n) < 0.0f) {
+      lane.deposits.add(m.bin);
+    }
     if constexpr (!F.reflects) return false;  // no surface returns light: absorbed
     if (!scatter_with<F>(s_.materials[m.material], n, ray.direction, lane.rng)) return false;
     if (lane.bounce++ >= s_.max_bounces) {
@@ -264,6 +288,23 @@ class EmbreeBackend final : public Backend {
     if (instanced) p = vec3(m.transform * glm::vec4(p, 1.0f));
     ray.origin = offset_ray_origin(p, glm::dot(ray.direction, n) > 0.0f ? n : -n);
     return true;
+  }
+
+  bool occluded(const ShadowRay& s, RTCIntersectContext& context) const {
+    RTCRay ray;
+    ray.org_x = s.origin.x;
+    ray.org_y = s.origin.y;
+    ray.org_z = s.origin.z;
+    ray.dir_x = s.direction.x;
+    ray.dir_y = s.direction.y;
+    ray.dir_z = s.direction.z;
+    ray.tnear = 0.0f;
+    ray.tfar = s.t_max;
+    ray.mask = 0xFFFFFFFFu;
+    ray.time = 0.0f;
+    ray.flags = 0;
+    rtcOccluded1(embree_.handle(), &context, &ray);
+    return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
   }
 
   static RTCRayHit make_ray(const EmittedRay& r) {

@@ -4,6 +4,7 @@
 // how a backend splits or orders the work.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -40,6 +41,15 @@ struct TallyBlock {
   }
 };
 
+/// A shadow ray of next-event estimation (direct/next_event.hpp): is anything of the scene on
+/// origin + t * direction for 0 < t < t_max? Virtual grids are not geometry: they never block.
+struct ShadowRay {
+  vec3 origin{0.0f};
+  float t_max = 0.0f;
+  vec3 direction{0.0f, 0.0f, 1.0f};  // unit
+  float pad = 0.0f;                  // 32 bytes: the GPU's std430 layout as is
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -53,6 +63,16 @@ class Backend {
   /// Runs in the caller's TBB arena.
   virtual void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed,
                      TallyBlock& out) = 0;
+  /// Whether visible() works (next-event estimation needs it; without it the direct light is
+  /// traced by photons).
+  virtual bool traces_shadow_rays() const { return false; }
+  /// out[i] = 1 when nothing of the scene (at its current transforms) lies on rays[i], else 0.
+  /// Runs in the caller's TBB arena.
+  virtual void visible(std::span<const ShadowRay> rays, std::vector<std::uint8_t>& out) {
+    (void)rays;
+    (void)out;
+    throw std::logic_error("the " + name() + " backend cannot trace shadow rays");
+  }
   /// PreparedScene::luminaires changed (backends holding copies re-upload them).
   virtual void luminaires_changed() {}
   /// Moves a movable mesh; `transform` maps its prepared coordinates to local world space

@@ -42,9 +42,12 @@ class PathDeposits {
 // from the grid's front (Shaders/shared/grids.h, the text the shaders include too). A grid lying
 // on a surface still counts the photons arriving there (shared::grid_reach).
 // `bounce`: reflections before this segment (0: straight from the luminaire); indirect-only
-// grids (observers) skip direct segments.
+// grids (observers) skip direct segments, and so does every grid when `first_bounce` is 1 (the
+// path's group has its direct light by next-event estimation).
 inline void cross_grids(const std::vector<PreparedGrid>& grids, const vec3& o, const vec3& d,
-                        float t_max, std::uint32_t bounce, PathDeposits& deposits) {
+                        float t_max, std::uint32_t bounce, PathDeposits& deposits,
+                        std::uint32_t first_bounce = 0) {
+  if (bounce < first_bounce) return;
   const float t_end = shared::grid_reach(t_max);
   for (const auto& g : grids) {
     if (g.indirect_only && bounce == 0) continue;

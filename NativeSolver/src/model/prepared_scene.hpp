@@ -73,6 +73,10 @@ struct PreparedGroup {
   std::vector<std::uint32_t> luminaires;  // indices into PreparedScene::luminaires, scene order
   std::vector<double> cdf;                // cumulative flux fractions within the group, last = 1
   double share = 0.0;  // fraction of a run's photons traced from it (groups.hpp, photon_shares)
+  // Its direct light at grids and surface targets comes from next-event estimation
+  // (direct/next_event.hpp): backends then tally only its photons' segments and hits after at
+  // least one scattering (bounce >= 1), as for observers. Observers are unchanged.
+  bool next_event = false;
 };
 
 struct BinInfo {
