@@ -35,7 +35,14 @@ void add_flag(CLI::App* command, SolveOptions& options, const Row& row) {
     command->add_flag_callback(
         info.cli_flag, [&member] { member = true; }, help);
   } else if constexpr (std::is_same_v<T, std::string>) {
-    add_backend_option(command, member);  // its choices and help: the backend registry's
+    if (info.choices) {
+      CLI::Option* flag = command->add_option(info.cli_flag, member, help);
+      flag->check(CLI::Validator(
+          [info](std::string& text) { return is_choice(info, text) ? "" : choice_error(info, text); },
+          info.choices));
+    } else if constexpr (std::is_same_v<std::decay_t<decltype(member)>, std::string>) {
+      add_backend_option(command, member);  // its choices and help: the backend registry's
+    }
   } else {
     CLI::Option* flag = command->add_option(info.cli_flag, member, help);
     if (!range_text(info.range).empty()) flag->check(range_check(info));

@@ -39,7 +39,11 @@ T checked_value(const py::handle& value, const RunOptionInfo& info, const std::s
     }
   }
   try {
-    return value.cast<T>();
+    T v = value.cast<T>();
+    if constexpr (std::is_same_v<T, std::string>) {
+      if (!is_choice(info, v)) throw InputError("", where, choice_error(info, v));
+    }
+    return v;
   } catch (const py::cast_error&) {
     throw py::type_error(where + ": expected " + type_name<T>() + ", got " +
                          std::string(py::repr(value)));

@@ -43,6 +43,9 @@ struct RunOptionInfo {
   OptionRange range;           ///< numeric options; the whole line for others
   bool cost_and_study;         ///< also an option of `cost` and `study` (checkpointed runs)
   bool per_backend;  ///< chosen when the backend is built (Simulation(), not Simulation.run())
+  /// A text option's accepted values, "|"-separated ("auto|on|off"); nullptr: any (the
+  /// backend's come from the registry).
+  const char* choices = nullptr;
 };
 
 /// A row with no member on one side (a run-only option has no Settings member, a scene-only
@@ -143,6 +146,13 @@ inline constexpr std::tuple kRunOptions{
                "contributions", "--contributions", "contributions", nullptr, nullptr, {},
                false, false},
               &Settings::contributions, &SolveOptions::contributions},
+    RunOption{{"next_event",
+               "Direct light at grids and surface targets by shadow rays (auto: for every "
+               "luminaire type that has them, where the backend traces them; on; off: all "
+               "by photons)",
+               "next_event", "--next-event", "next_event", nullptr, nullptr, {}, true, false,
+               "auto|on|off"},
+              &Settings::next_event, &SolveOptions::next_event},
     RunOption{{"max_bounces",
                "Safety limit on surface interactions per path (paths it stops bias the "
                "result low and are warned of)",
@@ -211,6 +221,11 @@ std::string default_note(const Row& row) {
     return text;
   }
 }
+
+/// Whether `value` is one of `option`'s choices (true for an option without choices).
+bool is_choice(const RunOptionInfo& option, std::string_view value);
+/// "must be one of auto, on, off (got \"x\")".
+std::string choice_error(const RunOptionInfo& option, std::string_view value);
 
 /// Checks every option set in `options` against its row (InputError naming the option).
 void check_run_options(const SolveOptions& options);

@@ -211,6 +211,10 @@ struct Settings {
   /// Results carry each luminaire group's contribution per target and cell (`contributions`),
   /// which `rescale` needs (SolveOptions::contributions).
   bool contributions = false;
+  /// Direct light at grids and surface targets by next-event estimation (shadow rays):
+  /// "auto", "on" or "off" (SolveOptions::next_event; docs/statistics.md, "Next-event
+  /// estimation"). Off by default until `rescale` reads direct parts back from results.
+  std::string next_event = "off";
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

@@ -103,6 +103,10 @@ struct SolveOptions {
   /// Report each luminaire group's contribution per target and cell (TargetResult::
   /// contributions, with the tallies `rescale` needs). Default: scene.settings.contributions.
   std::optional<bool> contributions;
+  /// "auto", "on" or "off": direct light at grids and surface targets by shadow rays from
+  /// stratified points to the luminaires, only the reflected light by photons
+  /// (docs/statistics.md, "Next-event estimation"). Default: scene.settings.next_event.
+  std::optional<std::string> next_event;
   const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current batch
   /// Called once, when the first batches give a tracing rate: what the run is expected to
   /// cost (the CLI prints it for runs longer than a minute).
@@ -319,6 +323,9 @@ struct Results {
   VerdictKind verdict = VerdictKind::Undecided;  ///< overall over the judged targets
   std::vector<GroupResult> groups;  ///< every luminaire group, in the order of first appearance
   bool contributions = false;       ///< targets carry their per-group contributions
+  /// The next-event setting of the run ("auto", "on", "off"); what it did is in `effects`
+  /// (next_event_direct).
+  std::string next_event = "off";
   /// A result of `rescale`: the dimming factor of every group (1 where none was given).
   std::vector<std::pair<std::string, double>> rescaled;
   /// Every luminaire, in scene order, as traced: the flux it emitted in the calculation.

@@ -83,7 +83,15 @@ void check_group_tallies(const std::string& file, std::size_t groups, std::size_
 
 Estimate GroupedTallies::group_estimate_z(std::size_t group, std::uint32_t bin, double area_m2,
                                           double z) const {
-  return make_estimate_z(tally(group, bin), photons[group], flux_lm[group] / area_m2, z);
+  const bool direct_part = direct != nullptr && direct_scale[group] > 0.0;
+  // A next-event group's photons in a scene where nothing reflects deposit nothing, exactly.
+  Estimate e = direct_part && !photons_reflect
+                   ? Estimate{}
+                   : make_estimate_z(tally(group, bin), photons[group], flux_lm[group] / area_m2, z);
+  if (!direct_part) return e;
+  const DirectPart& d = (*direct)[group * bin_count + bin];
+  return with_direct_part(e, d.lux * direct_scale[group],
+                          d.variance * direct_scale[group] * direct_scale[group], d.lit, z);
 }
 
 Estimate GroupedTallies::estimate_z(std::uint32_t bin, double area_m2, double z) const {
@@ -132,7 +140,27 @@ GroupedTallies grouped_tallies(const PreparedScene& s, const std::vector<Tally>&
   t.bin_count = s.bins.size();
   t.photons = group_photons(s.groups, photons);
   for (const PreparedGroup& g : s.groups) t.flux_lm.push_back(g.flux_lm);
+  if (!s.direct.empty()) {
+    t.direct = &s.direct;
+    for (const PreparedGroup& g : s.groups) t.direct_scale.push_back(g.next_event ? 1.0 : 0.0);
+    t.photons_reflect = s.photons_reflect;
+  }
   return t;
+}
+
+Estimate with_direct_part(const Estimate& photons, double lux, double variance, std::uint64_t lit,
+                          double z) {
+  Estimate e = photons;
+  const double half = z * std::sqrt(variance);
+  e.mean = photons.mean + lux;
+  e.sigma = std::hypot(photons.sigma, std::sqrt(variance));
+  e.hits = photons.hits + lit;
+  e.ci_low = std::clamp(e.mean - std::hypot(photons.mean - photons.ci_low, half), 0.0, e.mean);
+  e.ci_high = std::max(e.mean + std::hypot(photons.ci_high - photons.mean, half), e.mean);
+  if (!(std::isfinite(e.mean) && std::isfinite(e.ci_high) && std::isfinite(e.sigma))) {
+    throw std::overflow_error("next-event estimate: non-finite value");
+  }
+  return e;
 }
 
 }  // namespace lightsolver::detail

@@ -52,11 +52,18 @@ struct GroupedTallies {
   std::size_t bin_count = 0;
   std::vector<std::uint64_t> photons;  // per group
   std::vector<double> flux_lm;         // per group, times its dimming factor
+  // Next-event estimation: each group's direct part per bin (group-major; null: none) and
+  // per group the factor on it (its flux here over its flux as prepared; 0: no direct part).
+  const std::vector<DirectPart>* direct = nullptr;
+  std::vector<double> direct_scale;
+  bool photons_reflect = true;  // false: a group with a direct part has no photon part
 
   const Tally& tally(std::size_t group, std::uint32_t bin) const {
     return (*bins)[group * bin_count + bin];
   }
-  /// Group g's part of bin `bin` (area in m2) at critical value z.
+  /// Group g's part of bin `bin` (area in m2) at critical value z: its photons' estimate, plus
+  /// its direct part where it has one (the two independent: the ends' distances add in
+  /// quadrature, docs/statistics.md "Next-event estimation").
   Estimate group_estimate_z(std::size_t group, std::uint32_t bin, double area_m2, double z) const;
   /// The sum over the groups: the group's own estimate where one group has light (bit for bit
   /// that of an ungrouped run), else mean = sum of means, and each end of the interval the
@@ -64,6 +71,12 @@ struct GroupedTallies {
   Estimate estimate_z(std::uint32_t bin, double area_m2, double z) const;
   Estimate estimate(std::uint32_t bin, double area_m2, double confidence) const;
 };
+
+/// `photons` (a group's photon estimate of a bin) plus a direct part of mean `lux` and
+/// `variance` from `lit` lit samples, at critical value z: means add, the ends' distances add
+/// in quadrature (independent estimates), sigma too; hits count the lit samples as well.
+Estimate with_direct_part(const Estimate& photons, double lux, double variance, std::uint64_t lit,
+                          double z);
 
 /// The tallies of a run over `bins` (groups x scene bins) after its first `photons` photons.
 GroupedTallies grouped_tallies(const PreparedScene& s, const std::vector<Tally>& bins,

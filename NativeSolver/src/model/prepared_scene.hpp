@@ -60,6 +60,7 @@ struct PreparedLuminaire {
   const Luminaire* source = nullptr;  // for photometric data and names
   double flux_lm = 0.0;               // emitted as traced (emitted_flux_lm: TILT applied), lm
   vec3 c0{1, 0, 0};                   // photometric frame: gamma=0 along axis, C0 along c0
+  double direct_norm = 0.0;           // spot: its profile's solid angle (sr), for direct light
   // A sun through portals (luminaire_sun.cpp): each portal facing it as its own record of the
   // fields emit_sun reads, chosen by the cumulative flux fractions `portal_cdf` (last = 1).
   std::vector<PreparedLuminaire> portals;
@@ -77,6 +78,15 @@ struct PreparedGroup {
   // (direct/next_event.hpp): backends then tally only its photons' segments and hits after at
   // least one scattering (bounce >= 1), as for observers. Observers are unchanged.
   bool next_event = false;
+};
+
+/// A group's direct light in one bin by next-event estimation (estimate/next_event.hpp), at the
+/// group's flux as prepared: the mean illuminance, its variance, and how many of its samples
+/// saw light (reported with the photon hits).
+struct DirectPart {
+  double lux = 0.0;
+  double variance = 0.0;  // lx^2
+  std::uint64_t lit = 0;
 };
 
 struct BinInfo {
@@ -124,6 +134,14 @@ struct PreparedScene {
   std::size_t triangle_count = 0;
   std::vector<Coincidence> coincidences;  // coplanar overlapping meshes (coincident.hpp)
   Warnings warnings;                      // for Results::warnings: the coincidences, in words
+  // Next-event estimation of the run (groups with next_event): their direct parts, groups x
+  // bins (group-major like the tallies); empty when no group has it. `next_event_off` says why
+  // a scene has none (the effects list's reason).
+  std::vector<DirectPart> direct;
+  std::string next_event_off = "not planned";
+  // Some surface returns light: a next-event group's photons can deposit (after a bounce). When
+  // false, their photon part is exactly zero and the direct part is the whole estimate.
+  bool photons_reflect = true;
 };
 
 // Builds the tracer-side scene. The Scene must have passed validate(). Meshes whose indices

@@ -26,6 +26,7 @@ enum class Effect : std::uint8_t {
   ObserverCrossing,   ///< indirect-only grids (observers' eyes)
   Instancing,         ///< movable meshes behind Embree instances
   LuminaireChoice,    ///< several luminaires: the flux CDF is searched per photon
+  NextEventDirect,    ///< direct light at targets by shadow rays (estimate/next_event.hpp)
   /// Then one emission effect per luminaire type, in the rows' order (emission_effect()):
   /// each row names its own (LuminaireType::effect).
   kFirstEmission

@@ -40,7 +40,43 @@ std::optional<double> numeric(const std::optional<T>& v) {
   return v ? numeric(*v) : std::nullopt;
 }
 
+// A text option's value outside its choices: the message, else "".
+template <class T>
+std::string text_error(const RunOptionInfo& info, const T& v) {
+  if constexpr (std::is_same_v<T, std::string>) {
+    return is_choice(info, v) ? "" : choice_error(info, v);
+  } else if constexpr (std::is_same_v<T, std::optional<std::string>>) {
+    return v ? text_error(info, *v) : "";
+  } else {
+    return "";
+  }
+}
+
 }  // namespace
+
+bool is_choice(const RunOptionInfo& option, std::string_view value) {
+  if (!option.choices) return true;
+  std::string_view rest = option.choices;
+  for (;;) {
+    const auto bar = rest.find('|');
+    if (rest.substr(0, bar) == value) return true;
+    if (bar == std::string_view::npos) return false;
+    rest.remove_prefix(bar + 1);
+  }
+}
+
+std::string choice_error(const RunOptionInfo& option, std::string_view value) {
+  std::string list = option.choices ? option.choices : "";
+  for (char& c : list) {
+    if (c == '|') c = ',';
+  }
+  std::string out;
+  for (char c : list) {
+    out += c;
+    if (c == ',') out += ' ';
+  }
+  return "must be one of " + out + " (got \"" + std::string(value) + "\")";
+}
 
 std::vector<RunOptionInfo> run_option_infos() {
   std::vector<RunOptionInfo> out;
@@ -84,6 +120,8 @@ void check_run_options(const SolveOptions& options) {
   for_each_run_option([&](const auto& row) {
     if constexpr (std::decay_t<decltype(row)>::kInRun) {
       if (const auto v = numeric(options.*row.option)) check_range(row.info, *v, "", row.info.name);
+      const std::string error = text_error(row.info, options.*row.option);
+      if (!error.empty()) throw InputError("", row.info.name, error);
     }
   });
 }
@@ -96,6 +134,10 @@ std::vector<std::pair<std::string, std::string>> settings_errors(const Settings&
         std::string error = range_error(row.info, *v);
         if (!error.empty())
           out.emplace_back(std::string("settings.") + row.info.scene_key, std::move(error));
+      }
+      std::string error = text_error(row.info, settings.*row.setting);
+      if (!error.empty()) {
+        out.emplace_back(std::string("settings.") + row.info.scene_key, std::move(error));
       }
     }
   });

@@ -17,10 +17,12 @@
 
 #include "estimate/cell_accuracy.hpp"
 #include "estimate/decide.hpp"
+#include "estimate/next_event.hpp"
 #include "estimate/run_results.hpp"
 #include "estimate/target_results.hpp"
 #include "model/backend.hpp"
 #include "model/groups.hpp"
+#include "prepare/scene_effects.hpp"
 #include "prepare/target_reach.hpp"
 #include "run/shared_tracing.hpp"
 #include "run/simulation_state.hpp"
@@ -316,6 +318,7 @@ void Simulation::set_luminaire(std::size_t index, const Luminaire& luminaire) {
   detail::prepare_luminaires(s, state_->prepared);
   state_->backend->luminaires_changed();
   state_->kept.reset();
+  state_->direct_seed.reset();
   state_->pending_update_seconds += seconds_since(start);
 }
 
@@ -338,6 +341,7 @@ void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
   state_->scene.source.reset();  // no longer the scene file's geometry
   state_->backend->set_mesh_transform(mesh, p.meshes[mesh].transform);
   state_->kept.reset();
+  state_->direct_seed.reset();
   state_->pending_update_seconds += seconds_since(start);
 }
 
@@ -355,6 +359,48 @@ Results Simulation::refine(const SolveOptions& options, const ProgressFn& progre
 Results Simulation::run(const SolveOptions& options, const ProgressFn& progress) {
   check_run_options(options);  // each option's range, as the front ends check it
   return run_from(options, progress, false);
+}
+
+// Next-event estimation for this run (estimate/next_event.hpp): which groups, and their direct
+// parts, kept for the next run with the same seed. The points are sized to the run: about one
+// shadow ray per two photons (a shadow ray costs about a photon segment), at least the defaults;
+// an accuracy goal refines them until no direct part's half-width passes half the goal.
+void Simulation::plan_direct_light(const Results& r) {
+  detail::PreparedScene& p = state_->prepared;
+  detail::plan_next_event(p, *state_->backend, r.next_event);
+  if (!std::any_of(p.groups.begin(), p.groups.end(),
+                   [](const detail::PreparedGroup& g) { return g.next_event; })) {
+    return;
+  }
+  p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
+  const auto wide = [&](const std::vector<detail::DirectPart>& parts) {
+    if (!r.target_accuracy) return false;
+    const double z = z_for_confidence(r.confidence), half_goal = 0.5 * *r.target_accuracy;
+    return std::any_of(parts.begin(), parts.end(), [&](const detail::DirectPart& d) {
+      return d.lux > 0.0 && z * std::sqrt(d.variance) > half_goal * d.lux;
+    });
+  };
+  std::uint32_t scale = 1;
+  if (!r.target_accuracy && !r.decide) {
+    const double rays = double(detail::direct_ray_count(p, 1));
+    const double fit = rays > 0.0 ? std::sqrt(0.5 * double(r.photons_requested) / rays) : 1.0;
+    scale = static_cast<std::uint32_t>(std::clamp(fit, 1.0, 16.0));
+  }
+  if (state_->direct_seed == r.seed && state_->direct_strata_scale == scale) {
+    if (!wide(state_->direct)) {
+      p.direct = state_->direct;
+      return;
+    }
+    scale *= 2;
+  }
+  tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
+  for (;; scale *= 2) {
+    arena.execute([&] { p.direct = detail::direct_parts(p, *state_->backend, r.seed, scale); });
+    if (scale >= 16 || !wide(p.direct)) break;
+  }
+  state_->direct = p.direct;
+  state_->direct_seed = r.seed;
+  state_->direct_strata_scale = scale;
 }
 
 Results Simulation::run_from(const SolveOptions& options, const ProgressFn& progress, bool resume) {
@@ -381,6 +427,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     throw InputError("", "target_accuracy", "must lie strictly between 0 and 1 (e.g. 0.02)");
   }
   state_->pending_update_seconds = 0.0;
+  r.next_event = options.next_event.value_or(scene.settings.next_event);
+  plan_direct_light(r);
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   r.contributions = options.contributions.value_or(scene.settings.contributions);

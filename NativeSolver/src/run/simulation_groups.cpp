@@ -13,6 +13,7 @@
 #include "lightsolver/simulation.hpp"
 #include "model/groups.hpp"
 #include "run/shared_tracing.hpp"
+#include "estimate/next_event.hpp"
 #include "run/simulation_state.hpp"
 #include "scene/provenance.hpp"
 
@@ -52,6 +53,9 @@ void Simulation::fix_photon_shares(const std::vector<double>& weights) {
 
 GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
                                    const std::shared_ptr<ProcessGroup>& processes) {
+  // Group traces carry photon tallies only: their direct light is traced by photons (a
+  // combine() of them has no direct parts).
+  detail::plan_next_event(state_->prepared, *state_->backend, "off");
   const detail::PreparedScene& p = state_->prepared;
   const Scene& scene = state_->scene;
   if (group >= p.groups.size()) {

@@ -20,6 +20,11 @@ struct SimulationState {
   // The last run's tallies, for refine(); dropped by any change to the scene.
   std::optional<TallyBlock> kept;
   std::uint64_t kept_photons = 0, kept_seed = 0;
+  // The last run's direct parts (next-event estimation), for the next run with the same seed
+  // and points; dropped by any change to the scene.
+  std::vector<DirectPart> direct;
+  std::optional<std::uint64_t> direct_seed;
+  std::uint32_t direct_strata_scale = 0;
 };
 
 }  // namespace lightsolver::detail

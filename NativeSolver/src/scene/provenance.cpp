@@ -158,6 +158,7 @@ OptionValue resolved_option(std::string_view name, const Results& r, const Scene
   if (name == "max_seconds") return optional(r.max_seconds);
   if (name == "decide") return r.decide;
   if (name == "contributions") return r.contributions;
+  if (name == "next_event") return r.next_event;
   if (name == "max_bounces") return std::uint64_t{scene.settings.max_bounces};
   throw std::logic_error("provenance: run option \"" + std::string(name) +
                          "\" has no resolved value (provenance.cpp)");

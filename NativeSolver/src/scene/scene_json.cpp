@@ -179,6 +179,10 @@ template <class T>
 T read_setting(const JsonNode& n, const RunOptionInfo& option) {
   if constexpr (std::is_same_v<T, bool>) {
     return n.boolean();
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    std::string v = n.string();
+    if (!is_choice(option, v)) n.fail(choice_error(option, v));
+    return v;
   } else if constexpr (std::is_floating_point_v<T>) {
     return n.number();
   } else {

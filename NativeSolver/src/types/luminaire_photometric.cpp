@@ -71,6 +71,25 @@ EmittedRay emit_photometric(const PreparedLuminaire& l, PathRng& rng) {
   return {offset_ray_origin(l.position + vec3(o), l.axis), glm::normalize(vec3(d))};
 }
 
+// A uniform point o of the luminous opening (as emit_photometric draws it, pushed off the same
+// way) and the traced intensity toward x from there: I(w) = flux * candela(w) / the table's
+// integrated flux, the density emit_photometric draws directions from (independent of o).
+LightSample direct_photometric(const PreparedLuminaire& l, const glm::dvec3& x, PathRng& rng) {
+  const PhotometricSampler& sampler = *l.source->sampler;
+  const glm::dvec3 aim(l.axis), c0(l.c0);
+  const glm::dvec3 o = lightsolver::to_world(sampler.sample_origin(rng), aim, c0);
+  const glm::dvec3 at(offset_ray_origin(l.position + vec3(o), l.axis));
+  const glm::dvec3 v = x - at;
+  const double d2 = glm::dot(v, v);
+  if (!(d2 > 0.0) || !(sampler.integrated_flux_lm() > 0.0)) return {at, 0.0};
+  // to_world maps local (x, y, z) to x c0 + y c90 - z aim (c90 = c0 x aim, orthonormal frame):
+  // its inverse is the dot products.
+  const glm::dvec3 w = v / std::sqrt(d2), c90 = glm::cross(c0, aim);
+  const glm::dvec3 local{glm::dot(w, c0), glm::dot(w, c90), -glm::dot(w, aim)};
+  const double intensity = l.flux_lm * sampler.intensity_cd(local) / sampler.integrated_flux_lm();
+  return {at, intensity / d2};
+}
+
 // The lamp's output at its tilt (type C TILT tables; 1 otherwise).
 double photometric_flux(const Luminaire& l) { return l.flux_lm * photometric_tilt_factor(l); }
 
@@ -132,7 +151,8 @@ LuminaireType photometric_luminaire_type() {
           .centre = at_position,
           .move_to = move_position,
           .aim = file_aim,
-          .placed = true};
+          .placed = true,
+          .direct = direct_photometric};
 }
 
 }  // namespace lightsolver::detail

@@ -134,6 +134,18 @@ EmissionSupport support_point(const PreparedLuminaire& l) {
   return from_point(l, std::numbers::pi);
 }
 
+// From a point of intensity I toward x: I / d^2 on a surface facing it.
+LightSample from_point_intensity(const glm::dvec3& at, const glm::dvec3& x, double intensity_cd) {
+  const glm::dvec3 v = at - x;
+  const double d2 = glm::dot(v, v);
+  return {at, d2 > 0.0 ? intensity_cd / d2 : 0.0};
+}
+
+// Isotropic: I = flux / (4 pi).
+LightSample direct_point(const PreparedLuminaire& l, const glm::dvec3& x, PathRng&) {
+  return from_point_intensity(glm::dvec3(l.position), x, l.flux_lm / (4.0 * std::numbers::pi));
+}
+
 // --- spot: smooth beam/field profile about an axis ------------------------------------------
 
 constexpr const char* kSpotKeys[] = {"name",      "type",           "flux_lm",        "position",
@@ -158,14 +170,43 @@ void check_spot(const LuminaireChecks& c, Luminaire& l) {
   c.flux(l, "");
 }
 
+// The profile's solid angle, 2 pi * integral of profile(t) sin t dt over the field: piecewise
+// linear in t, so Simpson's rule on each piece with 512 panels is exact to ~1e-12.
+double spot_solid_angle(double half_beam, double half_field) {
+  const auto piece = [&](double a, double b) {
+    constexpr int kPanels = 512;
+    const double h = (b - a) / kPanels;
+    double sum = 0.0;
+    for (int i = 0; i <= kPanels; ++i) {
+      const double t = a + i * h;
+      const double w = (i == 0 || i == kPanels) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+      sum += w * spot_profile(t, half_beam, half_field) * std::sin(t);
+    }
+    return sum * h / 3.0;
+  };
+  return 2.0 * std::numbers::pi * (piece(0.0, half_beam) + piece(half_beam, half_field));
+}
+
 void prepare_spot(const Luminaire& l, PreparedLuminaire& p) {
   p.half_beam_rad = static_cast<float>(glm::radians(0.5 * l.beam_angle_deg));
   p.half_field_rad = static_cast<float>(glm::radians(0.5 * l.field_angle_deg));
   p.cos_half_field = std::cos(p.half_field_rad);  // in float, as the GPU computes it
   p.axis = vec3(l.direction);
+  p.direct_norm = spot_solid_angle(p.half_beam_rad, p.half_field_rad);
 }
 
 EmissionSupport support_spot(const PreparedLuminaire& l) { return from_point(l, l.half_field_rad); }
+
+// I(theta) = flux * profile(theta) / (the profile's solid angle): emit_spot's density.
+LightSample direct_spot(const PreparedLuminaire& l, const glm::dvec3& x, PathRng&) {
+  const glm::dvec3 at(l.position), to_x = x - at;
+  const double d = glm::length(to_x);
+  if (!(d > 0.0) || !(l.direct_norm > 0.0)) return {at, 0.0};
+  const double cos_t = std::clamp(glm::dot(to_x / d, glm::dvec3(l.axis)), -1.0, 1.0);
+  if (cos_t < double(l.cos_half_field)) return {at, 0.0};  // outside the cone emit_spot draws in
+  const double f = spot_profile(std::acos(cos_t), l.half_beam_rad, l.half_field_rad);
+  return from_point_intensity(at, x, l.flux_lm * f / l.direct_norm);
+}
 
 }  // namespace
 
@@ -214,6 +255,18 @@ EmissionSupport support_area(const PreparedLuminaire& l) {
   return from_parallelogram(l, 0.5 * std::numbers::pi);
 }
 
+// A uniform point p of the parallelogram (pushed off it as emit_area pushes photons): radiance
+// L = flux / (pi A) seen at cos_e, over 1/A of density: L cos_e A / d^2 on a surface facing p.
+LightSample direct_area(const PreparedLuminaire& l, const glm::dvec3& x, PathRng& rng) {
+  const vec3 p = offset_ray_origin(point_on_parallelogram(l.corner, l.edge1, l.edge2, rng), l.axis);
+  const glm::dvec3 at(p), v = x - at;
+  const double d2 = glm::dot(v, v);
+  const double cos_e = glm::dot(v, glm::dvec3(l.axis)) / std::sqrt(d2);
+  if (!(d2 > 0.0) || !(cos_e > 0.0)) return {at, 0.0};
+  // flux / (pi A) * cos_e * A / d^2: the area cancels.
+  return {at, l.flux_lm / std::numbers::pi * cos_e / d2};
+}
+
 // Uniform luminance over the rectangle toward its front: L = flux / (pi A).
 GlareShape glare_area(const Luminaire& l) {
   GlareShape g;
@@ -255,6 +308,28 @@ EmissionSupport support_directional(const PreparedLuminaire& l) {
   return from_parallelogram(l, 0.0);
 }
 
+// The beam reaches x when the line back against it meets the opening: its illuminance across
+// the beam, flux / (A |n.d|), from the opening's point q (deterministic: no random number).
+LightSample direct_directional(const PreparedLuminaire& l, const glm::dvec3& x, PathRng&) {
+  const glm::dvec3 d(l.axis), c(l.corner), e1(l.edge1), e2(l.edge2);
+  const glm::dvec3 n = glm::cross(e1, e2);
+  const double across = std::abs(glm::dot(n, d));  // A |n.d|
+  const double denom = glm::dot(n, d);
+  if (!(across > 0.0)) return {c, 0.0};
+  const double t = glm::dot(c - x, n) / denom;  // x + t d on the opening's plane
+  if (!(t < 0.0)) return {c, 0.0};              // the opening must lie upstream of x
+  const glm::dvec3 q = x + t * d;
+  // q's coordinates in (e1, e2): dual vectors in the plane.
+  const double g11 = glm::dot(e1, e1), g12 = glm::dot(e1, e2), g22 = glm::dot(e2, e2);
+  const double det = g11 * g22 - g12 * g12;
+  const glm::dvec3 rel = q - c;
+  const double r1 = glm::dot(rel, e1), r2 = glm::dot(rel, e2);
+  const double a = (g22 * r1 - g12 * r2) / det, b = (g11 * r2 - g12 * r1) / det;
+  if (!(a >= 0.0 && a < 1.0 && b >= 0.0 && b < 1.0)) return {c, 0.0};
+  const vec3 from = offset_ray_origin(vec3(q), l.axis);  // as emit_directional pushes photons
+  return {glm::dvec3(from), l.flux_lm / across};
+}
+
 GlareShape glare_directional(const Luminaire&) {
   return no_glare("a directional beam (daylight) is not a luminaire in the field of view");
 }
@@ -278,7 +353,8 @@ const auto kTypes = std::to_array<LuminaireType>({
      .centre = at_position,
      .move_to = move_position,
      .aim = no_aim,
-     .placed = true},
+     .placed = true,
+     .direct = direct_point},
     {.type = T::Spot,
      .name = "spot",
      .keys = kSpotKeys,
@@ -295,7 +371,8 @@ const auto kTypes = std::to_array<LuminaireType>({
      .centre = at_position,
      .move_to = move_position,
      .aim = direction_aim,
-     .placed = true},
+     .placed = true,
+     .direct = direct_spot},
     {.type = T::Area,
      .name = "area",
      .keys = kAreaKeys,
@@ -312,7 +389,8 @@ const auto kTypes = std::to_array<LuminaireType>({
      .centre = centre_of_parallelogram,
      .move_to = move_parallelogram,
      .aim = no_aim,
-     .placed = true},
+     .placed = true,
+     .direct = direct_area},
     {.type = T::Directional,
      .name = "directional",
      .keys = kDirectionalKeys,
@@ -329,7 +407,8 @@ const auto kTypes = std::to_array<LuminaireType>({
      .centre = centre_of_parallelogram,
      .move_to = move_parallelogram,
      .aim = direction_aim,
-     .placed = false},
+     .placed = false,
+     .direct = direct_directional},
     photometric_luminaire_type(),
     sun_luminaire_type(),
     sky_luminaire_type(),

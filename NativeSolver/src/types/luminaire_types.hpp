@@ -65,7 +65,17 @@ struct GlareShape {
   double candela_scale = 0.0;  ///< PhotometricBody: file candela -> traced intensity (TILT too)
 };
 
-/// One luminaire type. Every hook is required.
+/// One sample of a luminaire's direct light at a receiver point (next-event estimation,
+/// estimate/next_event.cpp): the point a shadow ray must reach unblocked (local coordinates) and
+/// the illuminance it then gives on a surface facing it (lx, perpendicular to `to - x`; the
+/// caller applies the receiver's cosine). Its expectation over the sample's random numbers is
+/// the luminaire's direct illuminance as its photons deliver it. lux = 0: no ray needed.
+struct LightSample {
+  glm::dvec3 to{0.0};
+  double lux = 0.0;
+};
+
+/// One luminaire type. Every hook is required, except `direct`.
 struct LuminaireType {
   Luminaire::Type type;
   const char* name;  ///< "type" in the scene file
@@ -105,6 +115,10 @@ struct LuminaireType {
   glm::dvec3* (*aim)(Luminaire& l);
   /// False for a type that is no object in the room (a sun's beam): spacing rules skip it.
   bool placed;
+  /// Its direct light at receiver point `x` (local coordinates), drawn with `rng`; nullptr
+  /// when its direct light is left to photons (sky and sun: their portals' light is not
+  /// sampled from a point yet).
+  LightSample (*direct)(const PreparedLuminaire& l, const glm::dvec3& x, PathRng& rng) = nullptr;
 };
 
 /// Reads a luminaire entry's keys ("name" and "type" already read): the keys every type may

@@ -195,7 +195,12 @@ TEST_P(IndependentChecks, RoughGlossyLobeMatchesNumericalIntegration) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, IndependentChecks, ::testing::ValuesIn(backends()));
+INSTANTIATE_TEST_SUITE_P(Backends, IndependentChecks, ::testing::ValuesIn(backends_and_nee()),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           for (char& ch : n) ch = std::isalnum(ch) ? ch : '_';
+                           return n;
+                         });
 
 }  // namespace
 }  // namespace lightsolver::test

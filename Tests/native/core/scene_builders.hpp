@@ -194,6 +194,7 @@ inline double corner_factor_perpendicular(double a, double depth, double y) {
 constexpr double kCheckConfidence = 0.9999994;
 
 // One run of `s` on `backend` at `confidence`: the closed-form suites' common call.
+// `backend` may end in "+nee": that backend with next-event estimation on (backends_and_nee()).
 inline Results run_on_backend(const std::string& backend, Scene s, std::uint64_t photons,
                               std::uint64_t seed, double confidence = kCheckConfidence) {
   validate(s);
@@ -202,6 +203,11 @@ inline Results run_on_backend(const std::string& backend, Scene s, std::uint64_t
   o.seed = seed;
   o.confidence = confidence;
   o.backend = backend;
+  const auto plus = backend.find("+nee");
+  if (plus != std::string::npos) {
+    o.backend = backend.substr(0, plus);
+    o.next_event = "auto";
+  }
   return solve(s, o);
 }
 
@@ -333,6 +339,42 @@ inline std::vector<std::string> backends() {
     if (b.name != kAutoBackend) names.push_back(b.name);
   }
   return names;
+}
+
+/// The backends that trace shadow rays (next-event estimation needs them): asked by a run.
+inline std::vector<std::string> shadow_backends() {
+  std::vector<std::string> out;
+  for (const std::string& b : backends()) {
+    Scene s;
+    Luminaire l;
+    l.name = "point";
+    l.type = Luminaire::Type::Point;
+    l.position = {0, 0, 1};
+    l.flux_lm = 100;
+    s.luminaires.push_back(l);
+    Target t;
+    t.name = "g";
+    t.type = Target::Type::Grid;
+    t.corner = {-1, -1, 0};
+    t.edge1 = {2, 0, 0};
+    t.edge2 = {0, 2, 0};
+    s.targets.push_back(t);
+    SolveOptions o;
+    o.backend = b;
+    o.photons = 100;
+    o.next_event = "auto";
+    const auto& sim = solve(s, o).effects.simulated;
+    if (std::find(sim.begin(), sim.end(), "next_event_direct") != sim.end()) out.push_back(b);
+  }
+  return out;
+}
+
+/// Every backend, and each that traces shadow rays again as "<name>+nee" (next-event
+/// estimation on): closed-form suites run both ways.
+inline std::vector<std::string> backends_and_nee() {
+  std::vector<std::string> out = backends();
+  for (const std::string& b : shadow_backends()) out.push_back(b + "+nee");
+  return out;
 }
 
 /// A scene file (JSON text): a white floor lit by a point lamp, a surface target on the floor,
