@@ -6,11 +6,12 @@ grid's per-cell rms relative error of 4.5 %, 2 %, 1 %, 0.7 % and 0.5 % against a
     /usr/bin/python3 Tests/benchmarks/time_to_accuracy.py [--cli PATH] [--scene box|office|FILE]
         [--config "NAME:EXTRA FLAGS"]... [--targets 0.02,0.01] [--seeds 3]
 
-Per scene, a reference run (`--reference-photons`, no extra flags, cached under
-build/time_to_accuracy/ by the scene's bytes, the photons and the CLI's modification time) gives
-E_ref per cell and its own per-cell standard error. Per configuration (its extra CLI flags, e.g.
-`--config "off:--next-event off"`), photon counts double from `--start` until the error is at or
-below each target, then `--bisect` geometric bisections narrow the count. The error at N photons
+Per scene, a reference run (`--reference-photons`, `--reference-flags`, default none; cached
+under `--cache`, build/time_to_accuracy/, by the scene's bytes, the photons, the flags and the
+CLI's modification time) gives E_ref per cell and its own per-cell standard error. Per
+configuration (its extra CLI flags, e.g. `--config "off:--next-event off"`), photon counts double
+from `--start` until the error is at or below each target, then `--bisect` geometric bisections
+narrow the count. The error at N photons
 is, over `--seeds` seeds (1, 2, 3, ...), e(N) = sqrt(mean over seeds and cells of
 ((E - E_ref) / E_ref)^2 - mean over cells of (s_ref / E_ref)^2): the reference's own variance,
 independent of the run's, is taken out (it is printed beside). The time at N is the median of the
@@ -120,15 +121,15 @@ def run(cli: str, scene: Path, photons: int, seed: int, flags: list, out: Path) 
     return (wall, cpu), cells
 
 
-def reference(cli: str, scene: Path, photons: int, flags: list) -> list:
+def reference(cli: str, scene: Path, photons: int, flags: list, cache: Path) -> list:
     """The reference's cells (lux, standard error), from the cache when the scene, photons, flags
     and CLI are the same; else one run with seed 1000003, written to the cache atomically."""
     key = hashlib.sha256(scene.read_bytes() + f"{photons} {flags} {os.stat(cli).st_mtime_ns}"
                          .encode()).hexdigest()[:16]
-    path = CACHE / f"{scene.stem}-{photons:.0e}-{key}.json"
+    path = cache / f"{scene.stem}-{photons:.0e}-{key}.json"
     if path.exists():
         return json.loads(path.read_text())["cells"]
-    CACHE.mkdir(parents=True, exist_ok=True)
+    cache.mkdir(parents=True, exist_ok=True)
     print(f"reference: {scene.name}, {photons:.1e} photons ...", file=sys.stderr, flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         (wall, cpu), cells = run(cli, scene, photons, 1000003, flags, Path(tmp) / "ref.json")
@@ -201,7 +202,9 @@ def main() -> None:
     ap.add_argument("--start", type=int, default=20_000)
     ap.add_argument("--bisect", type=int, default=3)
     ap.add_argument("--cap", type=float, default=2e9, help="give up above this photon count")
-    ap.add_argument("--reference-photons", type=float, help="default 2e8 (box), 1e8 (office)")
+    ap.add_argument("--reference-photons", type=float, default=2e8)
+    ap.add_argument("--reference-flags", default="", help="extra CLI flags of the reference")
+    ap.add_argument("--cache", type=Path, default=CACHE, help=f"references' folder ({CACHE})")
     a = ap.parse_args()
     targets = sorted((float(t) for t in a.targets.split(",")), reverse=True)
     configs = [c.split(":", 1) for c in (a.config or ["today:"])]
@@ -214,8 +217,8 @@ def main() -> None:
         for name in a.scene or ["box", "office"]:
             scene = (box_room(folder) if name == "box" else office(folder) if name == "office"
                      else Path(name).resolve())
-            ref_n = int(a.reference_photons or (2e8 if name == "box" else 1e8))
-            ref = reference(a.cli, scene, ref_n, [])
+            ref_n = int(a.reference_photons)
+            ref = reference(a.cli, scene, ref_n, shlex.split(a.reference_flags), a.cache)
             lit = [(e, s) for e, s in ref if e > 0]
             ref_rms = math.sqrt(sum((s / e) ** 2 for e, s in lit) / len(lit))
             label = (f"{scene.stem} (ref. {ref_n:.0e}: rms σ {100 * ref_rms:.2f} %, "
