@@ -35,7 +35,7 @@ slow+='|dc\.DaylightCoefficients\.OpenProbeReadsTheSkyAndSunEveryHour|SkyPatch\.
 # A hundred searches of the same scene (a rate), the other ReusedTraces tests run its code.
 slow+='|optimizer\.ReusedTraces\.ReportedMembersStayFeasibleOver100Seeds'
 # Every sample file traced through Embree: one .ies and one .ldt stay (and every file through
-# Vulkan); the photometry suite parses and samples all six under the sanitizers.
+# Vulkan); the photometry suite parses and samples all eight sample files under the sanitizers.
 slow+='|SampleFiles/Photometric\.IlluminanceFollowsTheCandelaTableInManyDirections/'
 slow+='embree_(downlight_ies|downlight_ldt|wallwasher_ies|wallwasher_ldt)$)'
 
