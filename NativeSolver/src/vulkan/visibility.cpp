@@ -28,8 +28,7 @@ constexpr std::size_t kRetryBytes = sizeof(kRetryHeader) + kShadowRaysPerSubmit 
 ShadowRayTracer::ShadowRayTracer(const vkw::Context& ctx, const std::vector<vkw::Buffer>& scene,
                                  bool has_instances)
     : ctx_(ctx),
-      rays_(ctx, kShadowRaysPerSubmit * sizeof(ShadowRay), vkw::MemoryKind::Upload,
-            "shadow rays"),
+      rays_(ctx, kShadowRaysPerSubmit * sizeof(ShadowRay), vkw::MemoryKind::Upload, "shadow rays"),
       visible_(ctx, kShadowRaysPerSubmit * sizeof(std::uint32_t), vkw::MemoryKind::Readback,
                "shadow-ray results"),
       retry_(ctx, kRetryBytes, vkw::MemoryKind::Device, "shadow-ray retry list") {
@@ -38,8 +37,7 @@ ShadowRayTracer::ShadowRayTracer(const vkw::Context& ctx, const std::vector<vkw:
   for (const vkw::Buffer& b : scene) bindings.push_back(&b);
   if (bindings.size() != gpu::kShadowRays) {
     throw std::logic_error("shadow rays: the scene has " + std::to_string(bindings.size()) +
-                           " buffers, visibility.comp expects " +
-                           std::to_string(gpu::kShadowRays));
+                           " buffers, visibility.comp expects " + std::to_string(gpu::kShadowRays));
   }
   bindings.push_back(&rays_);
   bindings.push_back(&visible_);
@@ -58,8 +56,8 @@ void ShadowRayTracer::visible(vkw::Sequence& seq, std::span<const ShadowRay> ray
   auto* ray_slots = static_cast<ShadowRay*>(rays_.mapped());
   const auto* results = static_cast<const std::uint32_t*>(visible_.mapped());
   for (std::size_t first = 0; first < rays.size(); first += kShadowRaysPerSubmit) {
-    const auto count =
-        static_cast<std::uint32_t>(std::min<std::size_t>(kShadowRaysPerSubmit, rays.size() - first));
+    const auto count = static_cast<std::uint32_t>(
+        std::min<std::size_t>(kShadowRaysPerSubmit, rays.size() - first));
     std::memcpy(ray_slots, rays.data() + first, count * sizeof(ShadowRay));
     VkCommandBuffer cmd = seq.begin();
     vkCmdFillBuffer(cmd, retry_.handle(), 0, sizeof(std::uint32_t), 0);  // empty queue: x = 0
@@ -80,10 +78,10 @@ void ShadowRayTracer::visible(vkw::Sequence& seq, std::span<const ShadowRay> ray
       out[first + i] = results[i] == 1 ? 1 : 0;
     }
     if (cut > 0) {
-      throw std::runtime_error(
-          "Vulkan backend: " + std::to_string(cut) + " shadow rays need more loop iterations " +
-          "than this device (" + ctx_.device_name() + ") allows even traced alone; use " +
-          "--backend embree");
+      throw std::runtime_error("Vulkan backend: " + std::to_string(cut) +
+                               " shadow rays need more loop iterations " + "than this device (" +
+                               ctx_.device_name() + ") allows even traced alone; use " +
+                               "--backend embree");
     }
   }
 }
