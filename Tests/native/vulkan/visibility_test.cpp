@@ -149,6 +149,22 @@ void expect_same_visibility(detail::Backend& embree, detail::Backend& vulkan,
               rays.size(), seen, unsure);
 }
 
+// `n` triangles in the planes x = 0, 50 um, 100 um, ..., each (y, z) = (-1, 1), (1, 1),
+// (1, -0.9) about (y0, 0): a ray along x at (y0 - 0.1, 0) is inside every one's box but hits
+// none (it passes below the long edge).
+Mesh fan_mesh(const std::string& name, std::uint32_t n, double y0) {
+  Mesh fan;
+  fan.name = name;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double x = 5e-5 * k;
+    fan.vertices.push_back({x, y0 - 1, 1});
+    fan.vertices.push_back({x, y0 + 1, 1});
+    fan.vertices.push_back({x, y0 + 1, -0.9});
+    fan.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+  }
+  return fan;
+}
+
 using VulkanVisibilityTest = VulkanTest;
 
 // The room with a block on the floor and a workplane grid through the middle (grids never
@@ -233,16 +249,7 @@ TEST_F(VulkanVisibilityTest, NoRaysNoWork) {
 TEST_F(VulkanVisibilityTest, RayTooLongForTheLoopLimitIsRefusedNotGuessed) {
   Scene s;
   add_material(s, "grey", Material::Type::Diffuse, 0.5);
-  Mesh fan;
-  fan.name = "fan";
-  for (std::uint32_t k = 0; k < 100'000; ++k) {
-    const double x = 5e-5 * k;  // in the plane x: (y, z) = (-1, 1), (1, 1), (1, -0.9)
-    fan.vertices.push_back({x, -1, 1});
-    fan.vertices.push_back({x, 1, 1});
-    fan.vertices.push_back({x, 1, -0.9});
-    fan.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
-  }
-  s.meshes.push_back(fan);
+  s.meshes.push_back(fan_mesh("fan", 100'000, 0.0));
   s.meshes.push_back(quad_mesh("wall", 0, {5.5, -2, -2}, {0, 4, 0}, {0, 0, 4}));
   s.targets.push_back(surface("fan", 0));
   s.luminaires.push_back(point_light({2, -1.5, -1.5}, 100));
@@ -262,6 +269,44 @@ TEST_F(VulkanVisibilityTest, RayTooLongForTheLoopLimitIsRefusedNotGuessed) {
     FAIL() << "answered " << int(v.at(0)) << " from a traversal the loop limit cut short";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("loop iterations"), std::string::npos) << e.what();
+  }
+}
+
+// Eight movable fans of 16 000 cut triangles (as above), one per ray of the first eight rays,
+// which lavapipe runs together as the 8 lanes of one invocation. Each instance's traversal runs
+// for its own lane only, one instance after the other, so the lanes' iterations add up past the
+// limit, while each ray alone needs about a third of it: the rays are queued, traced again alone
+// and answered right. Walls behind the fans (the last movable mesh) block the first four rays.
+TEST_F(VulkanVisibilityTest, RaysCutTogetherAreTracedAgainAlone) {
+  constexpr int kFans = 8;
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  for (int j = 0; j < kFans; ++j) {
+    s.meshes.push_back(fan_mesh("fan" + std::to_string(j), 16'000, 3.0 * j));
+  }
+  s.meshes.push_back(quad_mesh("walls", 0, {5.5, -2, -2}, {0, 12.5, 0}, {0, 0, 4}));
+  s.targets.push_back(surface("walls", kFans));
+  s.luminaires.push_back(point_light({2, -1.5, -1.5}, 100));
+  validate(s);
+  std::vector<std::size_t> moving(kFans + 1);
+  for (std::size_t k = 0; k < moving.size(); ++k) moving[k] = k;
+  const detail::PreparedScene p = detail::prepare(s, moving);
+  const auto embree = detail::make_embree_backend(p);
+  const auto vulkan = detail::make_vulkan_backend(p);
+  std::vector<ShadowRay> rays;
+  for (int j = 0; j < kFans; ++j) {
+    const double y = 3.0 * j - 0.1;
+    rays.push_back(ray_to(local(p, {-1, y, 0}), local(p, {6, y, 0}), 0.0));
+  }
+  const std::vector<Triangle> tris = triangles(p);
+  std::vector<std::uint8_t> v, e;
+  vulkan->visible(rays, v);
+  embree->visible(rays, e);
+  const std::vector<std::uint8_t> expected = {0, 0, 0, 0, 1, 1, 1, 1};
+  EXPECT_EQ(v, expected);
+  EXPECT_EQ(e, expected);
+  for (int j = 0; j < kFans; ++j) {
+    EXPECT_EQ(exact(rays[j], tris), j < 4 ? Truth::Blocked : Truth::Visible) << j;
   }
 }
 
