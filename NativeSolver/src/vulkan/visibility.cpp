@@ -79,9 +79,9 @@ void ShadowRayTracer::visible(vkw::Sequence& seq, std::span<const ShadowRay> ray
     }
     if (cut > 0) {
       throw std::runtime_error("Vulkan backend: " + std::to_string(cut) +
-                               " shadow rays need more loop iterations " + "than this device (" +
-                               ctx_.device_name() + ") allows even traced alone; use " +
-                               "--backend embree");
+                               " shadow rays need more loop iterations than this device (" +
+                               ctx_.device_name() +
+                               ") allows even traced alone; use --backend embree");
     }
   }
 }
