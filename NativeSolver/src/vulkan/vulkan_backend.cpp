@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -114,7 +115,9 @@ class VulkanBackend final : public Backend {
   bool traces_shadow_rays() const override { return true; }
 
   // Shaders/visibility.comp, its pipeline made on first use (and again after buffers changed).
+  // Callers may call it from several threads (Embree's is thread-safe): one at a time here.
   void visible(std::span<const ShadowRay> rays, std::vector<std::uint8_t>& out) override {
+    const std::lock_guard lock(submit_mutex_);
     if (rays.empty()) {
       out.clear();
       return;
@@ -130,6 +133,7 @@ class VulkanBackend final : public Backend {
   // Each group's range is its own dispatches: its stream, luminaires and tallies are push
   // constants.
   void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed, TallyBlock& out) override {
+    const std::lock_guard lock(submit_mutex_);
     bool cleared = false;
     for (std::size_t r = 0; r < ranges.size(); ++r) {
       const GroupRange& range = ranges[r];
@@ -320,6 +324,7 @@ class VulkanBackend final : public Backend {
   std::optional<vkw::Algorithm> trace_;
   std::optional<ShadowRayTracer> shadows_;  // made by the first visible()
   vkw::Sequence seq_;
+  std::mutex submit_mutex_;  // trace() and visible() share seq_ and the buffers
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 #include <stdexcept>
+#include <thread>
 
 #include "embree/embree_backend.hpp"
 #include "model/backend.hpp"
@@ -231,6 +232,25 @@ TEST_F(VulkanVisibilityTest, MovedMeshBlocksWhereItIsNow) {
   vulkan->set_mesh_transform(1, moved);
   vulkan->visible(across, v);
   EXPECT_EQ(v, (std::vector<std::uint8_t>{1, 0}));
+}
+
+// Next-event estimation may ask from several threads (Embree's visible() is thread-safe): the
+// calls take turns and each gets its own answers.
+TEST_F(VulkanVisibilityTest, CallsFromSeveralThreadsTakeTurns) {
+  const detail::PreparedScene p = detail::prepare(room_with_block(dvec3(0)));
+  const auto vulkan = detail::make_vulkan_backend(p);
+  std::vector<std::vector<ShadowRay>> rays;
+  std::vector<std::vector<std::uint8_t>> answers(4), alone(4);
+  for (std::uint32_t k = 0; k < 4; ++k) {
+    rays.push_back(rays_in(p, dvec3(0), dvec3(6, 4, 3), 5'000 * (k + 1), 10 + k));
+    vulkan->visible(rays[k], alone[k]);
+  }
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < 4; ++k) {
+    threads.emplace_back([&, k] { vulkan->visible(rays[k], answers[k]); });
+  }
+  for (std::thread& t : threads) t.join();
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(answers[k], alone[k]) << k;
 }
 
 TEST_F(VulkanVisibilityTest, NoRaysNoWork) {
