@@ -82,7 +82,8 @@ void intersect_leaf(RayPre r, uint first, uint count, inout Hit h) {
   for (uint k = 0u; k < count; ++k) intersect_triangle(r, first + k, h);
 }
 
-// Closest hit below node `root` nearer than h.t; updates h.
+// Closest hit below node `root` nearer than h.t; updates h. With LS_ANY_HIT defined before
+// this file is included: stops at the first leaf that gives a hit nearer than h.t.
 void traverse(RayPre r, uint root, inout Hit h) {
   uint stack[kStackSize];
   int sp = 0;
@@ -100,6 +101,9 @@ void traverse(RayPre r, uint root, inout Hit h) {
       intersect_leaf(r, n.child1, n.count1, h);
       go1 = false;
     }
+#ifdef LS_ANY_HIT
+    if (h.tri != kNone) break;  // a shadow ray (visibility.comp) needs any hit, not the closest
+#endif
     if (go0 && go1) {  // nearer child first, the other waits on the stack
       const bool first0 = near0 <= near1;
       node = first0 ? n.child0 : n.child1;

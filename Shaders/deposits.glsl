@@ -67,8 +67,10 @@ uint deposits_flush() {
 
 // Virtual grids crossed from the front by o + t d, 0 <= t <= t_max (shared/grids.h, the text
 // model/path_deposits.hpp includes too). `bounce`: reflections before this segment;
-// indirect-only grids (observers) skip bounce 0.
+// indirect-only grids (observers) skip bounce 0, and so does every grid when pc.first_bounce is 1
+// (the group's direct light is by next-event estimation), as cross_grids in path_deposits.hpp.
 void cross_grids(vec3 o, vec3 d, float t_max, uint bounce) {
+  if (bounce < pc.first_bounce) return;
   const float t_end = grid_reach(t_max);
   for (uint k = 0u; k < pc.grid_count; ++k) {
     const GridGpu g = grids[k];

@@ -5,11 +5,17 @@
 #ifndef LIGHTSOLVER_INSTANCES_GLSL
 #define LIGHTSOLVER_INSTANCES_GLSL
 
-Hit trace_scene(vec3 o, vec3 d) {
-  Hit h = trace_closest(o, d);
-  if (!HAS_INSTANCES) return h;
+// Closest hit nearer than t_max (LS_ANY_HIT, bvh.glsl: some hit nearer than t_max, if any).
+Hit trace_scene_within(vec3 o, vec3 d, float t_max) {
+  Hit h = no_hit();
+  h.t = t_max;
   const RayPre world = prepare_ray(o, d);
+  traverse(world, 0u, h);
+  if (!HAS_INSTANCES) return h;
   for (uint k = 0u; k < pc.instance_count; ++k) {
+#ifdef LS_ANY_HIT
+    if (h.tri != kNone) break;
+#endif
     float t_near;
     if (!hit_box(instances[k].lo, instances[k].hi, world, h.t, t_near)) continue;
     const mat4 m = instances[k].to_object;
@@ -19,6 +25,8 @@ Hit trace_scene(vec3 o, vec3 d) {
   }
   return h;
 }
+
+Hit trace_scene(vec3 o, vec3 d) { return trace_scene_within(o, d, kNoHit); }
 
 // Front normal and hit point in world space (embree_backend.cpp: mat3(transform) * n, rigid).
 vec3 hit_normal(Hit h) {

@@ -65,7 +65,11 @@ void trace_path(uint64_t id, bool first_pass) {
     if (h.tri == kNone) return;
     const MeshInfo mesh = meshes[tris[h.tri].mesh];
     const vec3 n = hit_normal(h);
-    if (HAS_SURFACE_BINS && mesh.bin >= 0 && dot(d, n) < 0.0) deposit(uint(mesh.bin));
+    // Before the first scattering only without next-event estimation (pc.first_bounce 0), as
+    // continue_path in embree_backend.cpp.
+    if (HAS_SURFACE_BINS && mesh.bin >= 0 && bounce >= pc.first_bounce && dot(d, n) < 0.0) {
+      deposit(uint(mesh.bin));
+    }
     if (!scatter(materials[mesh.material], n, d)) return;
     if (bounce >= pc.max_bounces) {
       if (first_pass) ++g_capped;  // still alive: its remaining light is lost (reported)

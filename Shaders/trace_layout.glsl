@@ -5,6 +5,7 @@
 #ifndef LIGHTSOLVER_TRACE_LAYOUT_GLSL
 #define LIGHTSOLVER_TRACE_LAYOUT_GLSL
 
+#include "instance_layout.glsl"  // movable meshes: HAS_INSTANCES, instances[]
 #include "scene_layout.glsl"
 #include "shared/luminaires.h"
 #include "trace_bindings.h"
@@ -18,7 +19,6 @@ layout(constant_id = LS_SPEC_HAS_GLOSSY) const bool HAS_GLOSSY = true;
 layout(constant_id = LS_SPEC_HAS_GRIDS) const bool HAS_GRIDS = true;
 layout(constant_id = LS_SPEC_HAS_SURFACE_BINS) const bool HAS_SURFACE_BINS = true;
 layout(constant_id = LS_SPEC_MANY_LUMINAIRES) const bool MANY_LUMINAIRES = true;
-layout(constant_id = LS_SPEC_HAS_INSTANCES) const bool HAS_INSTANCES = true;  // movable meshes
 // One per luminaire type (HAS_POINT ...), keeping its branch of emit() (emit.glsl).
 #define LS_LUMINAIRE_SWITCH(name, code, has, emission) \
   layout(constant_id = LS_SPEC_FIRST_LUMINAIRE + code) const bool has = true;
@@ -57,14 +57,6 @@ struct PhotoGpu {
   float open_length, open_width;  // opening extents along x (C0) and y (C90)
 };
 
-// A movable mesh: its own BVH (in prepared coordinates) placed by a rigid transform.
-struct Instance {
-  mat4 to_world;   // PreparedMesh::transform
-  mat4 to_object;  // its inverse
-  vec3 lo; uint root;  // world box of the placed mesh; root node of its BVH
-  vec3 hi; uint pad;
-};
-
 struct GridGpu {
   vec3 corner; uint nu;
   vec3 normal; uint nv;
@@ -101,9 +93,6 @@ layout(std430, set = 0, binding = LS_BINDING_PHOTO_FLOATS) readonly buffer Photo
 layout(std430, set = 0, binding = LS_BINDING_PHOTO_CDF) readonly buffer PhotoCdf {
   uint64_t photo_cdf53[];
 };
-layout(std430, set = 0, binding = LS_BINDING_INSTANCES) readonly buffer Instances {
-  Instance instances[];
-};
 // Paths to trace again, each alone in its workgroup (see trace.comp): the first three words are
 // the VkDispatchIndirectCommand of that retry dispatch, then (path offset, deposit floor) pairs.
 layout(std430, set = 0, binding = LS_BINDING_RETRY) buffer Retry {
@@ -125,7 +114,8 @@ layout(push_constant) uniform Push {
   uint group;             // the luminaire group: its photon stream (rng_init) ...
   uint luminaire_first;   // ... its luminaires: [first, first + luminaire_count) ...
   uint tally_offset;      // ... and its tallies: group * bins
-  uint pad;
+  uint first_bounce;      // 1: the group's direct light is by next-event estimation: no
+                          // deposit before the first scattering (bounce 0)
 } pc;
 
 #endif

@@ -103,13 +103,23 @@ struct TracePush {
   std::uint32_t group;            // luminaire group: photon stream, luminaires, tallies
   std::uint32_t luminaire_first;  // the group's luminaires: [first, first + luminaire_count)
   std::uint32_t tally_offset;     // group * bins
-  std::uint32_t pad;
+  std::uint32_t first_bounce;     // 1: no deposit at bounce 0 (PreparedGroup::next_event)
+};
+
+/// visibility.comp's push constants.
+struct VisibilityPush {
+  std::uint32_t ray_count;
+  std::uint32_t instance_count;
+  std::uint32_t retry;  // 1: trace the queued rays, one per workgroup
+  std::uint32_t probe_iterations;
+  std::uint32_t probe_hash;
+  std::uint32_t pad[3];
 };
 
 static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
 static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
-static_assert(sizeof(TracePush) == 64);
+static_assert(sizeof(TracePush) == 64 && sizeof(VisibilityPush) == 32);
 // The shared record in C++ (glm::vec3 is three packed floats) at std430's offsets in GLSL, where
 // a vec3 is 16-byte aligned and the 4-byte field after it fills its last word.
 static_assert(std::is_trivially_copyable_v<Luminaire> && alignof(Luminaire) == 4);
@@ -165,6 +175,17 @@ enum Binding : std::uint32_t {
   kRetry = LS_BINDING_RETRY,
   kBindingCount = LS_BINDING_COUNT
 };
+
+/// visibility.comp's own bindings, after trace.comp's (whose geometry and instances it reads at
+/// the same numbers).
+enum VisibilityBinding : std::uint32_t {
+  kShadowRays = LS_BINDING_SHADOW_RAYS,
+  kVisible = LS_BINDING_VISIBLE,
+  kVisRetry = LS_BINDING_VIS_RETRY,
+  kVisibilityBindingCount = LS_VISIBILITY_BINDING_COUNT
+};
+static_assert(std::uint32_t(kShadowRays) == std::uint32_t(kBindingCount) &&
+              kVisibilityBindingCount == kVisRetry + 1);
 
 /// A storage buffer of trace.comp: its binding, the GLSL block bound there and the name that
 /// errors use.

@@ -7,8 +7,14 @@ constexpr std::uint32_t kTrace[] = {
 #include "trace.spv.inc"
 };
 
+constexpr std::uint32_t kVisibility[] = {
+#include "visibility.spv.inc"
+};
+
 }  // namespace
 
 std::span<const std::uint32_t> trace() { return kTrace; }
+
+std::span<const std::uint32_t> visibility() { return kVisibility; }
 
 }  // namespace lightsolver::detail::shaders

@@ -7,5 +7,6 @@
 namespace lightsolver::detail::shaders {
 
 std::span<const std::uint32_t> trace();
+std::span<const std::uint32_t> visibility();
 
 }  // namespace lightsolver::detail::shaders

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -13,6 +14,7 @@
 #include "vulkan/gpu_scene.hpp"
 #include "vulkan/sequence.hpp"
 #include "vulkan/shaders.hpp"
+#include "vulkan/visibility.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -26,14 +28,6 @@ constexpr std::uint64_t kPathsPerSubmit = 1u << 16;
 static_assert(kPathsPerSubmit <= 65535ull * kWorkgroupSize);
 // Ray segments, capped paths, paths cut for good, paths traced again.
 constexpr std::uint32_t kCounters = 7;
-
-// lavapipe's loop-limit probe (trace.comp): a few iterations of a 32-bit LCG from 0.
-constexpr std::uint32_t kProbeIterations = 4;
-constexpr std::uint32_t probe_hash() {
-  std::uint32_t h = 0;
-  for (std::uint32_t i = 0; i < kProbeIterations; ++i) h = h * 1664525u + 1013904223u;
-  return h;
-}
 
 // The retry list: a VkDispatchIndirectCommand {x, 1, 1} (x counted up by the shader, one group
 // per path) and a pad word, then one (path offset, deposit floor) pair per path of a submit.
@@ -85,7 +79,7 @@ class VulkanBackend final : public Backend {
     pack_luminaires(s_, data_);
     bool resized = false;
     if (tally_bytes() != old_tally_bytes) {  // the groups changed: tallies and their readback
-      trace_.reset();
+      drop_pipelines();
       buffers_[gpu::kTallies] = make_buffer(gpu::kTallies, tally_bytes());
       make_readback();
       resized = true;
@@ -94,7 +88,7 @@ class VulkanBackend final : public Backend {
       const gpu::Binding b = kLuminaireBindings[i];
       const Contents c = contents(b);
       if (c.bytes != old_bytes[i]) {
-        trace_.reset();  // its descriptor set refers to the old buffer
+        drop_pipelines();  // their descriptor sets refer to the old buffer
         buffers_[b] = make_buffer(b, c.bytes);
         resized = true;
       }
@@ -118,6 +112,20 @@ class VulkanBackend final : public Backend {
 
   std::string name() const override { return "vulkan"; }
 
+  bool traces_shadow_rays() const override { return true; }
+
+  // Shaders/visibility.comp, its pipeline made on first use (and again after buffers changed).
+  // Callers may call it from several threads (Embree's is thread-safe): one at a time here.
+  void visible(std::span<const ShadowRay> rays, std::vector<std::uint8_t>& out) override {
+    const std::lock_guard lock(submit_mutex_);
+    if (rays.empty()) {
+      out.clear();
+      return;
+    }
+    if (!shadows_) shadows_.emplace(ctx_, buffers_, !data_.instances.empty());
+    shadows_->visible(seq_, rays, static_cast<std::uint32_t>(data_.instances.size()), out);
+  }
+
   std::string device() const override { return ctx_.device_name(); }
 
   // Tallies reach `out` only after the whole range succeeded, so a caller may retry the same
@@ -125,6 +133,7 @@ class VulkanBackend final : public Backend {
   // Each group's range is its own dispatches: its stream, luminaires and tallies are push
   // constants.
   void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed, TallyBlock& out) override {
+    const std::lock_guard lock(submit_mutex_);
     bool cleared = false;
     for (std::size_t r = 0; r < ranges.size(); ++r) {
       const GroupRange& range = ranges[r];
@@ -151,7 +160,7 @@ class VulkanBackend final : public Backend {
                             range.group,
                             lum_first,
                             static_cast<std::uint32_t>(range.group * s_.bins.size()),
-                            0};
+                            s_.groups[range.group].next_event ? 1u : 0u};
         trace_->record(cmd, groups(n), &push);
         record_retries(cmd, push);
         done += n;
@@ -232,8 +241,14 @@ class VulkanBackend final : public Backend {
     }
   }
 
-  void build_pipeline() {
+  // Before a buffer is replaced: the descriptor sets refer to it.
+  void drop_pipelines() {
     trace_.reset();
+    shadows_.reset();
+  }
+
+  void build_pipeline() {
+    drop_pipelines();
     std::vector<const vkw::Buffer*> bindings;
     for (const auto& b : buffers_) bindings.push_back(&b);
     std::vector<vkw::SpecConstant> spec = data_.features;
@@ -307,7 +322,9 @@ class VulkanBackend final : public Backend {
   std::optional<vkw::Buffer> readback_;
   std::size_t tally_bytes_ = 0;  // the tallies the buffers were made for
   std::optional<vkw::Algorithm> trace_;
+  std::optional<ShadowRayTracer> shadows_;  // made by the first visible()
   vkw::Sequence seq_;
+  std::mutex submit_mutex_;  // trace() and visible() share seq_ and the buffers
 };
 
 }  // namespace
