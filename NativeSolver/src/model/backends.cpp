@@ -6,6 +6,7 @@
 
 #include "model/backend_registry.hpp"
 #include "lightsolver/error.hpp"
+#include "lightsolver/timings.hpp"
 
 namespace lightsolver {
 namespace {
@@ -59,7 +60,12 @@ std::unique_ptr<Backend> noting_fallback(std::unique_ptr<Backend> backend, const
 std::unique_ptr<Backend> make_auto(const detail::PreparedScene& scene,
                                    std::vector<std::string>& notes) {
   std::string why;  // what the GPU backends tried so far said
-  for (const BackendEntry* e : auto_candidates()) {
+  const std::vector<const BackendEntry*> candidates = [] {
+    const timings::Scope phase("choose backend (auto probe)");
+    return auto_candidates();
+  }();
+  const timings::Scope phase("build backend");
+  for (const BackendEntry* e : candidates) {
     if (!e->gpu) return noting_fallback(e->make(scene), *e, why, notes);
     try {
       return noting_fallback(e->make(scene), *e, why, notes);
@@ -103,7 +109,9 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedSce
                                       std::vector<std::string>& notes) {
   if (name == kAutoBackend) return make_auto(scene, notes);
   for (const BackendEntry& e : backend_entries()) {
-    if (name == e.name) return e.make(scene);
+    if (name != e.name) continue;
+    const timings::Scope phase("build backend");
+    return e.make(scene);
   }
   throw InputError(
       "", "backend",

@@ -18,6 +18,7 @@
 #include "types/target_types.hpp"
 #include "lightsolver/run_options.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "lightsolver/timings.hpp"
 
 namespace lightsolver {
 namespace {
@@ -116,7 +117,10 @@ Mesh read_mesh(const JsonNode& n, Scene& scene, const std::string& base_dir) {
   if (n.has("file")) {
     if (n.has("vertices") || n.has("triangles")) n.fail("give either \"file\" or inline geometry");
     const std::string file = n.at("file").string();
-    mesh = load_mesh_file((fs::path(base_dir) / file).lexically_normal().string());
+    {
+      const timings::Scope phase("mesh file");
+      mesh = load_mesh_file((fs::path(base_dir) / file).lexically_normal().string());
+    }
     warn_if_coarse(mesh, n, file, scene.warnings);
   } else {
     mesh = read_inline_geometry(n);
@@ -247,7 +251,10 @@ Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::
   if (root.has("settings")) scene.settings = read_settings(root.at("settings"));
   if (root.has("optimization")) root.at("optimization").object();  // read by the optimizer
   if (root.has("sunlight_exposure")) read_scene_sunlight(root, scene);
-  if (validated) validate(scene);
+  if (validated) {
+    const timings::Scope phase("validate");
+    validate(scene);
+  }
   return scene;
 }
 
@@ -258,14 +265,22 @@ namespace detail {
 SceneDocument read_scene_document(const std::string& text, const std::string& file,
                                   const std::string& base_dir) {
   SceneDocument d;
-  d.json = parse_json_text(text, file);
-  d.scene = read_scene(d.json, file, base_dir);
+  {
+    const timings::Scope phase("parse JSON");
+    d.json = parse_json_text(text, file);
+  }
+  {
+    const timings::Scope phase("read scene objects");
+    d.scene = read_scene(d.json, file, base_dir);
+  }
   // After reading: the files are known to exist, and a scene that does not load costs no hash.
+  const timings::Scope phase("hash scene and files (provenance)");
   d.scene.source = scene_source(d.json, base_dir, file, true);
   return d;
 }
 
 std::string read_scene_text(const std::string& path) {
+  const timings::Scope phase("read file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the scene file");
   std::stringstream text;
