@@ -71,23 +71,47 @@ glm::dmat4 read_transform(const JsonNode& n) {
   return m;
 }
 
+// The common case read straight from the JSON values: three finite numbers. Anything else goes
+// through JsonNode::vec3(), which names the field in its error (a path per element would cost
+// more than the reading itself on a large mesh).
+glm::dvec3 vertex_at(const JsonNode& v, std::size_t i) {
+  const nlohmann::json& p = v.json()[i];
+  if (p.is_array() && p.size() == 3 && p[0].is_number() && p[1].is_number() &&
+      p[2].is_number()) {
+    const glm::dvec3 out(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    if (std::isfinite(out.x) && std::isfinite(out.y) && std::isfinite(out.z)) return out;
+  }
+  return v[i].vec3();
+}
+
+// A vertex index: an unsigned JSON integer below `vertices`, else JsonNode's error.
+std::uint32_t index_at(const JsonNode& t, std::size_t i, int k, std::size_t vertices) {
+  const nlohmann::json& e = t.json()[i][k];
+  std::uint64_t index = 0;
+  if (e.is_number_unsigned()) {
+    index = e.get<std::uint64_t>();
+  } else {
+    index = t[i][k].unsigned_integer();  // a float spelling of an integer, or the error
+  }
+  if (index >= vertices) {
+    t[i][k].fail("vertex index " + std::to_string(index) + " out of range (the mesh has " +
+                 std::to_string(vertices) + " vertices)");
+  }
+  return static_cast<std::uint32_t>(index);
+}
+
 Mesh read_inline_geometry(const JsonNode& n) {
   Mesh mesh;
   const JsonNode v = n.at("vertices"), t = n.at("triangles");
   mesh.vertices.resize(v.array_size());
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i] = v[i].vec3();
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i] = vertex_at(v, i);
   mesh.triangles.resize(t.array_size());
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    const JsonNode tri = t[i];
-    if (tri.array_size() != 3) tri.fail("expected [i, j, k] (3 vertex indices)");
-    for (int k = 0; k < 3; ++k) {
-      const std::uint64_t index = tri[k].unsigned_integer();
-      if (index >= mesh.vertices.size()) {
-        tri[k].fail("vertex index " + std::to_string(index) + " out of range (the mesh has " +
-                    std::to_string(mesh.vertices.size()) + " vertices)");
-      }
-      mesh.triangles[i][k] = static_cast<std::uint32_t>(index);
+    const nlohmann::json& tri = t.json()[i];
+    if (!tri.is_array() || tri.size() != 3) {
+      if (t[i].array_size() != 3) t[i].fail("expected [i, j, k] (3 vertex indices)");
     }
+    for (int k = 0; k < 3; ++k) mesh.triangles[i][k] = index_at(t, i, k, mesh.vertices.size());
   }
   return mesh;
 }
