@@ -5,9 +5,9 @@ The office is Examples/optimization/conference (room, table, 28 chairs, podium: 
 triangles) in two forms: as shipped (three binary PLY meshes beside the JSON) and with every
 mesh inline in the JSON, as the workbench writes scenes below its PLY threshold, plus a
 work-plane grid at 0.8 m. Each run is ``lightsolver run SCENE --photons 1000 -q --timings``;
-the script prints the median of each phase over the runs, and the time from its own clock just
+the script prints the median of each phase over the runs, the time from its own clock just
 before the process starts to main (the same CLOCK_MONOTONIC), to the first photon and to the
-process's exit.
+process's exit, and the process's CPU time (user + system, all threads).
 
     python3 scripts/startup_bench.py [--binary build/NativeSolver/cli/lightsolver] [--runs 7]
         [--backend auto] [--backend embree] [--compare OTHER_BINARY]
@@ -19,6 +19,7 @@ import argparse
 import json
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -85,12 +86,15 @@ LINE = re.compile(r"^  (\s*)(.+?)\s{2,}(-?[0-9.]+)?\s+(-?[0-9.]+)$")
 
 def one_run(binary: str, scene: str, backend: str) -> Dict[str, float]:
     """Phase -> ms of one run, plus 'start to main', 'start to first photon', 'start to exit'."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.monotonic()
     p = subprocess.run([binary, "run", scene, "--photons", "1000", "--backend", backend, "-q",
                         "--timings"], capture_output=True, text=True, check=True)
     t_exit = time.monotonic()
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
     out: Dict[str, float] = {}
     main_at = None
+    parents: List[str] = []  # the phase names above this line, so two "validate" stay apart
     for line in p.stderr.splitlines():
         if line.strip().startswith("main at CLOCK_MONOTONIC"):
             main_at = float(line.split()[-1])
@@ -99,21 +103,25 @@ def one_run(binary: str, scene: str, backend: str) -> Dict[str, float]:
         if not m:
             continue
         indent, name, ms, end = m.groups()
-        key = " " * len(indent) + re.sub(r" \(x\d+\)$", "", name)
+        depth = len(indent) // 2
+        name = re.sub(r" \(x\d+\)$", "", name)
+        parents = parents[:depth] + [name]
+        key = "  " * depth + name + "\t" + "/".join(parents)  # shown up to the tab
         out[key] = float(ms) if ms is not None else float(end)
-        if ms is not None:
-            out[key + " @end"] = float(end)
     assert main_at is not None, p.stderr
     start_to_main = main_at - 1e3 * t0
     out["start to main"] = start_to_main
     ready = next(v for k, v in out.items() if k.strip().startswith("ready to trace"))
     out["start to first photon"] = start_to_main + ready
     out["start to exit"] = 1e3 * (t_exit - t0)
+    # CPU time is less at the mercy of other jobs on a shared machine than wall time.
+    out["process CPU time, start to exit"] = 1e3 * (after.ru_utime + after.ru_stime -
+                                                    before.ru_utime - before.ru_stime)
     return out
 
 
 def medians(runs: List[Dict[str, float]]) -> Dict[str, float]:
-    keys = [k for k in runs[0] if not k.endswith("@end")]
+    keys = list(runs[0])
     return {k: statistics.median(r[k] for r in runs if k in r) for k in keys}
 
 
@@ -138,12 +146,12 @@ def main() -> int:
                 print(f"\n{os.path.basename(scene)}, --backend {backend}, medians of "
                       f"{args.runs} runs (ms)")
                 keys = list(dict.fromkeys(k for t in table.values() for k in t))
-                print(f"  {'phase':44}" + "".join(f"{os.path.basename(os.path.dirname(b)) or b:>12}"
-                                                   for b in binaries))
+                labels = ["binary", "compare"][:len(binaries)]
+                print(f"  {'phase':44}" + "".join(f"{label:>12}" for label in labels))
                 for k in keys:
                     cells = "".join(f"{t[k]:12.2f}" if k in t else f"{'':>12}"
                                     for t in table.values())
-                    print(f"  {k:44}{cells}")
+                    print(f"  {k.split(chr(9))[0]:44}{cells}")
     return 0
 
 
