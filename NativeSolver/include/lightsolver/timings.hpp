@@ -41,6 +41,8 @@ double monotonic_ms_at_enable();
 class Scope {
  public:
   explicit Scope(const char* name);
+  /// On a thread of its own: at `depth`, as if nested there (the thread's own nesting restarts).
+  Scope(const char* name, int depth);
   ~Scope();
   Scope(const Scope&) = delete;
   Scope& operator=(const Scope&) = delete;
@@ -48,6 +50,7 @@ class Scope {
  private:
   const char* name_;
   bool on_;
+  int saved_depth_ = -1;  // the thread's nesting before a Scope with a given depth
   std::chrono::steady_clock::time_point start_;
 };
 

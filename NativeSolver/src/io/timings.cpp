@@ -80,11 +80,19 @@ Scope::Scope(const char* name) : name_(name), on_(enabled()) {
   start_ = Clock::now();
 }
 
+Scope::Scope(const char* name, int depth) : name_(name), on_(enabled()) {
+  if (!on_) return;
+  saved_depth_ = t_depth;
+  t_depth = depth + 1;
+  start_ = Clock::now();
+}
+
 Scope::~Scope() {
   if (!on_) return;
   const Clock::time_point end = Clock::now();
   --t_depth;
   record(name_, t_depth, start_, end);
+  if (saved_depth_ >= 0) t_depth = saved_depth_;
 }
 
 std::string format(const std::vector<Phase>& recorded) {
