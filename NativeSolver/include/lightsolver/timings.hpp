@@ -14,7 +14,8 @@ struct Phase {
   std::string name;
   int depth = 0;
   double start_ms = 0.0;
-  double ms = 0.0;  // 0 for a mark (a point in time)
+  double ms = 0.0;      // 0 for a mark (a point in time)
+  bool beside = false;  // on a thread of its own beside the one that records the others
 };
 
 /// Starts recording (again: an earlier record is dropped); the origin of every time is now.

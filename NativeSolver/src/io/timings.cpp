@@ -38,10 +38,11 @@ double clock_ms(clockid_t id) {
   return 1e3 * double(t.tv_sec) + 1e-6 * double(t.tv_nsec);
 }
 
-void record(const char* name, int depth, Clock::time_point start, Clock::time_point end) {
+void record(const char* name, int depth, Clock::time_point start, Clock::time_point end,
+            bool beside = false) {
   Recorder& r = recorder();
   std::lock_guard<std::mutex> lock(r.mutex);
-  r.phases.push_back({name, depth, ms_between(r.origin, start), ms_between(start, end)});
+  r.phases.push_back({name, depth, ms_between(r.origin, start), ms_between(start, end), beside});
 }
 
 }  // namespace
@@ -91,7 +92,7 @@ Scope::~Scope() {
   if (!on_) return;
   const Clock::time_point end = Clock::now();
   --t_depth;
-  record(name_, t_depth, start_, end);
+  record(name_, t_depth, start_, end, saved_depth_ >= 0);
   if (saved_depth_ >= 0) t_depth = saved_depth_;
 }
 
@@ -107,6 +108,7 @@ std::string format(const std::vector<Phase>& recorded) {
   };
   std::vector<Line> lines;
   for (const Phase& p : sorted) {
+    if (p.beside) continue;
     // The previous phase at this depth or above: a sibling of the same name is summed into it.
     auto sibling = std::find_if(lines.rbegin(), lines.rend(),
                                 [&](const Line& l) { return l.phase.depth <= p.depth; });
@@ -118,6 +120,20 @@ std::string format(const std::vector<Phase>& recorded) {
       continue;
     }
     lines.push_back({p, 1, p.start_ms + p.ms});
+  }
+  // A phase of another thread goes after the phases nested in its parent (the last one at the
+  // depth above that started before it), so it does not split a parent from its children.
+  for (const Phase& p : sorted) {
+    if (!p.beside) continue;
+    std::size_t at = lines.size(), parent = lines.size();
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (lines[i].phase.depth == p.depth - 1 && lines[i].phase.start_ms <= p.start_ms) parent = i;
+    }
+    if (parent < lines.size()) {
+      at = parent + 1;
+      while (at < lines.size() && lines[at].phase.depth > lines[parent].phase.depth) ++at;
+    }
+    lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at), Line{p, 1, p.start_ms + p.ms});
   }
   std::string out = "timings (ms; the end column counts from main)\n";
   char row[160];

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 
 #include "io/json_fast.hpp"
 #include "io/json_reader.hpp"
@@ -258,11 +259,12 @@ TEST(StartupTimings, RecordsOnlyWhenEnabledAndSumsRepeats) {
   timings::enable();
   {
     const timings::Scope outer("outer");
+    std::thread([] { const timings::Scope side("side", 1); }).join();
     for (int i = 0; i < 3; ++i) const timings::Scope inner("inner");
     timings::mark("point");
   }
   const std::vector<timings::Phase> phases = timings::phases();
-  ASSERT_EQ(phases.size(), 5u);
+  ASSERT_EQ(phases.size(), 6u);
   EXPECT_EQ(phases.back().name, "outer");
   EXPECT_EQ(phases.back().depth, 0);
   EXPECT_EQ(phases.front().depth, 1);
@@ -270,6 +272,8 @@ TEST(StartupTimings, RecordsOnlyWhenEnabledAndSumsRepeats) {
   EXPECT_NE(text.find("\n  outer "), std::string::npos) << text;
   EXPECT_NE(text.find("\n    inner (x3) "), std::string::npos) << text;
   EXPECT_NE(text.find("\n    point "), std::string::npos) << text;
+  // The other thread's phase after the ones nested under its parent, at its depth.
+  EXPECT_LT(text.find("\n    point "), text.find("\n    side "));
   EXPECT_GE(timings::cpu_ms_before_enable(), 0.0);
 }
 
