@@ -21,6 +21,7 @@
 #include "lightsolver/photometry.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/solver.hpp"
+#include "lightsolver/timings.hpp"
 #include "optimize_command.hpp"
 #include "processes.hpp"
 #include "report_command.hpp"
@@ -86,6 +87,7 @@ struct RunArgs {
   std::string scene, out;
   bool quiet = false;
   bool effects = false;  // list each effect the scene did not need, with why
+  bool timings = false;  // print where the time went (main() enabled the recorder)
   lightsolver::SolveOptions options;
 };
 
@@ -138,12 +140,27 @@ std::string forecast_text(const lightsolver::RunForecast& f, std::optional<doubl
   return text;
 }
 
+// `--timings`: the recorded phases on stderr, then the run's tracing by its own clock.
+void print_timings(const lightsolver::Results& results) {
+  namespace t = lightsolver::timings;
+  std::fprintf(stderr, "%s", t::format(t::phases()).c_str());
+  std::fprintf(stderr, "  %-40s %9.2f\n", "  of which the run (trace, estimates)",
+               1e3 * results.seconds);
+  std::fprintf(stderr, "  %-40s %9.2f\n", "before main (process CPU time)",
+               t::cpu_ms_before_enable());
+  std::fprintf(stderr, "  %-40s %9.3f\n", "main at CLOCK_MONOTONIC (ms)",
+               t::monotonic_ms_at_enable());
+}
+
 int run(const RunArgs& a) {
   if (a.options.accuracy_per_cell && !a.options.target_accuracy) {
     throw lightsolver::InputError("", "--per-cell", "needs --accuracy X (the goal per cell)");
   }
   if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");  // before any tracing
-  const lightsolver::Scene scene = lightsolver::load_scene(a.scene);
+  const lightsolver::Scene scene = [&] {
+    const lightsolver::timings::Scope phase("read scene");
+    return lightsolver::load_scene(a.scene);
+  }();
   lightsolver::SolveOptions opt = options_from(a);
   std::signal(SIGINT, on_sigint);
   lightsolver::Results results;
@@ -153,12 +170,18 @@ int run(const RunArgs& a) {
       bar.expect(f);
       if (f.seconds > 60.0) bar.note(forecast_text(f, a.options.target_accuracy));
     };
+    const lightsolver::timings::Scope phase("solve");
     results = lightsolver::solve(scene, opt, std::ref(bar));
   }
   std::signal(SIGINT, SIG_DFL);
-  if (!a.quiet) std::cout << lightsolver::results_table(results, a.effects);
-  if (!a.out.empty())
-    lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(results));
+  {
+    const lightsolver::timings::Scope phase("write results (table, --out)");
+    if (!a.quiet) std::cout << lightsolver::results_table(results, a.effects) << std::flush;
+    if (!a.out.empty())
+      lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(results));
+  }
+  lightsolver::timings::mark("end of run");
+  if (a.timings) print_timings(results);
   return results.partial ? 130 : 0;  // 128 + SIGINT, as shells report an interrupted command
 }
 
@@ -250,6 +273,9 @@ int run_command_line(int argc, char** argv) {
   run_cmd->add_flag("--effects", ra.effects,
                     "After the table, list each effect the scene does not need (not simulated), "
                     "with why");
+  run_cmd->add_flag("--timings", ra.timings,
+                    "Print on stderr where the time went (ms): reading the scene, checks, "
+                    "prepare, backend choice and build, the run, writing results");
 
   RunArgs ca;
   std::uint64_t max_photons = lightsolver::CostOptions{}.max_photons;
@@ -305,6 +331,15 @@ int run_command_line(int argc, char** argv) {
   return 0;
 }
 
+// `run ... --timings`: looked for before CLI11 parses, so the record starts at main.
+bool wants_timings(int argc, char** argv) {
+  if (argc < 2 || std::string(argv[1]) != "run") return false;
+  for (int i = 2; i < argc; ++i) {
+    if (std::string(argv[i]) == "--timings") return true;
+  }
+  return false;
+}
+
 // Under mpirun (docs/cluster.md) every process runs the same command: each traces a slice of
 // every batch, rank 0 prints and writes. A failing process ends the whole job, so none is left
 // waiting for it.
@@ -327,6 +362,7 @@ int main(int argc, char** argv) {
     }
   }
   lightsolver::cli::command_line() = lightsolver::cli::quoted_command_line(argc, argv);
+  if (wants_timings(argc, argv)) lightsolver::timings::enable();  // before the flags are parsed
   const int rc = run_command_line(argc, argv);
   if (session && rc == 1) session->abort("ending every process after the error above", rc);
   return rc;

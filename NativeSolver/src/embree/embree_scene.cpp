@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "lightsolver/timings.hpp"
+
 namespace lightsolver::detail {
 namespace {
 
@@ -48,7 +50,10 @@ RTCGeometry instance_of(RTCDevice device, RTCScene scene, const glm::mat4& trans
 // BVH over a handful of boxes instead of over every static triangle.
 EmbreeScene::EmbreeScene(const PreparedScene& scene)
     : instanced_(scene.meshes.size(), nullptr), instances_(scene.meshes.size(), nullptr) {
-  device_ = rtcNewDevice(nullptr);
+  {
+    const timings::Scope phase("Embree device");
+    device_ = rtcNewDevice(nullptr);
+  }
   if (!device_) throw std::runtime_error("Embree: cannot create a device (unsupported CPU?)");
   bool any_movable = false;
   for (const auto& m : scene.meshes) any_movable = any_movable || m.movable;
@@ -83,6 +88,7 @@ EmbreeScene::EmbreeScene(const PreparedScene& scene)
     rtcAttachGeometryByID(scene_, g, static_instance_id_);
     rtcReleaseGeometry(g);
   }
+  const timings::Scope phase("BVH build");
   rtcCommitScene(scene_);
   check(device_, "BVH build");
 }

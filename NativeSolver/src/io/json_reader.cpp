@@ -1,6 +1,9 @@
 #include "io/json_reader.hpp"
 
 #include <cmath>
+#include <optional>
+
+#include "io/json_fast.hpp"
 
 namespace lightsolver::detail {
 
@@ -81,6 +84,7 @@ glm::dvec3 JsonNode::vec3() const {
 }
 
 nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
+  if (std::optional<nlohmann::json> doc = parse_json_fast(text)) return std::move(*doc);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {

@@ -31,6 +31,7 @@ class JsonNode {
   void require_object(std::initializer_list<const char*> allowed) const;  // no unknown keys
   void require_object(std::span<const char* const> allowed) const;       // no unknown keys
   const nlohmann::json& object() const;                  // fails unless an object
+  const nlohmann::json& json() const { return j_; }      // the value itself, for fast paths
 
   double number() const;  // finite number
   std::uint64_t unsigned_integer() const;

@@ -2,10 +2,13 @@
 // CMake generates from the backend modules built (model/backend_registry.hpp).
 #include "lightsolver/backends.hpp"
 
+#include <filesystem>
 #include <stdexcept>
+#include <system_error>
 
 #include "model/backend_registry.hpp"
 #include "lightsolver/error.hpp"
+#include "lightsolver/timings.hpp"
 
 namespace lightsolver {
 namespace {
@@ -34,10 +37,38 @@ std::string auto_description() {
          (cpu.empty() ? "" : ", else " + cpu_part);
 }
 
+// Whether `folder` holds an entry whose name starts with `prefix` (false when it cannot be read).
+bool has_entry_starting(const char* folder, const std::string& prefix) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().filename().string().rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+// Whether the machine shows any GPU device at all. On Linux every GPU driver a GPU API reaches
+// exposes a device node: a DRM render node (/dev/dri/renderD*: Mesa, AMD, Intel, virtio and
+// NVIDIA's DRM module), NVIDIA's /dev/nvidia*, or WSL2's /dev/dxg. Where there is none, no
+// GPU backend can find a real GPU, so "auto" skips their probes: creating a Vulkan instance
+// loads every installed driver and costs tens of milliseconds, more than reading and preparing
+// a 50k-triangle scene. Elsewhere (not Linux) the backends' own probes decide.
+bool gpu_device_visible() {
+#ifdef __linux__
+  std::error_code ec;
+  return std::filesystem::exists("/dev/dxg", ec) || has_entry_starting("/dev/dri", "renderD") ||
+         has_entry_starting("/dev", "nvidia");
+#else
+  return true;
+#endif
+}
+
 // What "auto" takes, in order: GPU backends that find a real GPU, then CPU backends.
 std::vector<const BackendEntry*> auto_candidates() {
   std::vector<const BackendEntry*> out;
+  const bool gpu_visible = gpu_device_visible();
   for (const bool gpu : {true, false}) {
+    if (gpu && !gpu_visible) continue;
     for (const BackendEntry& e : backend_entries()) {
       if (e.gpu == gpu && e.auto_picks()) out.push_back(&e);
     }
@@ -59,7 +90,12 @@ std::unique_ptr<Backend> noting_fallback(std::unique_ptr<Backend> backend, const
 std::unique_ptr<Backend> make_auto(const detail::PreparedScene& scene,
                                    std::vector<std::string>& notes) {
   std::string why;  // what the GPU backends tried so far said
-  for (const BackendEntry* e : auto_candidates()) {
+  const std::vector<const BackendEntry*> candidates = [] {
+    const timings::Scope phase("choose backend (auto probe)");
+    return auto_candidates();
+  }();
+  const timings::Scope phase("build backend");
+  for (const BackendEntry* e : candidates) {
     if (!e->gpu) return noting_fallback(e->make(scene), *e, why, notes);
     try {
       return noting_fallback(e->make(scene), *e, why, notes);
@@ -103,7 +139,9 @@ std::unique_ptr<Backend> make_backend(const std::string& name, const PreparedSce
                                       std::vector<std::string>& notes) {
   if (name == kAutoBackend) return make_auto(scene, notes);
   for (const BackendEntry& e : backend_entries()) {
-    if (name == e.name) return e.make(scene);
+    if (name != e.name) continue;
+    const timings::Scope phase("build backend");
+    return e.make(scene);
   }
   throw InputError(
       "", "backend",

@@ -166,17 +166,23 @@ class Detector {
   Detector(const Scene& s, const dvec3& origin, const std::vector<bool>& is_target,
            const std::vector<bool>& movable)
       : s_(s), is_target_(is_target), tris_(s, origin, included(s, movable)) {
+    lo_.resize(tris_.size());
+    hi_.resize(tris_.size());
     for (std::size_t g = 0; g < tris_.size(); ++g) {
-      dvec3 lo, hi;
-      tris_.bounds(g, lo, hi);
-      magnitude_ = glm::max(magnitude_, glm::max(glm::abs(lo), glm::abs(hi)));
+      tris_.bounds(g, lo_[g], hi_[g]);
+      magnitude_ = glm::max(magnitude_, glm::max(glm::abs(lo_[g]), glm::abs(hi_[g])));
     }
     // Boxes grow by the largest tolerance anywhere, so no coplanar pair is missed.
     pad_m_ = kToleranceMargin * ray_offset_along(dvec3(1.0), magnitude_);
+    for (std::size_t g = 0; g < tris_.size(); ++g) {
+      lo_[g] -= pad_m_;
+      hi_[g] += pad_m_;
+    }
   }
 
   CoincidentGeometry run() {
     std::vector<Entry> entries;
+    entries.reserve(2 * tris_.size());
     level_.resize(tris_.size());
     for (std::size_t g = 0; g < tris_.size(); ++g) {
       dvec3 lo, hi;
@@ -256,10 +262,10 @@ class Detector {
     return out;
   }
 
+  // Kept, not recomputed: a query tests the boxes of many partners (most of the check's time).
   void padded_bounds(std::size_t g, dvec3& lo, dvec3& hi) const {
-    tris_.bounds(g, lo, hi);
-    lo -= pad_m_;
-    hi += pad_m_;
+    lo = lo_[g];
+    hi = hi_[g];
   }
 
   // Pairs that can matter: one side is a target, or the materials differ.
@@ -451,6 +457,7 @@ class Detector {
   SceneTriangles tris_;
   dvec3 magnitude_{0.0};
   double pad_m_ = 0.0;
+  std::vector<dvec3> lo_, hi_;  // per triangle, its box grown by pad_m_
   std::vector<int> level_;
   std::map<std::tuple<std::uint32_t, std::uint32_t, Coincidence::Kind>, double> found_;
   std::vector<Move> moves_;

@@ -9,6 +9,7 @@
 #include "model/groups.hpp"
 #include "types/luminaire_types.hpp"
 #include "types/target_types.hpp"
+#include "lightsolver/timings.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -92,7 +93,10 @@ PreparedScene prepare(const Scene& scene, const std::vector<std::size_t>& movabl
     if (target_type(t.type).tally == TallyKind::MeshBin) is_target.at(t.mesh) = true;
   }
   for (std::size_t i : movable) is_movable.at(i) = true;
-  CoincidentGeometry coincident = find_coincident(scene, out.origin, is_target, is_movable);
+  CoincidentGeometry coincident = [&] {
+    const timings::Scope phase("coincident surfaces");
+    return find_coincident(scene, out.origin, is_target, is_movable);
+  }();
   out.coincidences = std::move(coincident.pairs);
   out.warnings = coincidence_warnings(scene, out.coincidences);
   std::vector<double> mesh_area(scene.meshes.size());

@@ -30,6 +30,7 @@
 #include "scene/provenance.hpp"
 #include "types/target_types.hpp"
 #include "lightsolver/run_options.hpp"
+#include "lightsolver/timings.hpp"
 
 namespace lightsolver {
 
@@ -279,8 +280,12 @@ std::vector<std::uint64_t> cost_checkpoints(std::uint64_t max_photons) {
 
 Simulation::Simulation(Scene scene, Options options)
     : state_(std::make_unique<detail::SimulationState>()) {
+  const timings::Scope phase("set up (Simulation)");
   if (options.threads < 0) throw InputError("", "threads", "must be >= 0 (0: all cores)");
-  validate(scene);
+  {
+    const timings::Scope validating("validate");
+    validate(scene);
+  }
   std::vector<std::size_t> movable;
   for (const auto& name : options.movable_meshes) {
     const int i = scene.find_mesh(name);
@@ -289,9 +294,13 @@ Simulation::Simulation(Scene scene, Options options)
     movable.push_back(static_cast<std::size_t>(i));
   }
   state_->scene = std::move(scene);
-  state_->prepared = detail::prepare(state_->scene, movable);
+  {
+    const timings::Scope preparing("prepare");
+    state_->prepared = detail::prepare(state_->scene, movable);
+  }
   state_->backend = detail::make_backend(options.backend, state_->prepared, state_->backend_notes);
   state_->threads = options.threads;
+  timings::mark("ready to trace (first photon)");
 }
 
 Simulation::~Simulation() = default;

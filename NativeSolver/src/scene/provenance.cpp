@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <climits>
 #include <cmath>
 #include <ctime>
@@ -195,6 +196,102 @@ std::optional<std::string> file_sha256(const std::string& path) {
 
 std::string canonical_json(const nlohmann::json& doc) { return normalized(doc).dump(); }
 
+namespace {
+
+// canonical_json's bytes written straight into a SHA-256, without the normalized copy of the
+// document or the whole text: on a scene with large inline meshes that copy and text cost more
+// than parsing the file. Scalars are written as nlohmann's dump() writes them (its float
+// formatting, its string escaping), so the hash is the same (provenance_test.cpp checks).
+class CanonicalHasher {
+ public:
+  CanonicalHasher() : digest_(new_sha256()) { buffer_.reserve(kFlushAt + 512); }
+
+  std::string hex(const nlohmann::json& doc) {
+    write(doc);
+    flush();
+    return hex_of(digest_.get());
+  }
+
+ private:
+  static constexpr std::size_t kFlushAt = 1 << 16;
+
+  void write(const nlohmann::json& j) {
+    switch (j.type()) {
+      case nlohmann::json::value_t::object: {
+        buffer_ += '{';
+        bool first = true;
+        for (const auto& [key, value] : j.items()) {
+          if (!first) buffer_ += ',';
+          first = false;
+          buffer_ += nlohmann::json(key).dump();
+          buffer_ += ':';
+          write(value);
+        }
+        buffer_ += '}';
+        break;
+      }
+      case nlohmann::json::value_t::array: {
+        buffer_ += '[';
+        for (std::size_t i = 0; i < j.size(); ++i) {
+          if (i > 0) buffer_ += ',';
+          write(j[i]);
+        }
+        buffer_ += ']';
+        break;
+      }
+      case nlohmann::json::value_t::number_float:
+        write_float(j.get<double>());
+        break;
+      case nlohmann::json::value_t::number_integer:
+        write_integer(j.get<std::int64_t>());
+        break;
+      case nlohmann::json::value_t::number_unsigned:
+        write_integer(j.get<std::uint64_t>());
+        break;
+      default:  // strings, booleans, null (and nothing a parse gives besides)
+        buffer_ += j.dump();
+    }
+    if (buffer_.size() >= kFlushAt) flush();
+  }
+
+  // As normalized(): an integral value below 2^53 is an integer.
+  void write_float(double v) {
+    constexpr double kExact = 9007199254740992.0;  // 2^53
+    if (std::isfinite(v) && std::trunc(v) == v && std::abs(v) < kExact) {
+      if (v < 0) {
+        write_integer(static_cast<std::int64_t>(v));
+      } else {
+        write_integer(static_cast<std::uint64_t>(v));
+      }
+      return;
+    }
+    if (!std::isfinite(v)) {
+      buffer_ += "null";
+      return;
+    }
+    char text[64];
+    buffer_.append(text, ::nlohmann::detail::to_chars(text, text + sizeof text, v));
+  }
+
+  template <class Int>
+  void write_integer(Int v) {
+    char text[24];
+    buffer_.append(text, std::to_chars(text, text + sizeof text, v).ptr);
+  }
+
+  void flush() {
+    update(digest_.get(), buffer_.data(), buffer_.size());
+    buffer_.clear();
+  }
+
+  Digest digest_;
+  std::string buffer_;
+};
+
+}  // namespace
+
+std::string canonical_sha256(const nlohmann::json& doc) { return CanonicalHasher().hex(doc); }
+
 SceneSource scene_source(const nlohmann::json& doc, const std::string& base_dir,
                          const std::string& scene_file, bool strict) {
   FileList files(base_dir, scene_file, strict);
@@ -202,7 +299,7 @@ SceneSource scene_source(const nlohmann::json& doc, const std::string& base_dir,
   files.add_entries(doc, "luminaires", "file");
   files.add_entries(doc, "targets", "file");
   files.add_requirements_table(doc);
-  return {sha256_hex(canonical_json(doc)), files.take()};
+  return {canonical_sha256(doc), files.take()};
 }
 
 std::string utc_text(std::chrono::system_clock::time_point t) {

@@ -26,6 +26,9 @@ std::optional<std::string> file_sha256(const std::string& path);
 /// Re-indenting or reordering keys leaves it unchanged; any value change changes it.
 std::string canonical_json(const nlohmann::json& doc);
 
+// sha256_hex(canonical_json(doc)), computed without building the text.
+std::string canonical_sha256(const nlohmann::json& doc);
+
 /// The source of a parsed scene document: the hash of its canonical text and the files it reads
 /// (every string "file" of its meshes, luminaires and targets, resolved against `base_dir` as
 /// the loader resolves them, and the requirements table when a target names a task). With

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <sstream>
+#include <system_error>
 #include <type_traits>
 #include <vector>
 
@@ -18,6 +20,7 @@
 #include "types/target_types.hpp"
 #include "lightsolver/run_options.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "lightsolver/timings.hpp"
 
 namespace lightsolver {
 namespace {
@@ -70,23 +73,47 @@ glm::dmat4 read_transform(const JsonNode& n) {
   return m;
 }
 
+// The common case read straight from the JSON values: three finite numbers. Anything else goes
+// through JsonNode::vec3(), which names the field in its error (a path per element would cost
+// more than the reading itself on a large mesh).
+glm::dvec3 vertex_at(const JsonNode& v, std::size_t i) {
+  const nlohmann::json& p = v.json()[i];
+  if (p.is_array() && p.size() == 3 && p[0].is_number() && p[1].is_number() &&
+      p[2].is_number()) {
+    const glm::dvec3 out(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+    if (std::isfinite(out.x) && std::isfinite(out.y) && std::isfinite(out.z)) return out;
+  }
+  return v[i].vec3();
+}
+
+// A vertex index: an unsigned JSON integer below `vertices`, else JsonNode's error.
+std::uint32_t index_at(const JsonNode& t, std::size_t i, int k, std::size_t vertices) {
+  const nlohmann::json& e = t.json()[i][k];
+  std::uint64_t index = 0;
+  if (e.is_number_unsigned()) {
+    index = e.get<std::uint64_t>();
+  } else {
+    index = t[i][k].unsigned_integer();  // a float spelling of an integer, or the error
+  }
+  if (index >= vertices) {
+    t[i][k].fail("vertex index " + std::to_string(index) + " out of range (the mesh has " +
+                 std::to_string(vertices) + " vertices)");
+  }
+  return static_cast<std::uint32_t>(index);
+}
+
 Mesh read_inline_geometry(const JsonNode& n) {
   Mesh mesh;
   const JsonNode v = n.at("vertices"), t = n.at("triangles");
   mesh.vertices.resize(v.array_size());
-  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i] = v[i].vec3();
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) mesh.vertices[i] = vertex_at(v, i);
   mesh.triangles.resize(t.array_size());
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    const JsonNode tri = t[i];
-    if (tri.array_size() != 3) tri.fail("expected [i, j, k] (3 vertex indices)");
-    for (int k = 0; k < 3; ++k) {
-      const std::uint64_t index = tri[k].unsigned_integer();
-      if (index >= mesh.vertices.size()) {
-        tri[k].fail("vertex index " + std::to_string(index) + " out of range (the mesh has " +
-                    std::to_string(mesh.vertices.size()) + " vertices)");
-      }
-      mesh.triangles[i][k] = static_cast<std::uint32_t>(index);
+    const nlohmann::json& tri = t.json()[i];
+    if (!tri.is_array() || tri.size() != 3) {
+      if (t[i].array_size() != 3) t[i].fail("expected [i, j, k] (3 vertex indices)");
     }
+    for (int k = 0; k < 3; ++k) mesh.triangles[i][k] = index_at(t, i, k, mesh.vertices.size());
   }
   return mesh;
 }
@@ -116,7 +143,10 @@ Mesh read_mesh(const JsonNode& n, Scene& scene, const std::string& base_dir) {
   if (n.has("file")) {
     if (n.has("vertices") || n.has("triangles")) n.fail("give either \"file\" or inline geometry");
     const std::string file = n.at("file").string();
-    mesh = load_mesh_file((fs::path(base_dir) / file).lexically_normal().string());
+    {
+      const timings::Scope phase("mesh file");
+      mesh = load_mesh_file((fs::path(base_dir) / file).lexically_normal().string());
+    }
     warn_if_coarse(mesh, n, file, scene.warnings);
   } else {
     mesh = read_inline_geometry(n);
@@ -251,7 +281,10 @@ Scene read_scene(const nlohmann::json& doc, const std::string& file, const std::
   if (root.has("settings")) scene.settings = read_settings(root.at("settings"));
   if (root.has("optimization")) root.at("optimization").object();  // read by the optimizer
   if (root.has("sunlight_exposure")) read_scene_sunlight(root, scene);
-  if (validated) validate(scene);
+  if (validated) {
+    const timings::Scope phase("validate");
+    validate(scene);
+  }
   return scene;
 }
 
@@ -262,14 +295,32 @@ namespace detail {
 SceneDocument read_scene_document(const std::string& text, const std::string& file,
                                   const std::string& base_dir) {
   SceneDocument d;
-  d.json = parse_json_text(text, file);
-  d.scene = read_scene(d.json, file, base_dir);
-  // After reading: the files are known to exist, and a scene that does not load costs no hash.
-  d.scene.source = scene_source(d.json, base_dir, file, true);
+  {
+    const timings::Scope phase("parse JSON");
+    d.json = parse_json_text(text, file);
+  }
+  // The provenance hash on a thread of its own beside the reading (both only read d.json): on
+  // two cores the run does not wait for it. A reading error still comes first, as when the hash
+  // followed: then the future is waited for (std::async's destructor) and its result dropped.
+  const auto hash = [&] { return scene_source(d.json, base_dir, file, true); };
+  std::future<SceneSource> source;
+  try {
+    source = std::async(std::launch::async, [&] {
+      const timings::Scope phase("provenance hash (a thread)", 1);
+      return hash();
+    });
+  } catch (const std::system_error&) {  // no thread to be had: hash after reading
+  }
+  {
+    const timings::Scope phase("read scene objects");
+    d.scene = read_scene(d.json, file, base_dir);
+  }
+  d.scene.source = source.valid() ? source.get() : hash();
   return d;
 }
 
 std::string read_scene_text(const std::string& path) {
+  const timings::Scope phase("read file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the scene file");
   std::stringstream text;
