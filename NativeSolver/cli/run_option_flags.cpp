@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "backend_option.hpp"
@@ -35,6 +36,10 @@ void add_flag(CLI::App* command, SolveOptions& options, const Row& row) {
     command->add_flag_callback(
         info.cli_flag, [&member] { member = true; }, help);
   } else if constexpr (std::is_same_v<T, std::string>) {
+    if (std::string_view(info.name) == "sampler") {
+      command->add_option(info.cli_flag, member, help)->check(CLI::IsMember({"random", "sobol"}));
+      return;
+    }
     add_backend_option(command, member);  // its choices and help: the backend registry's
   } else {
     CLI::Option* flag = command->add_option(info.cli_flag, member, help);

@@ -52,6 +52,10 @@ struct GroupedTallies {
   std::size_t bin_count = 0;
   std::vector<std::uint64_t> photons;  // per group
   std::vector<double> flux_lm;         // per group, times its dimming factor
+  /// Above 1: a quasi-random run's replicates, `bins` holding one groups x bin_count block
+  /// each (replicate r's group g, bin b at (r * groups + g) * bin_count + b), `photons` each
+  /// group's photons over all replicates (model/replicates.hpp). tally() reads replicate 0.
+  std::size_t replicates = 1;
 
   const Tally& tally(std::size_t group, std::uint32_t bin) const {
     return (*bins)[group * bin_count + bin];
@@ -65,7 +69,8 @@ struct GroupedTallies {
   Estimate estimate(std::uint32_t bin, double area_m2, double confidence) const;
 };
 
-/// The tallies of a run over `bins` (groups x scene bins) after its first `photons` photons.
+/// The tallies of a run over `bins` (groups x scene bins) after its first `photons` photons;
+/// `bins` R times that long: a quasi-random run's R replicates of photons / R each.
 GroupedTallies grouped_tallies(const PreparedScene& s, const std::vector<Tally>& bins,
                                std::uint64_t photons);
 

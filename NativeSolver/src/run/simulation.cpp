@@ -22,6 +22,7 @@
 #include "model/backend.hpp"
 #include "model/groups.hpp"
 #include "prepare/target_reach.hpp"
+#include "run/replicate_run.hpp"
 #include "run/shared_tracing.hpp"
 #include "run/simulation_state.hpp"
 #include "run/stop_policies.hpp"
@@ -386,7 +387,10 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   r.contributions = options.contributions.value_or(scene.settings.contributions);
   // Each group has its own tallies (groups x bins), so their estimates are independent.
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
-  detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size());
+  // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp).
+  const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
+  detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size() *
+                             (qmc ? qmc->replicates : 1));
   if (resume && state_->kept && state_->kept_seed == r.seed &&
       state_->kept_photons <= r.photons_requested &&
       state_->kept->bins.size() == tallies.bins.size()) {
@@ -394,7 +398,10 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     r.photons = state_->kept_photons;
   }
   double tracing_s = 0.0;
-  if (prepared.total_flux_lm > 0.0) {
+  if (qmc) {
+    tracing_s = detail::trace_replicates(*qmc, prepared, *state_->backend, state_->threads,
+                                         options, progress, tallies, r);
+  } else if (prepared.total_flux_lm > 0.0) {
     BatchLoop loop{scene,   prepared, *state_->backend, state_->threads,
                    options, progress, tallies,          r};
     tracing_s = loop.trace();
@@ -412,7 +419,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
                                   /*grid_intervals=*/true, r.contributions);
   r.groups = detail::group_results(
       scene, prepared,
-      detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));
+      qmc ? detail::grouped_tallies(prepared, tallies.bins, r.photons).photons
+          : detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));
   r.luminaires = detail::luminaire_results(scene, prepared);
   state_->kept = std::move(tallies);  // what refine() continues from
   state_->kept_photons = r.photons;
