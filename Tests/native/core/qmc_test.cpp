@@ -238,5 +238,33 @@ TEST(QuasiRandomRun, IntegratingSphere) {
   }
 }
 
+TEST(QuasiRandomRun, GroupsAddWithinEachReplicate) {
+  // Two groups (a point source each, 4:1 in flux): each replicate's estimate sums its groups,
+  // every group's photons are a multiple of the replicates, and the sum is unbiased.
+  Scene s;
+  const dvec3 a(-0.5, 0.2, 1.5), b(0.8, -0.4, 2.5), c(-1, -1, 0), e1(2, 0, 0), e2(0, 2, 0);
+  s.luminaires.push_back(named(point_light(a, 4000.0), "a", "left"));
+  s.luminaires.push_back(named(point_light(b, 1000.0), "b", "right"));
+  s.targets.push_back(grid("floor", c, e1, e2, 2, 2));
+  // A grid facing away from both sources: no photon reaches it.
+  s.targets.push_back(grid("dark", {-1, -1, 0.5}, {0, 2, 0}, {2, 0, 0}, 1, 1));
+  const Results r = Simulation(s, {"embree"}).run(sobol(8 * 65'536, 21));
+  ASSERT_EQ(r.groups.size(), 2u);
+  EXPECT_EQ(r.groups[0].photons + r.groups[1].photons, 8u * 65'536u);
+  EXPECT_EQ(r.groups[0].photons % 8, 0u);
+  for (unsigned k = 0; k < 4; ++k) {
+    const dvec3 cc = c + double(k % 2) * 0.5 * e1 + double(k / 2) * 0.5 * e2;
+    const double exact = point_source_patch_lux(a, 4000.0, cc, 0.5 * e1, 0.5 * e2) +
+                         point_source_patch_lux(b, 1000.0, cc, 0.5 * e1, 0.5 * e2);
+    expect_unbiased(r.targets[0].cells[k], exact, 8, 4, 0.01, "cell " + std::to_string(k));
+  }
+  // Zero hits in every replicate: mean 0, and an upper end above 0 (the pooled zero-hit
+  // Wilson bound), not the point [0, 0].
+  const Estimate& dark = r.targets[1].estimate;
+  EXPECT_EQ(dark.hits, 0u);
+  EXPECT_EQ(dark.mean, 0.0);
+  EXPECT_GT(dark.ci_high, 0.0);
+}
+
 }  // namespace
 }  // namespace lightsolver::test
