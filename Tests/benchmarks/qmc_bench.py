@@ -10,14 +10,16 @@ sobol` (8 replicates) side by side, on
     by a 1 x 1 m Lambertian panel at 2.5 m facing the ceiling, so that only reflected light
     reaches the 16 x 16 work-plane grid at 0.8 m; the reference is a long sobol run (32
     replicates of 2^20 photons) whose own
-    variance (from its replicates) is subtracted from the mean squared error.
+    variance (from its replicates) is subtracted from the mean squared error;
+(c) both: the box room of issue 28 as it stands, the 100 cd point source at (2, 2, 2.9) over
+    the same grid (direct and reflected light), against a reference as in (b).
 
 Each point is the mean over `SEEDS` seeds of the squared relative error over all cells. Prints
 a Markdown table and each sampler's fitted slope of log rms against log photons.
 
     /usr/bin/python3 Tests/benchmarks/qmc_bench.py build/NativeSolver/cli/lightsolver [CASE]
 
-CASE: direct or indirect (default both).
+CASE: direct, indirect or room (default all three).
 """
 import json
 import math
@@ -84,13 +86,20 @@ def box_mesh() -> Dict:
 
 
 def scene(case: str) -> Dict:
-    """Case "direct" (a point source over the grid) or "indirect" (the box room, panel up)."""
+    """Case "direct" (a point source over the grid), "indirect" (the box room, panel up) or
+    "room" (the box room, the point source)."""
     grid = {"name": "work plane", "type": "grid", "corner": [0, 0, PLANE_Z], "edge1": [4, 0, 0],
             "edge2": [0, 4, 0], "cells": [CELLS, CELLS]}
     if case == "direct":
         return {"format": "lightsolver.scene/1", "materials": {}, "meshes": [],
                 "luminaires": [{"name": "lamp", "type": "point", "position": list(SOURCE),
                                 "flux_lm": FLUX_100CD}], "targets": [grid]}
+    if case == "room":
+        return {"format": "lightsolver.scene/1",
+                "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
+                "meshes": [box_mesh()], "targets": [grid],
+                "luminaires": [{"name": "lamp", "type": "point", "position": list(SOURCE),
+                                "flux_lm": FLUX_100CD}]}
     panel = {"name": "uplight", "type": "area", "corner": [1.5, 1.5, 2.5], "edge1": [1, 0, 0],
              "edge2": [0, 1, 0], "flux_lm": 1000.0}  # edge1 x edge2 = +z: toward the ceiling
     return {"format": "lightsolver.scene/1",
@@ -139,7 +148,7 @@ def slope(points: List[Tuple[int, float]]) -> float:
 def main() -> None:
     """Runs both cases and prints the tables."""
     cli = sys.argv[1] if len(sys.argv) > 1 else "build/NativeSolver/cli/lightsolver"
-    cases = sys.argv[2:] or ["direct", "indirect"]
+    cases = sys.argv[2:] or ["direct", "indirect", "room"]
     counts = [2 ** k for k in range(15, 24, 2)]
     with tempfile.TemporaryDirectory() as folder:
         for case in cases:

@@ -1,5 +1,6 @@
 #include "model/replicates.hpp"
 
+#include <algorithm>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
@@ -16,11 +17,12 @@ double student_t_for_z(double z, std::uint32_t dof) {
   thread_local double cached_z = -1.0, t = 0.0;
   thread_local std::uint32_t cached_dof = 0;
   if (z != cached_z || dof != cached_dof) {
-    // The tail beyond z on one side, kept apart from 1 so that tiny alphas stay precise.
-    const double tail = 0.5 * std::erfc(z / std::sqrt(2.0));
+    // The tail beyond z on one side, from erfc (precise for tiny tails), kept above the
+    // smallest normal double so that the quantile stays finite for any finite z.
+    const double tail =
+        std::max(0.5 * std::erfc(z / std::sqrt(2.0)), std::numeric_limits<double>::min());
     const boost::math::students_t_distribution<double> dist(dof);
-    t = tail > 0.0 ? boost::math::quantile(boost::math::complement(dist, tail))
-                   : std::numeric_limits<double>::max();
+    t = boost::math::quantile(boost::math::complement(dist, tail));
     cached_z = z;
     cached_dof = dof;
   }

@@ -9,13 +9,14 @@ namespace lightsolver::detail {
 const SobolDirections& sobol_directions() {
   static const SobolDirections table = [] {
     // Boost's lattice of the Joe-Kuo table: element dims * j + d is dimension d's direction
-    // number for index bit j, left-aligned in 32 bits.
+    // number for index bit j, left-aligned in 32 bits (stored here reversed).
     const boost::random::qrng_detail::sobol_lattice<std::uint32_t, 32,
                                                     boost::random::default_sobol_table>
         lattice(kSobolDims);
     SobolDirections v{};
     for (unsigned j = 0; j < 32; ++j) {
-      for (unsigned d = 0; d < kSobolDims; ++d) v[j][d] = *lattice.iter_at(kSobolDims * j + d);
+      for (unsigned d = 0; d < kSobolDims; ++d)
+        v[j][d] = reverse_bits(*lattice.iter_at(kSobolDims * j + d));
     }
     return v;
   }();

@@ -94,6 +94,9 @@ TEST(Replicates, StudentTInterval) {
   EXPECT_NEAR(e.mean - e.ci_low, 3.182446305 * sigma, 1e-8);
   EXPECT_EQ(e.hits, 10u);
   EXPECT_NEAR(detail::student_t_for_z(z_for_confidence(0.95), 7), 2.364624252, 1e-8);
+  EXPECT_EQ(detail::student_t_for_z(0.0, 7), 0.0);
+  EXPECT_TRUE(std::isfinite(detail::student_t_for_z(40.0, 7)));  // a tail below any double
+  EXPECT_GT(detail::student_t_for_z(40.0, 7), detail::student_t_for_z(8.0, 7));
   const std::array<double, 3> spread{0.1, 0.0, 5.0};  // clamped at 0, holds its mean
   const Estimate c = detail::replicate_interval(spread, 1.96, 3);
   EXPECT_EQ(c.ci_low, 0.0);
