@@ -399,8 +399,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   }
   double tracing_s = 0.0;
   if (qmc) {
-    tracing_s = detail::trace_replicates(*qmc, prepared, *state_->backend, state_->threads,
-                                         options, progress, tallies, r);
+    tracing_s = detail::trace_replicates(*qmc, prepared, *state_->backend, state_->threads, options,
+                                         progress, tallies, r);
   } else if (prepared.total_flux_lm > 0.0) {
     BatchLoop loop{scene,   prepared, *state_->backend, state_->threads,
                    options, progress, tallies,          r};
