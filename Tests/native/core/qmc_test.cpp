@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <memory>
 #include <set>
 
+#include "lightsolver/process_group.hpp"
 #include "lightsolver/simulation.hpp"
 #include "model/replicates.hpp"
 #include "model/sobol.hpp"
@@ -140,6 +142,15 @@ void expect_refused(F&& f, const std::string& field) {
   }
 }
 
+// Two processes, as MPI would give them (rank 0 of 2; nothing is ever summed: it is refused).
+class TwoRanks final : public ProcessGroup {
+ public:
+  int rank() const override { return 0; }
+  int size() const override { return 2; }
+  void sum(std::span<std::uint64_t>) override {}
+  void broadcast(std::span<std::uint64_t>) override {}
+};
+
 TEST(QuasiRandomRun, RefusesWhatItCannotDo) {
   Simulation sim(point_over_plane(), {"embree"});
   SolveOptions o = sobol(80'000, 1);
@@ -161,6 +172,9 @@ TEST(QuasiRandomRun, RefusesWhatItCannotDo) {
   expect_refused([&] { sim.run(sobol(80'001, 1)); }, "photons");
   expect_refused([&] { sim.run(sobol(4, 1)); }, "photons");
   expect_refused([&] { sim.refine(sobol(80'000, 1)); }, "sampler");
+  o = sobol(80'000, 1);
+  o.processes = std::make_shared<TwoRanks>();
+  expect_refused([&] { sim.run(o); }, "sampler");
   o = sobol(80'000, 1);
   o.sampler = "halton";
   EXPECT_THROW(sim.run(o), InputError);
