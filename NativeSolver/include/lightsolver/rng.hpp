@@ -42,8 +42,26 @@ class PathRng {
     return block_[index_++];
   }
 
+  /// Words a quasi-random point can supply at the start of a path (model/sobol.hpp).
+  static constexpr unsigned kPrefixWords = 16;
+
+  /// The stream's first kPrefixWords words become `words` (one coordinate of a quasi-random
+  /// point each: uniform() reads one, uniform_double() two, the first the leading bits); the
+  /// Philox words follow them. Call on a fresh stream, before any draw.
+  void set_prefix(const std::array<std::uint32_t, kPrefixWords>& words) {
+    prefix_ = words;
+    prefix_blocks_ = kPrefixWords / 4;
+  }
+
  private:
   void refill() {
+    // A quasi-random prefix first (none in a random run: one test per four words drawn).
+    if (prefix_blocks_ != 0) {
+      const unsigned at = kPrefixWords - 4 * prefix_blocks_--;
+      for (unsigned i = 0; i < 4; ++i) block_[i] = prefix_[at + i];
+      index_ = 0;
+      return;
+    }
     const glm::uvec4 b = shared::philox4x32_10(ctr_, key_);
     block_ = {b.x, b.y, b.z, b.w};
     ++ctr_.z;  // word 2 counts blocks within the path; 2^32 blocks is far beyond any path
@@ -56,6 +74,8 @@ class PathRng {
   // mispredicts every few words drawn (docs/BENCHMARKS.md, issue 23); an array is one load.
   std::array<std::uint32_t, 4> block_{};
   unsigned index_ = 4;
+  unsigned prefix_blocks_ = 0;  // blocks of prefix_ not yet drawn
+  std::array<std::uint32_t, kPrefixWords> prefix_{};
 };
 
 }  // namespace lightsolver

@@ -159,6 +159,20 @@ inline constexpr std::tuple kRunOptions{
                "max_bounces", nullptr, nullptr, nullptr, nullptr,
                {0.0, double(limits::kMaxBounces)}, false, false},
               &Settings::max_bounces, kNoOption},
+    // Quasi-random photons (issue 28; run/replicate_run.hpp). Kept together at the end.
+    RunOption{{"sampler",
+               "Photon sampler: random (independent photons) or sobol (Owen-scrambled Sobol' "
+               "points for emission and the first bounces, intervals from independent "
+               "replicates; Embree backend, a fixed photon count)",
+               nullptr, "--sampler", "sampler", nullptr, nullptr, {}, false, false,
+               "random|sobol"},
+              kNoSetting, &SolveOptions::sampler},
+    RunOption{{"replicates",
+               "Independent randomisations of a sobol run, each with photons / replicates "
+               "photons; intervals are Student-t with replicates - 1 degrees of freedom",
+               nullptr, "--replicates", "replicates", nullptr, nullptr, {2.0, 1024.0}, false,
+               false},
+              kNoSetting, &SolveOptions::replicates},
 };
 // clang-format on
 

@@ -122,6 +122,11 @@ struct SolveOptions {
   /// are summed exactly, so every process gets the results a lone process would, bit for bit.
   /// Batch sizes, time limits and cancel are rank 0's (its callbacks and flag count).
   std::shared_ptr<ProcessGroup> processes;
+  /// "random" (independent photons, the default) or "sobol": quasi-random photons in
+  /// `replicates` independent randomisations, whose spread gives the intervals
+  /// (docs/statistics.md, "Quasi-random photons"). Embree backend, fixed photon counts only.
+  std::string sampler = "random";
+  std::uint32_t replicates = 8;  ///< replicates of a sobol run (2 to 1024)
   /// How the run was started, for the results' provenance: the CLI's command line, "python:
   /// lightsolver.solve" ... ("" : "library call").
   std::string command;
@@ -305,6 +310,8 @@ struct Results {
   std::optional<double> max_seconds;       ///< the time limit that applied, if any
   double seconds = 0.0;
   std::string backend;
+  std::string sampler = "random";  ///< the photon sampler (SolveOptions::sampler)
+  std::uint32_t replicates = 0;    ///< a sobol run's replicates (0: a random run)
   double confidence = 0.95;
   std::uint64_t seed = 0;
   std::uint64_t ray_segments = 0;

@@ -21,6 +21,7 @@
 #include "model/emitters.hpp"
 #include "model/path_deposits.hpp"
 #include "model/scatter.hpp"
+#include "model/sobol.hpp"
 #include "embree/embree_scene.hpp"
 #include "embree/hit_triangles.hpp"
 #include "embree/path_kernel.hpp"
@@ -62,6 +63,9 @@ class EmbreeBackend final : public Backend {
   KernelFeatures kernel() const { return kernel_; }
 
   bool traces_shadow_rays() const override { return true; }
+
+  bool traces_quasi_random() const override { return true; }
+  void set_quasi_random(bool on) override { quasi_random_ = on; }
 
   void visible(std::span<const ShadowRay> rays, std::vector<std::uint8_t>& out) override {
     out.assign(rays.size(), 0);
@@ -120,7 +124,11 @@ class EmbreeBackend final : public Backend {
     // The ranges end to end: index k of [0, total) is photon k - starts[r] of range r.
     std::vector<std::uint64_t> starts{0};
     for (const GroupRange& r : ranges) starts.push_back(starts.back() + r.count);
-    const Photons photons{ranges, starts, seed, by_group};
+    std::vector<SobolScramble> scrambles;  // per range, for quasi-random photons
+    if (quasi_random_) {
+      for (const GroupRange& r : ranges) scrambles.emplace_back(seed, r.group);
+    }
+    const Photons photons{ranges, starts, seed, by_group, scrambles};
     tbb::enumerable_thread_specific<TallyBlock> local([&] { return TallyBlock(out.bins.size()); });
     tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, starts.back(), 256),
                       [&](const tbb::blocked_range<std::uint64_t>& r) {
@@ -153,6 +161,7 @@ class EmbreeBackend final : public Backend {
     const std::vector<std::uint64_t>& starts;  // starts[r]: index of range r's first photon
     std::uint64_t seed;
     bool by_group;  // tallies at group * bins + bin (else at bin: one group's block)
+    const std::vector<SobolScramble>& scrambles;  // per range; empty: Philox only
   };
 
   struct Lane {
@@ -199,7 +208,9 @@ class EmbreeBackend final : public Backend {
     const std::size_t r =
         std::upper_bound(p.starts.begin(), p.starts.end(), k) - p.starts.begin() - 1;
     const GroupRange& range = p.ranges[r];
-    lane.rng = PathRng(p.seed, range.first + (k - p.starts[r]), range.group);
+    const std::uint64_t i = range.first + (k - p.starts[r]);
+    lane.rng = p.scrambles.empty() ? PathRng(p.seed, i, range.group)
+                                   : p.scrambles[r].path_rng(p.seed, i, range.group);
     lane.tally_offset = p.by_group ? std::size_t(range.group) * s_.bins.size() : 0;
     lane.ray = emit(s_.luminaires[pick_luminaire(s_.groups[range.group], lane.rng)], lane.rng);
     lane.bounce = 0;
@@ -329,6 +340,7 @@ class EmbreeBackend final : public Backend {
   EmbreeScene embree_;
   HitTriangles triangles_;
   KernelFeatures kernel_;  // the compiled path kernel this scene runs (path_kernel.hpp)
+  bool quasi_random_ = false;
 };
 
 // LIGHTSOLVER_EMBREE_KERNEL=general forces the general kernel (comparisons, benchmarks).

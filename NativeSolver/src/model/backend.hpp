@@ -73,6 +73,13 @@ class Backend {
     (void)out;
     throw std::logic_error("the " + name() + " backend cannot trace shadow rays");
   }
+  /// Whether set_quasi_random() works (sampler "sobol": run/replicate_run.hpp).
+  virtual bool traces_quasi_random() const { return false; }
+  /// On: each path's first draws are the scrambled Sobol' point of its photon index, scrambled
+  /// by `seed` and its group (model/sobol.hpp); off: Philox only (the default).
+  virtual void set_quasi_random(bool on) {
+    if (on) throw std::logic_error("the " + name() + " backend has no quasi-random photons");
+  }
   /// PreparedScene::luminaires changed (backends holding copies re-upload them).
   virtual void luminaires_changed() {}
   /// Moves a movable mesh; `transform` maps its prepared coordinates to local world space

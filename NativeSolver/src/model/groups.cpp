@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "model/replicates.hpp"
 #include "lightsolver/error.hpp"
 
 namespace lightsolver::detail {
@@ -83,6 +84,7 @@ void check_group_tallies(const std::string& file, std::size_t groups, std::size_
 
 Estimate GroupedTallies::group_estimate_z(std::size_t group, std::uint32_t bin, double area_m2,
                                           double z) const {
+  if (replicates > 1) return replicate_estimate(*this, group, bin, area_m2, z);
   const bool direct_part = direct != nullptr && direct_scale[group] > 0.0;
   // A next-event group's photons in a scene where nothing reflects deposit nothing, exactly.
   Estimate e = direct_part && !photons_reflect
@@ -95,6 +97,7 @@ Estimate GroupedTallies::group_estimate_z(std::size_t group, std::uint32_t bin, 
 }
 
 Estimate GroupedTallies::estimate_z(std::uint32_t bin, double area_m2, double z) const {
+  if (replicates > 1) return replicate_estimate(*this, std::nullopt, bin, area_m2, z);
   std::size_t lit = 0, last = 0;
   for (std::size_t g = 0; g < photons.size(); ++g) {
     if (photons[g] > 0 && flux_lm[g] > 0.0) {
@@ -138,7 +141,10 @@ GroupedTallies grouped_tallies(const PreparedScene& s, const std::vector<Tally>&
   GroupedTallies t;
   t.bins = &bins;
   t.bin_count = s.bins.size();
-  t.photons = group_photons(s.groups, photons);
+  const std::size_t block = s.groups.size() * s.bins.size();
+  t.replicates = block > 0 && bins.size() > block ? bins.size() / block : 1;
+  t.photons = group_photons(s.groups, photons / t.replicates);
+  for (std::uint64_t& n : t.photons) n *= t.replicates;
   for (const PreparedGroup& g : s.groups) t.flux_lm.push_back(g.flux_lm);
   if (!s.direct.empty()) {
     t.direct = &s.direct;

@@ -57,6 +57,10 @@ struct GroupedTallies {
   const std::vector<DirectPart>* direct = nullptr;
   std::vector<double> direct_scale;
   bool photons_reflect = true;  // false: a group with a direct part has no photon part
+  /// Above 1: a quasi-random run's replicates, `bins` holding one groups x bin_count block
+  /// each (replicate r's group g, bin b at (r * groups + g) * bin_count + b), `photons` each
+  /// group's photons over all replicates (model/replicates.hpp). tally() reads replicate 0.
+  std::size_t replicates = 1;
 
   const Tally& tally(std::size_t group, std::uint32_t bin) const {
     return (*bins)[group * bin_count + bin];
@@ -78,7 +82,8 @@ struct GroupedTallies {
 Estimate with_direct_part(const Estimate& photons, double lux, double variance, std::uint64_t lit,
                           double z);
 
-/// The tallies of a run over `bins` (groups x scene bins) after its first `photons` photons.
+/// The tallies of a run over `bins` (groups x scene bins) after its first `photons` photons;
+/// `bins` R times that long: a quasi-random run's R replicates of photons / R each.
 GroupedTallies grouped_tallies(const PreparedScene& s, const std::vector<Tally>& bins,
                                std::uint64_t photons);
 

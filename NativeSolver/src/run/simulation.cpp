@@ -24,6 +24,7 @@
 #include "model/groups.hpp"
 #include "prepare/scene_effects.hpp"
 #include "prepare/target_reach.hpp"
+#include "run/replicate_run.hpp"
 #include "run/shared_tracing.hpp"
 #include "run/simulation_state.hpp"
 #include "run/stop_policies.hpp"
@@ -374,8 +375,19 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
 // parts, kept for the next run with the same seed. The points are sized to the run: about one
 // shadow ray per two photons (a shadow ray costs about a photon segment), at least the defaults;
 // an accuracy goal refines them until no direct part's half-width passes half the goal.
-void Simulation::plan_direct_light(const Results& r) {
+void Simulation::plan_direct_light(const Results& r, bool quasi_random) {
   detail::PreparedScene& p = state_->prepared;
+  if (quasi_random && r.next_event != "off") {
+    // A sobol run's replicates estimate photon tallies only (model/replicates.hpp).
+    if (r.next_event == "on") {
+      throw InputError("", "next_event",
+                       "\"on\" does not go with sampler \"sobol\" (its replicates carry photon "
+                       "tallies only): use next_event \"off\" or the random sampler");
+    }
+    detail::plan_next_event(p, *state_->backend, "off");
+    p.next_event_off = "the sobol sampler's replicates carry photon tallies only";
+    return;
+  }
   detail::plan_next_event(p, *state_->backend, r.next_event);
   if (!std::any_of(p.groups.begin(), p.groups.end(),
                    [](const detail::PreparedGroup& g) { return g.next_event; })) {
@@ -437,13 +449,16 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   }
   state_->pending_update_seconds = 0.0;
   r.next_event = options.next_event.value_or(scene.settings.next_event);
-  plan_direct_light(r);
+  plan_direct_light(r, options.sampler == "sobol");
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   r.contributions = options.contributions.value_or(scene.settings.contributions);
   // Each group has its own tallies (groups x bins), so their estimates are independent.
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
-  detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size());
+  // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp).
+  const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
+  detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size() *
+                             (qmc ? qmc->replicates : 1));
   if (resume && state_->kept && state_->kept_seed == r.seed &&
       state_->kept_photons <= r.photons_requested &&
       state_->kept->bins.size() == tallies.bins.size()) {
@@ -451,7 +466,10 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     r.photons = state_->kept_photons;
   }
   double tracing_s = 0.0;
-  if (prepared.total_flux_lm > 0.0) {
+  if (qmc) {
+    tracing_s = detail::trace_replicates(*qmc, prepared, *state_->backend, state_->threads, options,
+                                         progress, tallies, r);
+  } else if (prepared.total_flux_lm > 0.0) {
     BatchLoop loop{scene,   prepared, *state_->backend, state_->threads,
                    options, progress, tallies,          r};
     tracing_s = loop.trace();
@@ -469,7 +487,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
                                   /*grid_intervals=*/true, r.contributions);
   r.groups = detail::group_results(
       scene, prepared,
-      detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));
+      qmc ? detail::grouped_tallies(prepared, tallies.bins, r.photons).photons
+          : detail::group_photons(prepared.groups, prepared.total_flux_lm > 0.0 ? r.photons : 0));
   r.luminaires = detail::luminaire_results(scene, prepared);
   state_->kept = std::move(tallies);  // what refine() continues from
   state_->kept_photons = r.photons;

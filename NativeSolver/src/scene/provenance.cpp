@@ -161,6 +161,10 @@ OptionValue resolved_option(std::string_view name, const Results& r, const Scene
   if (name == "contributions") return r.contributions;
   if (name == "next_event") return r.next_event;
   if (name == "max_bounces") return std::uint64_t{scene.settings.max_bounces};
+  if (name == "sampler") return r.sampler;
+  if (name == "replicates") {
+    return r.replicates ? OptionValue(std::uint64_t{r.replicates}) : OptionValue();
+  }
   throw std::logic_error("provenance: run option \"" + std::string(name) +
                          "\" has no resolved value (provenance.cpp)");
 }
