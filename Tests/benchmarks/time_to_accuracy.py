@@ -180,7 +180,7 @@ class Search:
                 hi //= 2
             lo = hi // 2
         for _ in range(steps):
-            mid = int(round(math.sqrt(lo * hi)))
+            mid = int(round(math.sqrt(lo * hi) / 64)) * 64  # a multiple of 64: sobol splits evenly
             if mid in (lo, hi):
                 break
             if self.error(mid) <= target:
