@@ -44,6 +44,25 @@ std::string cpu_device() {
   return model + " (Embree " RTC_VERSION_STRING ")";
 }
 
+// Embree wants denormals flushed in every tracing thread. TBB also runs chunks on the caller's
+// thread (Python's, say): its modes come back when the chunk ends.
+class DenormalsFlushed {
+ public:
+  DenormalsFlushed() : ftz_(_MM_GET_FLUSH_ZERO_MODE()), daz_(_MM_GET_DENORMALS_ZERO_MODE()) {
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+  }
+  ~DenormalsFlushed() {
+    _MM_SET_FLUSH_ZERO_MODE(ftz_);
+    _MM_SET_DENORMALS_ZERO_MODE(daz_);
+  }
+  DenormalsFlushed(const DenormalsFlushed&) = delete;
+  DenormalsFlushed& operator=(const DenormalsFlushed&) = delete;
+
+ private:
+  unsigned ftz_, daz_;
+};
+
 class EmbreeBackend final : public Backend {
  public:
   EmbreeBackend(const PreparedScene& s, EmbreeKernel kernel)
@@ -71,17 +90,12 @@ class EmbreeBackend final : public Backend {
     out.assign(rays.size(), 0);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        const unsigned ftz = _MM_GET_FLUSH_ZERO_MODE();
-                        const unsigned daz = _MM_GET_DENORMALS_ZERO_MODE();
-                        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-                        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+                        const DenormalsFlushed flushed;
                         RTCIntersectContext context;
                         rtcInitIntersectContext(&context);
                         for (std::size_t i = r.begin(); i != r.end(); ++i) {
                           out[i] = occluded(rays[i], context) ? 0 : 1;
                         }
-                        _MM_SET_FLUSH_ZERO_MODE(ftz);
-                        _MM_SET_DENORMALS_ZERO_MODE(daz);
                       });
   }
 
@@ -104,13 +118,7 @@ class EmbreeBackend final : public Backend {
         out.bins[r.group * bins + b].sum += part.bins[b].sum;
         out.bins[r.group * bins + b].sum_sq += part.bins[b].sum_sq;
       }
-      out.ray_segments += part.ray_segments;
-      out.capped_paths += part.capped_paths;
-      out.cut_paths += part.cut_paths;
-      out.retried_paths += part.retried_paths;
-      out.opening_photons += part.opening_photons;
-      out.opening_blocked += part.opening_blocked;
-      out.opening_glass += part.opening_glass;
+      out.add_counts(part);
     }
   }
 
@@ -132,17 +140,10 @@ class EmbreeBackend final : public Backend {
     tbb::enumerable_thread_specific<TallyBlock> local([&] { return TallyBlock(out.bins.size()); });
     tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, starts.back(), 256),
                       [&](const tbb::blocked_range<std::uint64_t>& r) {
-                        // Embree wants denormals flushed in every tracing thread. TBB also runs
-                        // chunks on the caller's thread (Python's, say): its modes come back.
-                        const unsigned ftz = _MM_GET_FLUSH_ZERO_MODE();
-                        const unsigned daz = _MM_GET_DENORMALS_ZERO_MODE();
-                        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-                        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+                        const DenormalsFlushed flushed;
                         with_kernel(kernel_, [&]<KernelFeatures F>() {
                           trace_range<F>(r.begin(), r.end(), photons, local.local());
                         });
-                        _MM_SET_FLUSH_ZERO_MODE(ftz);
-                        _MM_SET_DENORMALS_ZERO_MODE(daz);
                       });
     for (const TallyBlock& t : local) out.add(t);
   }

@@ -195,12 +195,22 @@ class Evaluator {
   std::vector<double> values_;  // per point of the pending jobs: its direct illuminance
 };
 
+// The surface targets' bins, each once (a target's meshes share its bin), in mesh order.
+std::vector<std::uint32_t> surface_bins(const PreparedScene& s) {
+  std::vector<std::uint32_t> bins;
+  for (const PreparedMesh& m : s.meshes) {
+    if (m.bin < 0 || m.normals.empty()) continue;
+    if (std::find(bins.begin(), bins.end(), std::uint32_t(m.bin)) == bins.end()) {
+      bins.push_back(std::uint32_t(m.bin));
+    }
+  }
+  return bins;
+}
+
 bool has_direct_targets(const PreparedScene& s) {
   const bool grids = std::any_of(s.grids.begin(), s.grids.end(),
                                  [](const PreparedGrid& g) { return !g.indirect_only; });
-  return grids || std::any_of(s.meshes.begin(), s.meshes.end(), [](const PreparedMesh& m) {
-           return m.bin >= 0 && !m.normals.empty();
-         });
+  return grids || !surface_bins(s).empty();
 }
 
 bool samples_directly(const PreparedScene& s, const PreparedGroup& g) {
@@ -245,13 +255,8 @@ std::uint64_t direct_ray_count(const PreparedScene& s, std::uint32_t strata_scal
   for (const PreparedGrid& grid : s.grids) {
     if (!grid.indirect_only) points += std::uint64_t(grid.nu) * grid.nv * 2 * side * side;
   }
-  std::vector<std::int32_t> bins;
-  for (const PreparedMesh& m : s.meshes) {
-    if (m.bin < 0 || m.normals.empty()) continue;
-    if (std::find(bins.begin(), bins.end(), m.bin) != bins.end()) continue;
-    bins.push_back(m.bin);
-    points += 2 * std::uint64_t(kSurfaceStrata) * strata_scale * strata_scale;
-  }
+  points +=
+      surface_bins(s).size() * 2 * std::uint64_t(kSurfaceStrata) * strata_scale * strata_scale;
   return points * luminaires;
 }
 
@@ -273,17 +278,10 @@ std::vector<DirectPart> direct_parts(const PreparedScene& s, Backend& backend, s
       }
     }
   }
+  const std::vector<std::uint32_t> bins = surface_bins(s);
   std::vector<Surface> surfaces;  // kept alive until finish(): the jobs point at them
-  std::vector<std::uint32_t> surface_bins;
-  for (const PreparedMesh& m : s.meshes) {
-    if (m.bin < 0 || m.normals.empty()) continue;
-    if (std::find(surface_bins.begin(), surface_bins.end(), std::uint32_t(m.bin)) ==
-        surface_bins.end()) {
-      surface_bins.push_back(std::uint32_t(m.bin));
-    }
-  }
-  surfaces.reserve(surface_bins.size());
-  for (const std::uint32_t bin : surface_bins) {
+  surfaces.reserve(bins.size());
+  for (const std::uint32_t bin : bins) {
     surfaces.push_back(surface_of(s, bin));
     if (surfaces.back().cdf.empty()) continue;
     Domain d;

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "lightsolver/statistics.hpp"
 #include "model/groups.hpp"
 #include "model/prepared_scene.hpp"
-#include "lightsolver/statistics.hpp"
 
 namespace lightsolver::detail {
 
@@ -31,6 +31,11 @@ struct TallyBlock {
       bins[i].sum += o.bins[i].sum;
       bins[i].sum_sq += o.bins[i].sum_sq;
     }
+    add_counts(o);
+  }
+  /// Adds `o`'s path and segment counters (not its bins: callers that lay bins out
+  /// differently place those themselves).
+  void add_counts(const TallyBlock& o) {
     ray_segments += o.ray_segments;
     capped_paths += o.capped_paths;
     cut_paths += o.cut_paths;

@@ -111,13 +111,7 @@ double trace_replicates(const ReplicatePlan& plan, const PreparedScene& prepared
   for (std::uint32_t k = 0; k < plan.replicates; ++k) {
     TallyBlock& p = parts[k];
     std::copy(p.bins.begin(), p.bins.end(), tallies.bins.begin() + k * block);
-    tallies.ray_segments += p.ray_segments;
-    tallies.capped_paths += p.capped_paths;
-    tallies.cut_paths += p.cut_paths;
-    tallies.retried_paths += p.retried_paths;
-    tallies.opening_photons += p.opening_photons;
-    tallies.opening_blocked += p.opening_blocked;
-    tallies.opening_glass += p.opening_glass;
+    tallies.add_counts(p);
   }
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
