@@ -77,20 +77,7 @@ TEST_F(VulkanBackendTest, SameSeedTracesTheSamePaths) {
 // times, far beyond the 16 the shader keeps, so the replay passes must restore exact per-path
 // counts: S and Q equal Embree's for the same seed.
 TEST_F(VulkanBackendTest, PathsTouchingManyBinsKeepExactPerPathCounts) {
-  Scene s;
-  add_material(s, "mirror", Material::Type::Mirror, 0.9);
-  s.meshes.push_back(quad_mesh("floor", 0, {-50, -50, 0}, {100, 0, 0}, {0, 100, 0}));
-  s.meshes.push_back(quad_mesh("ceiling", 0, {-50, -50, 4.2}, {0, 100, 0}, {100, 0, 0}));
-  for (int k = 0; k < 40; ++k) {
-    const double z = 0.1 * (k + 1);
-    if (k % 2) {
-      s.targets.push_back(
-          grid("up" + std::to_string(k), {-5, -5, z}, {10, 0, 0}, {0, 10, 0}, 1, 1));
-    } else {
-      s.targets.push_back(
-          grid("dn" + std::to_string(k), {-5, -5, z}, {0, 10, 0}, {10, 0, 0}, 1, 1));
-    }
-  }
+  Scene s = mirror_slab_with_grids();
   s.luminaires.push_back(point_light({0.1, 0.2, 2.05}, 1000));
   validate(s);
   const Results e = run(s, "embree", 20'000, 5), v = run(s, "vulkan", 20'000, 5);

@@ -40,21 +40,8 @@ std::uint64_t total(const detail::TallyBlock& t, std::size_t first, std::size_t 
 // target; two point lights in two groups. Specular paths: the same seed gives the same paths
 // on both backends, to the bit (as PathsTouchingManyBinsKeepExactPerPathCounts).
 Scene mirror_slab() {
-  Scene s;
-  add_material(s, "mirror", Material::Type::Mirror, 0.9);
-  s.meshes.push_back(quad_mesh("floor", 0, {-50, -50, 0}, {100, 0, 0}, {0, 100, 0}));
-  s.meshes.push_back(quad_mesh("ceiling", 0, {-50, -50, 4.2}, {0, 100, 0}, {100, 0, 0}));
+  Scene s = mirror_slab_with_grids();
   s.targets.push_back(surface("floor", 0));
-  for (int k = 0; k < 40; ++k) {
-    const double z = 0.1 * (k + 1);
-    if (k % 2) {
-      s.targets.push_back(
-          grid("up" + std::to_string(k), {-5, -5, z}, {10, 0, 0}, {0, 10, 0}, 1, 1));
-    } else {
-      s.targets.push_back(
-          grid("dn" + std::to_string(k), {-5, -5, z}, {0, 10, 0}, {10, 0, 0}, 1, 1));
-    }
-  }
   s.luminaires.push_back(named(point_light({0.1, 0.2, 2.05}, 1000), "a", "a"));
   s.luminaires.push_back(named(point_light({-1.3, 0.7, 1.55}, 500), "b", "b"));
   validate(s);
