@@ -126,7 +126,7 @@ class Simulation {
   /// photons are this trace's first ones, so only the rest are traced (the result is the trace
   /// from photon 0, bit for bit). Throws InputError for an unknown group or one without flux,
   /// for next_event "on" where no group can have it, and std::invalid_argument for a prefix of
-  /// another group, seed or a larger run.
+  /// another group, seed, next-event plan or a larger run.
   GroupTrace trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
                          const std::shared_ptr<ProcessGroup>& processes = nullptr,
                          const GroupTrace* prefix = nullptr);

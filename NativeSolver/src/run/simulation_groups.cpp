@@ -120,6 +120,10 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
   // Its direct light by shadow rays where the setting plans it (the plan also tells the
   // backend to skip this group's bounce-0 deposits).
   detail::plan_next_event(p, *state_->backend, scene.settings.next_event);
+  if (prefix && prefix->next_event_off.empty() != p.groups[group].next_event) {
+    // Its photons deposited their bounce-0 light, or not, as this trace's must not.
+    throw std::invalid_argument("trace_group: the prefix was traced with another next_event");
+  }
   if (p.groups[group].next_event) {
     trace_direct_part(out, prefix);
   } else {

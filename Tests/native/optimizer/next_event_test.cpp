@@ -163,6 +163,39 @@ TEST(GroupTraceNextEvent, PointOverSurfaceTargetIsTheClosedForm) {
   }
 }
 
+// A trace continued from its first part (the staged refinement's first stage) is the trace
+// from photon 0, bit for bit, with and without next-event estimation; a prefix of another
+// seed, a larger run or another next-event plan is refused.
+TEST(GroupTraceNextEvent, ContinuedTraceIsTheWholeTraceBitForBit) {
+  for (const std::string mode : {"off", "on"}) {
+    Simulation sim(parse(desk_room(0.5, mode)).scene, Simulation::Options{"embree", 2, {}});
+    const GroupTrace whole = sim.trace_group(0, 80'000, 21);
+    const GroupTrace first = sim.trace_group(0, 20'000, 21);
+    const GroupTrace rest = sim.trace_group(0, 80'000, 21, nullptr, &first);
+    ASSERT_EQ(whole.bins.size(), rest.bins.size());
+    for (std::size_t b = 0; b < whole.bins.size(); ++b) {
+      EXPECT_EQ(whole.bins[b].sum, rest.bins[b].sum) << mode;
+      EXPECT_EQ(whole.bins[b].sum_sq, rest.bins[b].sum_sq) << mode;
+    }
+    EXPECT_EQ(whole.ray_segments, rest.ray_segments);
+    EXPECT_EQ(whole.photons, rest.photons);
+    ASSERT_EQ(whole.direct.size(), rest.direct.size());
+    EXPECT_EQ(whole.direct.empty(), mode == "off");
+    for (std::size_t b = 0; b < whole.direct.size(); ++b) {
+      EXPECT_EQ(whole.direct[b].lux, rest.direct[b].lux);
+      EXPECT_EQ(whole.direct[b].variance, rest.direct[b].variance);
+    }
+    EXPECT_THROW(sim.trace_group(0, 80'000, 22, nullptr, &first), std::invalid_argument);
+    EXPECT_THROW(sim.trace_group(0, 10'000, 21, nullptr, &first), std::invalid_argument);
+  }
+  Scene on = parse(desk_room(0.5, "on")).scene, off = on;
+  off.settings.next_event = "off";
+  Simulation with(on, Simulation::Options{"embree", 2, {}});
+  Simulation without(off, Simulation::Options{"embree", 2, {}});
+  const GroupTrace photons_only = without.trace_group(0, 20'000, 21);
+  EXPECT_THROW(with.trace_group(0, 80'000, 21, nullptr, &photons_only), std::invalid_argument);
+}
+
 // The same search (seeds fixed) with and without next-event estimation: both keep the cell over
 // the desk, which the closed form says is best by far (the next cells get 0.62 of its direct
 // light); with it the intervals are narrower, so its ISOC is no larger; the results say which.
