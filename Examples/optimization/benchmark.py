@@ -11,11 +11,19 @@ did). Usage: benchmark.py PATH/TO/lightsolver [--threads 2] [--cap 300] [--reuse
 --reuse: instead, the adaptive runs with reused group traces (the default) against
 --no-reuse (every group traced for every evaluation), with the photons actually traced per
 evaluation; small_room (a flux variable) is added.
+
+--nee [--rounds R]: instead, issue 28's Table II before and after: "before" is the search as it
+was (--next-event off --refine-stage-photons 0: direct light by photons, every n-level member
+traced with N at the end), "after" next-event estimation (--next-event auto) and the staged end
+refinement (the default, N/4 first), run interleaved scene by scene, R rounds, with the load
+average before each run; per configuration the minimum over the rounds. A staged member's two
+traces count as one evaluation (the denominator is the search's evaluations as before staging).
 """
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import platform
 import signal
 import subprocess
@@ -49,6 +57,7 @@ def run(cli: str, scene: str, iterations: int | None, static: bool, threads: int
     c = r["counters"]
     c["isoc"] = [m.get("scene") for m in r["isoc"]]
     c["stop"] = r["stop"]
+    c["next_event"] = r.get("next_event", {})
     return c
 
 
@@ -89,6 +98,58 @@ def reuse_table(a: argparse.Namespace) -> None:
               f"reuse {len(r['isoc'])} {r['isoc'][:3]}")
 
 
+NEE_CONFIGS = {"before": ("--next-event", "off", "--refine-stage-photons", "0"),
+               "after": ("--next-event", "auto")}
+
+
+def search_ms(c: dict) -> float:
+    """Milliseconds per evaluation of the search, a staged member's two traces counted once."""
+    return 1e3 * c["total_seconds"] / max(c["evaluations"] - c.get("refine_stage", 0), 1)
+
+
+def nee_table(a: argparse.Namespace) -> None:
+    """Issue 28: before (photons only, unstaged) and after (NEE, staged), interleaved."""
+    runs: dict[tuple[str, str], list[dict]] = {}
+    for rnd in range(a.rounds):
+        for scene, iterations, _ in RUNS:
+            for name, extra in NEE_CONFIGS.items():
+                load = os.getloadavg()[0]
+                c = run(a.cli, scene, iterations, False, a.threads, a.cap, extra)
+                c["load"] = load
+                c["ms"] = search_ms(c)
+                runs.setdefault((scene, name), []).append(c)
+                print(f"round {rnd + 1} {scene} {name}: {c['ms']:.2f} ms/evaluation, load "
+                      f"{load:.2f}, {c['evaluations']} evaluations, refined {c['refined']}, "
+                      f"ISOC {len(c['isoc'])}", flush=True)
+    best = {k: min(v, key=lambda c: c["ms"]) for k, v in runs.items()}
+    scenes = [scene for scene, _, _ in RUNS]
+    print("\n| per evaluation (min over rounds) | " + " | ".join(
+        f"{s} before | {s} after" for s in scenes) + " |")
+    print("|---|" + "---|---|" * len(scenes))
+
+    def line(label: str, f) -> None:
+        print(f"| {label} | " + " | ".join(f(best[(s, 'before')]) + " | " + f(best[(s, 'after')])
+                                         for s in scenes) + " |")
+
+    line("ms per evaluation", lambda c: f"{c['ms']:.2f}")
+    line("load average before the run", lambda c: f"{c['load']:.2f}")
+    line("evaluations (first-stage traces)",
+         lambda c: f"{c['evaluations']} ({c.get('refine_stage', 0)})")
+    line("N traces at the end (left out)",
+         lambda c: f"{c['refined']} ({c.get('refine_dropped', 0)})")
+    line("photons per evaluation",
+         lambda c: f"{c['photons_traced'] / max(c['evaluations'] - c.get('refine_stage', 0), 1):.4g}")
+    line("whole search, s", lambda c: f"{c['total_seconds']:.1f}")
+    line("ISOC size", lambda c: f"{len(c['isoc'])}")
+    line("best member", lambda c: json.dumps(c["isoc"][0]) if c["isoc"] else "-")
+    line("next-event estimation", lambda c: "on" if c.get("next_event", {}).get("direct") else "off")
+    for s in scenes:
+        b, r = best[(s, "before")], best[(s, "after")]
+        print(f"{s}: {b['ms'] / r['ms']:.2f}x per evaluation; all rounds before "
+              f"{[round(c['ms'], 2) for c in runs[(s, 'before')]]}, after "
+              f"{[round(c['ms'], 2) for c in runs[(s, 'after')]]}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("cli")
@@ -96,10 +157,17 @@ def main() -> None:
     ap.add_argument("--cap", type=float, default=300.0)
     ap.add_argument("--reuse", action="store_true",
                     help="reused group traces against --no-reuse (issue 15)")
+    ap.add_argument("--nee", action="store_true",
+                    help="next-event estimation and the staged refinement against neither "
+                         "(issue 28), interleaved")
+    ap.add_argument("--rounds", type=int, default=2, help="--nee: rounds of the interleaving")
     a = ap.parse_args()
     print(f"machine: {platform.processor() or platform.machine()}, {a.threads} threads")
     if a.reuse:
         reuse_table(a)
+        return
+    if a.nee:
+        nee_table(a)
         return
     rows = {}
     for scene, it_adaptive, it_static in RUNS:

@@ -54,6 +54,11 @@ void print_summary(const opt::SceneProblem& p, const opt::OptimizationResult& r)
   std::printf("per iteration: update %.2f ms, tracing %.2f ms, rest %.2f ms, total %.2f ms\n",
               1e3 * c.update_seconds / it, 1e3 * c.trace_seconds / it, 1e3 * c.other_seconds / it,
               1e3 * c.total_seconds / it);
+  if (r.next_event) {
+    std::printf("next-event estimation (%s): %s\n", r.next_event->setting.c_str(),
+                r.next_event->direct ? "direct light by shadow rays"
+                                     : ("off: " + r.next_event->reason).c_str());
+  }
   if (r.isoc.empty()) {
     std::printf("ISOC: empty (no configuration met the constraints)\n");
     return;
@@ -117,9 +122,16 @@ void add_optimize_command(CLI::App& app) {
                   "n: photons of the first trace of every candidate");
   cmd->add_option("--confirmation-photons", args->overrides.confirmation_photons,
                   "N: photons of precise traces");
+  cmd->add_option("--refine-stage-photons", args->overrides.refine_stage_photons,
+                  "Strategy B: photons of the end refinement's first stage (0: every member "
+                  "with N at once; default N/4)");
   cmd->add_flag("--static", args->static_n, "Always trace with N photons (no screening)");
   cmd->add_flag("--no-reuse", args->no_reuse,
                 "Trace every luminaire group for every evaluation (search.reuse_traces = false)");
+  cmd->add_option("--next-event", args->overrides.next_event,
+                  "Direct light at the targets by shadow rays: auto, on or off (overrides "
+                  "settings.next_event)")
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   cmd->add_flag("--quiet,-q", args->quiet, "No per-iteration lines");
   cmd->callback([args] {
     int rc = 1;

@@ -27,6 +27,15 @@ struct LuminaireGroup {
   double flux_lm = 0.0;                 ///< emitted as the scene stands (photometric tilt included)
 };
 
+/// A group's direct light in one tally bin by next-event estimation (docs/statistics.md,
+/// "Next-event estimation"): the stratified mean of its shadow-ray points, its variance and the
+/// points that saw the light.
+struct DirectLight {
+  double lux = 0.0;
+  double variance = 0.0;  ///< lx^2
+  std::uint64_t lit = 0;
+};
+
 /// One group's tallies, traced alone by Simulation::trace_group and summed into results by
 /// Simulation::combine: the optimizer re-traces only the groups a configuration changes.
 struct GroupTrace {
@@ -35,6 +44,16 @@ struct GroupTrace {
   std::uint64_t photons = 0;      ///< this group's share of them
   std::uint64_t seed = 0;
   std::vector<Tally> bins;  ///< one per tally bin of the scene (layout internal)
+  /// Next-event estimation, as the scene's `settings.next_event` plans it for this group: its
+  /// direct light per bin (same layout as `bins`) by shadow rays, at `flux_lm`; its photons
+  /// then tally only light scattered at least once. Empty: the photons carry all its light,
+  /// and `next_event_off` says why.
+  std::vector<DirectLight> direct;
+  double flux_lm = 0.0;  ///< the group's flux as traced (direct parts scale with it)
+  bool photons_reflect =
+      true;  ///< false: nothing returns light (a direct group's photon part is 0)
+  std::uint64_t shadow_rays = 0;  ///< traced for `direct` (at most)
+  std::string next_event_off;     ///< why `direct` is empty
   std::uint64_t ray_segments = 0, capped_paths = 0, cut_paths = 0;
   OpeningCounts openings;  ///< daylight photons blocked outside their openings
   /// When it was traced and by how many processes (the combined results' provenance).
@@ -99,11 +118,18 @@ class Simulation {
   void fix_photon_shares(const std::vector<double>& weights);
 
   /// Traces group `group` alone, as the scene stands: its share of a run of `run_photons`
-  /// photons with `seed`. Equal, bit for bit, to that group's tallies in run() with the same
-  /// photons and seed. `processes`: MPI ranks sharing the trace (null: alone). Throws InputError
-  /// for an unknown group or one without flux.
+  /// photons with `seed`, and its direct parts where the scene's `settings.next_event` plans
+  /// them (points sized to the run as run() sizes them). Equal, bit for bit, to that group's
+  /// tallies and direct parts in run() with the same photons and seed (and no accuracy goal or
+  /// decide). `processes`: MPI ranks sharing the trace (null: alone). `prefix`: this group's
+  /// trace with the same seed and at most `run_photons`, made with the scene as it stands: its
+  /// photons are this trace's first ones, so only the rest are traced (the result is the trace
+  /// from photon 0, bit for bit). Throws InputError for an unknown group or one without flux,
+  /// for next_event "on" where no group can have it, and std::invalid_argument for a prefix of
+  /// another group, seed, next-event plan or a larger run.
   GroupTrace trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
-                         const std::shared_ptr<ProcessGroup>& processes = nullptr);
+                         const std::shared_ptr<ProcessGroup>& processes = nullptr,
+                         const GroupTrace* prefix = nullptr);
 
   /// Results from groups traced apart: `traces[g]` for group g (null: the group is dark, and
   /// its flux must be 0) and
@@ -114,6 +140,9 @@ class Simulation {
   /// flux; 0 for a dark group) and a provenance as run() does: the scene's source (none after
   /// a change in memory), the traces' photons, processes, times and the simulation's backend,
   /// device and threads; its `seed` option is null when the traces have different seeds.
+  /// Direct parts (GroupTrace::direct) are scaled by flux_lm[g] / the trace's flux and added to
+  /// the photons' estimates as run() adds them; `next_event` is the scene's setting and the
+  /// effects list says whether any group had direct parts (next_event_direct).
   /// Throws std::invalid_argument when the traces do not fit the scene.
   Results combine(const std::vector<const GroupTrace*>& traces, const std::vector<double>& flux_lm,
                   double confidence) const;
@@ -123,6 +152,7 @@ class Simulation {
                                  const Results& r) const;
   Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);
   void plan_direct_light(const Results& r, bool quasi_random);
+  void trace_direct_part(GroupTrace& trace, const GroupTrace* prefix);
   std::unique_ptr<detail::SimulationState> state_;
 };
 

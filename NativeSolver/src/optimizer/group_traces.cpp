@@ -109,6 +109,7 @@ std::size_t TraceCache::Hash::operator()(const Key& k) const {
   std::uint64_t h = k.group * 0x9E3779B97F4A7C15ull;
   h ^= k.sub + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
   h ^= k.photons + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+  h ^= k.level + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
   return static_cast<std::size_t>(h);
 }
 
@@ -121,9 +122,14 @@ std::shared_ptr<const GroupTrace> TraceCache::find(const Key& k) {
 
 void TraceCache::insert(const Key& k, std::shared_ptr<const GroupTrace> t) {
   const auto size = [](const GroupTrace& g) {
-    return sizeof(GroupTrace) + g.bins.size() * sizeof(Tally);
+    return sizeof(GroupTrace) + g.bins.size() * sizeof(Tally) +
+           g.direct.size() * sizeof(DirectLight);
   };
   if (map_.count(k)) return;
+  if (k.level > k.photons) {
+    std::uint64_t& most = prefixes_[Key{k.group, k.sub, 0, k.level}];
+    most = std::max(most, k.photons);
+  }
   bytes_ += size(*t);
   order_.emplace_front(k, std::move(t));
   map_[k] = order_.begin();
@@ -132,6 +138,12 @@ void TraceCache::insert(const Key& k, std::shared_ptr<const GroupTrace> t) {
     map_.erase(order_.back().first);
     order_.pop_back();
   }
+}
+
+std::shared_ptr<const GroupTrace> TraceCache::find_prefix(const Key& k) {
+  const auto it = prefixes_.find(Key{k.group, k.sub, 0, k.photons});
+  if (it == prefixes_.end() || it->second >= k.photons) return nullptr;
+  return find(Key{k.group, k.sub, it->second, k.photons});  // null when dropped since
 }
 
 }  // namespace lightsolver::optimizer::reuse

@@ -49,17 +49,22 @@ double installed_flux_lm(const SceneProblem& p, const TracePlan& plan, const Sce
 std::uint64_t sub_configuration(const Domain& d, const TracePlan& plan, std::size_t group,
                                 const Configuration& cells);
 
-/// Group traces by (group, sub-configuration, photons), least recently used dropped beyond a
-/// memory budget. Dropping changes no result: a trace is a function of its key.
+/// Group traces by (group, sub-configuration, photons, seed level), least recently used
+/// dropped beyond a memory budget. Dropping changes no result: a trace is a function of its
+/// key. `level`: the photon level whose seed the trace has (its photons, or more for the first
+/// stage of a staged refinement, whose trace the level's continues).
 class TraceCache {
  public:
   struct Key {
-    std::uint64_t group, sub, photons;
+    std::uint64_t group, sub, photons, level;
     bool operator==(const Key&) const = default;
   };
   explicit TraceCache(std::size_t max_bytes) : max_bytes_(max_bytes) {}
   std::shared_ptr<const GroupTrace> find(const Key& k);
   void insert(const Key& k, std::shared_ptr<const GroupTrace> t);
+  /// The kept trace with the most photons below `k.photons` that has k's group,
+  /// sub-configuration and seed level `k.photons`: the first part of k's trace (null: none).
+  std::shared_ptr<const GroupTrace> find_prefix(const Key& k);
   std::size_t bytes() const { return bytes_; }
 
  private:
@@ -69,6 +74,8 @@ class TraceCache {
   using Entry = std::pair<Key, std::shared_ptr<const GroupTrace>>;
   std::list<Entry> order_;  // most recently used first
   std::unordered_map<Key, std::list<Entry>::iterator, Hash> map_;
+  // (group, sub, level) -> photons of the first-stage traces inserted with a level above them.
+  std::unordered_map<Key, std::uint64_t, Hash> prefixes_;
   std::size_t max_bytes_, bytes_ = 0;
 };
 

@@ -9,8 +9,9 @@
 namespace lightsolver::optimizer {
 
 Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, bool reuse_traces,
-                             const std::string& backend, const std::string& device, int threads,
-                             int mpi_ranks, const std::string& command,
+                             const std::string& next_event, const std::string& backend,
+                             const std::string& device, int threads, int mpi_ranks,
+                             const std::string& command,
                              std::chrono::system_clock::time_point started,
                              std::chrono::system_clock::time_point finished) {
   Provenance p;
@@ -41,6 +42,8 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
       {"min_spacing_m", problem.min_spacing_m},
       {"neighbourhood",
        std::string(s.neighbourhood == Neighbourhood::kAxis ? "axis" : "chebyshev")},
+      {"next_event", next_event},
+      {"refine_stage_photons", U{s.refine_stage_photons}},
       {"reuse_traces", reuse_traces},
       {"screening_photons", U{s.screening_photons}},
       {"seed", U{s.seed}},

@@ -50,6 +50,8 @@ json counters_json(const Counters& c) {
           {"confirmations", c.confirmations},
           {"infeasible", c.infeasible},
           {"refined", c.refined},
+          {"refine_stage", c.refine_stage},
+          {"refine_dropped", c.refine_dropped},
           {"inadmissible", c.inadmissible},
           {"cases", std::move(cases)},
           {"update_seconds", c.update_seconds},
@@ -80,15 +82,21 @@ std::string to_json(const OptimizationResult& r, int indent) {
   for (const ResultMember& m : r.isoc) isoc.push_back(member_json(m));
   json history = json::array();
   for (const IterationStats& s : r.history) history.push_back(iteration_json(s));
-  const json j = {{"format", kOptimizationFormat},
-                  {"goal", r.goal == Goal::kMaximize ? "maximize" : "minimize"},
-                  {"confidence", r.confidence},
-                  {"stop", to_string(r.stop)},
-                  {"variables", r.variable_names},
-                  {"siisoc", r.isoc.empty() ? json(nullptr) : interval_json(r.siisoc)},
-                  {"isoc", std::move(isoc)},
-                  {"counters", counters_json(r.counters)},
-                  {"history", std::move(history)}};
+  json j = {{"format", kOptimizationFormat},
+            {"goal", r.goal == Goal::kMaximize ? "maximize" : "minimize"},
+            {"confidence", r.confidence},
+            {"stop", to_string(r.stop)},
+            {"variables", r.variable_names},
+            {"siisoc", r.isoc.empty() ? json(nullptr) : interval_json(r.siisoc)},
+            {"isoc", std::move(isoc)},
+            {"counters", counters_json(r.counters)},
+            {"history", std::move(history)}};
+  if (r.next_event) {
+    j["next_event"] = {
+        {"setting", r.next_event->setting},
+        {"direct", r.next_event->direct},
+        {"reason", r.next_event->direct ? json(nullptr) : json(r.next_event->reason)}};
+  }
   return j.dump(indent);
 }
 

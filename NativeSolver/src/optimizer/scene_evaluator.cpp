@@ -200,13 +200,28 @@ struct SceneEvaluator::Reuse {
   }
 };
 
+namespace {
+
+// The problem's scene with the search's next-event setting (the Simulation validates it).
+Scene with_next_event(const Scene& scene, const std::optional<std::string>& next_event) {
+  Scene s = scene;
+  if (next_event) s.settings.next_event = *next_event;
+  return s;
+}
+
+}  // namespace
+
 SceneEvaluator::SceneEvaluator(const SceneProblem& problem, int threads, const std::string& backend,
                                std::shared_ptr<ProcessGroup> processes,
-                               std::optional<bool> reuse_traces)
+                               std::optional<bool> reuse_traces,
+                               const std::optional<std::string>& next_event)
     : problem_(problem),
-      simulation_(problem.scene, Simulation::Options{backend, threads, problem.movable_meshes()}),
+      simulation_(with_next_event(problem.scene, next_event),
+                  Simulation::Options{backend, threads, problem.movable_meshes()}),
       confidence_(problem.search.confidence),
       processes_(std::move(processes)) {
+  next_event_.setting = simulation_.scene().settings.next_event;
+  next_event_.reason = "no evaluation yet";
   const bool reuse = reuse_traces.value_or(problem.reuse_traces);
   reuse_ = std::make_unique<Reuse>(Reuse{reuse::plan_traces(problem, simulation_.groups(), reuse),
                                          reuse::TraceCache(reuse ? kTraceCacheBytes : 0),
@@ -253,6 +268,19 @@ Estimate SceneEvaluator::metric(const Metric& m) const {
   throw std::logic_error("optimizer: the scene evaluator has no custom metrics");
 }
 
+// Whether this evaluation had direct parts: once one had, the search did.
+void SceneEvaluator::note_next_event(const Results& r) {
+  if (next_event_.direct) return;
+  for (const SkippedEffect& e : r.effects.skipped) {
+    if (e.effect == "next_event_direct") {
+      next_event_.reason = e.reason;
+      return;
+    }
+  }
+  next_event_.direct = true;
+  next_event_.reason.clear();
+}
+
 Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
   Evaluation e;
   const auto start = Clock::now();
@@ -268,18 +296,22 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
     k.flux_lm[g] = groups[g].flux_lm * reuse::flux_factor(problem_, k.plan, g, r.values);
     if (!(k.flux_lm[g] > 0.0)) continue;  // dark: its part is exactly zero, nothing to trace
     const std::uint64_t sub = reuse::sub_configuration(problem_.domain, k.plan, g, r.cells);
-    const reuse::TraceCache::Key key{g, sub, r.photons};
+    const std::uint64_t level = r.seed_photons ? r.seed_photons : r.photons;
+    const reuse::TraceCache::Key key{g, sub, r.photons, level};
     k.traces[g] = k.cache.find(key);
     if (k.traces[g]) continue;
     // A group that depends on the whole configuration gets the request's own seed.
     const std::uint64_t seed =
-        sub == r.cell_index ? r.seed : evaluation_seed(r.run_seed, sub, r.photons);
-    k.traces[g] =
-        std::make_shared<const GroupTrace>(simulation_.trace_group(g, r.photons, seed, processes_));
-    traced += k.traces[g]->photons;
+        sub == r.cell_index ? r.seed : evaluation_seed(r.run_seed, sub, level);
+    // A staged refinement's first stage of this trace: continue it (same photons, bit for bit).
+    const std::shared_ptr<const GroupTrace> prefix = k.cache.find_prefix(key);
+    k.traces[g] = std::make_shared<const GroupTrace>(
+        simulation_.trace_group(g, r.photons, seed, processes_, prefix.get()));
+    traced += k.traces[g]->photons - (prefix ? prefix->photons : 0);
     k.cache.insert(key, k.traces[g]);
   }
   last_ = simulation_.combine(k.parts(), k.flux_lm, confidence_);
+  note_next_event(last_);
   k.installed_lm = reuse::installed_flux_lm(problem_, k.plan, simulation_.scene(), r.values);
   e.trace_seconds = seconds_since(trace_start);
   e.photons_traced = traced;
@@ -289,6 +321,14 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
   return e;
 }
 
+std::uint64_t stage_photons(const SceneProblem& problem, const RunOverrides& o,
+                            const VnsOptions& search) {
+  if (search.strategy != PhotonStrategy::kRefineAtEnd) return 0;
+  const std::uint64_t n1 = o.refine_stage_photons.value_or(
+      problem.refine_stage_photons.value_or(search.confirmation_photons / 4));
+  return n1 < search.confirmation_photons ? n1 : 0;  // as many as N: unstaged
+}
+
 OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& o,
                                const Control& control) {
   VnsOptions opt = problem.search;
@@ -296,14 +336,17 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
   if (o.seed) opt.seed = *o.seed;
   if (o.screening_photons) opt.screening_photons = *o.screening_photons;
   if (o.confirmation_photons) opt.confirmation_photons = *o.confirmation_photons;
+  opt.refine_stage_photons = stage_photons(problem, o, opt);
   const auto started = std::chrono::system_clock::now();
-  SceneEvaluator evaluator(problem, o.threads, o.backend, o.processes, o.reuse_traces);
+  SceneEvaluator evaluator(problem, o.threads, o.backend, o.processes, o.reuse_traces,
+                           o.next_event);
   OptimizationResult r = optimize(problem.domain, problem.intention, evaluator, opt, control);
+  r.next_event = evaluator.next_event_use();
   const int threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
-  r.provenance = search_provenance(problem, opt, o.reuse_traces.value_or(problem.reuse_traces),
-                                   evaluator.backend_name(), evaluator.device(), threads,
-                                   o.processes ? o.processes->size() : 1, o.command, started,
-                                   std::chrono::system_clock::now());
+  r.provenance = search_provenance(
+      problem, opt, o.reuse_traces.value_or(problem.reuse_traces), r.next_event->setting,
+      evaluator.backend_name(), evaluator.device(), threads, o.processes ? o.processes->size() : 1,
+      o.command, started, std::chrono::system_clock::now());
   return r;
 }
 

@@ -351,7 +351,8 @@ std::vector<Configuration> read_initial(const JsonNode& n, const Domain& d) {
 VnsOptions read_search(const JsonNode& n, const SceneProblem& p) {
   n.require_object({"seed", "confidence", "screening_photons", "confirmation_photons", "strategy",
                     "uncertain", "max_iterations", "max_evaluations", "starts", "kmax",
-                    "local_search", "neighbourhood", "initial", "min_spacing_m", "reuse_traces"});
+                    "local_search", "neighbourhood", "initial", "min_spacing_m", "reuse_traces",
+                    "refine_stage_photons"});
   VnsOptions o;
   o.confidence = p.scene.settings.confidence;
   if (n.has("seed")) o.seed = n.at("seed").unsigned_integer();
@@ -369,6 +370,12 @@ VnsOptions read_search(const JsonNode& n, const SceneProblem& p) {
   if (n.has("strategy")) {
     o.strategy = choice<PS>(n.at("strategy"),
                             {{"confirm", PS::kConfirm}, {"refine_at_end", PS::kRefineAtEnd}});
+  }
+  if (n.has("refine_stage_photons")) {  // SceneProblem::refine_stage_photons (read_block)
+    o.refine_stage_photons = n.at("refine_stage_photons").unsigned_integer();
+    if (o.refine_stage_photons >= o.confirmation_photons) {
+      n.at("refine_stage_photons").fail("must be below confirmation_photons (0: unstaged)");
+    }
   }
   if (n.has("uncertain")) {
     o.uncertain = choice<UncertainPolicy>(
@@ -415,6 +422,9 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
     p.search.confidence = p.scene.settings.confidence;
   }
   if (root.has("search")) p.reuse_traces = root.at("search").boolean_or("reuse_traces", true);
+  if (root.has("search") && root.at("search").has("refine_stage_photons")) {
+    p.refine_stage_photons = p.search.refine_stage_photons;
+  }
   if (root.has("search") && root.at("search").has("min_spacing_m")) {
     const JsonNode spacing = root.at("search").at("min_spacing_m");
     p.min_spacing_m = spacing.number();

@@ -9,11 +9,12 @@
 #include <stdexcept>
 
 #include "estimate/decide.hpp"
+#include "estimate/next_event.hpp"
 #include "estimate/run_results.hpp"
 #include "lightsolver/simulation.hpp"
 #include "model/groups.hpp"
+#include "prepare/scene_effects.hpp"
 #include "run/shared_tracing.hpp"
-#include "estimate/next_event.hpp"
 #include "run/simulation_state.hpp"
 #include "scene/provenance.hpp"
 
@@ -51,12 +52,50 @@ void Simulation::fix_photon_shares(const std::vector<double>& weights) {
   state_->kept.reset();  // photon i of a group is another photon of the run now
 }
 
+// Group `t.group`'s direct parts (next-event estimation), its points sized as run() sizes
+// them for a run of t.run_photons photons (about one shadow ray per two photons over every
+// planned group: estimate/next_event.hpp), so that combining every group's trace equals run().
+// Only this group's points are traced: each group's points have their own random stream.
+void Simulation::trace_direct_part(GroupTrace& t, const GroupTrace* prefix) {
+  detail::PreparedScene& p = state_->prepared;
+  const double rays = double(detail::direct_ray_count(p, 1));
+  const double fit = rays > 0.0 ? std::sqrt(0.5 * double(t.run_photons) / rays) : 1.0;
+  const auto scale = static_cast<std::uint32_t>(std::clamp(fit, 1.0, 16.0));
+  std::vector<bool> planned;
+  for (detail::PreparedGroup& g : p.groups) {
+    planned.push_back(g.next_event);
+    g.next_event = false;
+  }
+  p.groups[t.group].next_event = true;
+  t.shadow_rays = detail::direct_ray_count(p, scale);
+  t.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
+  if (prefix && !prefix->direct.empty() && prefix->shadow_rays == t.shadow_rays) {
+    // The same points (seed, strata) as the prefix's: its direct parts are this trace's.
+    for (std::size_t g = 0; g < planned.size(); ++g) p.groups[g].next_event = planned[g];
+    t.direct = prefix->direct;
+    return;
+  }
+  std::vector<detail::DirectPart> parts;
+  tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
+  try {
+    arena.execute([&] { parts = detail::direct_parts(p, *state_->backend, t.seed, scale); });
+  } catch (...) {
+    for (std::size_t g = 0; g < planned.size(); ++g) p.groups[g].next_event = planned[g];
+    throw;
+  }
+  for (std::size_t g = 0; g < planned.size(); ++g) p.groups[g].next_event = planned[g];
+  const std::size_t bins = p.bins.size(), first = t.group * bins;
+  t.direct.resize(bins);
+  for (std::size_t b = 0; b < bins; ++b) {
+    const detail::DirectPart& d = parts[first + b];
+    t.direct[b] = {d.lux, d.variance, d.lit};
+  }
+}
+
 GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
-                                   const std::shared_ptr<ProcessGroup>& processes) {
-  // Group traces carry photon tallies only: their direct light is traced by photons (a
-  // combine() of them has no direct parts).
-  detail::plan_next_event(state_->prepared, *state_->backend, "off");
-  const detail::PreparedScene& p = state_->prepared;
+                                   const std::shared_ptr<ProcessGroup>& processes,
+                                   const GroupTrace* prefix) {
+  detail::PreparedScene& p = state_->prepared;
   const Scene& scene = state_->scene;
   if (group >= p.groups.size()) {
     throw InputError(scene.source_file, "group", "no luminaire group " + std::to_string(group));
@@ -66,6 +105,10 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
                      "luminaire group \"" + p.groups[group].name + "\" has no flux to trace");
   }
   check_photon_count(run_photons, scene.settings.max_bounces, "", "photons");
+  if (prefix && (prefix->group != group || prefix->seed != seed ||
+                 prefix->run_photons > run_photons || prefix->bins.size() != p.bins.size())) {
+    throw std::invalid_argument("trace_group: the prefix is not this group's, seed's or run's");
+  }
   GroupTrace out;
   out.started = std::chrono::system_clock::now();
   out.mpi_ranks = processes ? processes->size() : 1;
@@ -73,13 +116,43 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
   out.run_photons = run_photons;
   out.photons = detail::group_photons(p.groups, run_photons)[group];
   out.seed = seed;
+  out.flux_lm = p.groups[group].flux_lm;
+  // Its direct light by shadow rays where the setting plans it (the plan also tells the
+  // backend to skip this group's bounce-0 deposits).
+  detail::plan_next_event(p, *state_->backend, scene.settings.next_event);
+  if (prefix && prefix->next_event_off.empty() != p.groups[group].next_event) {
+    // Its photons deposited their bounce-0 light, or not, as this trace's must not.
+    throw std::invalid_argument("trace_group: the prefix was traced with another next_event");
+  }
+  if (p.groups[group].next_event) {
+    trace_direct_part(out, prefix);
+  } else {
+    out.next_event_off = p.next_event_off.empty()
+                             ? "luminaire group \"" + p.groups[group].name +
+                                   "\" has a luminaire without direct sampling (sky, sun)"
+                             : p.next_event_off;
+  }
   // The backends write group g's bins at g x bins: a block for every group, one group filled.
   const std::size_t bins = p.bins.size();
   detail::TallyBlock block(p.groups.size() * bins);
-  if (out.photons > 0) {
+  // A prefix's photons are this trace's first ones (group_photons is monotone in the run's
+  // photons, photon i of a group's stream is photon i): continue after them. Its tallies are
+  // integers, so the sum is the trace from photon 0 bit for bit.
+  const std::uint64_t from = prefix ? prefix->photons : 0;
+  if (prefix) {
+    out.started = prefix->started;
+    for (std::size_t b = 0; b < bins; ++b) block.bins[group * bins + b] = prefix->bins[b];
+    block.ray_segments = prefix->ray_segments;
+    block.capped_paths = prefix->capped_paths;
+    block.cut_paths = prefix->cut_paths;
+    block.opening_photons = prefix->openings.photons;
+    block.opening_blocked = prefix->openings.blocked;
+    block.opening_glass = prefix->openings.glass;
+  }
+  if (out.photons > from) {
     tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
     detail::SharedTracing shared(processes.get(), block.bins.size());
-    shared.trace(0, out.photons, block,
+    shared.trace(from, out.photons - from, block,
                  [&](std::uint64_t from, std::uint64_t count, detail::TallyBlock& into) {
                    const std::vector<detail::GroupRange> range{
                        {static_cast<std::uint32_t>(group), from, count}};
@@ -109,6 +182,11 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
   }
   std::vector<Tally> all(groups * bins);
   detail::GroupedTallies tallies{&all, bins, std::vector<std::uint64_t>(groups, 0), flux_lm};
+  // The traces' direct parts (groups x bins, group-major like the tallies), each scaled from
+  // the flux it was traced with to the group's flux now.
+  std::vector<detail::DirectPart> direct;
+  std::string next_event_off;
+  tallies.direct_scale.assign(groups, 0.0);
   Results r;
   for (std::size_t g = 0; g < groups; ++g) {
     if (!(std::isfinite(flux_lm[g]) && flux_lm[g] >= 0.0)) {
@@ -124,6 +202,21 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
       throw std::invalid_argument("combine: trace " + std::to_string(g) + " is not that group's");
     }
     std::copy(t->bins.begin(), t->bins.end(), all.begin() + static_cast<std::ptrdiff_t>(g * bins));
+    if (!t->direct.empty()) {
+      if (t->direct.size() != bins || !(t->flux_lm > 0.0)) {
+        throw std::invalid_argument("combine: trace " + std::to_string(g) +
+                                    "'s direct parts do not fit the scene");
+      }
+      if (direct.empty()) direct.resize(groups * bins);
+      for (std::size_t b = 0; b < bins; ++b) {
+        const DirectLight& d = t->direct[b];
+        direct[g * bins + b] = {d.lux, d.variance, d.lit};
+      }
+      tallies.direct_scale[g] = flux_lm[g] / t->flux_lm;
+      tallies.photons_reflect = t->photons_reflect;
+    } else if (next_event_off.empty()) {
+      next_event_off = t->next_event_off;
+    }
     tallies.photons[g] = t->photons;
     r.photons += t->photons;
     r.ray_segments += t->ray_segments;
@@ -133,8 +226,15 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
     if (r.seed == 0) r.seed = t->seed;
     if (flux_lm[g] > 0.0) r.total_flux_lm += flux_lm[g];
   }
+  if (!direct.empty()) tallies.direct = &direct;
   r.photons_requested = r.photons;
   r.confidence = confidence;
+  r.next_event = scene.settings.next_event;
+  // The scene's effects, next-event estimation as the traces had it.
+  detail::SceneEffects effects = detail::analyse_effects(p);
+  effects.set(detail::Effect::NextEventDirect, !direct.empty(),
+              next_event_off.empty() ? "no lit luminaire group traced" : next_event_off);
+  r.effects = detail::effects_report(effects);
   r.backend = state_->backend->name();
   r.judged = detail::judges_requirements(scene, false, false);
   // Observers rate each luminaire's luminance, which follows its group's flux as combined.

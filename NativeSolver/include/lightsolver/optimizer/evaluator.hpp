@@ -27,6 +27,11 @@ struct EvaluationRequest {
   /// The run's seed: an evaluator that traces parts of a configuration apart (SceneEvaluator's
   /// reused group traces) seeds each part with evaluation_seed(run_seed, part's index, photons).
   std::uint64_t run_seed = 0;
+  /// The photon level whose seeds this trace uses (0: `photons`'s own). A trace of fewer photons
+  /// than that level with its seeds is the first part of the level's trace (photon i is photon
+  /// i): the staged refinement's first stage, which an evaluator may later continue instead of
+  /// tracing those photons again (docs/optimization.md §6, "Staged refinement").
+  std::uint64_t seed_photons = 0;
 };
 
 /// What the evaluator returns. Estimates use the run's confidence level for their CIs.

@@ -44,12 +44,15 @@ struct Counters {
   std::uint64_t confirmations = 0;  ///< evaluations with N photons (precise)
   std::uint64_t infeasible = 0;     ///< candidates kept out of the ISOC by their constraints
   std::uint64_t refined = 0;        ///< strategy B: members re-evaluated with N at the end
-  std::uint64_t inadmissible = 0;   ///< cells skipped by VnsOptions::admissible
-  CaseCounts cases{};               ///< ISOC updates per UpdateCase (refinement included)
-  double update_seconds = 0.0;      ///< evaluator: applying configurations to the scene
-  double trace_seconds = 0.0;       ///< evaluator: tracing
-  double other_seconds = 0.0;       ///< everything else (search, ISOC, callbacks)
-  double total_seconds = 0.0;       ///< wall time of the whole run
+  /// Strategy B's staged refinement: members traced with the first stage's photons, and those
+  /// of them left out of the N traces (beaten by the best with room to spare)
+  std::uint64_t refine_stage = 0, refine_dropped = 0;
+  std::uint64_t inadmissible = 0;  ///< cells skipped by VnsOptions::admissible
+  CaseCounts cases{};              ///< ISOC updates per UpdateCase (refinement included)
+  double update_seconds = 0.0;     ///< evaluator: applying configurations to the scene
+  double trace_seconds = 0.0;      ///< evaluator: tracing
+  double other_seconds = 0.0;      ///< everything else (search, ISOC, callbacks)
+  double total_seconds = 0.0;      ///< wall time of the whole run
 };
 
 /// Statistics of one VNS iteration, handed to the progress callback.
@@ -81,6 +84,14 @@ enum class StopReason {
 
 const char* to_string(StopReason r);
 
+/// Next-event estimation in a scene search (docs/optimization.md, "Next-event estimation"):
+/// the setting the evaluations followed and whether direct light came from shadow rays.
+struct NextEventUse {
+  std::string setting = "off";  ///< "auto", "on" or "off"
+  bool direct = false;          ///< some evaluation had direct parts (next_event_direct)
+  std::string reason;           ///< why not, when `direct` is false
+};
+
 /// The outcome of optimize().
 struct OptimizationResult {
   Goal goal = Goal::kMaximize;
@@ -93,6 +104,8 @@ struct OptimizationResult {
   std::vector<IterationStats> history;  ///< one entry per iteration (if requested)
   /// Where the search comes from (run_problem() sets it; the engine alone does not).
   std::optional<Provenance> provenance;
+  /// Scene searches (run_problem() sets it): next-event estimation as the evaluations had it.
+  std::optional<NextEventUse> next_event;
 };
 
 /// JSON text ("lightsolver.optimization/1", described in docs/optimization.md).

@@ -74,6 +74,8 @@ struct SceneProblem {
   /// trace for the configurations that do not change it; a flux variable then costs no tracing
   /// (docs/optimization.md, "Reused traces"). False: every evaluation traces every group.
   bool reuse_traces = true;
+  /// `search.refine_stage_photons` where given (stage_photons(): N/4 otherwise under strategy B)
+  std::optional<std::uint64_t> refine_stage_photons;
   /// `search.min_spacing_m`: no two luminaires closer than this (anchor to anchor) in any
   /// configuration searched; positions are always distinct (docs/optimization.md §10).
   double min_spacing_m = 0.0;
@@ -133,10 +135,13 @@ class SceneEvaluator final : public Evaluator {
   /// `processes`: MPI ranks sharing every trace (null: alone); the search itself runs the
   /// same on every rank (its randomness and the traced numbers are identical there).
   /// `reuse_traces`: as SceneProblem::reuse_traces, which it overrides when given.
+  /// `next_event`: "auto", "on" or "off", overriding the scene's settings.next_event (direct
+  /// light at the targets by shadow rays, docs/optimization.md "Next-event estimation").
   SceneEvaluator(const SceneProblem& problem, int threads = 0,
                  const std::string& backend = kAutoBackend,
                  std::shared_ptr<ProcessGroup> processes = nullptr,
-                 std::optional<bool> reuse_traces = std::nullopt);
+                 std::optional<bool> reuse_traces = std::nullopt,
+                 const std::optional<std::string>& next_event = std::nullopt);
   ~SceneEvaluator() override;
   /// Applies the request's configuration, traces the groups it changed (all of them without
   /// reuse) with seeds derived from the run seed and the group's part of the configuration,
@@ -149,12 +154,16 @@ class SceneEvaluator final : public Evaluator {
   /// The backend that traces and its device (the search's provenance).
   std::string backend_name() const { return simulation_.backend_name(); }
   std::string device() const { return simulation_.device(); }
+  /// The next-event setting the evaluations follow and what it did so far: on when some
+  /// evaluation had direct parts, else the reason (the effects list's next_event_direct).
+  NextEventUse next_event_use() const { return next_event_; }
 
  private:
   struct Reuse;  // the trace plan and the kept group traces (group_traces.hpp)
 
   void apply(const std::vector<double>& values);
   Estimate metric(const Metric& m) const;
+  void note_next_event(const Results& r);
 
   const SceneProblem& problem_;
   Simulation simulation_;
@@ -162,6 +171,7 @@ class SceneEvaluator final : public Evaluator {
   std::shared_ptr<ProcessGroup> processes_;
   std::unique_ptr<Reuse> reuse_;
   Results last_;
+  NextEventUse next_event_;
 };
 
 /// Command-line / Python overrides of the `search` block.
@@ -173,7 +183,16 @@ struct RunOverrides {
   std::optional<bool> reuse_traces;         ///< overrides SceneProblem::reuse_traces
   /// How the search was started, for its provenance: the CLI's command line, "python: ...".
   std::string command;
+  std::optional<std::string> next_event;  ///< overrides the scene's settings.next_event
+  /// Overrides search.refine_stage_photons (0: the unstaged end refinement).
+  std::optional<std::uint64_t> refine_stage_photons;
 };
+
+/// The staged refinement's first-stage photons a search uses (VnsOptions::refine_stage_photons):
+/// the override's, else the block's `refine_stage_photons`, else N/4, under strategy B (0 for
+/// strategy A, or where it would reach N: unstaged).
+std::uint64_t stage_photons(const SceneProblem& problem, const RunOverrides& overrides,
+                            const VnsOptions& search);
 
 /// Builds a SceneEvaluator and runs optimize() with the problem's search settings. The result's
 /// provenance records the base scene's source, the build, backend, device, processes, threads,

@@ -1,0 +1,179 @@
+// Strategy B's staged end refinement (docs/optimization.md §6, "Staged refinement"): every
+// n-level member is traced first with N1 photons of its N stream and with N only when the best
+// member might not beat it. The drop rule on set numbers; over 200 search seeds the staged ISOC
+// is the unstaged one (it may differ with probability at most 1 - confidence) at a fraction of
+// the N traces; a cancelled staged refinement keeps the unrefined ISOC.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <set>
+
+#include "lightsolver/optimizer/vns.hpp"
+#include "synthetic.hpp"
+
+namespace lightsolver::optimizer {
+namespace {
+
+using testing::bump;
+using testing::standard_normal;
+
+constexpr std::uint64_t kN = 1u << 20;
+constexpr std::uint64_t kBlock = kN / 16;  // photons of one independent block of a stream
+constexpr double kSigmaN = 1.5;            // objective's sigma with N photons
+
+// A photon tracer's estimate in blocks: photons [j B, (j + 1) B) of the stream with seed s add
+// their own normal draw, so a trace of P photons is the first part of a trace of more with
+// the same seed (photon i is photon i), as the scene evaluator's traces are.
+Estimate blocked_estimate(double truth, std::uint64_t photons, std::uint64_t seed, double z) {
+  const std::uint64_t blocks = std::max<std::uint64_t>(1, photons / kBlock);
+  const double sigma_block = kSigmaN * std::sqrt(double(kN / kBlock));
+  double sum = 0.0;
+  for (std::uint64_t j = 0; j < blocks; ++j) sum += standard_normal(seed, j);
+  Estimate e;
+  e.sigma = sigma_block / std::sqrt(double(blocks));
+  e.mean = truth + sigma_block * sum / double(blocks);
+  e.ci_low = e.mean - z * e.sigma;
+  e.ci_high = e.mean + z * e.sigma;
+  e.hits = photons;
+  return e;
+}
+
+// A broad optimum (the hangar's case: many cells within reach of the best at n).
+double broad(const std::vector<double>& v) { return bump(v, 0.55, 0.45, 0.25, 100.0, 10.0); }
+
+struct SearchRun {
+  std::set<std::uint64_t> isoc;
+  Counters counters;
+  std::uint64_t n_photons = 0;  // photons the refinement traces when stages continue
+};
+
+SearchRun search(std::uint64_t seed, std::uint64_t stage, double confidence = 0.95) {
+  Domain d;
+  d.add_rectangle("x", 0.0, 1.0, 25, 0.0, 1.0, 25);
+  const double z = z_for_confidence(confidence);
+  std::set<std::pair<std::uint64_t, std::uint64_t>> staged;  // (cell, seed) of stage traces
+  SearchRun run;
+  FunctionEvaluator ev([&](const EvaluationRequest& r) {
+    Evaluation e;
+    e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, z);
+    if (r.photons == kN) {  // continues its first stage where there was one
+      run.n_photons += staged.count({r.cell_index, r.seed}) ? kN - stage : kN;
+    } else if (r.seed_photons == kN) {
+      staged.insert({r.cell_index, r.seed});
+      run.n_photons += r.photons;
+    }
+    return e;
+  });
+  VnsOptions o;
+  o.seed = seed;
+  o.confidence = confidence;
+  o.screening_photons = kN / 64;
+  o.confirmation_photons = kN;
+  o.strategy = PhotonStrategy::kRefineAtEnd;
+  o.refine_stage_photons = stage;
+  o.max_iterations = 60;
+  o.keep_history = false;
+  const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o);
+  for (const ResultMember& m : r.isoc) {
+    run.isoc.insert(d.index(m.cells));
+    EXPECT_EQ(m.photons, kN);
+  }
+  run.counters = r.counters;
+  return run;
+}
+
+// Over 200 search seeds the staged refinement's ISOC is the unstaged one: they may differ with
+// probability at most 1 - confidence = 5 % per run (so at most 10 + 4 sigma of 200 runs); it
+// traces fewer photons for the refinement, and no member is traced with N twice.
+TEST(StagedRefinement, SameIsocAsUnstagedOver200Seeds) {
+  int differ = 0;
+  std::uint64_t unstaged_photons = 0, staged_photons = 0, members = 0, dropped = 0;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const SearchRun plain = search(seed, 0), staged = search(seed, kN / 4);
+    differ += plain.isoc != staged.isoc;
+    unstaged_photons += plain.n_photons;
+    staged_photons += staged.n_photons;
+    members += staged.counters.refine_stage;
+    dropped += staged.counters.refine_dropped;
+    EXPECT_EQ(plain.counters.refine_stage, 0u);
+    EXPECT_EQ(staged.counters.refined + staged.counters.refine_dropped,
+              plain.counters.refined)
+        << seed;  // the same n-level ISOC: every member traced with N or dropped
+  }
+  const double bound = 200 * 0.05 + 4.0 * std::sqrt(200 * 0.05 * 0.95);
+  EXPECT_LE(differ, bound);
+  std::printf(
+      "staged vs unstaged: %d of 200 ISOCs differ; %llu of %llu first-stage members "
+      "dropped; refinement photons %.3g vs %.3g\n",
+      differ, static_cast<unsigned long long>(dropped), static_cast<unsigned long long>(members),
+      double(staged_photons), double(unstaged_photons));
+  EXPECT_GT(dropped, members / 50);  // members far below the best at N1 are left out
+  EXPECT_LT(staged_photons, unstaged_photons);
+}
+
+// The rule on set numbers (one variable of four cells, all =α at n): at N1 = N/4 the cells
+// read 100, 95.5, 94.5 and 80 with sigma 1; the best, cell 0, reads 100 with sigma 0.5 at N.
+// With confidence 0.95 (z = 1.96) and M = 4 (k: Phi(-k) = 0.05 / 4, k = 2.241), a member is left
+// out when its gap to 100 exceeds 1.96 sqrt(0.25 + 1) + 2.241 sqrt(2) = 5.36: cells 2 (gap 5.5)
+// and 3 are, cell 1 (gap 4.5) is not.
+TEST(StagedRefinement, DropsOnlyMembersOutOfReachOfTheBest) {
+  Domain d;
+  d.add_range("x", 0.0, 4.0, 4);
+  const double at_stage[4] = {100.0, 95.5, 94.5, 80.0};
+  std::set<std::pair<std::uint64_t, std::uint64_t>> calls;
+  FunctionEvaluator ev([&](const EvaluationRequest& r) {
+    calls.insert({r.cell_index, r.photons});
+    Evaluation e;
+    const double sigma = r.photons == kN ? 0.5 : r.photons == kN / 4 ? 1.0 : 50.0;
+    const double mean = r.photons == kN / 4 ? at_stage[r.cell_index] : 90.0;
+    e.objective = {r.photons == kN && r.cell_index == 0 ? 100.0 : mean, sigma, 0.0, 0.0, 1};
+    e.objective.ci_low = e.objective.mean - 1.96 * sigma;
+    e.objective.ci_high = e.objective.mean + 1.96 * sigma;
+    return e;
+  });
+  VnsOptions o;
+  o.confidence = 0.95;
+  o.screening_photons = kN / 64;
+  o.confirmation_photons = kN;
+  o.strategy = PhotonStrategy::kRefineAtEnd;
+  o.refine_stage_photons = kN / 4;
+  o.max_iterations = 4;
+  o.initial = {{0}};
+  const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o);
+  EXPECT_EQ(r.counters.refine_stage, 4u);
+  EXPECT_EQ(r.counters.refine_dropped, 2u);
+  EXPECT_EQ(r.counters.refined, 2u);
+  EXPECT_TRUE(calls.count({0, kN}));
+  EXPECT_TRUE(calls.count({1, kN}));
+  EXPECT_FALSE(calls.count({2, kN}));
+  EXPECT_FALSE(calls.count({3, kN}));
+}
+
+// Cancelled during the first stage: the unrefined (n-level) ISOC is returned, as unstaged.
+TEST(StagedRefinement, CancelledFirstStageKeepsTheUnrefinedIsoc) {
+  std::atomic<bool> cancel{false};
+  Domain d;
+  d.add_rectangle("x", 0.0, 1.0, 25, 0.0, 1.0, 25);
+  FunctionEvaluator ev([&](const EvaluationRequest& r) {
+    if (r.seed_photons == kN) cancel = true;  // the first stage has begun
+    Evaluation e;
+    e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, 1.96);
+    return e;
+  });
+  VnsOptions o;
+  o.screening_photons = kN / 64;
+  o.confirmation_photons = kN;
+  o.strategy = PhotonStrategy::kRefineAtEnd;
+  o.refine_stage_photons = kN / 4;
+  o.max_iterations = 20;
+  Control c;
+  c.cancel = &cancel;
+  const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o, c);
+  EXPECT_EQ(r.stop, StopReason::kCancelled);
+  ASSERT_FALSE(r.isoc.empty());
+  for (const ResultMember& m : r.isoc) EXPECT_EQ(m.photons, kN / 64);
+}
+
+}  // namespace
+}  // namespace lightsolver::optimizer
