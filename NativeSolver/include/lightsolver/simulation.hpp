@@ -122,7 +122,7 @@ class Simulation {
   Provenance combined_provenance(const std::vector<const GroupTrace*>& traces,
                                  const Results& r) const;
   Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);
-  void plan_direct_light(const Results& r, bool quasi_random);
+  void plan_direct_light(const Results& r);
   std::unique_ptr<detail::SimulationState> state_;
 };
 
