@@ -23,7 +23,7 @@ configuration's photon counts are found, `--repeats` rounds time them again, int
 round runs every target's count of every configuration, the configurations' order rotating from
 round to round), and each cell reports the minimum over the rounds of the seeds' median; the
 load average (1 min) at each round's start is printed. Prints a Markdown table (cells: wall /
-CPU (photons)) and the wall-time ratios against the first configuration; LIGHTSOLVER_CLI or
+CPU (photons)) and the time ratios (wall / CPU) against the first configuration; LIGHTSOLVER_CLI or
 --cli names the CLI (default build/NativeSolver/cli/lightsolver).
 """
 import argparse
@@ -290,10 +290,10 @@ def main() -> None:
                 print(f"| {label} | {cname} `{flags}` | " + " | ".join(row) + " |", flush=True)
                 label = ""
             for (cname, _), row_t in zip(configs[1:], times[1:]):
-                ratios = [f"{base[0] / x[0]:.2f}×" if base and x else "—"
+                ratios = [f"{base[0] / x[0]:.2f}× / {base[1] / x[1]:.2f}×" if base and x else "—"
                           for base, x in zip(times[0], row_t)]
-                print(f"| | wall time of {configs[0][0]} / {cname} | " + " | ".join(ratios) + " |",
-                      flush=True)
+                print(f"| | time of {configs[0][0]} / {cname} (wall / CPU) | " +
+                      " | ".join(ratios) + " |", flush=True)
 
 
 if __name__ == "__main__":
