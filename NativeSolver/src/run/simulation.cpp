@@ -439,14 +439,15 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   }
   state_->pending_update_seconds = 0.0;
   r.next_event = options.next_event.value_or(scene.settings.next_event);
+  r.contributions = options.contributions.value_or(scene.settings.contributions);
+  // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
+  // before any shadow ray is traced for it.
+  const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
   plan_direct_light(r);
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
-  r.contributions = options.contributions.value_or(scene.settings.contributions);
   // Each group has its own tallies (groups x bins), so their estimates are independent.
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
-  // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp).
-  const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
   detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size() *
                              (qmc ? qmc->replicates : 1));
   if (resume && state_->kept && state_->kept_seed == r.seed &&
