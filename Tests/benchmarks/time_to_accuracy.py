@@ -4,7 +4,7 @@
 grid's per-cell rms relative error of 4.5 %, 2 %, 1 %, 0.7 % and 0.5 % against a long reference.
 
     /usr/bin/python3 Tests/benchmarks/time_to_accuracy.py [--cli PATH] [--scene box|office|FILE]
-        [--config "NAME:EXTRA FLAGS"]... [--targets 0.02,0.01] [--seeds 3]
+        [--config "NAME:EXTRA FLAGS"]... [--targets 0.02,0.01] [--seeds 3] [--repeats 3]
 
 Per scene, a reference run (`--reference-photons`, `--reference-flags`, default none; cached
 under `--cache`, build/time_to_accuracy/, by the scene's bytes, the photons, the flags and the
@@ -17,8 +17,14 @@ is, over `--seeds` seeds (1, 2, 3, ...), e(N) = sqrt(mean over seeds and cells o
 independent of the run's, is taken out (it is printed beside). The time at N is the median of the
 seeds' wall times (each a whole process: start-up, reading, tracing, writing), beside the median
 CPU time of the process (user + system, every thread: what a loaded machine distorts least).
-Prints a Markdown table (cells: wall / CPU (photons)); LIGHTSOLVER_CLI or --cli names the CLI
-(default build/NativeSolver/cli/lightsolver).
+
+The errors do not depend on the machine's load (fixed seeds), the times do: once every
+configuration's photon counts are found, `--repeats` rounds time them again, interleaved (each
+round runs every target's count of every configuration, the configurations' order rotating from
+round to round), and each cell reports the minimum over the rounds of the seeds' median; the
+load average (1 min) at each round's start is printed. Prints a Markdown table (cells: wall /
+CPU (photons)) and the time ratios (wall / CPU) against the first configuration; LIGHTSOLVER_CLI or
+--cli names the CLI (default build/NativeSolver/cli/lightsolver).
 """
 import argparse
 import hashlib
@@ -142,13 +148,27 @@ def reference(cli: str, scene: Path, photons: int, flags: list, cache: Path) -> 
 
 
 class Search:
-    """Errors and times of one configuration at the photon counts it was run with."""
+    """Errors and times of one configuration at the photon counts it was run with. The errors
+    (fixed seeds: the same for the same scene, flags, seeds, reference and CLI) are kept in
+    `cache`, so a second invocation only times the runs again (`--repeats`)."""
 
-    def __init__(self, cli, scene, flags, ref, seeds, folder):
+    def __init__(self, cli, scene, flags, ref, seeds, folder, cache: Path):
         self.cli, self.scene, self.flags, self.ref = cli, scene, flags, ref
         self.seeds, self.folder, self.at = seeds, folder, {}
         lit = [(e, s) for e, s in ref if e > 0]
         self.ref_var = sum((s / e) ** 2 for e, s in lit) / len(lit)
+        key = hashlib.sha256(scene.read_bytes() + json.dumps(
+            [flags, seeds, ref, os.stat(cli).st_mtime_ns]).encode()).hexdigest()[:16]
+        self.cache = cache / f"errors-{scene.stem}-{key}.json"
+        if self.cache.exists():
+            self.at = {int(n): tuple(v) for n, v in json.loads(self.cache.read_text()).items()}
+
+    def keep(self) -> None:
+        """Writes the errors found so far to the cache (atomically)."""
+        self.cache.parent.mkdir(parents=True, exist_ok=True)
+        part = self.cache.with_suffix(".part")
+        part.write_text(json.dumps({str(n): v for n, v in self.at.items()}))
+        part.replace(self.cache)
 
     def error(self, photons: int) -> float:
         """e(N) as in the module's docstring (NaN-free: a negative difference gives 0)."""
@@ -163,6 +183,7 @@ class Search:
             mse = sum(sq) / len(sq) - self.ref_var
             self.at[photons] = (math.sqrt(max(mse, 0.0)), statistics.median(walls),
                                 statistics.median(cpus))
+            self.keep()
             print(f"  {self.scene.stem} {self.flags}: {photons:.3g} photons: error "
                   f"{100 * self.at[photons][0]:.3f} %, {self.at[photons][1]:.3f} s wall, "
                   f"{self.at[photons][2]:.3f} s CPU", file=sys.stderr, flush=True)
@@ -190,6 +211,39 @@ class Search:
         return hi
 
 
+def timed(search: Search, photons: int) -> tuple:
+    """The seeds' median wall and CPU seconds of `search`'s configuration at `photons`."""
+    walls, cpus = [], []
+    for seed in range(1, search.seeds + 1):
+        (wall, cpu), _ = run(search.cli, search.scene, photons, seed, search.flags,
+                             search.folder / "run.json")
+        walls.append(wall)
+        cpus.append(cpu)
+    return statistics.median(walls), statistics.median(cpus)
+
+
+def retime(searches: list, counts: list, repeats: int) -> list:
+    """Interleaved timing rounds (module docstring): per configuration and target, the minimum
+    over the rounds of (median wall, median CPU); the search's own time where `repeats` is 0.
+    `counts[c][t]` is configuration c's photon count at target t (0: not reached)."""
+    best = [[search.at[n][1:] if n else None for n in row] for search, row in zip(searches, counts)]
+    for k in range(repeats):
+        load = os.getloadavg()[0]
+        print(f"timing round {k + 1}/{repeats}: load average {load:.2f}", file=sys.stderr,
+              flush=True)
+        order = list(range(len(searches)))
+        order = order[k % len(order):] + order[:k % len(order)]
+        for t in range(len(counts[0])):
+            for c in order:
+                n = counts[c][t]
+                if not n:
+                    continue
+                wall, cpu = timed(searches[c], n)
+                old = best[c][t] if k > 0 else None
+                best[c][t] = (min(wall, old[0]), min(cpu, old[1])) if old else (wall, cpu)
+    return best
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     default_cli = str(ROOT / "build/NativeSolver/cli/lightsolver")
@@ -201,6 +255,8 @@ def main() -> None:
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--start", type=int, default=20_000)
     ap.add_argument("--bisect", type=int, default=3)
+    ap.add_argument("--repeats", type=int, default=3,
+                    help="interleaved timing rounds after the search (0: the search's times)")
     ap.add_argument("--cap", type=float, default=2e9, help="give up above this photon count")
     ap.add_argument("--reference-photons", type=float, default=2e8)
     ap.add_argument("--reference-flags", default="", help="extra CLI flags of the reference")
@@ -223,15 +279,21 @@ def main() -> None:
             ref_rms = math.sqrt(sum((s / e) ** 2 for e, s in lit) / len(lit))
             label = (f"{scene.stem} (ref. {ref_n:.0e}: rms σ {100 * ref_rms:.2f} %, "
                      f"{len(ref)} cells)")
-            for cname, flags in configs:
-                search = Search(a.cli, scene, shlex.split(flags), ref, a.seeds, folder)
-                row = []
-                for t in targets:
-                    n = search.photons_for(t, a.start, a.bisect, int(a.cap))
-                    row.append(f"{search.at[n][1]:.3f} s / {search.at[n][2]:.3f} s "
-                               f"({n:.2g} ph)" if n else "—")
+            searches = [Search(a.cli, scene, shlex.split(flags), ref, a.seeds, folder, a.cache)
+                        for _, flags in configs]
+            counts = [[s.photons_for(t, a.start, a.bisect, int(a.cap)) for t in targets]
+                      for s in searches]
+            times = retime(searches, counts, a.repeats)
+            for (cname, flags), row_n, row_t in zip(configs, counts, times):
+                row = [f"{w:.3f} s / {c:.3f} s ({n:.2g} ph)" if n else "—"
+                       for n, (w, c) in zip(row_n, [x or (0.0, 0.0) for x in row_t])]
                 print(f"| {label} | {cname} `{flags}` | " + " | ".join(row) + " |", flush=True)
                 label = ""
+            for (cname, _), row_t in zip(configs[1:], times[1:]):
+                ratios = [f"{base[0] / x[0]:.2f}× / {base[1] / x[1]:.2f}×" if base and x else "—"
+                          for base, x in zip(times[0], row_t)]
+                print(f"| | time of {configs[0][0]} / {cname} (wall / CPU) | " +
+                      " | ".join(ratios) + " |", flush=True)
 
 
 if __name__ == "__main__":

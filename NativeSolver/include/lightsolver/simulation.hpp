@@ -151,7 +151,7 @@ class Simulation {
   Provenance combined_provenance(const std::vector<const GroupTrace*>& traces,
                                  const Results& r) const;
   Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);
-  void plan_direct_light(const Results& r, bool quasi_random);
+  void plan_direct_light(const Results& r);
   void trace_direct_part(GroupTrace& trace, const GroupTrace* prefix);
   std::unique_ptr<detail::SimulationState> state_;
 };

@@ -54,15 +54,29 @@ Estimate replicate_estimate(const GroupedTallies& t, std::optional<std::size_t> 
                             std::uint32_t bin, double area_m2, double z) {
   const std::size_t groups = t.photons.size(), r_count = t.replicates;
   std::vector<double> values(r_count, 0.0);
-  std::uint64_t hits = 0;
+  std::uint64_t hits = 0, direct_lit = 0;
   double zero_hit_high = 0.0;  // each group's zero-hit bound, summed (conservative)
-  bool lit = false;
+  double direct_lux = 0.0, direct_variance = 0.0;  // the shared direct parts, summed
+  bool lit = false, photons_count = false, has_direct = false;
   for (std::size_t g = 0; g < groups; ++g) {
     if (group && g != *group) continue;
     // Every replicate traced the same photons of each group: its total over R.
     const std::uint64_t per = t.photons[g] / r_count;
     if (per == 0 || !(t.flux_lm[g] > 0.0)) continue;
     lit = true;
+    const bool direct_part = t.direct != nullptr && t.direct_scale[g] > 0.0;
+    if (direct_part) {
+      has_direct = true;
+      // One direct part per group, shared by the replicates and independent of all of them
+      // (docs/statistics.md, "Quasi-random photons"): added once, its variance in quadrature.
+      const DirectPart& d = (*t.direct)[g * t.bin_count + bin];
+      direct_lux += d.lux * t.direct_scale[g];
+      direct_variance += d.variance * t.direct_scale[g] * t.direct_scale[g];
+      direct_lit += d.lit;
+      // Where nothing reflects, the group's photons deposit nothing, exactly.
+      if (!t.photons_reflect) continue;
+    }
+    photons_count = true;
     const double scale = t.flux_lm[g] / area_m2;
     for (std::size_t r = 0; r < r_count; ++r) {
       const Tally& c = (*t.bins)[(r * groups + g) * t.bin_count + bin];
@@ -72,9 +86,14 @@ Estimate replicate_estimate(const GroupedTallies& t, std::optional<std::size_t> 
     zero_hit_high += scale * wilson_interval(0, t.photons[g], z).second;
   }
   if (!lit) return Estimate{};  // no light: exactly zero
-  Estimate e = replicate_interval(values, z, hits);
-  if (hits == 0) e.ci_high = zero_hit_high;
-  return e;
+  // The photon part: exactly zero where only direct parts are left.
+  Estimate e;
+  if (photons_count) {
+    e = replicate_interval(values, z, hits);
+    if (hits == 0) e.ci_high = zero_hit_high;
+  }
+  if (!has_direct) return e;
+  return with_direct_part(e, direct_lux, direct_variance, direct_lit, z);
 }
 
 }  // namespace lightsolver::detail

@@ -375,19 +375,9 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
 // parts, kept for the next run with the same seed. The points are sized to the run: about one
 // shadow ray per two photons (a shadow ray costs about a photon segment), at least the defaults;
 // an accuracy goal refines them until no direct part's half-width passes half the goal.
-void Simulation::plan_direct_light(const Results& r, bool quasi_random) {
+void Simulation::plan_direct_light(const Results& r) {
   detail::PreparedScene& p = state_->prepared;
-  if (quasi_random && r.next_event != "off") {
-    // A sobol run's replicates estimate photon tallies only (model/replicates.hpp).
-    if (r.next_event == "on") {
-      throw InputError("", "next_event",
-                       "\"on\" does not go with sampler \"sobol\" (its replicates carry photon "
-                       "tallies only): use next_event \"off\" or the random sampler");
-    }
-    detail::plan_next_event(p, *state_->backend, "off");
-    p.next_event_off = "the sobol sampler's replicates carry photon tallies only";
-    return;
-  }
+  // A sobol run shares these parts among its replicates (model/replicates.hpp).
   detail::plan_next_event(p, *state_->backend, r.next_event);
   if (!std::any_of(p.groups.begin(), p.groups.end(),
                    [](const detail::PreparedGroup& g) { return g.next_event; })) {
@@ -449,14 +439,15 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   }
   state_->pending_update_seconds = 0.0;
   r.next_event = options.next_event.value_or(scene.settings.next_event);
-  plan_direct_light(r, options.sampler == "sobol");
+  r.contributions = options.contributions.value_or(scene.settings.contributions);
+  // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
+  // before any shadow ray is traced for it.
+  const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
+  plan_direct_light(r);
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
-  r.contributions = options.contributions.value_or(scene.settings.contributions);
   // Each group has its own tallies (groups x bins), so their estimates are independent.
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
-  // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp).
-  const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
   detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size() *
                              (qmc ? qmc->replicates : 1));
   if (resume && state_->kept && state_->kept_seed == r.seed &&

@@ -222,22 +222,7 @@ TEST(NextEventSetting, OnWithoutAnyTargetIsRefused) {
   EXPECT_NO_THROW(solve(s, o));
 }
 
-TEST(NextEventSetting, SobolRunsTraceDirectLightByPhotons) {
-  Scene s = box_room(2);
-  SolveOptions o;
-  o.photons = 8000;
-  o.backend = "embree";
-  o.sampler = "sobol";
-  o.next_event = "on";
-  EXPECT_THROW(solve(s, o), InputError);
-  o.next_event = "auto";
-  const Results r = solve(s, o);
-  bool said = false;
-  for (const auto& e : r.effects.skipped) {
-    if (e.effect == "next_event_direct") said = e.reason.find("sobol") != std::string::npos;
-  }
-  EXPECT_TRUE(said);
-}
+// Sobol' runs with next-event estimation: qmc_next_event_test.cpp.
 
 }  // namespace
 }  // namespace lightsolver::test

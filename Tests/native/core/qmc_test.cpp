@@ -126,6 +126,7 @@ SolveOptions sobol(std::uint64_t photons, std::uint64_t seed, std::uint32_t repl
   o.backend = "embree";
   o.sampler = "sobol";
   o.replicates = replicates;
+  o.next_event = "off";  // photons alone (qmc_next_event_test.cpp: with next-event estimation)
   return o;
 }
 
