@@ -213,8 +213,9 @@ struct Settings {
   bool contributions = false;
   /// Direct light at grids and surface targets by next-event estimation (shadow rays):
   /// "auto", "on" or "off" (SolveOptions::next_event; docs/statistics.md, "Next-event
-  /// estimation"). Off by default until `rescale` reads direct parts back from results.
-  std::string next_event = "off";
+  /// estimation"). A run's contributions carry the direct parts, so `rescale` and every other
+  /// recombination of groups keep them.
+  std::string next_event = "auto";
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().
