@@ -68,10 +68,10 @@ def lamps():
     ]
     targets = [
         {"name": "desk", "type": "surface", "mesh": "desk top",
-         "requirements": {"em_lux": 670}},
+         "requirements": {"em_lux": 659}},
         {"name": "workplane", "type": "grid", "corner": [0.5, 0.5, 0.8], "edge1": [3, 0, 0],
          "edge2": [0, 2, 0], "cells": [6, 4],
-         "requirements": {"em_lux": 883, "u0": 0.52, "emin_lux": 439}},
+         "requirements": {"em_lux": 888, "u0": 0.52, "emin_lux": 447}},
         {"name": "east wall", "type": "grid", "corner": [3.99, 0.5, 0.5], "edge1": [0, 0, 1.5],
          "edge2": [0, 2, 0], "cells": [3, 4], "requirements": {"ud": 0.61}},
         {"name": "seated", "type": "observer", "position": [0.6, 1.5, 1.2],
