@@ -307,7 +307,8 @@ PYBIND11_MODULE(lightsolver, m) {
       py::arg("results"), py::arg("factors"),
       "Results of a run traced with contributions=True with each named luminaire group's flux "
       "multiplied by its factor ({'hall': 0.5}; 0 switches a group off): estimates, intervals, "
-      "grid statistics and verdicts recomputed from the per-group tallies, no tracing; "
+      "grid statistics and verdicts recomputed from the per-group tallies and direct parts "
+      "(next-event estimation), no tracing; "
       "'rescaled' records the factors. ValueError (InputError) for an unknown group, a negative "
       "or non-finite factor, or results without contributions.");
   m.def(

@@ -83,22 +83,43 @@ class Bins:
         self.confidence = doc["confidence"]
 
     def estimate(self, tallies, area, alpha=None):
-        """Combined estimate of one bin; `tallies` maps group -> (S, Q)."""
+        """Combined estimate of one bin; `tallies` maps group -> (S, Q) or (S, Q, direct,
+        photon_light): a next-event group's direct part and what its photons tallied."""
         z = z_two_sided(1.0 - self.confidence if alpha is None else alpha)
         parts = []
         for g in self.groups:
-            s, q = tallies[g["name"]]
-            scale = g["flux_lm"] * self.factors[g["name"]] / area
-            parts.append(group_estimate(s, q, g["photons"], scale, z))
+            s, q, direct, light = (tuple(tallies[g["name"]]) + (None, None))[:4]
+            f = self.factors[g["name"]]
+            scale = g["flux_lm"] * f / area
+            part = ((0.0, 0.0, 0.0) if light == "none"
+                    else group_estimate(s, q, g["photons"], scale, z))
+            if light is not None:
+                part = with_direct(part, direct or {"lux": 0.0, "variance_lx2": 0.0, "lit": 0},
+                                   f, z)
+            parts.append(part)
         return combined(parts)
 
 
+def with_direct(part, direct, factor, z):
+    """A photon part plus a direct part (docs/statistics.md, "Next-event estimation"): means
+    add, each end's distance in quadrature with z sqrt(Var) plus the direct mean's rounding
+    ((lit + 16) eps of it); the direct mean dimmed by f, its variance by f^2."""
+    m, lo, hi = part
+    lux = direct["lux"] * factor
+    half = (z * math.sqrt(direct["variance_lx2"] * factor * factor)
+            + (direct["lit"] + 16.0) * 2.0 ** -52 * lux)
+    e = m + lux
+    return e, max(0.0, e - math.hypot(m - lo, half)), e + math.hypot(hi - m, half)
+
+
 def target_tallies(t):
-    return {g: (c["sum"], c["sum_sq"]) for g, c in t["contributions"].items()}
+    return {g: (c["sum"], c["sum_sq"], c.get("direct"), c.get("photon_light"))
+            for g, c in t["contributions"].items()}
 
 
 def cell_tallies(t, i):
-    return {g: (c["cells"][i]["sum"], c["cells"][i]["sum_sq"])
+    return {g: (c["cells"][i]["sum"], c["cells"][i]["sum_sq"], c["cells"][i].get("direct"),
+                c.get("photon_light"))
             for g, c in t["contributions"].items()}
 
 
@@ -116,10 +137,11 @@ def test_estimates_and_intervals_follow_from_the_tallies(backend):
         e = bins.estimate(target_tallies(t), t["area_m2"])
         got = (t["mean_lux"], t["ci_low_lux"], t["ci_high_lux"])
         assert all(map(close, got, e)), (t["name"], got, e)
-        assert t["hits"] == sum(c["sum"] for c in t["contributions"].values())
+        assert t["hits"] == sum(c["sum"] + c.get("direct", {}).get("lit", 0)
+                                for c in t["contributions"].values())
         for g, part in t["contributions"].items():
             one = Bins({**doc, "groups": [x for x in doc["groups"] if x["name"] == g]})
-            m, lo, hi = one.estimate({g: (part["sum"], part["sum_sq"])}, t["area_m2"])
+            m, lo, hi = one.estimate({g: target_tallies(t)[g]}, t["area_m2"])
             assert all(map(close, (part["illuminance_lux"], part["ci_low_lux"],
                                    part["ci_high_lux"]), (m, lo, hi))), (t["name"], g)
         for i, cell in enumerate(t.get("cells", [])):
@@ -322,7 +344,8 @@ def test_observer_grid_ugr_and_its_maximum(name, backend):
     points, glare = [], []
     for k in range(len(og["positions"]) * ndir):
         i, j = divmod(k, ndir)
-        tallies = {g: tuple(c["points"][k]) for g, c in t["contributions"].items()}
+        tallies = {g: tuple(c["points"][k]) + (None, c.get("photon_light"))
+                   for g, c in t["contributions"].items()}
         lb = [v / math.pi for v in bins.estimate(tallies, t["area_m2"])]
         assert all(close(og[key][i][j], v) for key, v in zip(
             ("background_luminance_cd_m2", "background_ci_low_cd_m2",

@@ -213,7 +213,9 @@ struct Settings {
   bool contributions = false;
   /// Direct light at grids and surface targets by next-event estimation (shadow rays):
   /// "auto", "on" or "off" (SolveOptions::next_event; docs/statistics.md, "Next-event
-  /// estimation"). Off by default until `rescale` reads direct parts back from results.
+  /// estimation"). A run's contributions carry the direct parts, so `rescale` and every other
+  /// recombination of groups keep them. Off by default until checkpointed runs (cost, study)
+  /// and a cancelled run's shadow-ray phase are settled (docs/statistics.md).
   std::string next_event = "off";
 };
 

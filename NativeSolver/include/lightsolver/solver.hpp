@@ -195,6 +195,15 @@ struct ObserverGridGlare {
 
 /// Illuminance of one target. For grids `estimate` is over the whole grid (flux crossing the
 /// grid / its area) and `cells` holds every cell, row by row (index = iv * nu + iu).
+/// A group's direct light in one bin by next-event estimation (shadow rays; docs/statistics.md,
+/// "Next-event estimation"): its mean illuminance (at the group's flux, times its dimming factor
+/// in a rescaled result), that mean's variance and how many of its samples saw light.
+struct DirectLight {
+  double lux = 0.0;
+  double variance_lx2 = 0.0;
+  std::uint64_t lit = 0;
+};
+
 /// One luminaire group's part of a target (lux at its own flux, times its dimming factor in a
 /// rescaled result), with the integer tallies a rescale recomputes every interval from.
 struct Contribution {
@@ -204,6 +213,14 @@ struct Contribution {
   /// The target's bins: whole target, then its cells; an observer grid's: every point's (its
   /// estimate above is the maximum's point's).
   std::vector<Tally> tallies;
+  /// What the group's photons tallied: all its light; or, for a group whose direct light came
+  /// from next-event estimation, its light after a scattering only (Reflected), or nothing at
+  /// all (None: nothing in the scene reflects, its part is the direct part alone).
+  enum class PhotonLight { All, Reflected, None };
+  PhotonLight photon_light = PhotonLight::All;
+  /// A next-event group's direct part per entry of `tallies` (whole target, then its cells);
+  /// empty for an observer's or observer grid's eyes, which see reflected light only.
+  std::vector<DirectLight> direct;
 };
 
 /// A daylight-factor grid's daylight factor D = E_in / E_out x 100 %: E_in the light of the

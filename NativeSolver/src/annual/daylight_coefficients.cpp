@@ -206,6 +206,9 @@ DaylightCoefficients CoefficientTracer::trace(std::uint64_t photons, double z,
   so.photons = std::max(photons, st.traced);
   so.seed = st.seed;
   so.contributions = true;
+  // fill_rows reads each group's photon tallies alone: every patch's and sun bin's light,
+  // direct included, is in its photons (sky and sun have no next-event hook either).
+  so.next_event = "off";
   so.threads = st.options.threads;
   so.backend = st.options.backend;
   so.processes = std::move(processes);

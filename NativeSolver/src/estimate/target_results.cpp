@@ -7,6 +7,20 @@
 namespace lightsolver::detail {
 namespace {
 
+// Group g's part of bin b as a rescale reads it back (model/groups.hpp, group_estimate_z): what
+// its photons tallied, and its direct part where next-event estimation gave it one.
+Contribution::PhotonLight photon_light(const GroupedTallies& tallies, std::size_t g) {
+  if (!tallies.has_direct_part(g)) return Contribution::PhotonLight::All;
+  return tallies.photons_reflect ? Contribution::PhotonLight::Reflected
+                                 : Contribution::PhotonLight::None;
+}
+
+DirectLight direct_light(const GroupedTallies& tallies, std::size_t g, std::uint32_t bin) {
+  const DirectPart& d = (*tallies.direct)[g * tallies.bin_count + bin];
+  const double f = tallies.direct_scale[g];
+  return {d.lux * f, d.variance * f * f, d.lit};
+}
+
 // Each group's part at the eye of the maximum, and every eye's tallies for a rescale.
 void add_eye_contributions(TargetResult& r, const std::vector<BinInfo>& bins,
                            const GroupedTallies& tallies, const PreparedTarget& layout, double z,
@@ -17,6 +31,7 @@ void add_eye_contributions(TargetResult& r, const std::vector<BinInfo>& bins,
     Contribution c;
     c.group = group_names[g];
     c.estimate = tallies.group_estimate_z(g, at, bins[at].area_m2, z);
+    c.photon_light = photon_light(tallies, g);  // eyes have no direct part
     for (std::uint32_t k = 0; k < layout.points; ++k) {
       c.tallies.push_back(tallies.tally(g, layout.point_bin(k)));
     }
@@ -59,10 +74,14 @@ void add_contributions(TargetResult& r, const std::vector<BinInfo>& bins,
     c.group = group_names[g];
     c.estimate = tallies.group_estimate_z(g, bin, bins[bin].area_m2, z);
     c.tallies.push_back(tallies.tally(g, bin));
+    c.photon_light = photon_light(tallies, g);
+    const bool direct = tallies.has_direct_part(g);
+    if (direct) c.direct.push_back(direct_light(tallies, g, bin));
     for (std::uint32_t k = 0; k < layout.cells; ++k) {
       const std::uint32_t b = layout.cell_bin(k);
       c.tallies.push_back(tallies.tally(g, b));
       c.cells.push_back(tallies.group_estimate_z(g, b, bins[b].area_m2, z));
+      if (direct) c.direct.push_back(direct_light(tallies, g, b));
     }
     r.contributions.push_back(std::move(c));
   }

@@ -85,7 +85,7 @@ void check_group_tallies(const std::string& file, std::size_t groups, std::size_
 Estimate GroupedTallies::group_estimate_z(std::size_t group, std::uint32_t bin, double area_m2,
                                           double z) const {
   if (replicates > 1) return replicate_estimate(*this, group, bin, area_m2, z);
-  const bool direct_part = direct != nullptr && direct_scale[group] > 0.0;
+  const bool direct_part = has_direct_part(group);
   // A next-event group's photons in a scene where nothing reflects deposit nothing, exactly.
   Estimate e = direct_part && !photons_reflect
                    ? Estimate{}
@@ -148,7 +148,10 @@ GroupedTallies grouped_tallies(const PreparedScene& s, const std::vector<Tally>&
   for (const PreparedGroup& g : s.groups) t.flux_lm.push_back(g.flux_lm);
   if (!s.direct.empty()) {
     t.direct = &s.direct;
-    for (const PreparedGroup& g : s.groups) t.direct_scale.push_back(g.next_event ? 1.0 : 0.0);
+    for (const PreparedGroup& g : s.groups) {
+      t.next_event.push_back(g.next_event ? 1 : 0);
+      t.direct_scale.push_back(1.0);
+    }
     t.photons_reflect = s.photons_reflect;
   }
   return t;
@@ -157,7 +160,12 @@ GroupedTallies grouped_tallies(const PreparedScene& s, const std::vector<Tally>&
 Estimate with_direct_part(const Estimate& photons, double lux, double variance, std::uint64_t lit,
                           double z) {
   Estimate e = photons;
-  const double half = z * std::sqrt(variance);
+  // The direct mean is a sum over its points (and a grid's cells) in double: its rounding, below
+  // (terms + a few) x 2^-52 of it (Higham's bound for recursive summation of non-negative terms,
+  // each computed to a few ulps), belongs in the interval. A field known exactly (a beam filling
+  // a cell: every sample equal, variance 0) then still holds its exact value.
+  const double rounding = (double(lit) + 16.0) * std::numeric_limits<double>::epsilon() * lux;
+  const double half = z * std::sqrt(variance) + rounding;
   e.mean = photons.mean + lux;
   e.sigma = std::hypot(photons.sigma, std::sqrt(variance));
   e.hits = photons.hits + lit;

@@ -52,11 +52,17 @@ struct GroupedTallies {
   std::size_t bin_count = 0;
   std::vector<std::uint64_t> photons;  // per group
   std::vector<double> flux_lm;         // per group, times its dimming factor
-  // Next-event estimation: each group's direct part per bin (group-major; null: none) and
-  // per group the factor on it (its flux here over its flux as prepared; 0: no direct part).
+  // Next-event estimation: each group's direct part per bin (group-major; null: none), per
+  // group whether it has one (`next_event`: its photons then tally light after a scattering
+  // only) and the factor on it (its flux here over its flux when the parts were computed).
   const std::vector<DirectPart>* direct = nullptr;
-  std::vector<double> direct_scale;
+  std::vector<std::uint8_t> next_event{};
+  std::vector<double> direct_scale{};
   bool photons_reflect = true;  // false: a group with a direct part has no photon part
+
+  bool has_direct_part(std::size_t group) const {
+    return direct != nullptr && next_event[group] != 0;
+  }
   /// Above 1: a quasi-random run's replicates, `bins` holding one groups x bin_count block
   /// each (replicate r's group g, bin b at (r * groups + g) * bin_count + b), `photons` each
   /// group's photons over all replicates (model/replicates.hpp). tally() reads replicate 0.

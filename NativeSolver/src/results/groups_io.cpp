@@ -1,11 +1,40 @@
 #include "results/groups_io.hpp"
 
+#include <cmath>
 #include <string>
 
 namespace lightsolver::detail {
 namespace {
 
 nlohmann::json tally_fields(const Tally& t) { return {{"sum", t.sum}, {"sum_sq", t.sum_sq}}; }
+
+nlohmann::json direct_json(const DirectLight& d) {
+  return {{"lux", d.lux}, {"variance_lx2", d.variance_lx2}, {"lit", d.lit}};
+}
+
+DirectLight read_direct(const JsonNode& n) {
+  DirectLight d{n.at("lux").number(), n.at("variance_lx2").number(),
+                n.at("lit").unsigned_integer()};
+  if (!(std::isfinite(d.lux) && d.lux >= 0.0)) n.at("lux").fail("expected a finite number >= 0");
+  if (!(std::isfinite(d.variance_lx2) && d.variance_lx2 >= 0.0)) {
+    n.at("variance_lx2").fail("expected a finite number >= 0");
+  }
+  return d;
+}
+
+// A contribution's `photon_light`: absent for a group whose photons tallied all its light.
+const char* photon_light_name(Contribution::PhotonLight p) {
+  return p == Contribution::PhotonLight::Reflected ? "reflected" : "none";
+}
+
+Contribution::PhotonLight read_photon_light(const JsonNode& c) {
+  if (!c.has("photon_light")) return Contribution::PhotonLight::All;
+  const JsonNode n = c.at("photon_light");
+  const std::string v = n.string();
+  if (v == "reflected") return Contribution::PhotonLight::Reflected;
+  if (v == "none") return Contribution::PhotonLight::None;
+  n.fail("expected \"reflected\" or \"none\"");
+}
 
 std::vector<std::string> strings(const JsonNode& n) {
   std::vector<std::string> out;
@@ -64,6 +93,10 @@ void add_contributions_json(const TargetResult& t, nlohmann::json& j) {
                           {"ci_low_lux", c.estimate.ci_low},
                           {"ci_high_lux", c.estimate.ci_high},
                           {"hits", c.estimate.hits}};
+    if (c.photon_light != Contribution::PhotonLight::All) {  // next-event estimation
+      one["photon_light"] = photon_light_name(c.photon_light);
+      if (!c.direct.empty()) one["direct"] = direct_json(c.direct.at(0));
+    }
     if (t.observer_grid) {  // the maximum's point, and every point's [sum, sum_sq]
       one.update(tally_fields(c.tallies.at(t.observer_grid->max_at.value_or(0))));
       nlohmann::json points = nlohmann::json::array();
@@ -81,6 +114,7 @@ void add_contributions_json(const TargetResult& t, nlohmann::json& j) {
                                {"ci_high_lux", e.ci_high},
                                {"hits", e.hits}};
         cell.update(tally_fields(c.tallies.at(1 + k)));
+        if (!c.direct.empty()) cell["direct"] = direct_json(c.direct.at(1 + k));
         cells.push_back(std::move(cell));
       }
       one["cells"] = std::move(cells);
@@ -126,6 +160,13 @@ std::vector<Contribution> read_contributions_json(const JsonNode& n, const Targe
     Contribution part;
     part.group = g.name;
     part.estimate = read_estimate(c, "illuminance_lux");
+    part.photon_light = read_photon_light(c);
+    // A next-event group's direct parts: the whole target's, then each cell's (none at eyes).
+    const bool direct = c.has("direct");
+    if (direct && part.photon_light == Contribution::PhotonLight::All) {
+      c.at("direct").fail("a direct part needs photon_light \"reflected\" or \"none\"");
+    }
+    if (direct) part.direct.push_back(read_direct(c.at("direct")));
     if (t.observer_grid) {
       const JsonNode list = c.at("points");
       for (std::size_t k = 0; k < list.array_size(); ++k) {
@@ -140,6 +181,10 @@ std::vector<Contribution> read_contributions_json(const JsonNode& n, const Targe
       for (std::size_t k = 0; k < cells.array_size(); ++k) {
         part.cells.push_back(read_estimate(cells[k], "lux"));
         part.tallies.push_back(read_tally(cells[k]));
+        if (direct) part.direct.push_back(read_direct(cells[k].at("direct")));
+        if (!direct && cells[k].has("direct")) {
+          cells[k].at("direct").fail("a cell's direct part without the target's");
+        }
       }
     }
     out.push_back(std::move(part));

@@ -103,6 +103,7 @@ void copy_run(const Results& in, Results& r) {
   r.cut_paths = in.cut_paths;
   r.openings = in.openings;
   r.warnings = in.warnings;
+  r.effects = in.effects;  // what the trace simulated (next-event estimation among them)
   r.max_seconds = in.max_seconds;
   r.target_accuracy = in.target_accuracy;
   r.accuracy_met = in.accuracy_met;
@@ -152,6 +153,61 @@ void place_tallies(const Contribution& c, const detail::PreparedTarget& layout, 
   }
   group[layout.bin] = c.tallies[0];
   for (std::uint32_t k = 0; k < layout.cells; ++k) group[layout.cell_bin(k)] = c.tallies[1 + k];
+}
+
+// Next-event estimation, as the results recorded it in each group's contributions: which groups
+// have direct parts, and whether photons deposit at all (the run's GroupedTallies fields).
+// Results older than direct parts have none: every group's light is in its tallies.
+void read_next_event(const Results& in, const std::string& source,
+                     detail::GroupedTallies& tallies) {
+  using Light = Contribution::PhotonLight;
+  std::vector<Light> light(in.groups.size(), Light::All);
+  for (std::size_t i = 0; i < in.targets.size(); ++i) {
+    for (std::size_t g = 0; g < light.size(); ++g) {
+      const Light l = in.targets[i].contributions[g].photon_light;
+      if (i > 0 && l != light[g]) {
+        throw InputError(source, at(i, "contributions." + in.groups[g].name + ".photon_light"),
+                         "differs from the group's first target's (one run has one value)");
+      }
+      light[g] = l;
+    }
+  }
+  tallies.next_event.assign(light.size(), 0);
+  std::size_t reflected = 0, none = 0;
+  for (std::size_t g = 0; g < light.size(); ++g) {
+    tallies.next_event[g] = light[g] != Light::All;
+    reflected += light[g] == Light::Reflected;
+    none += light[g] == Light::None;
+  }
+  if (reflected > 0 && none > 0) {
+    throw InputError(source, "targets[].contributions",
+                     "photon_light \"reflected\" and \"none\" in one run (whether light "
+                     "reflects is the scene's)");
+  }
+  tallies.photons_reflect = none == 0;
+}
+
+// Target i's direct parts of a next-event group (`c`) into its bins: the whole target, then its
+// cells; none at an observer's or observer grid's eyes (they see reflected light only).
+void place_direct(const Contribution& c, const detail::PreparedTarget& layout, bool eyes,
+                  std::size_t i, const std::string& source, detail::DirectPart* group) {
+  const std::string where = at(i, "contributions." + c.group + ".direct");
+  if (eyes || layout.points > 0) {
+    if (!c.direct.empty()) throw InputError(source, where, "an observer has no direct part");
+    return;
+  }
+  if (c.direct.size() != 1 + std::size_t(layout.cells)) {
+    throw InputError(source, where,
+                     "missing: a group with photon_light needs the target's direct part and "
+                     "each cell's");
+  }
+  const auto part = [](const DirectLight& d) {
+    return detail::DirectPart{d.lux, d.variance_lx2, d.lit};
+  };
+  group[layout.bin] = part(c.direct[0]);
+  for (std::uint32_t k = 0; k < layout.cells; ++k) {
+    group[layout.cell_bin(k)] = part(c.direct[1 + k]);
+  }
 }
 
 }  // namespace
@@ -225,6 +281,27 @@ Results rescale_results(const std::string& results_json, const GroupFactors& fac
     for (std::size_t g = 0; g < names.size(); ++g) {
       place_tallies(in.targets[i].contributions[g], layout[i], eyes.contains(i), i, source,
                     &counts[g * bins.size()]);
+    }
+  }
+  // Direct parts of next-event groups, at the fluxes the results report; dimmed as the photon
+  // parts are (mean x f, variance x f^2: model/groups.cpp, group_estimate_z).
+  read_next_event(in, source, tallies);
+  std::vector<detail::DirectPart> direct;
+  if (std::any_of(tallies.next_event.begin(), tallies.next_event.end(),
+                  [](std::uint8_t n) { return n != 0; })) {
+    direct.resize(names.size() * bins.size());
+    tallies.direct = &direct;
+    tallies.direct_scale = factor;
+    for (std::size_t i = 0; i < in.targets.size(); ++i) {
+      for (std::size_t g = 0; g < names.size(); ++g) {
+        const Contribution& c = in.targets[i].contributions[g];
+        if (tallies.next_event[g] != 0) {
+          place_direct(c, layout[i], eyes.contains(i), i, source, &direct[g * bins.size()]);
+        } else if (!c.direct.empty()) {
+          throw InputError(source, at(i, "contributions." + c.group + ".direct"),
+                           "a direct part needs photon_light \"reflected\" or \"none\"");
+        }
+      }
     }
   }
   const auto daylight = daylight_basis(in, names, source);

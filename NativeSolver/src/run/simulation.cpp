@@ -383,6 +383,17 @@ void Simulation::plan_direct_light(const Results& r) {
                    [](const detail::PreparedGroup& g) { return g.next_event; })) {
     return;
   }
+  // auto, the default, never costs a run far more than its photons: the fewest points (every
+  // cell's 32, every surface's 512) each send a ray to every luminaire of their group, which
+  // for thousands of luminaires in one group would be billions of rays for a small run.
+  constexpr double kAutoRaysPerPhoton = 4.0;
+  const std::uint64_t fewest = detail::direct_ray_count(p, 1);
+  if (r.next_event == "auto" && double(fewest) > kAutoRaysPerPhoton * double(r.photons_requested)) {
+    detail::plan_next_event(p, *state_->backend, "off");
+    p.next_event_off = "its direct light would take " + std::to_string(fewest) +
+                       " shadow rays, more than 4 per photon of the run (\"on\" traces them)";
+    return;
+  }
   p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
   const auto wide = [&](const std::vector<detail::DirectPart>& parts) {
     if (!r.target_accuracy) return false;
@@ -438,6 +449,9 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     throw InputError("", "target_accuracy", "must lie strictly between 0 and 1 (e.g. 0.02)");
   }
   state_->pending_update_seconds = 0.0;
+  // Each group has its own tallies (groups x bins), so their estimates are independent; checked
+  // before the direct parts (as many, and traced per group and bin).
+  detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
   r.next_event = options.next_event.value_or(scene.settings.next_event);
   r.contributions = options.contributions.value_or(scene.settings.contributions);
   // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
@@ -446,8 +460,6 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   plan_direct_light(r);
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
-  // Each group has its own tallies (groups x bins), so their estimates are independent.
-  detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
   detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size() *
                              (qmc ? qmc->replicates : 1));
   if (resume && state_->kept && state_->kept_seed == r.seed &&

@@ -106,6 +106,8 @@ TEST(IntervalCoverage, EminU0AndUdCoverTheClosedFormOver500Seeds) {
 // cells is biased low, and the naive interval [min of lows, min of highs] at the per-cell
 // confidence misses the true minimum whenever any cell's upper end falls below it (~1 - 0.975^16
 // = 33 %). The simultaneous interval keeps its coverage; the naive one is shown failing.
+// Photon-specific: with next-event estimation the beam's cells are known to rounding (checked
+// below), and no naive interval can miss.
 TEST(IntervalCoverage, EqualCellsDefeatTheNaiveMinimumButNotTheSimultaneousOne) {
   Scene scene;
   Luminaire sun;
@@ -127,6 +129,7 @@ TEST(IntervalCoverage, EqualCellsDefeatTheNaiveMinimumButNotTheSimultaneousOne) 
     SolveOptions o;
     o.photons = 3200;  // 200 per cell
     o.seed = seed;
+    o.next_event = "off";
     const Results r = sim.run(o);
     const TargetResult& t = r.targets[0];
     ours += holds(t.intervals->min_low, 100.0, t.intervals->min_high);
@@ -140,6 +143,18 @@ TEST(IntervalCoverage, EqualCellsDefeatTheNaiveMinimumButNotTheSimultaneousOne) 
   const double floor = coverage_floor(0.95, kRuns);
   EXPECT_GE(double(ours) / kRuns, floor);
   EXPECT_LT(double(naive) / kRuns, floor) << "the naive interval should miss here";
+  // With next-event estimation (the default) every sample of a cell is the beam's 100 lx: the
+  // cells and the Emin interval hold 100 (their rounding included) and are narrow.
+  SolveOptions o;
+  o.photons = 3200;
+  o.seed = 1;
+  const Results r = sim.run(o);
+  const TargetResult& t = r.targets[0];
+  for (const Estimate& c : t.cells) {
+    EXPECT_TRUE(holds(c.ci_low, 100.0, c.ci_high)) << c.ci_low << " " << c.ci_high;
+    EXPECT_LT(c.ci_high - c.ci_low, 1e-9);
+  }
+  EXPECT_TRUE(holds(t.intervals->min_low, 100.0, t.intervals->min_high));
 }
 
 // E of the whole grid 1 % below the requirement: deciding "fail" needs the grid mean's interval
@@ -174,6 +189,8 @@ TEST(Decide, OnePercentAboveTheTruthFailsWithFewerPhotonsThanPerCellAccuracy) {
   EXPECT_EQ(r.photons & (r.photons - 1), 0u) << "doubling batches from 2^14";
 }
 
+// Photon-specific (a budget too small for photons): next-event estimation knows this empty
+// plane's direct light to far better than 1 % at once, and decides it within the budget.
 TEST(Decide, ABudgetTooSmallEndsUndecidedAndSaysWhatDecidingCosts) {
   PointOverGrid setup;
   setup.scene.targets[0].requirements = {};
@@ -182,6 +199,10 @@ TEST(Decide, ABudgetTooSmallEndsUndecidedAndSaysWhatDecidingCosts) {
   o.decide = true;
   o.backend = "embree";
   o.photons = 20'000;
+  const Results nee = solve(setup.scene, o);
+  EXPECT_EQ(nee.stop_reason, kStopDecided);
+  EXPECT_EQ(nee.verdict, VerdictKind::Fail);  // 1 % above the truth
+  o.next_event = "off";
   const Results r = solve(setup.scene, o);
   EXPECT_EQ(r.stop_reason, kStopPhotons);
   EXPECT_EQ(r.photons, 20'000u);

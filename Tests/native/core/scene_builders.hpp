@@ -203,6 +203,9 @@ inline Results run_on_backend(const std::string& backend, Scene s, std::uint64_t
   o.seed = seed;
   o.confidence = confidence;
   o.backend = backend;
+  // A plain backend name traces direct light by photons (the default is next-event estimation
+  // where it applies): the "+nee" names run the same checks with it.
+  o.next_event = "off";
   const auto plus = backend.find("+nee");
   if (plus != std::string::npos) {
     o.backend = backend.substr(0, plus);
