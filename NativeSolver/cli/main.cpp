@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "annual_command.hpp"
 #include "command_line.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/cost.hpp"
@@ -19,7 +20,9 @@
 #include "lightsolver/mpi.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/photometry.hpp"
+#include "lightsolver/run_options.hpp"
 #include "lightsolver/scene_io.hpp"
+#include "lightsolver/simulation.hpp"
 #include "lightsolver/solver.hpp"
 #include "lightsolver/timings.hpp"
 #include "optimize_command.hpp"
@@ -27,9 +30,8 @@
 #include "report_command.hpp"
 #include "rescale_command.hpp"
 #include "run_option_flags.hpp"
-#include "study_command.hpp"
 #include "skymtx_command.hpp"
-#include "annual_command.hpp"
+#include "study_command.hpp"
 #include "sun_command.hpp"
 #include "sunlight_command.hpp"
 #include "verify_command.hpp"
@@ -152,12 +154,25 @@ void print_timings(const lightsolver::Results& results) {
                t::monotonic_ms_at_enable());
 }
 
+// lightsolver::solve() for a scene straight from load_scene(): moved into the Simulation, not
+// copied, and not validated a second time (start-up: docs/BENCHMARKS.md).
+lightsolver::Results solve_loaded(lightsolver::Scene scene, const lightsolver::SolveOptions& opt,
+                                  const lightsolver::ProgressFn& progress) {
+  lightsolver::check_run_options(opt);  // before the backend is built, as solve() does
+  lightsolver::Simulation::Options sim;
+  sim.backend = opt.backend;
+  sim.threads = opt.threads;
+  sim.scene_validated = true;
+  lightsolver::Simulation simulation(std::move(scene), sim);
+  return simulation.run(opt, progress);
+}
+
 int run(const RunArgs& a) {
   if (a.options.accuracy_per_cell && !a.options.target_accuracy) {
     throw lightsolver::InputError("", "--per-cell", "needs --accuracy X (the goal per cell)");
   }
   if (!a.out.empty()) lightsolver::check_writable(a.out, "results file");  // before any tracing
-  const lightsolver::Scene scene = [&] {
+  lightsolver::Scene scene = [&] {
     const lightsolver::timings::Scope phase("read scene");
     return lightsolver::load_scene(a.scene);
   }();
@@ -171,7 +186,7 @@ int run(const RunArgs& a) {
       if (f.seconds > 60.0) bar.note(forecast_text(f, a.options.target_accuracy));
     };
     const lightsolver::timings::Scope phase("solve");
-    results = lightsolver::solve(scene, opt, std::ref(bar));
+    results = solve_loaded(std::move(scene), opt, std::ref(bar));
   }
   std::signal(SIGINT, SIG_DFL);
   {

@@ -67,6 +67,9 @@ class Simulation {
     std::string backend = "auto";
     int threads = 0;                          ///< 0: all cores
     std::vector<std::string> movable_meshes;  ///< meshes that set_mesh_transform() may move
+    /// The scene comes from load_scene() or validate() with its meshes unchanged: their
+    /// vertices and triangles are not checked again (the rest is).
+    bool scene_validated = false;
   };
 
   /// Validates and prepares the scene and builds the backend. Throws InputError.

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
@@ -16,7 +17,10 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "lightsolver/timings.hpp"
 #include "model/coincident_grid.hpp"
+#include "model/coincident_planes.hpp"
+#include "model/coincident_triangles.hpp"
 
 namespace lightsolver::detail {
 namespace {
@@ -27,125 +31,16 @@ using coincident_grid::Grid;
 using coincident_grid::kLevelBias;
 using coincident_grid::level_of;
 
-using glm::dvec2;
+using coincident_triangles::coplanar_overlap_m2;
+using coincident_triangles::kCosMaxAngle;
+using coincident_triangles::ray_offset_along;
+using coincident_triangles::SceneTriangles;
+using coincident_triangles::Triangle;
+
 using glm::dvec3;
 
-// Normals parallel or antiparallel within 0.01 rad; the plane distance test does the real work.
-const double kCosMaxAngle = std::cos(0.01);
 // Detection tolerance = 2 x the tracer's ray offset; the hidden triangle moves by 2 x that.
 constexpr double kToleranceMargin = 2.0, kMoveFactor = 2.0;
-// Overlaps below this fraction of the smaller triangle are rounding (triangles sharing an edge).
-constexpr double kMinOverlapFraction = 1e-9;
-
-struct Triangle {
-  std::array<dvec3, 3> p;  // re-centred coordinates
-  dvec3 n;                 // unit front normal
-  double area_m2 = 0.0;
-};
-
-// Every triangle of the included meshes under one global index, vertices in re-centred
-// coordinates computed on demand (a million triangles must not cost a million records).
-class SceneTriangles {
- public:
-  SceneTriangles(const Scene& s, const dvec3& origin, const std::vector<bool>& included)
-      : s_(s), origin_(origin) {
-    first_.push_back(0);
-    for (std::size_t m = 0; m < s.meshes.size(); ++m) {
-      const std::size_t n = included[m] ? s.meshes[m].triangles.size() : 0;
-      mesh_of_.insert(mesh_of_.end(), n, static_cast<std::uint32_t>(m));
-      first_.push_back(first_.back() + n);
-    }
-  }
-  std::size_t size() const { return mesh_of_.size(); }
-  std::uint32_t mesh(std::size_t g) const { return mesh_of_[g]; }
-  std::size_t local(std::size_t g) const { return g - first_[mesh_of_[g]]; }
-  const glm::u32vec3& indices(std::size_t g) const {
-    return s_.meshes[mesh_of_[g]].triangles[local(g)];
-  }
-  dvec3 vertex(std::size_t g, int k) const {
-    return s_.meshes[mesh_of_[g]].vertices[indices(g)[k]] - origin_;
-  }
-  void bounds(std::size_t g, dvec3& lo, dvec3& hi) const {
-    lo = hi = vertex(g, 0);
-    for (int k = 1; k < 3; ++k) {
-      lo = glm::min(lo, vertex(g, k));
-      hi = glm::max(hi, vertex(g, k));
-    }
-  }
-  Triangle get(std::size_t g) const {
-    Triangle t{{vertex(g, 0), vertex(g, 1), vertex(g, 2)}, dvec3(0.0), 0.0};
-    const dvec3 c = glm::cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
-    t.area_m2 = 0.5 * glm::length(c);
-    t.n = c / (2.0 * t.area_m2);
-    return t;
-  }
-
- private:
-  const Scene& s_;
-  dvec3 origin_;
-  std::vector<std::uint32_t> mesh_of_;
-  std::vector<std::size_t> first_;
-};
-
-// --- 2-D overlap by Sutherland-Hodgman --------------------------------------------------------
-
-struct Polygon {
-  std::array<dvec2, 24> v;  // a clip at most doubles the count, whatever rounding does
-  int n = 0;
-};
-
-double cross2(const dvec2& a, const dvec2& b) { return a.x * b.y - a.y * b.x; }
-
-double signed_area(const Polygon& p) {
-  double twice = 0.0;
-  for (int i = 0; i < p.n; ++i) twice += cross2(p.v[i], p.v[(i + 1) % p.n]);
-  return 0.5 * twice;
-}
-
-// Keeps the part of `in` left of the directed line a -> b.
-Polygon clip(const Polygon& in, const dvec2& a, const dvec2& b) {
-  Polygon out;
-  const dvec2 e = b - a;
-  for (int i = 0; i < in.n; ++i) {
-    const dvec2 &p = in.v[i], &q = in.v[(i + 1) % in.n];
-    const double sp = cross2(e, p - a), sq = cross2(e, q - a);
-    if (sp >= 0.0) out.v[out.n++] = p;
-    if ((sp >= 0.0) != (sq >= 0.0)) out.v[out.n++] = p + (sp / (sp - sq)) * (q - p);
-  }
-  return out;
-}
-
-// Offset of the tracer, measured along the unit normal n, where coordinates reach `magnitude`
-// per axis: offset_ray_origin shifts coordinate i by n_i times its bound.
-double ray_offset_along(const dvec3& n, const dvec3& magnitude) {
-  double h = 0.0;
-  for (int i = 0; i < 3; ++i) h += std::abs(n[i]) * ray_offset_bound_m(magnitude[i]);
-  return h;
-}
-
-// Area of t and o overlapping within the tolerance of t's plane, or 0. `tol_m` is the largest
-// distance between the planes allowed anywhere in the overlap.
-double coplanar_overlap_m2(const Triangle& t, const Triangle& o, double tol_m) {
-  if (std::abs(glm::dot(t.n, o.n)) < kCosMaxAngle) return 0.0;
-  const dvec3 u = glm::normalize(t.p[1] - t.p[0]), v = glm::cross(t.n, u);
-  auto flat = [&](const dvec3& p) {
-    return dvec2(glm::dot(p - t.p[0], u), glm::dot(p - t.p[0], v));
-  };
-  Polygon poly;
-  for (const dvec3& p : t.p) poly.v[poly.n++] = flat(p);  // counter-clockwise about t.n
-  std::array<dvec2, 3> clipper = {flat(o.p[0]), flat(o.p[1]), flat(o.p[2])};
-  if (glm::dot(t.n, o.n) < 0.0) std::swap(clipper[1], clipper[2]);  // make it counter-clockwise
-  for (int k = 0; k < 3 && poly.n > 0; ++k) poly = clip(poly, clipper[k], clipper[(k + 1) % 3]);
-  if (poly.n < 3) return 0.0;
-  const double area = signed_area(poly);
-  if (!(area > kMinOverlapFraction * std::min(t.area_m2, o.area_m2))) return 0.0;
-  // The gap between the planes is affine over the overlap: its vertices bound it.
-  for (int i = 0; i < poly.n; ++i) {
-    const dvec3 q = t.p[0] + poly.v[i].x * u + poly.v[i].y * v;
-    if (std::abs(glm::dot(q - o.p[0], o.n)) > tol_m) return 0.0;
-  }
-  return area;
-}
 
 // --- the rule ---------------------------------------------------------------------------------
 
@@ -166,57 +61,21 @@ class Detector {
   Detector(const Scene& s, const dvec3& origin, const std::vector<bool>& is_target,
            const std::vector<bool>& movable)
       : s_(s), is_target_(is_target), tris_(s, origin, included(s, movable)) {
-    lo_.resize(tris_.size());
-    hi_.resize(tris_.size());
-    for (std::size_t g = 0; g < tris_.size(); ++g) {
-      tris_.bounds(g, lo_[g], hi_[g]);
-      magnitude_ = glm::max(magnitude_, glm::max(glm::abs(lo_[g]), glm::abs(hi_[g])));
+    std::vector<coincident_planes::Plane> planes;
+    {
+      const timings::Scope phase("planes");
+      planes = planes_and_magnitude();
     }
-    // Boxes grow by the largest tolerance anywhere, so no coplanar pair is missed.
-    pad_m_ = kToleranceMargin * ray_offset_along(dvec3(1.0), magnitude_);
-    for (std::size_t g = 0; g < tris_.size(); ++g) {
-      lo_[g] -= pad_m_;
-      hi_[g] += pad_m_;
+    const timings::Scope phase("plane filter");
+    const std::vector<std::uint8_t> keep = plane_filter(planes);
+    for (std::size_t g = 0; g < keep.size(); ++g) {
+      if (keep[g]) kept_.push_back(static_cast<std::uint32_t>(g));
     }
   }
 
   CoincidentGeometry run() {
-    std::vector<Entry> entries;
-    entries.reserve(2 * tris_.size());
-    level_.resize(tris_.size());
-    for (std::size_t g = 0; g < tris_.size(); ++g) {
-      dvec3 lo, hi;
-      padded_bounds(g, lo, hi);
-      level_[g] = level_of(lo, hi);
-      for_each_cell(level_[g], lo, hi, [&](std::uint64_t key) {
-        entries.push_back({key, tris_.mesh(g), static_cast<std::uint32_t>(g)});
-      });
-    }
-    const std::vector<std::uint64_t> partner_levels = levels_of_partners();
-    const Grid grid(std::move(entries));
-    struct Local {
-      std::vector<std::uint32_t> seen;  // stamps: g + 1 of the last triangle that met it
-      std::vector<Hit> hits;
-    };
-    tbb::enumerable_thread_specific<Local> locals;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tris_.size(), 4096), [&](const auto& r) {
-      Local& local = locals.local();
-      local.seen.resize(tris_.size(), 0);
-      for (std::size_t g = r.begin(); g != r.end(); ++g) {
-        const std::uint64_t levels = partner_levels[tris_.mesh(g)] >> (level_[g] + kLevelBias);
-        if (levels == 0) continue;
-        dvec3 lo, hi;
-        padded_bounds(g, lo, hi);
-        for (int l = 0; l < 64 - level_[g] - kLevelBias; ++l) {
-          if (!(levels >> l & 1)) continue;
-          for_each_cell(level_[g] + l, lo, hi, [&](std::uint64_t key) {
-            visit_cell(grid, key, g, local.seen, local.hits);
-          });
-        }
-      }
-    });
-    std::vector<Hit> hits;
-    for (const Local& local : locals) hits.insert(hits.end(), local.hits.begin(), local.hits.end());
+    std::vector<Hit> hits = coplanar_hits();
+    const timings::Scope phase("the rule");
     // Sorted, the rule sees the pairs in one order whatever the threads did: sums are exact
     // repeats from run to run.
     std::sort(hits.begin(), hits.end());
@@ -225,6 +84,49 @@ class Detector {
   }
 
  private:
+  // Every coplanar overlapping pair among the triangles the plane filter kept, in any order.
+  // The grid numbers them k = 0, 1, ... in the order of their global index kept_[k].
+  std::vector<Hit> coplanar_hits() {
+    const timings::Scope phase("grid");
+    const std::size_t n = kept_.size();
+    kept_boxes();
+    std::vector<Entry> entries;
+    entries.reserve(2 * n);
+    level_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      level_[k] = level_of(lo_[k], hi_[k]);
+      for_each_cell(level_[k], lo_[k], hi_[k], [&](std::uint64_t key) {
+        entries.push_back({key, mesh(k), static_cast<std::uint32_t>(k)});
+      });
+    }
+    const std::vector<std::uint64_t> partner_levels = levels_of_partners();
+    const Grid grid(std::move(entries));
+    struct Local {
+      std::vector<std::uint32_t> seen;  // stamps: k + 1 of the last triangle that met it
+      std::vector<Hit> hits;
+    };
+    tbb::enumerable_thread_specific<Local> locals;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
+      Local& local = locals.local();
+      local.seen.resize(n, 0);
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        const std::uint64_t levels = partner_levels[mesh(k)] >> (level_[k] + kLevelBias);
+        if (levels == 0) continue;
+        for (int l = 0; l < 64 - level_[k] - kLevelBias; ++l) {
+          if (!(levels >> l & 1)) continue;
+          for_each_cell(level_[k] + l, lo_[k], hi_[k], [&](std::uint64_t key) {
+            visit_cell(grid, key, k, local.seen, local.hits);
+          });
+        }
+      }
+    });
+    std::vector<Hit> hits;
+    for (const Local& local : locals) hits.insert(hits.end(), local.hits.begin(), local.hits.end());
+    return hits;
+  }
+
+  std::uint32_t mesh(std::size_t k) const { return tris_.mesh(kept_[k]); }
+
   static std::vector<bool> included(const Scene& s, const std::vector<bool>& movable) {
     std::vector<bool> in(s.meshes.size());
     for (std::size_t m = 0; m < in.size(); ++m) in[m] = !movable[m];
@@ -237,8 +139,7 @@ class Detector {
   std::vector<std::uint64_t> levels_of_partners() const {
     const std::size_t n = s_.meshes.size();
     std::vector<std::uint64_t> own(n, 0);
-    for (std::size_t g = 0; g < tris_.size(); ++g)
-      own[tris_.mesh(g)] |= 1ull << (level_[g] + kLevelBias);
+    for (std::size_t k = 0; k < kept_.size(); ++k) own[mesh(k)] |= 1ull << (level_[k] + kLevelBias);
     std::vector<std::array<int, 64>> by_material(s_.materials.size(), std::array<int, 64>{});
     std::array<int, 64> all{}, targets{}, others{};
     for (std::size_t m = 0; m < n; ++m) {
@@ -262,10 +163,53 @@ class Detector {
     return out;
   }
 
-  // Kept, not recomputed: a query tests the boxes of many partners (most of the check's time).
-  void padded_bounds(std::size_t g, dvec3& lo, dvec3& hi) const {
-    lo = lo_[g];
-    hi = hi_[g];
+  // Each triangle's plane, and magnitude_ and pad_m_, in one parallel pass (a maximum is exact
+  // in any order).
+  std::vector<coincident_planes::Plane> planes_and_magnitude() {
+    std::vector<coincident_planes::Plane> planes(tris_.size());
+    magnitude_ = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, tris_.size(), 4096), dvec3(0.0),
+        [&](const auto& r, dvec3 m) {
+          for (std::size_t g = r.begin(); g != r.end(); ++g) {
+            const Triangle t = tris_.get(g);
+            for (const dvec3& p : t.p) m = glm::max(m, glm::abs(p));
+            planes[g] = {t.n, glm::dot(t.n, t.p[0])};
+          }
+          return m;
+        },
+        [](const dvec3& a, const dvec3& b) { return glm::max(a, b); });
+    // Boxes grow by the largest tolerance anywhere, so no coplanar pair is missed.
+    pad_m_ = kToleranceMargin * ray_offset_along(dvec3(1.0), magnitude_);
+    return planes;
+  }
+
+  // The padded box of each triangle the plane filter kept.
+  void kept_boxes() {
+    lo_.resize(kept_.size());
+    hi_.resize(kept_.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, kept_.size(), 4096), [&](const auto& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        tris_.bounds(kept_[k], lo_[k], hi_[k]);
+        lo_[k] -= pad_m_;
+        hi_[k] += pad_m_;
+      }
+    });
+  }
+
+  // Per triangle, whether its plane comes near the plane of a triangle of a mesh it is
+  // relevant with (coincident_planes.hpp): the others cannot be in any pair. The bounds hold
+  // for every pair coplanar_overlap_m2 accepts, with a margin for rounding: normals within the
+  // chord of 0.01 rad, and for a point q of the overlap (in t's plane, within tol_m <= pad_m_
+  // of o's), |d_t - s d_o| <= |n_t - s n_o| |q| + tol_m, |q| at most |magnitude_|.
+  std::vector<std::uint8_t> plane_filter(
+      const std::vector<coincident_planes::Plane>& planes) const {
+    const double chord = 2.0 * std::sin(0.5 * std::acos(kCosMaxAngle));
+    const double normal_tol = 1.01 * chord + 1e-12;
+    const double offset_tol = 1.01 * (normal_tol * glm::length(magnitude_) + pad_m_) + 1e-9;
+    return coincident_planes::near_planes(
+        planes, normal_tol, offset_tol, [&](std::size_t g) { return tris_.mesh(g); },
+        [&](std::uint32_t m) { return bool(is_target_[m]); },
+        [&](std::uint32_t m) { return static_cast<std::int32_t>(s_.meshes[m].material); });
   }
 
   // Pairs that can matter: one side is a target, or the materials differ.
@@ -274,30 +218,31 @@ class Detector {
            (is_target_[a] || is_target_[b] || s_.meshes[a].material != s_.meshes[b].material);
   }
 
-  void visit_cell(const Grid& grid, std::uint64_t key, std::size_t g,
+  // k: a kept triangle (coplanar_hits' numbering), as are the entries of the grid.
+  void visit_cell(const Grid& grid, std::uint64_t key, std::size_t k,
                   std::vector<std::uint32_t>& seen, std::vector<Hit>& hits) const {
-    const std::uint32_t mesh = tris_.mesh(g);
+    const std::uint32_t own = mesh(k);
     auto [i, end] = grid.find(key);
     while (i < end) {
       const Entry& e = grid.entry(i);
-      if (!relevant(mesh, e.mesh)) {
+      if (!relevant(own, e.mesh)) {
         i = grid.run_end(i);  // skip this mesh's entries in the cell at once
         continue;
       }
       ++i;
       // Same-level pairs are met from both sides: keep one. Stamps drop a cell's repeats.
-      if ((level_[e.tri] == level_[g] && e.tri <= g) || seen[e.tri] == g + 1) continue;
-      seen[e.tri] = static_cast<std::uint32_t>(g + 1);
-      test_pair(g, e.tri, hits);
+      if ((level_[e.tri] == level_[k] && e.tri <= k) || seen[e.tri] == k + 1) continue;
+      seen[e.tri] = static_cast<std::uint32_t>(k + 1);
+      test_pair(k, e.tri, hits);
     }
   }
 
-  void test_pair(std::size_t g1, std::size_t g2, std::vector<Hit>& hits) const {
-    dvec3 lo1, hi1, lo2, hi2;
-    padded_bounds(g1, lo1, hi1);
-    padded_bounds(g2, lo2, hi2);
-    if (glm::any(glm::lessThan(hi1, lo2)) || glm::any(glm::lessThan(hi2, lo1))) return;
+  // Boxes kept, not recomputed: a query tests the boxes of many partners.
+  void test_pair(std::size_t k1, std::size_t k2, std::vector<Hit>& hits) const {
+    if (glm::any(glm::lessThan(hi_[k1], lo_[k2])) || glm::any(glm::lessThan(hi_[k2], lo_[k1])))
+      return;
     // The reference triangle t: the target's where there is one, else the lower mesh's.
+    const std::size_t g1 = kept_[k1], g2 = kept_[k2];
     const std::uint32_t m1 = tris_.mesh(g1), m2 = tris_.mesh(g2);
     const bool t_first = is_target_[m1] != is_target_[m2] ? is_target_[m1] : m1 < m2;
     const std::size_t gt = t_first ? g1 : g2, go = t_first ? g2 : g1;
@@ -457,8 +402,9 @@ class Detector {
   SceneTriangles tris_;
   dvec3 magnitude_{0.0};
   double pad_m_ = 0.0;
-  std::vector<dvec3> lo_, hi_;  // per triangle, its box grown by pad_m_
-  std::vector<int> level_;
+  std::vector<std::uint32_t> kept_;  // the triangles the plane filter kept, ascending
+  std::vector<dvec3> lo_, hi_;       // per kept triangle, its box grown by pad_m_
+  std::vector<int> level_;           // per kept triangle, its grid level
   std::map<std::tuple<std::uint32_t, std::uint32_t, Coincidence::Kind>, double> found_;
   std::vector<Move> moves_;
   std::vector<std::vector<std::uint32_t>> edge_ids_;  // closed(): per mesh, welded vertex ids

@@ -29,6 +29,7 @@
 #include "run/simulation_state.hpp"
 #include "run/stop_policies.hpp"
 #include "scene/provenance.hpp"
+#include "scene/validate_again.hpp"
 #include "types/target_types.hpp"
 #include "lightsolver/run_options.hpp"
 #include "lightsolver/timings.hpp"
@@ -285,7 +286,7 @@ Simulation::Simulation(Scene scene, Options options)
   if (options.threads < 0) throw InputError("", "threads", "must be >= 0 (0: all cores)");
   {
     const timings::Scope validating("validate");
-    validate(scene);
+    options.scene_validated ? detail::validate_again(scene) : validate(scene);
   }
   std::vector<std::size_t> movable;
   for (const auto& name : options.movable_meshes) {

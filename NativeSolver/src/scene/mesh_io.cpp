@@ -6,12 +6,14 @@
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <dlfcn.h>
 
-#include <assimp/Importer.hpp>
 #include <bit>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 
@@ -97,13 +99,49 @@ std::optional<Mesh> read_simple_ply(const std::string& path) {
   return mesh;
 }
 
+namespace {
+
+// Assimp's C API, loaded at the first mesh that needs it: most scenes never do (the workbench
+// writes the direct layout), and loading Assimp with its own libraries at every start cost
+// about 2 ms of a start-up of 25-40 (docs/BENCHMARKS.md, "Start-up").
+struct AssimpApi {
+  const aiScene* (*import_file)(const char*, unsigned) = nullptr;
+  void (*release)(const aiScene*) = nullptr;
+  const char* (*error)() = nullptr;
+  std::string failure;  // why it could not be loaded; empty when loaded
+};
+
+const AssimpApi& assimp() {
+  static AssimpApi api;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    void* lib = dlopen(LIGHTSOLVER_ASSIMP_SONAME, RTLD_NOW | RTLD_LOCAL);
+    if (lib != nullptr) {
+      api.import_file = reinterpret_cast<decltype(api.import_file)>(dlsym(lib, "aiImportFile"));
+      api.release = reinterpret_cast<decltype(api.release)>(dlsym(lib, "aiReleaseImport"));
+      api.error = reinterpret_cast<decltype(api.error)>(dlsym(lib, "aiGetErrorString"));
+    }
+    if (!api.import_file || !api.release || !api.error) {
+      const char* why = dlerror();
+      api.failure = std::string("the mesh library ") + LIGHTSOLVER_ASSIMP_SONAME +
+                    " could not be loaded" + (why ? std::string(": ") + why : std::string());
+    }
+  });
+  return api;
+}
+
+}  // namespace
+
 Mesh read_mesh_with_assimp(const std::string& path) {
-  Assimp::Importer importer;
+  const AssimpApi& api = assimp();
+  if (!api.failure.empty()) throw InputError(path, "", "cannot read mesh: " + api.failure);
   // Only triangulation: no welding, smoothing or re-orientation, so winding and positions stay
   // exactly as written (the winding decides which side of a target is its front).
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+  const std::unique_ptr<const aiScene, void (*)(const aiScene*)> owned(
+      api.import_file(path.c_str(), aiProcess_Triangulate), api.release);
+  const aiScene* scene = owned.get();
   if (!scene || !scene->mRootNode) {
-    throw InputError(path, "", std::string("cannot read mesh: ") + importer.GetErrorString());
+    throw InputError(path, "", std::string("cannot read mesh: ") + api.error());
   }
   Mesh mesh;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {

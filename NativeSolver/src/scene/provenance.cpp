@@ -3,6 +3,7 @@
 // provenance_io.cpp.
 #include "scene/provenance.hpp"
 
+#include <dlfcn.h>
 #include <openssl/evp.h>
 #include <unistd.h>
 
@@ -14,11 +15,13 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
-#include "scene/requirements_table.hpp"
 #include "lightsolver/run_options.hpp"
+#include "scene/requirements_table.hpp"
 
 #ifndef LIGHTSOLVER_BUILD_TYPE
 #define LIGHTSOLVER_BUILD_TYPE ""
@@ -29,27 +32,63 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// libcrypto's SHA-256, loaded at the first hash: the scene's hash runs on a thread beside the
+// reading, so loading the library there (about 1 ms) is off the way to the first photon,
+// where linking it made every process load it before main (docs/BENCHMARKS.md, "Start-up").
+struct Sha256Api {
+  EVP_MD_CTX* (*ctx_new)() = nullptr;
+  void (*ctx_free)(EVP_MD_CTX*) = nullptr;
+  const EVP_MD* (*sha256)() = nullptr;
+  int (*init)(EVP_MD_CTX*, const EVP_MD*, ENGINE*) = nullptr;
+  int (*update)(EVP_MD_CTX*, const void*, std::size_t) = nullptr;
+  int (*final)(EVP_MD_CTX*, unsigned char*, unsigned int*) = nullptr;
+};
+
+const Sha256Api& sha256_api() {
+  static Sha256Api api;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    void* lib = dlopen(LIGHTSOLVER_CRYPTO_SONAME, RTLD_NOW | RTLD_LOCAL);
+    if (lib == nullptr) return;
+    auto get = [&](auto& f, const char* name) {
+      f = reinterpret_cast<std::remove_reference_t<decltype(f)>>(dlsym(lib, name));
+    };
+    get(api.ctx_new, "EVP_MD_CTX_new");
+    get(api.ctx_free, "EVP_MD_CTX_free");
+    get(api.sha256, "EVP_sha256");
+    get(api.init, "EVP_DigestInit_ex");
+    get(api.update, "EVP_DigestUpdate");
+    get(api.final, "EVP_DigestFinal_ex");
+  });
+  return api;
+}
+
 struct DigestDeleter {
-  void operator()(EVP_MD_CTX* c) const { EVP_MD_CTX_free(c); }
+  void operator()(EVP_MD_CTX* c) const { sha256_api().ctx_free(c); }
 };
 using Digest = std::unique_ptr<EVP_MD_CTX, DigestDeleter>;
 
 Digest new_sha256() {
-  Digest d(EVP_MD_CTX_new());
-  if (!d || EVP_DigestInit_ex(d.get(), EVP_sha256(), nullptr) != 1) {
+  const Sha256Api& api = sha256_api();
+  if (!api.ctx_new || !api.ctx_free || !api.sha256 || !api.init || !api.update || !api.final) {
+    throw std::runtime_error(std::string("SHA-256 is not available (OpenSSL libcrypto, ") +
+                             LIGHTSOLVER_CRYPTO_SONAME + ")");
+  }
+  Digest d(api.ctx_new());
+  if (!d || api.init(d.get(), api.sha256(), nullptr) != 1) {
     throw std::runtime_error("SHA-256 is not available (OpenSSL libcrypto)");
   }
   return d;
 }
 
 void update(EVP_MD_CTX* d, const char* data, std::size_t n) {
-  if (EVP_DigestUpdate(d, data, n) != 1) throw std::runtime_error("SHA-256 update failed");
+  if (sha256_api().update(d, data, n) != 1) throw std::runtime_error("SHA-256 update failed");
 }
 
 std::string hex_of(EVP_MD_CTX* d) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int n = 0;
-  if (EVP_DigestFinal_ex(d, digest, &n) != 1) throw std::runtime_error("SHA-256 failed");
+  if (sha256_api().final(d, digest, &n) != 1) throw std::runtime_error("SHA-256 failed");
   static const char* kHex = "0123456789abcdef";
   std::string out;
   for (unsigned int i = 0; i < n; ++i) {

@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "scene/daylight_factor_check.hpp"
+#include "scene/validate_again.hpp"
 #include "types/luminaire_types.hpp"
 #include "types/target_types.hpp"
 #include "lightsolver/photometry.hpp"
@@ -77,6 +78,10 @@ class Validator {
   explicit Validator(Scene& s, std::vector<InputError>* errors = nullptr)
       : s_(s), errors_(errors) {}
 
+  // The meshes' vertices and triangles are known good (the scene was validated and its meshes
+  // have not changed since): only their names and materials are checked again.
+  void skip_mesh_geometry() { mesh_geometry_ = false; }
+
   void luminaires() {
     for (std::size_t i = 0; i < s_.luminaires.size(); ++i) luminaire(i);
   }
@@ -118,6 +123,10 @@ class Validator {
   }
   // Points and edges: finite, and within 10^9 m of the origin (beyond any geographic use; the
   // solver re-centres in double, but the float tracer needs a bounded extent).
+  static bool in_range(const glm::dvec3& v) {  // what coordinates() accepts
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) &&
+           std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}) <= limits::kMaxCoordinate_m;
+  }
   void coordinates(const std::string& where, const glm::dvec3& v) const {
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
       fail(where, "coordinates must be finite numbers");
@@ -159,8 +168,13 @@ class Validator {
     if (m.material < 0 || m.material >= static_cast<int>(s_.materials.size())) {
       fail(at("meshes", i, "material"), "unknown material");
     }
+    if (!mesh_geometry_) return;
     for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-      coordinates(at("meshes", i, "vertices") + "[" + std::to_string(v) + "]", m.vertices[v]);
+      // The field path only for an error: building it for each of 10^5 vertices was most of
+      // the check's time.
+      if (!in_range(m.vertices[v])) {
+        coordinates(at("meshes", i, "vertices") + "[" + std::to_string(v) + "]", m.vertices[v]);
+      }
     }
     std::size_t kept = 0;
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
@@ -362,6 +376,7 @@ class Validator {
   std::vector<InputError>* errors_;
   std::set<int> bad_meshes_;
   std::uint64_t grid_cells_ = 0;
+  bool mesh_geometry_ = true;
 };
 
 }  // namespace
@@ -369,6 +384,16 @@ class Validator {
 void validate(Scene& scene) { Validator(scene).run(); }
 
 void validate_luminaires(Scene& scene) { Validator(scene).luminaires(); }
+
+namespace detail {
+
+void validate_again(Scene& scene) {
+  Validator v(scene);
+  v.skip_mesh_geometry();
+  v.run();
+}
+
+}  // namespace detail
 
 std::vector<InputError> validation_errors(Scene& scene) {
   std::vector<InputError> errors;

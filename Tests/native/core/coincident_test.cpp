@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 
@@ -389,6 +390,32 @@ TEST(CoincidentDetection, TargetBoxInACornerStepsIntoFloorAndWall) {
   }
   for (std::size_t k = 0; k + 1 < p.meshes[0].vertices.size(); ++k)
     EXPECT_EQ(p.meshes[0].vertices[k], float(s.meshes[0].vertices[k / 3][k % 3] - p.origin[k % 3]));
+}
+
+// Far from the scene's centre the tolerance is wide, so a small target tilted by almost the
+// 0.01 rad limit still lies on the floor: its plane's offset n·p then differs from the floor's
+// by about the tilt times the distance (9 m here). The plane filter in front of the grid must
+// keep such pairs (coincident_planes.hpp); the same patch facing down is a contact.
+TEST(CoincidentDetection, TiltedTargetsFarFromTheCentreAreFound) {
+  Scene s;
+  const int grey = add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  s.meshes.push_back(quad_mesh("floor", grey, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}));  // front +z
+  s.meshes.push_back(quad_mesh("far", grey, {2000, 0, 0}, {1, 0, 0}, {0, 1, 0}));
+  const double w = 0.04, tilt = 0.009;  // 0.18 mm out of the floor's plane at its edges
+  const dvec3 e1 = w * dvec3(std::cos(tilt), 0, std::sin(tilt)), e2(0, w, 0);
+  const dvec3 up(0.5, 0.5, 0), down(0.2, 0.2, 0);  // the patches' centres
+  s.meshes.push_back(quad_mesh("up", grey, up - 0.5 * e1 - 0.5 * e2, e1, e2));
+  s.meshes.push_back(quad_mesh("down", grey, down - 0.5 * e1 - 0.5 * e2, e2, e1));  // front -z
+  s.targets.push_back(surface("up", 2));
+  s.targets.push_back(surface("down", 3));
+  const auto p = prepared(s);
+  EXPECT_NEAR(coincident_area(p, Coincidence::Kind::TargetOnSurface, 2, 0), w * w, 1e-9 * w * w);
+  EXPECT_NEAR(coincident_area(p, Coincidence::Kind::Contact, 3, 0), w * w, 1e-9 * w * w);
+  EXPECT_EQ(p.coincidences.size(), 2u);
+  // A little steeper than the limit: not coplanar.
+  const dvec3 f1 = w * dvec3(std::cos(0.0105), 0, std::sin(0.0105));
+  s.meshes[2] = quad_mesh("up", grey, up - 0.5 * f1 - 0.5 * e2, f1, e2);
+  EXPECT_EQ(prepared(s).coincidences.size(), 1u);
 }
 
 // About a million triangles, mostly a finely tessellated floor under a target and a rug of

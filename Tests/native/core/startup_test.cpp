@@ -1,7 +1,8 @@
 // Start-up's fast paths give what the general ones give (issue 28, "Start in milliseconds"):
 // the direct PLY reader and Assimp the same meshes, the streamed scene hash the canonical text's
 // hash, inline meshes the same values and the same errors; and the --timings recorder records
-// only while enabled and sums repeated phases.
+// only while enabled and sums repeated phases; a loaded scene's meshes are checked once, and
+// everything else as validating twice did.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -19,6 +20,7 @@
 #include "lightsolver/timings.hpp"
 #include "scene/mesh_io.hpp"
 #include "scene/provenance.hpp"
+#include "scene/validate_again.hpp"
 
 namespace lightsolver::test {
 namespace {
@@ -249,6 +251,49 @@ TEST(StartupInlineMesh, ValuesAndErrorsAsBefore) {
             std::string::npos);
   EXPECT_NE(error(ok_v, "[7]").find("meshes[0].triangles[0]: expected an array"),
             std::string::npos);
+}
+
+// The CLI's Simulation does not check a loaded scene's mesh geometry again
+// (Simulation::Options::scene_validated): the rest is validated again, so the values that
+// validation normalises are the same to the bit as after two validations (the results were).
+TEST(StartupValidate, MeshesOnceEverythingElseAsBefore) {
+  const fs::path root(LIGHTSOLVER_SOURCE_DIR);
+  for (const char* file : {"Tests/golden/scenes/lamps.json", "Examples/room/room.json",
+                           "Examples/daylight/side_lit_room.scene.json"}) {
+    Scene twice = load_scene((root / file).string()), again = twice;
+    validate(twice);
+    detail::validate_again(again);
+    ASSERT_EQ(twice.luminaires.size(), again.luminaires.size());
+    for (std::size_t i = 0; i < twice.luminaires.size(); ++i) {
+      const Luminaire &a = twice.luminaires[i], &b = again.luminaires[i];
+      EXPECT_TRUE(a.direction == b.direction && a.aim == b.aim && a.position == b.position &&
+                  a.flux_lm == b.flux_lm && a.corner == b.corner && a.edge1 == b.edge1)
+          << file << " luminaire " << i;
+    }
+    for (std::size_t i = 0; i < twice.targets.size(); ++i) {
+      const Target &a = twice.targets[i], &b = again.targets[i];
+      EXPECT_TRUE(a.view_direction == b.view_direction && a.up == b.up &&
+                  a.view_directions == b.view_directions && a.positions == b.positions)
+          << file << " target " << i;
+    }
+    EXPECT_EQ(twice.warnings, again.warnings) << file;
+  }
+  // What validate_again still refuses, with validate()'s message; and a mesh vertex out of
+  // range (validate() builds its field path only for the error now): its path and message.
+  Scene s = load_scene((root / "Examples/room/room.json").string());
+  Scene bad_material = s;
+  bad_material.meshes[1].material = 99;
+  EXPECT_THROW(detail::validate_again(bad_material), InputError);
+  Scene far = s;
+  far.meshes[1].vertices[3].z = 2e9;
+  try {
+    validate(far);
+    FAIL() << "a vertex 2e9 m out accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("meshes[1].vertices[3]: coordinate 2e+09 m is beyond"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(StartupTimings, RecordsOnlyWhenEnabledAndSumsRepeats) {
