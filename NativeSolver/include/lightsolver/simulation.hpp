@@ -27,15 +27,6 @@ struct LuminaireGroup {
   double flux_lm = 0.0;                 ///< emitted as the scene stands (photometric tilt included)
 };
 
-/// A group's direct light in one tally bin by next-event estimation (docs/statistics.md,
-/// "Next-event estimation"): the stratified mean of its shadow-ray points, its variance and the
-/// points that saw the light.
-struct DirectLight {
-  double lux = 0.0;
-  double variance = 0.0;  ///< lx^2
-  std::uint64_t lit = 0;
-};
-
 /// One group's tallies, traced alone by Simulation::trace_group and summed into results by
 /// Simulation::combine: the optimizer re-traces only the groups a configuration changes.
 struct GroupTrace {

@@ -210,7 +210,7 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
       if (direct.empty()) direct.resize(groups * bins);
       for (std::size_t b = 0; b < bins; ++b) {
         const DirectLight& d = t->direct[b];
-        direct[g * bins + b] = {d.lux, d.variance, d.lit};
+        direct[g * bins + b] = {d.lux, d.variance_lx2, d.lit};
       }
       tallies.direct_scale[g] = flux_lm[g] / t->flux_lm;
       tallies.photons_reflect = t->photons_reflect;

@@ -183,7 +183,7 @@ TEST(GroupTraceNextEvent, ContinuedTraceIsTheWholeTraceBitForBit) {
     EXPECT_EQ(whole.direct.empty(), mode == "off");
     for (std::size_t b = 0; b < whole.direct.size(); ++b) {
       EXPECT_EQ(whole.direct[b].lux, rest.direct[b].lux);
-      EXPECT_EQ(whole.direct[b].variance, rest.direct[b].variance);
+      EXPECT_EQ(whole.direct[b].variance_lx2, rest.direct[b].variance_lx2);
     }
     EXPECT_THROW(sim.trace_group(0, 80'000, 22, nullptr, &first), std::invalid_argument);
     EXPECT_THROW(sim.trace_group(0, 10'000, 21, nullptr, &first), std::invalid_argument);
