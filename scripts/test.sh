@@ -12,10 +12,13 @@ bash scripts/build.sh
 # The sanitizer build compiles beside the main CTest run at the lowest priority: the FreeCAD GUI
 # entries leave a core idle for much of their time (FreeCAD waiting in its event loop: 10 s of
 # CPU in a 40 s entry), which the build takes, while a busy core gives it a 1.5 % share (nice
-# 19), so the tests hardly wait for it. Its own session, so that a failing run stops all of it.
-# Its log is printed when it ends. docs/testing.md "CI time".
+# 19), so the tests hardly wait for it. Its own session, so that a failing run stops all of it;
+# a new session is a new scheduling autogroup (Linux's sched_autogroup), whose share nice does
+# not lower, so the autogroup's own nice is set too. Its log is printed when it ends.
+# docs/testing.md "CI time".
 sanitize_log=build/sanitize-build.log
-LIGHTSOLVER_SANITIZE_STEPS=build setsid nice -n 19 bash scripts/test-sanitize.sh \
+LIGHTSOLVER_SANITIZE_STEPS=build setsid bash -c \
+  'echo 19 > /proc/self/autogroup 2> /dev/null || true; exec nice -n 19 bash scripts/test-sanitize.sh' \
   > "$sanitize_log" 2>&1 &
 sanitize_build=$!
 trap 'kill -- -"$sanitize_build" 2> /dev/null || true' EXIT
