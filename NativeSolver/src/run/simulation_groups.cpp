@@ -187,6 +187,7 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
   std::vector<detail::DirectPart> direct;
   std::string next_event_off;
   tallies.direct_scale.assign(groups, 0.0);
+  tallies.next_event.assign(groups, 0);
   Results r;
   for (std::size_t g = 0; g < groups; ++g) {
     if (!(std::isfinite(flux_lm[g]) && flux_lm[g] >= 0.0)) {
@@ -213,6 +214,7 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
         direct[g * bins + b] = {d.lux, d.variance_lx2, d.lit};
       }
       tallies.direct_scale[g] = flux_lm[g] / t->flux_lm;
+      tallies.next_event[g] = 1;
       tallies.photons_reflect = t->photons_reflect;
     } else if (next_event_off.empty()) {
       next_event_off = t->next_event_off;

@@ -143,11 +143,12 @@ TEST(IntervalCoverage, EqualCellsDefeatTheNaiveMinimumButNotTheSimultaneousOne) 
   const double floor = coverage_floor(0.95, kRuns);
   EXPECT_GE(double(ours) / kRuns, floor);
   EXPECT_LT(double(naive) / kRuns, floor) << "the naive interval should miss here";
-  // With next-event estimation (the default) every sample of a cell is the beam's 100 lx: the
-  // cells and the Emin interval hold 100 (their rounding included) and are narrow.
+  // With next-event estimation every sample of a cell is the beam's 100 lx: the cells and the
+  // Emin interval hold 100 (their rounding included) and are narrow.
   SolveOptions o;
   o.photons = 3200;
   o.seed = 1;
+  o.next_event = "auto";
   const Results r = sim.run(o);
   const TargetResult& t = r.targets[0];
   for (const Estimate& c : t.cells) {
@@ -199,6 +200,7 @@ TEST(Decide, ABudgetTooSmallEndsUndecidedAndSaysWhatDecidingCosts) {
   o.decide = true;
   o.backend = "embree";
   o.photons = 20'000;
+  o.next_event = "auto";
   const Results nee = solve(setup.scene, o);
   EXPECT_EQ(nee.stop_reason, kStopDecided);
   EXPECT_EQ(nee.verdict, VerdictKind::Fail);  // 1 % above the truth
