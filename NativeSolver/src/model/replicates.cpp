@@ -64,7 +64,7 @@ Estimate replicate_estimate(const GroupedTallies& t, std::optional<std::size_t> 
     const std::uint64_t per = t.photons[g] / r_count;
     if (per == 0 || !(t.flux_lm[g] > 0.0)) continue;
     lit = true;
-    const bool direct_part = t.direct != nullptr && t.direct_scale[g] > 0.0;
+    const bool direct_part = t.has_direct_part(g);
     if (direct_part) {
       has_direct = true;
       // One direct part per group, shared by the replicates and independent of all of them

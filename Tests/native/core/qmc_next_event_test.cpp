@@ -47,7 +47,10 @@ struct HandTallies {
     t.photons = {400, 400};  // 100 per replicate
     t.flux_lm = {100.0, 50.0};
     t.direct = &direct;
-    t.direct_scale = {1.0, 0.0};  // group 1 has none: its row is never read
+    // As grouped_tallies lays them out: a factor for every group, and `next_event` says which
+    // group has a direct part (group 1 has none: its row, 99 lx, must never be read).
+    t.direct_scale = {1.0, 1.0};
+    t.next_event = {1, 0};
     t.replicates = 4;
   }
 };
