@@ -176,12 +176,7 @@ TEST(GroupsNextEvent, ResultsWithoutDirectPartsRescaleAsBefore) {
 TEST(GroupsNextEvent, InconsistentDirectPartsAreRefusedNamingTheField) {
   const auto doc = nlohmann::json::parse(results_to_json(traced(judged_room(), "on")));
   auto message = [](const nlohmann::json& d) {
-    try {
-      rescale_results(d.dump(), {{"left", 0.5}}, "r.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return input_error_of([&] { rescale_results(d.dump(), {{"left", 0.5}}, "r.json"); });
   };
   auto edited = [&](auto change) {
     nlohmann::json d = doc;

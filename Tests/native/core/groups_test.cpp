@@ -323,12 +323,7 @@ TEST(Groups, DecideRunsJudgeTheCombinedEstimate) {
 TEST(GroupErrors, RescaleRefusesBadInput) {
   const std::string json = results_to_json(run(grouped_room(), 20'000, 1));
   auto message = [&](const GroupFactors& f, const std::string& text = "") {
-    try {
-      rescale_results(text.empty() ? json : text, f, "r.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return input_error_of([&] { rescale_results(text.empty() ? json : text, f, "r.json"); });
   };
   EXPECT_NE(message({{"middle", 0.5}}).find("no luminaire group \"middle\""), std::string::npos);
   EXPECT_NE(message({{"left", -0.5}}).find("finite number >= 0"), std::string::npos);

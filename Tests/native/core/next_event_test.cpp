@@ -21,22 +21,6 @@ Results run_with(const std::string& backend, const Scene& s, std::uint64_t photo
   return solve(s, o);
 }
 
-// The box room: 4 x 4 x 3 m, every surface diffuse rho 0.5, an isotropic 100 cd point
-// source at (2, 2, 2.9), a work-plane grid at 0.8 m; with `table`, a black table top at 0.75 m
-// whose shadow edges cross cells.
-Scene box_room(unsigned cells, bool table = false) {
-  Scene s;
-  add_material(s, "grey", Material::Type::Diffuse, 0.5);
-  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 4, 3)));
-  if (table) {
-    add_material(s, "black", Material::Type::Diffuse, 0.0);
-    s.meshes.push_back(solid_box_mesh("table", 1, {1.3, 1.1, 0.85}, {2.45, 2.2, 0.9}));
-  }
-  s.luminaires.push_back(point_light({2, 2, 2.9}, 100.0 * 4.0 * std::numbers::pi));
-  s.targets.push_back(grid("work plane", {0, 0, 0.8}, {4, 0, 0}, {0, 4, 0}, cells, cells));
-  return s;
-}
-
 class NextEvent : public ::testing::TestWithParam<std::string> {};
 
 // Direct light only (no surface): the cells' exact means lie in narrow intervals; the photons

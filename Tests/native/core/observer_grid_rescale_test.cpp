@@ -195,12 +195,7 @@ TEST(ObserverGridRescale, APlainObserverSeesAGroupAtZeroAsTracedDark) {
 TEST(ObserverGridRescale, MissingOrShortPerPointDataNamesTheField) {
   const auto doc = nlohmann::json::parse(results_to_json(traced(glare_room())));
   auto message = [](const nlohmann::json& d) {
-    try {
-      rescale_results(d.dump(), {{"left", 0.5}}, "r.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return input_error_of([&] { rescale_results(d.dump(), {{"left", 0.5}}, "r.json"); });
   };
   auto without = [&](auto edit) {
     nlohmann::json d = doc;

@@ -20,14 +20,8 @@ constexpr double kConfidence = 0.95, kSigmas = 4.5;
 
 SolveOptions sobol_run(std::uint64_t photons, std::uint64_t seed,
                        const std::string& next_event = "off") {
-  SolveOptions o;
-  o.next_event = next_event;
-  o.photons = photons;
-  o.seed = seed;
+  SolveOptions o = sobol_options(photons, seed, next_event);
   o.confidence = kConfidence;
-  o.backend = "embree";
-  o.sampler = "sobol";
-  o.replicates = 8;
   return o;
 }
 
@@ -103,13 +97,7 @@ TEST_P(QuasiRandomCoverageNee, IntegratingSphereWithBounces) {
 // variance about 1/64 of a run's: it moves the expected misses by about 0.2 points). Photons
 // alone with sobol are measured above (direct light, the integrating box).
 TEST(QuasiRandomCoverage, BoxRoomPerCellWithNextEvent) {
-  Scene s;
-  add_material(s, "grey", Material::Type::Diffuse, 0.5);
-  add_material(s, "black", Material::Type::Diffuse, 0.0);
-  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 4, 3)));
-  s.meshes.push_back(solid_box_mesh("table", 1, {1.3, 1.1, 0.85}, {2.45, 2.2, 0.9}));
-  s.luminaires.push_back(point_light({2, 2, 2.9}, 100.0 * 4.0 * std::numbers::pi));
-  s.targets.push_back(grid("work plane", {0, 0, 0.8}, {4, 0, 0}, {0, 4, 0}, 8, 8));
+  const Scene s = box_room(8, true);
   Simulation sim(s, {"embree"});
   constexpr std::uint64_t kPhotons = 8 * 4096;
   SolveOptions ref = sobol_run(64 * kPhotons, 999, "on");

@@ -18,18 +18,6 @@
 namespace lightsolver::test {
 namespace {
 
-SolveOptions sobol_nee(std::uint64_t photons, std::uint64_t seed, const std::string& next_event,
-                       std::uint32_t replicates = 8) {
-  SolveOptions o;
-  o.photons = photons;
-  o.seed = seed;
-  o.backend = "embree";
-  o.sampler = "sobol";
-  o.replicates = replicates;
-  o.next_event = next_event;
-  return o;
-}
-
 // Two groups, four replicates, one bin: group 0 with a direct part, group 1 without.
 struct HandTallies {
   std::vector<Tally> bins;
@@ -102,8 +90,8 @@ TEST(QuasiRandomNextEvent, NothingReflectsDirectPartAlone) {
   s.luminaires.push_back(point_light(src, 5000.0));
   s.targets.push_back(grid("floor", c, e1, e2, 4, 4));
   Simulation sim(s, {"embree"});
-  const Results q = sim.run(sobol_nee(8 * 4096, 7, "on"));
-  SolveOptions random = sobol_nee(8 * 4096, 7, "on");
+  const Results q = sim.run(sobol_options(8 * 4096, 7, "on"));
+  SolveOptions random = sobol_options(8 * 4096, 7, "on");
   random.sampler = "random";
   const Results r = sim.run(random);
   EXPECT_EQ(q.sampler, "sobol");
@@ -121,21 +109,10 @@ TEST(QuasiRandomNextEvent, NothingReflectsDirectPartAlone) {
 // The box room (every surface rho 0.5, the 100 cd source at (2, 2, 2.9)) with a black
 // table casting shadow edges: the sobol + next-event cells against photons alone (random,
 // independent), each within 4.5 sigma of the difference Bonferroni-free (16 cells, fixed seeds).
-Scene box_room_with_table() {
-  Scene s;
-  add_material(s, "grey", Material::Type::Diffuse, 0.5);
-  add_material(s, "black", Material::Type::Diffuse, 0.0);
-  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 4, 3)));
-  s.meshes.push_back(solid_box_mesh("table", 1, {1.3, 1.1, 0.85}, {2.45, 2.2, 0.9}));
-  s.luminaires.push_back(point_light({2, 2, 2.9}, 100.0 * 4.0 * std::numbers::pi));
-  s.targets.push_back(grid("work plane", {0, 0, 0.8}, {4, 0, 0}, {0, 4, 0}, 4, 4));
-  return s;
-}
-
 TEST(QuasiRandomNextEvent, BoxRoomAgreesWithPhotonsAlone) {
-  Simulation sim(box_room_with_table(), {"embree"});
-  const Results q = sim.run(sobol_nee(8 * 32'768, 3, "on"));
-  SolveOptions alone = sobol_nee(2'000'000, 4, "off");
+  Simulation sim(box_room(4, true), {"embree"});
+  const Results q = sim.run(sobol_options(8 * 32'768, 3, "on"));
+  SolveOptions alone = sobol_options(2'000'000, 4, "off");
   alone.sampler = "random";
   const Results p = sim.run(alone);
   const double t = detail::student_t_for_z(4.5, 7);  // the sobol part's sigma is from 8 values
@@ -153,7 +130,7 @@ TEST(QuasiRandomNextEvent, GroupsAddTheirDirectParts) {
   s.luminaires.push_back(named(point_light(a, 4000.0), "a", "left"));
   s.luminaires.push_back(named(point_light(b, 1000.0), "b", "right"));
   s.targets.push_back(grid("floor", c, e1, e2, 2, 2));
-  const Results r = Simulation(s, {"embree"}).run(sobol_nee(8 * 4096, 21, "on"));
+  const Results r = Simulation(s, {"embree"}).run(sobol_options(8 * 4096, 21, "on"));
   ASSERT_EQ(r.groups.size(), 2u);
   for (unsigned k = 0; k < 4; ++k) {
     const dvec3 cc = c + double(k % 2) * 0.5 * e1 + double(k / 2) * 0.5 * e2;
@@ -166,9 +143,9 @@ TEST(QuasiRandomNextEvent, GroupsAddTheirDirectParts) {
 // "on" and "auto" both trace direct light by shadow rays in a sobol run and say so; "off" says
 // the setting turned it off.
 TEST(QuasiRandomNextEvent, EffectsSayWhatRan) {
-  Simulation sim(box_room_with_table(), {"embree"});
+  Simulation sim(box_room(4, true), {"embree"});
   for (const std::string mode : {"on", "auto", "off"}) {
-    const Results r = sim.run(sobol_nee(8 * 1024, 2, mode));
+    const Results r = sim.run(sobol_options(8 * 1024, 2, mode));
     const auto& done = r.effects.simulated;
     const bool simulated = std::find(done.begin(), done.end(), "next_event_direct") != done.end();
     EXPECT_EQ(simulated, mode != "off") << mode;

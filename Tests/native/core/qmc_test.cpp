@@ -119,15 +119,9 @@ Scene with_requirement(Scene s) {
   return s;
 }
 
+// Photons alone (qmc_next_event_test.cpp: with next-event estimation).
 SolveOptions sobol(std::uint64_t photons, std::uint64_t seed, std::uint32_t replicates = 8) {
-  SolveOptions o;
-  o.photons = photons;
-  o.seed = seed;
-  o.backend = "embree";
-  o.sampler = "sobol";
-  o.replicates = replicates;
-  o.next_event = "off";  // photons alone (qmc_next_event_test.cpp: with next-event estimation)
-  return o;
+  return sobol_options(photons, seed, "off", replicates);
 }
 
 // InputError whose message names `field` and the sampler.

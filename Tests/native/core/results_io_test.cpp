@@ -195,12 +195,7 @@ TEST(ResultsFromJson, ResultsWithEveryPartRoundTrip) {
 TEST(ResultsFromJson, ErrorsNameTheFileAndField) {
   const std::string text = results_to_json(run(tilt_scene()));
   const auto message = [](const std::string& doc) {
-    try {
-      results_from_json(doc, "r.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return input_error_of([&] { results_from_json(doc, "r.json"); });
   };
   nlohmann::json j = nlohmann::json::parse(text);
   j["format"] = "lightsolver.results/0";

@@ -336,6 +336,49 @@ inline Scene grouped_room() {
   return s;
 }
 
+// The issue-28 box room: 4 x 4 x 3 m, every surface diffuse rho 0.5, an isotropic 100 cd point
+// source at (2, 2, 2.9), a cells x cells work-plane grid at 0.8 m; with `table`, a black table
+// (top at 0.9 m) whose shadow edges cross cells.
+inline Scene box_room(unsigned cells, bool table = false) {
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 4, 3)));
+  if (table) {
+    add_material(s, "black", Material::Type::Diffuse, 0.0);
+    s.meshes.push_back(solid_box_mesh("table", 1, {1.3, 1.1, 0.85}, {2.45, 2.2, 0.9}));
+  }
+  s.luminaires.push_back(point_light({2, 2, 2.9}, 100.0 * 4.0 * std::numbers::pi));
+  s.targets.push_back(grid("work plane", {0, 0, 0.8}, {4, 0, 0}, {0, 4, 0}, cells, cells));
+  return s;
+}
+
+// A sobol run of `photons` on the Embree backend, `replicates` scrambles, next-event estimation
+// `next_event` (set explicitly: the tests must not depend on the default).
+inline SolveOptions sobol_options(std::uint64_t photons, std::uint64_t seed,
+                                  const std::string& next_event = "off",
+                                  std::uint32_t replicates = 8) {
+  SolveOptions o;
+  o.photons = photons;
+  o.seed = seed;
+  o.backend = "embree";
+  o.sampler = "sobol";
+  o.replicates = replicates;
+  o.next_event = next_event;
+  return o;
+}
+
+// The message of the InputError `f()` throws, or "no error" (tests of bad input check that
+// the message names the file and field).
+template <class F>
+std::string input_error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 inline std::vector<std::string> backends() {
   std::vector<std::string> names;
   for (const BackendInfo& b : lightsolver::backends()) {

@@ -21,6 +21,7 @@
 #include "scene/mesh_io.hpp"
 #include "scene/provenance.hpp"
 #include "scene/validate_again.hpp"
+#include "scene_builders.hpp"
 
 namespace lightsolver::test {
 namespace {
@@ -230,12 +231,7 @@ TEST(StartupInlineMesh, ValuesAndErrorsAsBefore) {
   EXPECT_EQ(s.meshes[0].vertices[2], glm::dvec3(0, 2, 0.25));
   EXPECT_EQ(s.meshes[0].triangles[1], glm::u32vec3(2, 1, 0));  // 1.0 is an index too
   const auto error = [](const std::string& v, const std::string& t) {
-    try {
-      scene_from_json(scene_with_mesh(v, t), "s.json", ".");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return input_error_of([&] { scene_from_json(scene_with_mesh(v, t), "s.json", "."); });
   };
   const std::string ok_v = "[[0, 0, 0], [1, 0, 0], [0, 1, 0]]";
   EXPECT_NE(error("[[0, 0, 0], [1, 0], [0, 1, 0]]", "[[0, 1, 2]]").find("meshes[0].vertices[1]"),
