@@ -11,15 +11,29 @@ uvec2 rng_key;
 uvec4 rng_ctr;
 uvec4 rng_block;
 uint rng_index;
+// Quasi-random photons (trace.comp defines LS_SOBOL_PREFIX and includes sobol.glsl): blocks of
+// the path's scrambled Sobol' point still to be drawn before Philox, as PathRng's prefix.
+uint rng_prefix_blocks = 0u;
+#ifdef LS_SOBOL_PREFIX
+uvec4 sobol_prefix_block(uint q);  // sobol.glsl: coordinates 4q .. 4q + 3 of the path's point
+#endif
 
 // `stream`: the luminaire group (counter word 3), PathRng's third argument.
 void rng_init(uint64_t seed, uint64_t path_id, uint stream) {
   rng_key = unpackUint2x32(seed);
   rng_ctr = uvec4(unpackUint2x32(path_id), 0u, stream);
   rng_index = 4u;
+  rng_prefix_blocks = 0u;
 }
 
 uint rng_u32() {
+#ifdef LS_SOBOL_PREFIX
+  if (rng_index == 4u && rng_prefix_blocks != 0u) {
+    rng_block = sobol_prefix_block(4u - rng_prefix_blocks);
+    --rng_prefix_blocks;
+    rng_index = 0u;
+  }
+#endif
   if (rng_index == 4u) {
     rng_block = philox4x32_10(rng_ctr, rng_key);
     rng_ctr.z += 1u;  // word 2 counts blocks within the path

@@ -18,9 +18,11 @@
 
 layout(local_size_x_id = LS_SPEC_WORKGROUP_SIZE) in;
 
+#define LS_SOBOL_PREFIX
 #include "philox.glsl"
 #include "sampling.glsl"
 #include "trace_layout.glsl"
+#include "sobol.glsl"
 #include "bvh.glsl"
 #include "instances.glsl"
 #include "deposits.glsl"
@@ -54,6 +56,7 @@ bool blocked_outside(vec3 o, vec3 d, bool first_pass) {
 // One pass over the path. Statistics are counted on the first pass only.
 void trace_path(uint64_t id, bool first_pass) {
   rng_init(pc.seed, id, pc.group);
+  if (pc.quasi_random != 0u) rng_start_quasi_random(id);
   vec3 o, d;
   g_opening_push = vec3(0.0);
   emit(luminaires[pick_luminaire()], o, d);

@@ -24,12 +24,13 @@
 #define LS_BINDING_PHOTO_CDF 12      // PhotoCdf: 53-bit thresholds of their cell choice
 #define LS_BINDING_INSTANCES 13      // Instances: movable meshes
 #define LS_BINDING_RETRY 14          // Retry: paths to trace again (lavapipe's loop limit)
-#define LS_BINDING_COUNT 15
+#define LS_BINDING_SOBOL 15          // SobolDirections: Sobol' direction numbers (sobol.glsl)
+#define LS_BINDING_COUNT 16
 // visibility.comp's own, after trace.comp's (it reads the geometry at the bindings above).
-#define LS_BINDING_SHADOW_RAYS 15    // ShadowRays: the chunk's shadow rays
-#define LS_BINDING_VISIBLE 16        // Visible: one word per ray
-#define LS_BINDING_VIS_RETRY 17      // VisRetry: rays to trace again (lavapipe's loop limit)
-#define LS_VISIBILITY_BINDING_COUNT 18
+#define LS_BINDING_SHADOW_RAYS 16    // ShadowRays: the chunk's shadow rays
+#define LS_BINDING_VISIBLE 17        // Visible: one word per ray
+#define LS_BINDING_VIS_RETRY 18      // VisRetry: rays to trace again (lavapipe's loop limit)
+#define LS_VISIBILITY_BINDING_COUNT 19
 
 // Specialisation constants (GLSL name). Ids 1.. switch features off for scenes without them.
 #define LS_SPEC_WORKGROUP_SIZE 0    // local_size_x

@@ -99,6 +99,11 @@ layout(std430, set = 0, binding = LS_BINDING_RETRY) buffer Retry {
   uint retry_dispatch[4];
   uvec2 retry_paths[];
 };
+// Sobol' direction numbers, bit-reversed (lightsolver::detail::sobol_directions()): row j holds
+// index bit j's numbers of coordinates 4q .. 4q + 3 at j * 4 + q.
+layout(std430, set = 0, binding = LS_BINDING_SOBOL) readonly buffer SobolDirections {
+  uvec4 sobol_directions[];
+};
 
 layout(push_constant) uniform Push {
   uint64_t first_path;
@@ -116,6 +121,8 @@ layout(push_constant) uniform Push {
   uint tally_offset;      // ... and its tallies: group * bins
   uint first_bounce;      // 1: the group's direct light is by next-event estimation: no
                           // deposit before the first scattering (bounce 0)
+  uint quasi_random;      // 1: a path's first draws are its scrambled Sobol' point (sobol.glsl)
+  uint pad_q0, pad_q1, pad_q2;
 } pc;
 
 #endif

@@ -104,6 +104,8 @@ struct TracePush {
   std::uint32_t luminaire_first;  // the group's luminaires: [first, first + luminaire_count)
   std::uint32_t tally_offset;     // group * bins
   std::uint32_t first_bounce;     // 1: no deposit at bounce 0 (PreparedGroup::next_event)
+  std::uint32_t quasi_random;     // 1: each path's first draws are its Sobol' point (sobol.glsl)
+  std::uint32_t pad[3];
 };
 
 /// visibility.comp's push constants.
@@ -119,7 +121,7 @@ struct VisibilityPush {
 static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
 static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
-static_assert(sizeof(TracePush) == 64 && sizeof(VisibilityPush) == 32);
+static_assert(sizeof(TracePush) == 80 && sizeof(VisibilityPush) == 32);
 // The shared record in C++ (glm::vec3 is three packed floats) at std430's offsets in GLSL, where
 // a vec3 is 16-byte aligned and the 4-byte field after it fills its last word.
 static_assert(std::is_trivially_copyable_v<Luminaire> && alignof(Luminaire) == 4);
@@ -173,6 +175,7 @@ enum Binding : std::uint32_t {
   kPhotoCdf = LS_BINDING_PHOTO_CDF,
   kInstances = LS_BINDING_INSTANCES,
   kRetry = LS_BINDING_RETRY,
+  kSobol = LS_BINDING_SOBOL,
   kBindingCount = LS_BINDING_COUNT
 };
 
@@ -214,6 +217,7 @@ inline constexpr BufferInfo kBuffers[] = {
     {kPhotoCdf, "PhotoCdf", "photometric CDF"},
     {kInstances, "Instances", "instances"},
     {kRetry, "Retry", "retry list"},
+    {kSobol, "SobolDirections", "Sobol' directions"},
 };
 
 /// A specialisation constant of trace.comp and its GLSL name (the workgroup size has none in

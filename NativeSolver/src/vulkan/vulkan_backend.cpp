@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "model/sobol.hpp"
 #include "vulkan/algorithm.hpp"
 #include "vulkan/buffer.hpp"
 #include "vulkan/context.hpp"
@@ -114,6 +115,10 @@ class VulkanBackend final : public Backend {
 
   bool traces_shadow_rays() const override { return true; }
 
+  // Shaders/sobol.glsl: the CPU's points, scrambles and Philox tails, bit for bit.
+  bool traces_quasi_random() const override { return true; }
+  void set_quasi_random(bool on) override { quasi_random_ = on; }
+
   // Shaders/visibility.comp, its pipeline made on first use (and again after buffers changed).
   // Callers may call it from several threads (Embree's is thread-safe): one at a time here.
   void visible(std::span<const ShadowRay> rays, std::vector<std::uint8_t>& out) override {
@@ -160,7 +165,9 @@ class VulkanBackend final : public Backend {
                             range.group,
                             lum_first,
                             static_cast<std::uint32_t>(range.group * s_.bins.size()),
-                            s_.groups[range.group].next_event ? 1u : 0u};
+                            s_.groups[range.group].next_event ? 1u : 0u,
+                            quasi_random_ ? 1u : 0u,
+                            {0, 0, 0}};
         trace_->record(cmd, groups(n), &push);
         record_retries(cmd, push);
         done += n;
@@ -208,6 +215,10 @@ class VulkanBackend final : public Backend {
         return whole(data_.instances);
       case gpu::kRetry:
         return {kRetryBytes, kRetryHeader, sizeof(kRetryHeader)};
+      case gpu::kSobol: {
+        const SobolDirections& v = sobol_directions();  // row j: 16 coordinates, 4 uvec4s
+        return {sizeof(v), v.data(), sizeof(v)};
+      }
       case gpu::kBindingCount:
         break;
     }
@@ -325,6 +336,7 @@ class VulkanBackend final : public Backend {
   std::optional<ShadowRayTracer> shadows_;  // made by the first visible()
   vkw::Sequence seq_;
   std::mutex submit_mutex_;  // trace() and visible() share seq_ and the buffers
+  bool quasi_random_ = false;
 };
 
 }  // namespace
