@@ -19,6 +19,8 @@
 #include "estimate/decide.hpp"
 #include "estimate/run_results.hpp"
 #include "estimate/target_results.hpp"
+#include "lightsolver/run_options.hpp"
+#include "lightsolver/timings.hpp"
 #include "model/backend.hpp"
 #include "model/groups.hpp"
 #include "prepare/scene_effects.hpp"
@@ -30,8 +32,6 @@
 #include "scene/provenance.hpp"
 #include "scene/validate_again.hpp"
 #include "types/target_types.hpp"
-#include "lightsolver/run_options.hpp"
-#include "lightsolver/timings.hpp"
 
 namespace lightsolver {
 
@@ -155,6 +155,9 @@ struct BatchLoop {
   const ProgressFn& progress;
   detail::TallyBlock& tallies;
   Results& r;
+  // Gives a checkpoint of `photons` the direct parts a plain run of them has; returns the
+  // seconds those parts took (a row's time includes what its estimate cost).
+  std::function<double(std::uint64_t photons)> checkpoint_direct;
 
   std::vector<TargetResult> targets_at(std::uint64_t photons, double confidence) const {
     return detail::all_targets(scene, prepared, tallies, photons, confidence, r.judged,
@@ -211,8 +214,13 @@ struct BatchLoop {
     }
     detail::ProgressObserver progress_report(progress, cancel);
     detail::CheckpointSplitter checkpoints(options.checkpoints);
+    double aside_s = 0.0;  // spent on the checkpoints' direct parts, counted only in their rows
     auto report_checkpoint = [&](std::uint64_t at) {
-      if (options.checkpoint) options.checkpoint(checkpoint(at, seconds_since(start)));
+      if (!options.checkpoint) return;
+      const auto direct_start = Clock::now();
+      const double direct_s = checkpoint_direct ? checkpoint_direct(at) : 0.0;
+      aside_s += seconds_since(direct_start);
+      options.checkpoint(checkpoint(at, seconds_since(start) - aside_s + direct_s));
     };
     auto trace_range = [&](std::uint64_t first, std::uint64_t count) {
       shared.trace(first, count, tallies,
@@ -403,7 +411,12 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
   // before any shadow ray is traced for it.
   const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
-  plan_direct_light(r);
+  // Shadow rays stop at a cancel like photons; with several processes only at the agreed stops
+  // (every process traces the same parts).
+  const std::function<bool()> stop_direct = [&] {
+    return !options.processes && options.cancel && options.cancel->load();
+  };
+  plan_direct_light(r, stop_direct);
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size() *
@@ -419,12 +432,20 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     tracing_s = detail::trace_replicates(*qmc, prepared, *state_->backend, state_->threads, options,
                                          progress, tallies, r);
   } else if (prepared.total_flux_lm > 0.0) {
-    BatchLoop loop{scene,   prepared, *state_->backend, state_->threads,
-                   options, progress, tallies,          r};
+    BatchLoop loop{scene,
+                   prepared,
+                   *state_->backend,
+                   state_->threads,
+                   options,
+                   progress,
+                   tallies,
+                   r,
+                   [&](std::uint64_t at) { return checkpoint_direct_light(r, at); }};
     tracing_s = loop.trace();
   } else {
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
+  const std::string direct_note = finish_direct_light(r, stop_direct);  // the planned parts
   r.partial = r.stop_reason == kStopCancelled;
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
@@ -446,6 +467,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   detail::add_warnings(scene, r);
   add_stop_warnings(r);
+  if (!direct_note.empty()) r.warnings.push_back(direct_note);
   detail::report_effects(scene, prepared, r);  // effects simulated/skipped, dark targets
   for (const GroupResult& g : r.groups) {
     if (g.flux_lm > 0.0 && g.photons == 0 && r.photons > 0) {
