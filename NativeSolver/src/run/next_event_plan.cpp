@@ -71,9 +71,9 @@ bool Simulation::use_direct_parts(std::uint64_t seed, std::uint32_t scale,
 }
 
 // Which groups, and their first direct parts. An accuracy goal refines the parts before the
-// photons until no direct part's half-width passes half the goal (its stopping rule reads
-// them); any other run starts with the coarsest parts and finish_direct_light() traces the
-// planned ones.
+// photons until no direct part's half-width passes half the goal, and deciding keeps the
+// default points (their stopping rules read them); any other run starts with the coarsest
+// parts and finish_direct_light() traces the planned ones.
 void Simulation::plan_direct_light(const Results& r, const std::function<bool()>& stop) {
   detail::SimulationState& st = *state_;
   detail::PreparedScene& p = st.prepared;
@@ -98,9 +98,13 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
       whole = use_direct_parts(r.seed, scale, stop);
       if (!whole || scale >= kMaxStrataScale || !too_wide(p.direct, r)) break;
     }
+  } else if (r.decide) {
+    // Deciding judges its looks with the parts its results end with, so they are fixed before
+    // the photons: the default points, whatever the budget (an open budget is 10^10 photons,
+    // and the scene file must reproduce a run made with an explicit one).
+    whole = use_direct_parts(r.seed, 1, stop);
   } else {
-    // deciding judges its looks with the default strata (the parts its rule reads stay fixed)
-    st.direct_final_scale = r.decide ? 1 : strata_scale_for(p, r.photons_requested);
+    st.direct_final_scale = strata_scale_for(p, r.photons_requested);
     const bool kept = st.direct_seed == r.seed && st.direct_strata_scale == st.direct_final_scale;
     whole = use_direct_parts(r.seed, kept ? st.direct_final_scale : 1, stop);
   }
@@ -113,8 +117,9 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
 
 double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photons) {
   const detail::SimulationState& st = *state_;
-  if (st.direct_final_scale == 0) return 0.0;  // none, or the parts of an accuracy goal
-  const std::uint32_t scale = r.decide ? 1 : strata_scale_for(st.prepared, photons);
+  // none, or the parts an accuracy goal or deciding reads before the photons
+  if (st.direct_final_scale == 0) return 0.0;
+  const std::uint32_t scale = strata_scale_for(st.prepared, photons);
   use_direct_parts(r.seed, scale, {});  // never stopped half-way: a row is a whole estimate
   return st.direct_seconds;
 }
