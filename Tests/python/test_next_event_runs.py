@@ -65,3 +65,14 @@ def test_a_run_stopped_before_its_direct_light_traces_none_and_says_why():
     assert np.all(np.isfinite(grid["cells_ci_high_lux"]))
     assert np.all(grid["cells_ci_low_lux"] <= grid["cells_lux"])
     assert np.all(grid["cells_lux"] <= grid["cells_ci_high_lux"])
+
+
+def test_a_run_its_time_limit_ends_gets_the_parts_of_the_photons_it_traced():
+    """Not the 10^9 photons' finest points: the parts of a plain run of the photons traced."""
+    scene = point_over_black()
+    limited = lightsolver.solve(scene, photons=1_000_000_000, seed=3, max_seconds=0.2)
+    assert limited["stop_reason"] == "time" and not limited["partial"]
+    plain = lightsolver.solve(scene, photons=limited["photons"], seed=3)
+    assert not any(PLANNED in w for w in limited["warnings"])
+    for key in ("cells_lux", "cells_ci_low_lux", "cells_ci_high_lux"):
+        assert np.array_equal(limited["targets"][0][key], plain["targets"][0][key])

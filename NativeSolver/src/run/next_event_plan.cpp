@@ -127,8 +127,11 @@ double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photo
 std::string Simulation::finish_direct_light(Results& r, const std::function<bool()>& stop) {
   detail::SimulationState& st = *state_;
   if (st.direct_final_scale == 0) return {};
-  const bool planned =
-      r.stop_reason != kStopCancelled && use_direct_parts(r.seed, st.direct_final_scale, stop);
+  // Sized to the photons traced: a run its time limit ended gets the parts of a plain run of
+  // its photons (fewer than planned), not the shadow rays of the photons it did not trace.
+  const std::uint32_t scale =
+      std::min(st.direct_final_scale, strata_scale_for(st.prepared, r.photons));
+  const bool planned = r.stop_reason != kStopCancelled && use_direct_parts(r.seed, scale, stop);
   if (planned) return {};
   // Stopped: the coarsest parts, traced before the photons, stay (whole, and honest).
   use_direct_parts(r.seed, 1, {});
