@@ -78,6 +78,10 @@ def test_ctrl_c_stops_cleanly_with_partial_results(cli, room_scene, tmp_path):
     assert res["partial"] and 0 < res["photons"] < 5_000_000_000
     assert res["stop_reason"] == "cancelled"
     assert res["targets"][0]["mean_lux"] > 0
+    # Next-event estimation (the default): the default points' direct parts, traced before the
+    # photons, are whole; the finer ones planned for 5e9 photons were not traced.
+    assert "next_event_direct" in res["effects"]["simulated"]
+    assert any("direct light was sampled as planned" in w for w in res["warnings"])
 
 
 def cost_rows(stdout):

@@ -264,8 +264,8 @@ def test_python_combine_records_its_traces_and_fluxes(lit_room, room_scene):
     assert [g["name"] for g in groups] == ["panel 1", "panel 2", "panel 3", "panel 4", "down"]
     traces = [sim.trace_group(g, 20000, 4) for g in range(len(groups))]
     combined = sim.combine(traces, [g["flux_lm"] for g in groups])
-    # Group traces carry photon tallies only: the run to equal traces direct light by photons.
-    run_ = sim.run(photons=20000, seed=4, next_event="off")
+    # Group traces follow the scene's next_event (auto, the default) as the run does.
+    run_ = sim.run(photons=20000, seed=4)
     # Every group traced with the run's seed and combined at its flux is the run, bit for bit.
     assert [t["mean_lux"] for t in combined["targets"]] == \
         [t["mean_lux"] for t in run_["targets"]]

@@ -62,8 +62,12 @@ def closed_form_scene(occluder: bool = False, per_cell_setting: bool = False) ->
                              "flux_lm": FLUX_LM}],
              "targets": [{"name": "floor grid", "type": "grid", "corner": [-1, -1, 0],
                           "edge1": [2, 0, 0], "edge2": [0, 2, 0], "cells": [10, 10]}]}
+    # These tests check photon statistics (per-cell stopping, errors as N^-1/2): photons alone.
+    # With next-event estimation (the default) the black floor's light would be the shadow
+    # rays' direct part alone, which no photon moves.
+    scene["settings"] = {"next_event": "off"}
     if per_cell_setting:
-        scene["settings"] = {"accuracy_per_cell": True}
+        scene["settings"]["accuracy_per_cell"] = True
     return scene
 
 
@@ -275,14 +279,14 @@ def test_study_and_cost_trace_every_checkpoint_in_a_scene_that_decides(tmp_path)
     studied to its last checkpoint: deciding would stop at the first decided look."""
     doc = closed_form_scene()
     doc["targets"][0]["requirements"] = {"em_lux": 1.0}  # far below the truth: decided at once
-    doc["settings"] = {"decide": True}
+    doc["settings"] = dict(doc["settings"], decide=True)
     path = tmp_path / "decides.json"
     path.write_text(json.dumps(doc))
     scene = lightsolver.load_scene(str(path))
     assert lightsolver.solve(scene, photons=160_000)["stop_reason"] == "decided"
     study = lightsolver.study(scene, max_photons=80_000, seed=9)
     assert [row["photons"] for row in study["rows"]] == [10_000, 20_000, 40_000, 80_000]
-    plain = dict(doc, settings={})
+    plain = dict(doc, settings={"next_event": "off"})
     path.write_text(json.dumps(plain))
     without = lightsolver.cost(lightsolver.load_scene(str(path)), max_photons=80_000, seed=9)
     cost = lightsolver.cost(scene, max_photons=80_000, seed=9)

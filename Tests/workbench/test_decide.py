@@ -16,6 +16,14 @@ def workplane(doc):
     return [o for o in doc.Objects if o.Label == "Workplane"][0]
 
 
+#: The office's seed for the runs below. Its workplane gets ~578.8 lx (4e6 photons); 572 lx
+#: required must lie inside the interval of the first 16384 photons (undecided) and be decided
+#: by a few times more. With next-event estimation (the default) that interval is narrower than
+#: photon noise alone (+-7 lx, not +-11), and seed 1's estimate (583.5) puts 572 outside it;
+#: seed 6's is 576.1 [569.2, 582.9].
+SEED = 6
+
+
 class RequirementScale(unittest.TestCase):
     def test_one_and_a_half_times_the_highest_requirement_rounded_up(self):
         self.assertEqual(colormap.requirement_scale([500.0, 150.0]), (0.0, 750.0))
@@ -103,9 +111,9 @@ class Decide(DocTestCase):
 
     @needs_solver
     def test_an_undecided_requirement_says_what_deciding_costs_and_a_decide_run_decides_it(self):
-        doc = build_office(photons=16384, seed=1)
+        doc = build_office(photons=16384, seed=SEED)
         analysis = analysis_mod.find_analysis(doc)
-        workplane(doc).RequiredLux = 572.0  # just under the ~580 lx the workplane gets
+        workplane(doc).RequiredLux = 572.0  # just under the ~579 lx the workplane gets
         # Without the automatic continuation (limit 0): the run stops at its budget.
         result = machine.run_analysis(analysis, output_dir=work_dir("decide"), decide_limit_s=0)
         target = result["Workplane"]
@@ -129,7 +137,7 @@ class Decide(DocTestCase):
         """The default run decides: a decide run left undecided at its budget traces again
         with the Decide budget when that takes at most the limit, and the results are the
         second run's (decided); the photons traced count both passes."""
-        doc = build_office(photons=16384, seed=1)
+        doc = build_office(photons=16384, seed=SEED)
         analysis = analysis_mod.find_analysis(doc)
         workplane(doc).RequiredLux = 572.0
         first = machine.run_analysis(analysis, output_dir=work_dir("decide"), decide_limit_s=0)
@@ -185,7 +193,7 @@ class Decide(DocTestCase):
 
     @needs_solver
     def test_beyond_the_limit_the_run_stops_and_says_why(self):
-        doc = build_office(photons=16384, seed=1)
+        doc = build_office(photons=16384, seed=SEED)
         analysis = analysis_mod.find_analysis(doc)
         workplane(doc).RequiredLux = 572.0
         lines = []

@@ -1,9 +1,11 @@
 """Analyses with the native solver: numbers, same results as the solver run directly on the
 exported scene file, target accuracy, cancel, the worker thread, flux conservation."""
 import json
+import math
 import os
 import subprocess
 import time
+from statistics import NormalDist
 
 import FreeCAD
 import Part
@@ -182,8 +184,18 @@ class Solver(DocTestCase):
         doc.recompute()
         result = lighting.analyze(doc, analysis, output_dir=work_dir("black"))
         total = sum(result[t.Name].mean_lux * result[t.Name].area_m2 for t in targets)
-        print(f"\nsum E*A = {total:.3f} lm of 1000 lm")
-        self.assertAlmostEqual(total, 1000.0, delta=1e-6 * 1000.0)
+        # Next-event estimation (the default) gives each face its direct light from shadow rays
+        # at stratified points, not by counting photons (which would conserve the flux to the
+        # rounding): the sum is 1000 lm in expectation, within the faces' intervals, which are
+        # independent (each face draws its own points). Their sigma must also be small, so a
+        # face missed or counted twice (a sixth of the flux) still fails.
+        z = NormalDist().inv_cdf(0.5 + result.confidence / 2)
+        sigma = math.sqrt(sum((result[t.Name].area_m2 * (result[t.Name].ci_high_lux
+                                                         - result[t.Name].ci_low_lux) / (2 * z))
+                              ** 2 for t in targets))
+        print(f"\nsum E*A = {total:.3f} lm of 1000 lm (sigma {sigma:.3f} lm)")
+        self.assertLess(sigma, 5.0)
+        self.assertLessEqual(abs(total - 1000.0), 4.5 * sigma)
 
     @needs_solver
     def test_photometric_c0_points_along_local_x(self):

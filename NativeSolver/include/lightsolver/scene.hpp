@@ -214,9 +214,8 @@ struct Settings {
   /// Direct light at grids and surface targets by next-event estimation (shadow rays):
   /// "auto", "on" or "off" (SolveOptions::next_event; docs/statistics.md, "Next-event
   /// estimation"). A run's contributions carry the direct parts, so `rescale` and every other
-  /// recombination of groups keep them. Off by default until checkpointed runs (cost, study)
-  /// and a cancelled run's shadow-ray phase are settled (docs/statistics.md).
-  std::string next_event = "off";
+  /// recombination of groups keep them. Default "auto".
+  std::string next_event = "auto";
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

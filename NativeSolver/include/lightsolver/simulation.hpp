@@ -6,6 +6,7 @@
 /// rebuild.
 
 #include <chrono>
+#include <functional>
 #include <glm/mat4x4.hpp>
 #include <memory>
 #include <string>
@@ -145,7 +146,14 @@ class Simulation {
   Provenance combined_provenance(const std::vector<const GroupTrace*>& traces,
                                  const Results& r) const;
   Results run_from(const SolveOptions& options, const ProgressFn& progress, bool resume);
-  void plan_direct_light(const Results& r);
+  // Next-event estimation (next_event_plan.cpp): the run's groups and first direct parts,
+  // the parts a checkpoint of `photons` gets (returns the seconds they took), and the planned
+  // parts after the photons (returns a warning when stopped before them). `stop` is asked
+  // between batches of shadow rays.
+  void plan_direct_light(const Results& r, const std::function<bool()>& stop);
+  bool use_direct_parts(std::uint64_t seed, std::uint32_t scale, const std::function<bool()>& stop);
+  double checkpoint_direct_light(const Results& r, std::uint64_t photons);
+  std::string finish_direct_light(Results& r, const std::function<bool()>& stop);
   void trace_direct_part(GroupTrace& trace, const GroupTrace* prefix);
   std::unique_ptr<detail::SimulationState> state_;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
@@ -113,10 +114,19 @@ struct Job {
 
 class Evaluator {
  public:
-  Evaluator(const PreparedScene& s, Backend& backend, std::uint64_t seed)
-      : s_(s), backend_(backend), seed_(seed), parts_(s.groups.size() * s.bins.size()) {}
+  Evaluator(const PreparedScene& s, Backend& backend, std::uint64_t seed,
+            const std::function<bool()>& stop)
+      : s_(s),
+        backend_(backend),
+        seed_(seed),
+        stop_(stop),
+        parts_(s.groups.size() * s.bins.size()) {}
+
+  /// A stop was asked for: the parts are incomplete and must not be used.
+  bool stopped() const { return stopped_; }
 
   void add(const Domain& d, std::uint32_t group) {
+    if (stopped_) return;
     jobs_.push_back({d, group, values_.size()});
     const PreparedGroup& g = s_.groups[group];
     const std::uint32_t points = 2 * d.stratum_count();
@@ -151,6 +161,11 @@ class Evaluator {
 
  private:
   void flush() {
+    // Each batch of rays is a cancellation point: a stopped evaluation traces no more.
+    if (stopped_ || (stop_ && stop_())) {
+      stopped_ = true;
+      return;
+    }
     std::vector<std::uint8_t> seen;
     backend_.visible(rays_, seen);
     for (std::size_t i = 0; i < rays_.size(); ++i) {
@@ -188,6 +203,8 @@ class Evaluator {
   const PreparedScene& s_;
   Backend& backend_;
   std::uint64_t seed_;
+  const std::function<bool()>& stop_;
+  bool stopped_ = false;
   std::vector<DirectPart> parts_;
   std::vector<Job> jobs_;
   std::vector<ShadowRay> rays_;
@@ -262,12 +279,19 @@ std::uint64_t direct_ray_count(const PreparedScene& s, std::uint32_t strata_scal
 
 std::vector<DirectPart> direct_parts(const PreparedScene& s, Backend& backend, std::uint64_t seed,
                                      std::uint32_t strata_scale) {
+  return *direct_parts_unless(s, backend, seed, strata_scale, {});
+}
+
+std::optional<std::vector<DirectPart>> direct_parts_unless(const PreparedScene& s, Backend& backend,
+                                                           std::uint64_t seed,
+                                                           std::uint32_t strata_scale,
+                                                           const std::function<bool()>& stop) {
   std::vector<std::uint32_t> groups;
   for (std::uint32_t g = 0; g < s.groups.size(); ++g) {
     if (s.groups[g].next_event) groups.push_back(g);
   }
-  if (groups.empty()) return {};
-  Evaluator eval(s, backend, seed);
+  if (groups.empty()) return std::vector<DirectPart>{};
+  Evaluator eval(s, backend, seed, stop);
   for (const PreparedGrid& grid : s.grids) {
     if (grid.indirect_only) continue;
     for (std::uint32_t iv = 0; iv < grid.nv; ++iv) {
@@ -291,6 +315,7 @@ std::vector<DirectPart> direct_parts(const PreparedScene& s, Backend& backend, s
     for (const std::uint32_t g : groups) eval.add(d, g);
   }
   std::vector<DirectPart> parts = eval.finish();
+  if (eval.stopped()) return std::nullopt;
   // A whole grid's bin: the mean of its cells (equal areas), their variances over C^2.
   for (const PreparedGrid& grid : s.grids) {
     if (grid.indirect_only) continue;

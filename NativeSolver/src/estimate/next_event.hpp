@@ -7,6 +7,8 @@
 // stratum: the stratified mean is unbiased and so is its variance estimate, and the groups'
 // parts stay independent of each other and of every photon stream.
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,5 +38,12 @@ std::uint64_t direct_ray_count(const PreparedScene& s, std::uint32_t strata_scal
 /// has next_event.
 std::vector<DirectPart> direct_parts(const PreparedScene& s, Backend& backend, std::uint64_t seed,
                                      std::uint32_t strata_scale = 1);
+
+/// direct_parts(), asking `stop` before each batch of shadow rays (about 2^18 rays): nullopt
+/// once it says true (what was traced is dropped: a part is whole or absent).
+std::optional<std::vector<DirectPart>> direct_parts_unless(const PreparedScene& s, Backend& backend,
+                                                           std::uint64_t seed,
+                                                           std::uint32_t strata_scale,
+                                                           const std::function<bool()>& stop);
 
 }  // namespace lightsolver::detail

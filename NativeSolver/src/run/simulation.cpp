@@ -17,9 +17,10 @@
 
 #include "estimate/cell_accuracy.hpp"
 #include "estimate/decide.hpp"
-#include "estimate/next_event.hpp"
 #include "estimate/run_results.hpp"
 #include "estimate/target_results.hpp"
+#include "lightsolver/run_options.hpp"
+#include "lightsolver/timings.hpp"
 #include "model/backend.hpp"
 #include "model/groups.hpp"
 #include "prepare/scene_effects.hpp"
@@ -31,8 +32,6 @@
 #include "scene/provenance.hpp"
 #include "scene/validate_again.hpp"
 #include "types/target_types.hpp"
-#include "lightsolver/run_options.hpp"
-#include "lightsolver/timings.hpp"
 
 namespace lightsolver {
 
@@ -156,6 +155,9 @@ struct BatchLoop {
   const ProgressFn& progress;
   detail::TallyBlock& tallies;
   Results& r;
+  // Gives a checkpoint of `photons` the direct parts a plain run of them has; returns the
+  // seconds those parts took (a row's time includes what its estimate cost).
+  std::function<double(std::uint64_t photons)> checkpoint_direct;
 
   std::vector<TargetResult> targets_at(std::uint64_t photons, double confidence) const {
     return detail::all_targets(scene, prepared, tallies, photons, confidence, r.judged,
@@ -212,8 +214,13 @@ struct BatchLoop {
     }
     detail::ProgressObserver progress_report(progress, cancel);
     detail::CheckpointSplitter checkpoints(options.checkpoints);
+    double aside_s = 0.0;  // spent on the checkpoints' direct parts, counted only in their rows
     auto report_checkpoint = [&](std::uint64_t at) {
-      if (options.checkpoint) options.checkpoint(checkpoint(at, seconds_since(start)));
+      if (!options.checkpoint) return;
+      const auto direct_start = Clock::now();
+      const double direct_s = checkpoint_direct ? checkpoint_direct(at) : 0.0;
+      aside_s += seconds_since(direct_start);
+      options.checkpoint(checkpoint(at, seconds_since(start) - aside_s + direct_s));
     };
     auto trace_range = [&](std::uint64_t first, std::uint64_t count) {
       shared.trace(first, count, tallies,
@@ -372,60 +379,6 @@ Results Simulation::run(const SolveOptions& options, const ProgressFn& progress)
   return run_from(options, progress, false);
 }
 
-// Next-event estimation for this run (estimate/next_event.hpp): which groups, and their direct
-// parts, kept for the next run with the same seed. The points are sized to the run: about one
-// shadow ray per two photons (a shadow ray costs about a photon segment), at least the defaults;
-// an accuracy goal refines them until no direct part's half-width passes half the goal.
-void Simulation::plan_direct_light(const Results& r) {
-  detail::PreparedScene& p = state_->prepared;
-  // A sobol run shares these parts among its replicates (model/replicates.hpp).
-  detail::plan_next_event(p, *state_->backend, r.next_event);
-  if (!std::any_of(p.groups.begin(), p.groups.end(),
-                   [](const detail::PreparedGroup& g) { return g.next_event; })) {
-    return;
-  }
-  // auto, the default, never costs a run far more than its photons: the fewest points (every
-  // cell's 32, every surface's 512) each send a ray to every luminaire of their group, which
-  // for thousands of luminaires in one group would be billions of rays for a small run.
-  constexpr double kAutoRaysPerPhoton = 4.0;
-  const std::uint64_t fewest = detail::direct_ray_count(p, 1);
-  if (r.next_event == "auto" && double(fewest) > kAutoRaysPerPhoton * double(r.photons_requested)) {
-    detail::plan_next_event(p, *state_->backend, "off");
-    p.next_event_off = "its direct light would take " + std::to_string(fewest) +
-                       " shadow rays, more than 4 per photon of the run (\"on\" traces them)";
-    return;
-  }
-  p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
-  const auto wide = [&](const std::vector<detail::DirectPart>& parts) {
-    if (!r.target_accuracy) return false;
-    const double z = z_for_confidence(r.confidence), half_goal = 0.5 * *r.target_accuracy;
-    return std::any_of(parts.begin(), parts.end(), [&](const detail::DirectPart& d) {
-      return d.lux > 0.0 && z * std::sqrt(d.variance) > half_goal * d.lux;
-    });
-  };
-  std::uint32_t scale = 1;
-  if (!r.target_accuracy && !r.decide) {
-    const double rays = double(detail::direct_ray_count(p, 1));
-    const double fit = rays > 0.0 ? std::sqrt(0.5 * double(r.photons_requested) / rays) : 1.0;
-    scale = static_cast<std::uint32_t>(std::clamp(fit, 1.0, 16.0));
-  }
-  if (state_->direct_seed == r.seed && state_->direct_strata_scale == scale) {
-    if (!wide(state_->direct)) {
-      p.direct = state_->direct;
-      return;
-    }
-    scale *= 2;
-  }
-  tbb::task_arena arena(state_->threads > 0 ? state_->threads : tbb::task_arena::automatic);
-  for (;; scale *= 2) {
-    arena.execute([&] { p.direct = detail::direct_parts(p, *state_->backend, r.seed, scale); });
-    if (scale >= 16 || !wide(p.direct)) break;
-  }
-  state_->direct = p.direct;
-  state_->direct_seed = r.seed;
-  state_->direct_strata_scale = scale;
-}
-
 Results Simulation::run_from(const SolveOptions& options, const ProgressFn& progress, bool resume) {
   const auto start = Clock::now();
   const auto started = std::chrono::system_clock::now();
@@ -458,7 +411,12 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
   // before any shadow ray is traced for it.
   const auto qmc = detail::plan_replicates(scene, options, r, resume, *state_->backend);
-  plan_direct_light(r);
+  // Shadow rays stop at a cancel like photons; with several processes only at the agreed stops
+  // (every process traces the same parts).
+  const std::function<bool()> stop_direct = [&] {
+    return !options.processes && options.cancel && options.cancel->load();
+  };
+  plan_direct_light(r, stop_direct);
   r.backend = state_->backend->name();
   r.total_flux_lm = prepared.total_flux_lm;
   detail::TallyBlock tallies(prepared.groups.size() * prepared.bins.size() *
@@ -474,12 +432,20 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
     tracing_s = detail::trace_replicates(*qmc, prepared, *state_->backend, state_->threads, options,
                                          progress, tallies, r);
   } else if (prepared.total_flux_lm > 0.0) {
-    BatchLoop loop{scene,   prepared, *state_->backend, state_->threads,
-                   options, progress, tallies,          r};
+    BatchLoop loop{scene,
+                   prepared,
+                   *state_->backend,
+                   state_->threads,
+                   options,
+                   progress,
+                   tallies,
+                   r,
+                   [&](std::uint64_t at) { return checkpoint_direct_light(r, at); }};
     tracing_s = loop.trace();
   } else {
     r.photons = r.photons_requested;  // nothing to trace: every estimate is exactly zero
   }
+  const std::string direct_note = finish_direct_light(r, stop_direct);  // the planned parts
   r.partial = r.stop_reason == kStopCancelled;
   r.ray_segments = tallies.ray_segments;
   r.capped_paths = tallies.capped_paths;
@@ -501,6 +467,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   detail::add_warnings(scene, r);
   add_stop_warnings(r);
+  if (!direct_note.empty()) r.warnings.push_back(direct_note);
   detail::report_effects(scene, prepared, r);  // effects simulated/skipped, dark targets
   for (const GroupResult& g : r.groups) {
     if (g.flux_lm > 0.0 && g.photons == 0 && r.photons > 0) {

@@ -5,8 +5,8 @@
 #include <memory>
 #include <optional>
 
-#include "model/backend.hpp"
 #include "lightsolver/scene.hpp"
+#include "model/backend.hpp"
 
 namespace lightsolver::detail {
 
@@ -25,6 +25,9 @@ struct SimulationState {
   std::vector<DirectPart> direct;
   std::optional<std::uint64_t> direct_seed;
   std::uint32_t direct_strata_scale = 0;
+  double direct_seconds = 0.0;  // the time `direct` took to trace
+  // The strata scale the current run's parts end at (0: none, or fixed by an accuracy goal).
+  std::uint32_t direct_final_scale = 0;
 };
 
 }  // namespace lightsolver::detail

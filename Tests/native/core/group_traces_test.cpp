@@ -60,9 +60,8 @@ TEST_P(GroupTraces, EveryGroupTracedApartAndCombinedIsTheRun) {
   SolveOptions o;
   o.photons = 60'000;
   o.seed = 17;
-  // Group traces carry photon tallies only (their direct light by photons): the run to equal is
-  // one without next-event estimation.
-  o.next_event = "off";
+  // Group traces follow the scene's next_event (auto, the default) as the run does: direct
+  // parts and photon tallies both.
   const Results run = sim.run(o);
   const Results apart = traced_apart(sim, 60'000, 17);
   expect_same(run, apart);

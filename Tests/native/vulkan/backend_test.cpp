@@ -22,6 +22,9 @@ Results run(const Scene& s, const std::string& backend, std::uint64_t photons, s
   o.seed = seed;
   o.backend = backend;
   o.confidence = 0.999;
+  // The photon kernels against Embree's, tally for tally: photons alone (next-event estimation
+  // on Vulkan has its own tests, next_event_test.cpp).
+  o.next_event = "off";
   return solve(s, o);
 }
 

@@ -1,0 +1,144 @@
+// Next-event estimation of direct light for a run (docs/statistics.md, "Next-event
+// estimation"): which groups get it (estimate/next_event.hpp), how finely their direct parts
+// are sampled for the run, when they are traced, and the parts kept for the next run with the
+// same seed.
+//
+// A run without an accuracy goal traces the coarsest parts (the default strata) before its
+// photons and the parts planned for its photon count after them: a run stopped during its
+// photons still has whole direct parts, and the shadow rays it would have spent on the finer
+// ones are not spent. A checkpoint (cost, study) gets the parts a plain run of its photons has.
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "estimate/next_event.hpp"
+#include "lightsolver/simulation.hpp"
+#include "lightsolver/statistics.hpp"
+#include "prepare/scene_effects.hpp"
+#include "run/simulation_state.hpp"
+
+namespace lightsolver {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// auto never costs a run far more than its photons: the fewest points (every cell's 32, every
+// surface's 512) each send a ray to every luminaire of their group, which for thousands of
+// luminaires in one group would be billions of rays for a small run.
+constexpr double kAutoRaysPerPhoton = 4.0;
+constexpr std::uint32_t kMaxStrataScale = 16;
+
+// The strata scale of a run of `photons` photons without an accuracy goal: about one shadow ray
+// per two photons (a shadow ray costs about a photon segment), at least the default strata.
+std::uint32_t strata_scale_for(const detail::PreparedScene& p, std::uint64_t photons) {
+  const double rays = double(detail::direct_ray_count(p, 1));
+  const double fit = rays > 0.0 ? std::sqrt(0.5 * double(photons) / rays) : 1.0;
+  return static_cast<std::uint32_t>(std::clamp(fit, 1.0, double(kMaxStrataScale)));
+}
+
+// A direct part whose interval is wider than half the accuracy goal.
+bool too_wide(const std::vector<detail::DirectPart>& parts, const Results& r) {
+  if (!r.target_accuracy) return false;
+  const double z = z_for_confidence(r.confidence), half_goal = 0.5 * *r.target_accuracy;
+  return std::any_of(parts.begin(), parts.end(), [&](const detail::DirectPart& d) {
+    return d.lux > 0.0 && z * std::sqrt(d.variance) > half_goal * d.lux;
+  });
+}
+
+}  // namespace
+
+bool Simulation::use_direct_parts(std::uint64_t seed, std::uint32_t scale,
+                                  const std::function<bool()>& stop) {
+  detail::SimulationState& st = *state_;
+  if (!(st.direct_seed == seed && st.direct_strata_scale == scale)) {
+    const auto start = Clock::now();
+    std::optional<std::vector<detail::DirectPart>> parts;
+    tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
+    arena.execute(
+        [&] { parts = detail::direct_parts_unless(st.prepared, *st.backend, seed, scale, stop); });
+    if (!parts) return false;  // stopped: the parts in use stay as they were
+    st.direct = std::move(*parts);
+    st.direct_seed = seed;
+    st.direct_strata_scale = scale;
+    st.direct_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  st.prepared.direct = st.direct;
+  return true;
+}
+
+// Which groups, and their first direct parts. An accuracy goal refines the parts before the
+// photons until no direct part's half-width passes half the goal, and deciding keeps the
+// default points (their stopping rules read them); any other run starts with the coarsest
+// parts and finish_direct_light() traces the planned ones.
+void Simulation::plan_direct_light(const Results& r, const std::function<bool()>& stop) {
+  detail::SimulationState& st = *state_;
+  detail::PreparedScene& p = st.prepared;
+  st.direct_final_scale = 0;
+  // A sobol run shares these parts among its replicates (model/replicates.hpp).
+  detail::plan_next_event(p, *st.backend, r.next_event);
+  if (!std::any_of(p.groups.begin(), p.groups.end(),
+                   [](const detail::PreparedGroup& g) { return g.next_event; })) {
+    return;
+  }
+  const std::uint64_t fewest = detail::direct_ray_count(p, 1);
+  if (r.next_event == "auto" && double(fewest) > kAutoRaysPerPhoton * double(r.photons_requested)) {
+    detail::plan_next_event(p, *st.backend, "off");
+    p.next_event_off = "its direct light would take " + std::to_string(fewest) +
+                       " shadow rays, more than 4 per photon of the run (\"on\" traces them)";
+    return;
+  }
+  p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
+  bool whole = true;
+  if (r.target_accuracy) {
+    for (std::uint32_t scale = 1;; scale *= 2) {
+      whole = use_direct_parts(r.seed, scale, stop);
+      if (!whole || scale >= kMaxStrataScale || !too_wide(p.direct, r)) break;
+    }
+  } else if (r.decide) {
+    // Deciding judges its looks with the parts its results end with, so they are fixed before
+    // the photons: the default points, whatever the budget (an open budget is 10^10 photons,
+    // and the scene file must reproduce a run made with an explicit one).
+    whole = use_direct_parts(r.seed, 1, stop);
+  } else {
+    st.direct_final_scale = strata_scale_for(p, r.photons_requested);
+    const bool kept = st.direct_seed == r.seed && st.direct_strata_scale == st.direct_final_scale;
+    whole = use_direct_parts(r.seed, kept ? st.direct_final_scale : 1, stop);
+  }
+  if (!whole) {  // stopped before any part was whole: the photons carry the direct light
+    detail::plan_next_event(p, *st.backend, "off");
+    p.next_event_off = "the run was stopped before its direct light was traced";
+    st.direct_final_scale = 0;
+  }
+}
+
+double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photons) {
+  const detail::SimulationState& st = *state_;
+  // none, or the parts an accuracy goal or deciding reads before the photons
+  if (st.direct_final_scale == 0) return 0.0;
+  const std::uint32_t scale = strata_scale_for(st.prepared, photons);
+  use_direct_parts(r.seed, scale, {});  // never stopped half-way: a row is a whole estimate
+  return st.direct_seconds;
+}
+
+std::string Simulation::finish_direct_light(Results& r, const std::function<bool()>& stop) {
+  detail::SimulationState& st = *state_;
+  if (st.direct_final_scale == 0) return {};
+  // Sized to the photons traced: a run its time limit ended gets the parts of a plain run of
+  // its photons (fewer than planned), not the shadow rays of the photons it did not trace.
+  const std::uint32_t scale =
+      std::min(st.direct_final_scale, strata_scale_for(st.prepared, r.photons));
+  const bool planned = r.stop_reason != kStopCancelled && use_direct_parts(r.seed, scale, stop);
+  if (planned) return {};
+  // Stopped: the coarsest parts, traced before the photons, stay (whole, and honest).
+  use_direct_parts(r.seed, 1, {});
+  if (st.direct_final_scale == 1) return {};
+  r.stop_reason = kStopCancelled;
+  return "stopped before its direct light was sampled as planned: direct parts from the "
+         "default points (32 per cell, 512 per surface target), with wider intervals";
+}
+
+}  // namespace lightsolver
