@@ -217,6 +217,11 @@ struct Settings {
   /// recombination of groups keep them. Off by default until checkpointed runs (cost, study)
   /// and a cancelled run's shadow-ray phase are settled (docs/statistics.md).
   std::string next_event = "off";
+  /// Reflected light at grids by connecting photon vertices to the cells: "auto", "on" or
+  /// "off" (SolveOptions::connect_reflections; docs/statistics.md, "Connected reflected
+  /// light"). Its part is added to the groups' direct parts. Off by default (measured gain
+  /// only on diffuse rooms so far: docs/BENCHMARKS.md).
+  std::string connect_reflections = "off";
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

@@ -18,6 +18,7 @@
 #include "estimate/cell_accuracy.hpp"
 #include "estimate/decide.hpp"
 #include "estimate/next_event.hpp"
+#include "estimate/reflection_connection.hpp"
 #include "estimate/run_results.hpp"
 #include "estimate/target_results.hpp"
 #include "model/backend.hpp"
@@ -380,6 +381,9 @@ void Simulation::plan_direct_light(const Results& r) {
   detail::PreparedScene& p = state_->prepared;
   // A sobol run shares these parts among its replicates (model/replicates.hpp).
   detail::plan_next_event(p, *state_->backend, r.next_event);
+  // Connected reflected light (estimate/reflection_connection.hpp) builds on these groups.
+  detail::plan_connection(p, *state_->backend, r.connect_reflections,
+                          r.target_accuracy.has_value() || r.decide);
   if (!std::any_of(p.groups.begin(), p.groups.end(),
                    [](const detail::PreparedGroup& g) { return g.next_event; })) {
     return;
@@ -393,6 +397,7 @@ void Simulation::plan_direct_light(const Results& r) {
     detail::plan_next_event(p, *state_->backend, "off");
     p.next_event_off = "its direct light would take " + std::to_string(fewest) +
                        " shadow rays, more than 4 per photon of the run (\"on\" traces them)";
+    detail::plan_connection(p, *state_->backend, r.connect_reflections, false);  // on: refused
     return;
   }
   p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
@@ -409,7 +414,10 @@ void Simulation::plan_direct_light(const Results& r) {
     const double fit = rays > 0.0 ? std::sqrt(0.5 * double(r.photons_requested) / rays) : 1.0;
     scale = static_cast<std::uint32_t>(std::clamp(fit, 1.0, 16.0));
   }
-  if (state_->direct_seed == r.seed && state_->direct_strata_scale == scale) {
+  const std::uint64_t connect_paths = detail::connection_paths(
+      p, r.photons_requested, r.target_accuracy.has_value() || r.decide);
+  if (state_->direct_seed == r.seed && state_->direct_strata_scale == scale &&
+      state_->direct_connect_paths == connect_paths) {
     if (!wide(state_->direct)) {
       p.direct = state_->direct;
       return;
@@ -421,7 +429,11 @@ void Simulation::plan_direct_light(const Results& r) {
     arena.execute([&] { p.direct = detail::direct_parts(p, *state_->backend, r.seed, scale); });
     if (scale >= 16 || !wide(p.direct)) break;
   }
+  arena.execute([&] {
+    detail::add_connected_reflection(p, *state_->backend, r.seed, connect_paths, p.direct);
+  });
   state_->direct = p.direct;
+  state_->direct_connect_paths = connect_paths;
   state_->direct_seed = r.seed;
   state_->direct_strata_scale = scale;
 }
@@ -454,6 +466,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   // before the direct parts (as many, and traced per group and bin).
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
   r.next_event = options.next_event.value_or(scene.settings.next_event);
+  r.connect_reflections =
+      options.connect_reflections.value_or(scene.settings.connect_reflections);
   r.contributions = options.contributions.value_or(scene.settings.contributions);
   // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
   // before any shadow ray is traced for it.

@@ -25,6 +25,7 @@ struct SimulationState {
   std::vector<DirectPart> direct;
   std::optional<std::uint64_t> direct_seed;
   std::uint32_t direct_strata_scale = 0;
+  std::uint64_t direct_connect_paths = 0;  // their connected reflected light's paths (0: none)
 };
 
 }  // namespace lightsolver::detail
