@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <glm/geometric.hpp>
 #include <numbers>
 
@@ -204,9 +203,7 @@ void plan_connection(PreparedScene& s, const Backend& backend, const std::string
   }
   for (PreparedGroup& g : s.groups) g.connect = g.next_event;
   for (PreparedGrid& g : s.grids) {
-    double cells = kConnectR0Cells;
-    if (const char* v = std::getenv("LIGHTSOLVER_CONNECT_R0")) cells = std::atof(v);
-    if (!g.indirect_only) g.connect_r0 = float(cells * cell_size(g));
+    if (!g.indirect_only) g.connect_r0 = float(kConnectR0Cells * cell_size(g));
   }
   s.connect_off.clear();
 }
@@ -221,9 +218,7 @@ std::uint64_t connection_paths(const PreparedScene& s, std::uint64_t photons, bo
     return 0;
   }
   if (goal_run) return kGoalPaths;
-  double rays_per_photon = kConnectRaysPerPhoton;
-  if (const char* v = std::getenv("LIGHTSOLVER_CONNECT_RAYS")) rays_per_photon = std::atof(v);
-  const double fit = rays_per_photon * double(photons) / (2.0 * double(cells));
+  const double fit = kConnectRaysPerPhoton * double(photons) / (2.0 * double(cells));
   return std::max<std::uint64_t>(kMinPaths, std::uint64_t(std::min(fit, 1e12)));
 }
 

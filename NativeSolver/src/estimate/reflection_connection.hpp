@@ -22,9 +22,9 @@
 
 namespace lightsolver::detail {
 
-/// r0 of a grid in cell sizes (the longer cell edge): measured on the box room
+/// r0 of a grid in cell sizes (the longer cell edge), measured on the box room
 /// (docs/BENCHMARKS.md, "Connected reflected light").
-inline constexpr double kConnectR0Cells = 1.0;
+inline constexpr double kConnectR0Cells = 2.0;
 
 /// Sets each group's `connect` and each grid's connect_r0 for `mode` ("auto", "on", "off"),
 /// after plan_next_event(); `s.connect_off` says why no group has it. Planned for the groups
@@ -38,7 +38,7 @@ void plan_connection(PreparedScene& s, const Backend& backend, const std::string
 
 /// Shadow rays per photon of the run the connections are sized to (docs/BENCHMARKS.md,
 /// "Connected reflected light").
-inline constexpr double kConnectRaysPerPhoton = 4.0;
+inline constexpr double kConnectRaysPerPhoton = 6.0;
 
 /// The paths per connected group for a run of `photons` photons: about kConnectRaysPerPhoton
 /// shadow rays per photon, counting two vertices per path and one ray per cell, at least 512;

@@ -83,11 +83,11 @@ double exact_cell(std::size_t k, double h) {
   return cell_lux(-1.0 + 0.5 * iv, -1.0 + 0.5 * iu, 0.5, h);
 }
 
-// At h = 0.2 m most of a cell's reflected light comes from closer than r0 (a cell, 0.5 m):
-// the photons' capped crossings; at 1 m all of it from farther: connections. Either strategy
-// missing, or both counting the same pairs, moves the cells by 16 % or more (at 0.2 m).
+// At h = 0.5 m three quarters of a cell's reflected light comes from closer than r0 (two cells,
+// 1 m): the photons' capped crossings; at 1.5 m all of it from farther: connections. Either
+// strategy missing, or both counting the same pairs, moves the cells by 25 % or more (0.5 m).
 TEST(ReflectionConnection, FirstReflectionOverAFloorMatchesTheClosedForm) {
-  const std::vector<double> heights{0.2, 1.0};
+  const std::vector<double> heights{0.5, 1.5};
   const Results r = run_connected(floor_scene(heights), 1'000'000, 7, "on");
   for (std::size_t t = 0; t < heights.size(); ++t) {
     ASSERT_EQ(r.targets[t].cells.size(), 16u);
@@ -96,7 +96,7 @@ TEST(ReflectionConnection, FirstReflectionOverAFloorMatchesTheClosedForm) {
     for (std::size_t k = 0; k < 16; ++k) {
       const double exact = exact_cell(k, heights[t]);
       whole += exact / 16.0;
-      // Near pairs are photon crossings: a cell's 5-sigma interval is wide at 0.2 m.
+      // Near pairs are photon crossings: a cell's 5-sigma interval is wide at 0.5 m.
       expect_in_ci(r.targets[t].cells[k], exact, t == 0 ? 0.3 : 0.1,
                    where + ", cell " + std::to_string(k));
     }
@@ -109,10 +109,10 @@ TEST(ReflectionConnection, FirstReflectionOverAFloorMatchesTheClosedForm) {
 // The same floor with the part off (photons count every reflected crossing): the closed form
 // holds there too, so the test above checks the connection and not a shared error.
 TEST(ReflectionConnection, PhotonsAloneMatchTheSameClosedForm) {
-  const Results r = run_connected(floor_scene({0.2}), 1'000'000, 7, "off");
+  const Results r = run_connected(floor_scene({0.5}), 1'000'000, 7, "off");
   double whole = 0.0;
   for (std::size_t k = 0; k < 16; ++k) {
-    const double exact = exact_cell(k, 0.2);
+    const double exact = exact_cell(k, 0.5);
     whole += exact / 16.0;
     expect_in_ci(r.targets[0].cells[k], exact, 0.3, "cell " + std::to_string(k));
   }
@@ -140,12 +140,12 @@ TEST(ReflectionConnection, AgreesWithPhotonsAloneInTheBoxRoom) {
   expect_same_within(on.targets[0].estimate, off.targets[0].estimate, "whole grid");
 }
 
-// Per-cell 95 % intervals over 200 seeds on the floor (h = 0.2 m: both strategies) cover the
+// Per-cell 95 % intervals over 200 seeds on the floor (h = 0.5 m: both strategies) cover the
 // closed form within binomial limits (4 sigma of 3200 intervals).
 TEST(ReflectionConnection, PerCellCoverageOver200Seeds) {
-  const Scene s = floor_scene({0.2});
+  const Scene s = floor_scene({0.5});
   std::vector<double> exact(16);
-  for (std::size_t k = 0; k < 16; ++k) exact[k] = exact_cell(k, 0.2);
+  for (std::size_t k = 0; k < 16; ++k) exact[k] = exact_cell(k, 0.5);
   int covered = 0, total = 0;
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
     const Results r = run_connected(s, 20'000, seed, "on", 0.95);
@@ -162,7 +162,7 @@ TEST(ReflectionConnection, PerCellCoverageOver200Seeds) {
 
 // Bad values name the setting; `on` where it cannot run says why.
 TEST(ReflectionConnection, BadSettingsAreInputErrorsNamingTheField) {
-  const Scene s = floor_scene({0.2});
+  const Scene s = floor_scene({0.5});
   auto message = [&](Scene scene, const std::string& mode, const std::string& next_event) {
     try {
       validate(scene);
