@@ -192,7 +192,7 @@ class EmbreeBackend final : public Backend {
     EmittedRay ray;
     std::uint32_t bounce = 0;
     std::uint32_t first_bounce = 0;  // 1: its group's direct light is by next-event estimation
-    bool connected = false;  // its group's far reflected light at grids is by connection
+    bool connected = false;          // its group's far reflected light at grids is by connection
     RTCRayHit rh;
     PathDeposits deposits;
     bool active = false;

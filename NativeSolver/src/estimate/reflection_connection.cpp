@@ -74,8 +74,8 @@ void connect_path(const std::vector<GridCells>& grids, const PathVertex* v, std:
           const double cos_x = glm::dot(nx, to) / d, cos_y = -glm::dot(g.normal, to) / d;
           if (!(cos_x > 0.0 && cos_y > 0.0)) continue;  // behind x, or the grid's back
           rays.push_back({v[k].origin, float(d * (1.0 - kShortOfPoint)), vec3(to / d)});
-          value.push_back({g.first + std::size_t(iv) * g.grid->nu + iu,
-                           scale * cos_x * cos_y / d2});
+          value.push_back(
+              {g.first + std::size_t(iv) * g.grid->nu + iu, scale * cos_x * cos_y / d2});
         }
       }
     }
@@ -98,9 +98,10 @@ struct Sums {
 // (the last columns: a grid's mean over its cells).
 Sums group_sums(const PreparedScene& s, Backend& backend, const std::vector<GridCells>& grids,
                 std::uint32_t group, std::uint64_t seed, std::uint64_t paths) {
-  const std::size_t cells = grids.empty() ? 0
-                                          : grids.back().first + std::size_t(grids.back().grid->nu) *
-                                                                     grids.back().grid->nv;
+  const std::size_t cells =
+      grids.empty()
+          ? 0
+          : grids.back().first + std::size_t(grids.back().grid->nu) * grids.back().grid->nv;
   const std::size_t columns = cells + grids.size();
   Sums out{std::vector<double>(columns, 0.0), std::vector<double>(columns, 0.0),
            std::vector<std::uint64_t>(columns, 0)};
@@ -166,7 +167,7 @@ double cell_size(const PreparedGrid& g) {
 }  // namespace
 
 void plan_connection(PreparedScene& s, const Backend& backend, const std::string& mode,
-                     bool goal_run) {
+                     bool goal_run, std::uint64_t photons) {
   for (PreparedGroup& g : s.groups) g.connect = false;
   for (PreparedGrid& g : s.grids) g.connect_r0 = 0.0f;
   const bool forced = mode == "on";
@@ -199,6 +200,16 @@ void plan_connection(PreparedScene& s, const Backend& backend, const std::string
   }
   if (goal_run && !forced) {
     s.connect_off = "a run with an accuracy goal or decide (\"on\" connects 16384 paths)";
+    return;
+  }
+  std::uint64_t cells = 0;
+  for (const PreparedGrid& g : s.grids) cells += g.indirect_only ? 0 : std::uint64_t(g.nu) * g.nv;
+  const double fewest_rays = 2.0 * double(kMinPaths) * double(cells);
+  if (!goal_run && !forced && fewest_rays > 4.0 * kConnectRaysPerPhoton * double(photons)) {
+    s.connect_off = "its fewest connections would take " +
+                    std::to_string(std::uint64_t(fewest_rays)) + " shadow rays, more than " +
+                    std::to_string(int(4 * kConnectRaysPerPhoton)) +
+                    " per photon of the run (\"on\" traces them)";
     return;
   }
   for (PreparedGroup& g : s.groups) g.connect = g.next_event;

@@ -31,10 +31,11 @@ inline constexpr double kConnectR0Cells = 2.0;
 /// with next_event when the scene has a grid, light is reflected, every material a photon can
 /// hit is diffuse (the connection knows the diffuse lobe only) and the backend traces path
 /// vertices; `auto` leaves out a run with an accuracy goal or decide (`goal_run`: its photon
-/// count is a budget, not what it traces). `on` refuses (InputError naming
-/// connect_reflections) where no group can have it.
+/// count is a budget, not what it traces) and a run of `photons` too few for the fewest paths
+/// (more than 4 x kConnectRaysPerPhoton shadow rays per photon). `on` refuses (InputError
+/// naming connect_reflections) where no group can have it.
 void plan_connection(PreparedScene& s, const Backend& backend, const std::string& mode,
-                     bool goal_run);
+                     bool goal_run, std::uint64_t photons);
 
 /// Shadow rays per photon of the run the connections are sized to (docs/BENCHMARKS.md,
 /// "Connected reflected light").

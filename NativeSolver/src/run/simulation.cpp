@@ -383,7 +383,7 @@ void Simulation::plan_direct_light(const Results& r) {
   detail::plan_next_event(p, *state_->backend, r.next_event);
   // Connected reflected light (estimate/reflection_connection.hpp) builds on these groups.
   detail::plan_connection(p, *state_->backend, r.connect_reflections,
-                          r.target_accuracy.has_value() || r.decide);
+                          r.target_accuracy.has_value() || r.decide, r.photons_requested);
   if (!std::any_of(p.groups.begin(), p.groups.end(),
                    [](const detail::PreparedGroup& g) { return g.next_event; })) {
     return;
@@ -397,7 +397,7 @@ void Simulation::plan_direct_light(const Results& r) {
     detail::plan_next_event(p, *state_->backend, "off");
     p.next_event_off = "its direct light would take " + std::to_string(fewest) +
                        " shadow rays, more than 4 per photon of the run (\"on\" traces them)";
-    detail::plan_connection(p, *state_->backend, r.connect_reflections, false);  // on: refused
+    detail::plan_connection(p, *state_->backend, r.connect_reflections, false, 0);  // on: refused
     return;
   }
   p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);

@@ -37,8 +37,8 @@ Scene floor_scene(const std::vector<double>& heights) {
   s.luminaires.push_back(point_light(kSource, kFlux));
   for (std::size_t i = 0; i < heights.size(); ++i) {
     // corner + e1 x e2 = -z: the front faces the floor. 2 x 2 m, 4 x 4 cells of 0.5 m.
-    s.targets.push_back(grid("grid " + std::to_string(i), {-1, -1, heights[i]}, {0, 2, 0},
-                             {2, 0, 0}, 4, 4));
+    s.targets.push_back(
+        grid("grid " + std::to_string(i), {-1, -1, heights[i]}, {0, 2, 0}, {2, 0, 0}, 4, 4));
   }
   return s;
 }
@@ -211,6 +211,30 @@ TEST(ReflectionConnection, BadSettingsAreInputErrorsNamingTheField) {
         }
       },
       InputError);
+}
+
+// auto leaves it to the photons, saying why, where its fewest paths would cost far more than
+// the run's photons, and in a run with an accuracy goal (a budget, not a photon count).
+TEST(ReflectionConnection, AutoLeavesTinyRunsAndAccuracyRunsToPhotons) {
+  Scene s = floor_scene({0.5});
+  validate(s);
+  const auto reason = [](const Results& r) {
+    for (const auto& e : r.effects.skipped) {
+      if (e.effect == "reflection_connection") return e.reason;
+    }
+    return std::string("simulated");
+  };
+  SolveOptions o;
+  o.backend = "embree";
+  o.next_event = "on";
+  o.connect_reflections = "auto";
+  o.photons = 200;  // 2 x 512 paths x 16 cells: 16384 rays, more than 24 per photon
+  EXPECT_NE(reason(solve(s, o)).find("per photon"), std::string::npos);
+  o.photons = 20'000;
+  EXPECT_EQ(reason(solve(s, o)), "simulated");
+  o.photons.reset();
+  o.target_accuracy = 0.5;
+  EXPECT_NE(reason(solve(s, o)).find("accuracy goal"), std::string::npos);
 }
 
 }  // namespace
