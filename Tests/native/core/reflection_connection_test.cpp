@@ -4,6 +4,7 @@
 // setting's errors.
 #include <gtest/gtest.h>
 
+#include "lightsolver/rescale.hpp"
 #include "scene_builders.hpp"
 
 namespace lightsolver::test {
@@ -138,6 +139,25 @@ TEST(ReflectionConnection, AgreesWithPhotonsAloneInTheBoxRoom) {
   }
   EXPECT_LT(width_on, 0.7 * width_off);
   expect_same_within(on.targets[0].estimate, off.targets[0].estimate, "whole grid");
+}
+
+// The part is linear in the group's flux and travels in the direct parts: rescaling a result
+// by 0.5 gives the run traced at half the flux, cell for cell.
+TEST(ReflectionConnection, RescaleMatchesARunAtTheDimmedFlux) {
+  Scene s = floor_scene({0.5, 1.5});
+  s.settings.contributions = true;
+  const Results full = run_connected(s, 50'000, 4, "on", 0.95);
+  s.luminaires[0].flux_lm *= 0.5;
+  const Results traced = run_connected(s, 50'000, 4, "on", 0.95);
+  const Results half =
+      rescale_results(results_to_json(full), {{s.luminaires[0].group_name(), 0.5}});
+  for (std::size_t t = 0; t < 2; ++t) {
+    for (std::size_t k = 0; k < 16; ++k) {
+      const Estimate &a = half.targets[t].cells[k], &b = traced.targets[t].cells[k];
+      EXPECT_NEAR(a.mean, b.mean, 1e-12 * b.mean) << t << " " << k;
+      EXPECT_NEAR(a.ci_high - a.ci_low, b.ci_high - b.ci_low, 1e-12 * b.mean) << t << " " << k;
+    }
+  }
 }
 
 // Per-cell 95 % intervals over 200 seeds on the floor (h = 0.5 m: both strategies) cover the
