@@ -36,16 +36,23 @@ struct GridCells {
   std::size_t first;  // its cells' first column in a path's deposits
 };
 
+// A grid row's whole edges, from its dual vectors (their Gram matrix's inverse), as
+// next_event.cpp's cells.
+void grid_edges(const PreparedGrid& g, dvec3& e1, dvec3& e2) {
+  const dvec3 du(g.du), dv(g.dv);
+  const double a = glm::dot(du, du), b = glm::dot(du, dv), c = glm::dot(dv, dv);
+  const double det = a * c - b * b;
+  e1 = (c * du - b * dv) / det;
+  e2 = (a * dv - b * du) / det;
+}
+
 std::vector<GridCells> connected_grids(const PreparedScene& s) {
   std::vector<GridCells> out;
   std::size_t columns = 0;
   for (const PreparedGrid& g : s.grids) {
     if (g.indirect_only || !(g.connect_r0 > 0.0f)) continue;
-    // The edges from the row's dual vectors (their Gram matrix's inverse), as next_event.cpp.
-    const dvec3 du(g.du), dv(g.dv);
-    const double a = glm::dot(du, du), b = glm::dot(du, dv), c = glm::dot(dv, dv);
-    const double det = a * c - b * b;
-    const dvec3 e1 = (c * du - b * dv) / det, e2 = (a * dv - b * du) / det;
+    dvec3 e1, e2;
+    grid_edges(g, e1, e2);
     const double r0 = g.connect_r0;
     out.push_back({&g, dvec3(g.corner), e1 / double(g.nu), e2 / double(g.nv),
                    glm::normalize(dvec3(g.normal)), r0 * r0, columns});
@@ -157,10 +164,8 @@ bool all_diffuse(const PreparedScene& s, bool& reflects) {
 
 // The longer edge of a grid row's cells (m).
 double cell_size(const PreparedGrid& g) {
-  const dvec3 du(g.du), dv(g.dv);
-  const double a = glm::dot(du, du), b = glm::dot(du, dv), c = glm::dot(dv, dv);
-  const double det = a * c - b * b;
-  const dvec3 e1 = (c * du - b * dv) / det, e2 = (a * dv - b * du) / det;
+  dvec3 e1, e2;
+  grid_edges(g, e1, e2);
   return std::max(glm::length(e1) / g.nu, glm::length(e2) / g.nv);
 }
 
