@@ -9,7 +9,9 @@ grid's per-cell rms relative error of 4.5 %, 2 %, 1 %, 0.7 % and 0.5 % against a
 Per scene, a reference run (`--reference-photons`, `--reference-flags`, default none; cached
 under `--cache`, build/time_to_accuracy/, by the scene's bytes, the photons, the flags and the
 CLI's modification time) gives E_ref per cell and its own per-cell standard error. Per
-configuration (its extra CLI flags, e.g. `--config "off:--next-event off"`), photon counts double
+configuration (its extra CLI flags, e.g. `--config "off:--next-event off"` or, for the connected
+reflected light, `--config "connected:--next-event on --connect-reflections on"`: docs/BENCHMARKS.md
+"Connected reflected light at grids"), photon counts double
 from `--start` until the error is at or below each target, then `--bisect` geometric bisections
 narrow the count. The error at N photons
 is, over `--seeds` seeds (1, 2, 3, ...), e(N) = sqrt(mean over seeds and cells of

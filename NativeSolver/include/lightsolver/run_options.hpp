@@ -153,6 +153,14 @@ inline constexpr std::tuple kRunOptions{
                "next_event", "--next-event", "next_event", nullptr, nullptr, {}, true, false,
                "auto|on|off"},
               &Settings::next_event, &SolveOptions::next_event},
+    RunOption{{"connect_reflections",
+               "Reflected light at grids by shadow rays from the diffuse reflections of an "
+               "independent photon stream to every cell, beyond a cell size (auto: where every "
+               "surface is diffuse, with next-event estimation, on the Embree backend; on; "
+               "off: by photons)",
+               "connect_reflections", "--connect-reflections", "connect_reflections", nullptr,
+               nullptr, {}, true, false, "auto|on|off"},
+              &Settings::connect_reflections, &SolveOptions::connect_reflections},
     RunOption{{"max_bounces",
                "Safety limit on surface interactions per path (paths it stops bias the "
                "result low and are warned of)",

@@ -216,6 +216,11 @@ struct Settings {
   /// estimation"). A run's contributions carry the direct parts, so `rescale` and every other
   /// recombination of groups keep them. Default "auto".
   std::string next_event = "auto";
+  /// Reflected light at grids by connecting photon vertices to the cells: "auto", "on" or
+  /// "off" (SolveOptions::connect_reflections; docs/statistics.md, "Connected reflected
+  /// light"). Its part is added to the groups' direct parts. Off by default (measured gain
+  /// only on diffuse rooms so far: docs/BENCHMARKS.md).
+  std::string connect_reflections = "off";
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

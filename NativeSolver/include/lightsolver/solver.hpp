@@ -107,6 +107,11 @@ struct SolveOptions {
   /// stratified points to the luminaires, only the reflected light by photons
   /// (docs/statistics.md, "Next-event estimation"). Default: scene.settings.next_event.
   std::optional<std::string> next_event;
+  /// "auto", "on" or "off": the reflected light at grids, beyond a cell size from each
+  /// reflection, by connecting the diffuse vertices of an independent photon stream to every
+  /// cell (docs/statistics.md, "Connected reflected light"); needs next_event. Default:
+  /// scene.settings.connect_reflections.
+  std::optional<std::string> connect_reflections;
   const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current batch
   /// Called once, when the first batches give a tracing rate: what the run is expected to
   /// cost (the CLI prints it for runs longer than a minute).
@@ -350,6 +355,9 @@ struct Results {
   /// The next-event setting of the run ("auto", "on", "off"); what it did is in `effects`
   /// (next_event_direct).
   std::string next_event = "off";
+  /// The connect_reflections setting of the run; what it did is in `effects`
+  /// (reflection_connection).
+  std::string connect_reflections = "off";
   /// A result of `rescale`: the dimming factor of every group (1 where none was given).
   std::vector<std::pair<std::string, double>> rescaled;
   /// Every luminaire, in scene order, as traced: the flux it emitted in the calculation.

@@ -99,6 +99,27 @@ class EmbreeBackend final : public Backend {
                       });
   }
 
+  bool traces_path_vertices() const override { return true; }
+
+  void path_vertices(std::uint32_t group, std::uint64_t first, std::uint64_t count,
+                     std::uint64_t seed, std::uint32_t stream,
+                     std::vector<PathVertex>& out) override {
+    // Blocks of paths in parallel, each into its own list: the order is the photons'.
+    constexpr std::uint64_t kBlock = 16;
+    std::vector<std::vector<PathVertex>> blocks((count + kBlock - 1) / kBlock);
+    tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t b) {
+      const DenormalsFlushed flushed;
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+      const std::uint64_t end = std::min(count, (b + 1) * kBlock);
+      for (std::uint64_t i = b * kBlock; i < end; ++i) {
+        trace_vertices(group, first + i, std::uint32_t(i), seed, stream, context, blocks[b]);
+      }
+    });
+    for (const auto& b : blocks) out.insert(out.end(), b.begin(), b.end());
+  }
+
   void set_mesh_transform(std::size_t mesh, const glm::mat4& transform) override {
     embree_.set_transform(mesh, transform);
   }
@@ -171,6 +192,7 @@ class EmbreeBackend final : public Backend {
     EmittedRay ray;
     std::uint32_t bounce = 0;
     std::uint32_t first_bounce = 0;  // 1: its group's direct light is by next-event estimation
+    bool connected = false;          // its group's far reflected light at grids is by connection
     RTCRayHit rh;
     PathDeposits deposits;
     bool active = false;
@@ -216,6 +238,7 @@ class EmbreeBackend final : public Backend {
     lane.ray = emit(s_.luminaires[pick_luminaire(s_.groups[range.group], lane.rng)], lane.rng);
     lane.bounce = 0;
     lane.first_bounce = s_.groups[range.group].next_event ? 1 : 0;
+    lane.connected = s_.groups[range.group].connect;
     lane.active = true;
   }
 
@@ -258,7 +281,7 @@ class EmbreeBackend final : public Backend {
     rtcIntersect1(embree_.handle(), &context, &lane.rh);
     ++t.ray_segments;
     cross_grids_with<F>(s_.grids, lane.ray.origin, lane.ray.direction, lane.rh.ray.tfar,
-                        lane.bounce, lane.deposits, lane.first_bounce);
+                        lane.bounce, lane.deposits, lane.first_bounce, lane.connected);
     if (lane.rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     bool instanced = false;
     const unsigned mesh = embree_.mesh_of(lane.rh.hit, instanced);
@@ -300,6 +323,37 @@ class EmbreeBackend final : public Backend {
     if (instanced) p = vec3(m.transform * glm::vec4(p, 1.0f));
     ray.origin = offset_ray_origin(p, glm::dot(ray.direction, n) > 0.0f ? n : -n);
     return true;
+  }
+
+  // One photon of path_vertices(): emitted as start_path() emits, then diffuse reflections
+  // only, as continue_path() scatters (survival by reflectance, a cosine lobe, max_bounces).
+  void trace_vertices(std::uint32_t group, std::uint64_t photon, std::uint32_t path,
+                      std::uint64_t seed, std::uint32_t stream, RTCIntersectContext& context,
+                      std::vector<PathVertex>& out) const {
+    PathRng rng(seed, photon, stream);
+    EmittedRay ray = emit(s_.luminaires[pick_luminaire(s_.groups[group], rng)], rng);
+    TallyBlock unused;
+    if (blocked_outside(ray, context, unused)) return;
+    for (std::uint32_t vertex = 1; vertex <= s_.max_bounces; ++vertex) {
+      RTCRayHit rh = make_ray(ray);
+      rtcIntersect1(embree_.handle(), &context, &rh);
+      const RTCHit& h = rh.hit;
+      if (h.geomID == RTC_INVALID_GEOMETRY_ID) return;
+      bool instanced = false;
+      const unsigned mesh = embree_.mesh_of(h, instanced);
+      const PreparedMesh& m = s_.meshes[mesh];
+      const Material& material = s_.materials[m.material];
+      if (material.type != Material::Type::Diffuse || !(material.reflectance > 0.0)) return;
+      const HitTriangle& tri = triangles_.at(mesh, h.primID);
+      vec3 n = tri.n;
+      if (instanced) n = glm::normalize(glm::mat3(m.transform) * n);
+      const vec3 facing = glm::dot(ray.direction, n) < 0.0f ? n : -n;
+      vec3 p = tri.v0 + h.u * tri.e1 + h.v * tri.e2;
+      if (instanced) p = vec3(m.transform * glm::vec4(p, 1.0f));
+      ray.origin = offset_ray_origin(p, facing);
+      out.push_back({ray.origin, float(material.reflectance), facing, path});
+      if (!scatter_diffuse(material, facing, ray.direction, rng)) return;
+    }
   }
 
   bool occluded(const ShadowRay& s, RTCIntersectContext& context) const {

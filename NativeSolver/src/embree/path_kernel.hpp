@@ -71,9 +71,9 @@ inline bool scatter_with(const Material& m, const vec3& n, vec3& dir, PathRng& r
 template <KernelFeatures F>
 inline void cross_grids_with(const std::vector<PreparedGrid>& grids, const vec3& o, const vec3& d,
                              float t_max, std::uint32_t bounce, PathDeposits& deposits,
-                             std::uint32_t first_bounce) {
+                             std::uint32_t first_bounce, bool connected) {
   if constexpr (F.grids) {
-    if (!grids.empty()) cross_grids(grids, o, d, t_max, bounce, deposits, first_bounce);
+    if (!grids.empty()) cross_grids(grids, o, d, t_max, bounce, deposits, first_bounce, connected);
   }
 }
 

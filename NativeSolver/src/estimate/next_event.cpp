@@ -240,7 +240,9 @@ bool samples_directly(const PreparedScene& s, const PreparedGroup& g) {
 }  // namespace
 
 void plan_next_event(PreparedScene& s, const Backend& backend, const std::string& mode) {
-  for (PreparedGroup& g : s.groups) g.next_event = false;
+  for (PreparedGroup& g : s.groups) g.next_event = g.connect = false;  // connect needs it
+  for (PreparedGrid& g : s.grids) g.connect_r0 = 0.0f;
+  s.connect_off = "needs next-event estimation (next_event)";
   s.direct.clear();
   const bool forced = mode == "on";
   const auto off = [&](const std::string& why) {

@@ -55,6 +55,17 @@ struct ShadowRay {
   float pad = 0.0f;                  // 32 bytes: the GPU's std430 layout as is
 };
 
+/// A diffuse vertex of a photon path (estimate/reflection_connection.hpp): where the path's next
+/// segment would start (offset off the surface as trace() offsets it) and the unit normal of the
+/// side it leaves from. Vertex j of a path (j >= 1: after j segments) is kept only where trace()
+/// would trace its next segment (j <= max_bounces) and the reflectance is above 0.
+struct PathVertex {
+  vec3 origin{0.0f};
+  float reflectance = 0.0f;
+  vec3 normal{0.0f, 0.0f, 1.0f};
+  std::uint32_t path = 0;  ///< index within the request: photon first + path
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -77,6 +88,19 @@ class Backend {
     (void)rays;
     (void)out;
     throw std::logic_error("the " + name() + " backend cannot trace shadow rays");
+  }
+  /// Whether path_vertices() works (the connection of reflected light to grids needs it).
+  virtual bool traces_path_vertices() const { return false; }
+  /// Appends to `out` the diffuse vertices of photons [first, first + count) of `group`, drawn
+  /// from PathRng(seed, i, stream) and emitted as trace() emits them, each surviving a
+  /// reflection with probability of its reflectance (the photon keeps its power) and leaving
+  /// with a cosine lobe, in photon order. For scenes whose every material is diffuse: a path
+  /// ends at any other. Runs in the caller's TBB arena.
+  virtual void path_vertices(std::uint32_t group, std::uint64_t first, std::uint64_t count,
+                             std::uint64_t seed, std::uint32_t stream,
+                             std::vector<PathVertex>& out) {
+    (void)group, (void)first, (void)count, (void)seed, (void)stream, (void)out;
+    throw std::logic_error("the " + name() + " backend cannot trace path vertices");
   }
   /// Whether set_quasi_random() works (sampler "sobol": run/replicate_run.hpp).
   virtual bool traces_quasi_random() const { return false; }

@@ -1,6 +1,7 @@
 #pragma once
 // Per-path bookkeeping of deposits, so each bin gets this path's total c and c^2 (the per-path
 // variance estimate needs whole-path totals, not individual hits). Also the virtual-grid test.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -43,16 +44,21 @@ class PathDeposits {
 // on a surface still counts the photons arriving there (shared::grid_reach).
 // `bounce`: reflections before this segment (0: straight from the luminaire); indirect-only
 // grids (observers) skip direct segments, and so does every grid when `first_bounce` is 1 (the
-// path's group has its direct light by next-event estimation).
+// path's group has its direct light by next-event estimation). `connected`: the path's group
+// has its reflected light beyond each grid's connect_r0 by connection (PreparedGroup::connect),
+// so a reflected segment counts only crossings closer than that to its origin (d is unit: t is
+// the distance); together the two count every (vertex, grid point) pair exactly once.
 inline void cross_grids(const std::vector<PreparedGrid>& grids, const vec3& o, const vec3& d,
                         float t_max, std::uint32_t bounce, PathDeposits& deposits,
-                        std::uint32_t first_bounce = 0) {
+                        std::uint32_t first_bounce = 0, bool connected = false) {
   if (bounce < first_bounce) return;
   const float t_end = shared::grid_reach(t_max);
+  const bool capped = connected && bounce >= 1;
   for (const auto& g : grids) {
     if (g.indirect_only && bounce == 0) continue;
+    const float t_grid = capped && g.connect_r0 > 0.0f ? std::min(t_end, g.connect_r0) : t_end;
     std::uint32_t cell;
-    if (!shared::grid_crossing(o, d, t_end, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) {
+    if (!shared::grid_crossing(o, d, t_grid, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) {
       continue;
     }
     deposits.add(g.bin);

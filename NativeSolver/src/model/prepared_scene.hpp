@@ -42,6 +42,10 @@ struct PreparedGrid {
   std::uint32_t bin = 0;  // whole-grid bin; cell (iu, iv) is bin + 1 + iv * nu + iu
   // Observers' tallies: count only segments after at least one reflection (path depth >= 1).
   std::uint32_t indirect_only = 0;
+  // Connected reflected light (estimate/reflection_connection.hpp): for a group with
+  // PreparedGroup::connect, a reflected segment (bounce >= 1) counts its crossing only closer
+  // than this to its origin; farther crossings come from connections. 0: none.
+  float connect_r0 = 0.0f;
 };
 
 // Side of an observer's virtual square at the eye (m): small against a room (its mean over
@@ -78,6 +82,11 @@ struct PreparedGroup {
   // (direct/next_event.hpp): backends then tally only its photons' segments and hits after at
   // least one scattering (bounce >= 1), as for observers. Observers are unchanged.
   bool next_event = false;
+  // Its reflected light at grids (not observers) beyond each grid's connect_r0 comes from
+  // connecting the diffuse vertices of an independent photon stream to the grid's cells
+  // (estimate/reflection_connection.hpp), added into its direct parts; its photons count only
+  // reflected crossings closer than connect_r0 (cross_grids). Only with next_event.
+  bool connect = false;
 };
 
 /// A group's direct light in one bin by next-event estimation (estimate/next_event.hpp), at the
@@ -139,6 +148,8 @@ struct PreparedScene {
   // a scene has none (the effects list's reason).
   std::vector<DirectPart> direct;
   std::string next_event_off = "not planned";
+  // Why no group has `connect` (the effects list's reason).
+  std::string connect_off = "not planned";
   // Some surface returns light: a next-event group's photons can deposit (after a bounce). When
   // false, their photon part is exactly zero and the direct part is the whole estimate.
   bool photons_reflect = true;

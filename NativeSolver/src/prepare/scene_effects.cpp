@@ -12,7 +12,7 @@ constexpr std::size_t kFirstEmission = static_cast<std::size_t>(Effect::kFirstEm
 constexpr const char* kNames[kFirstEmission] = {
     "interreflection", "diffuse_reflection", "mirror_reflection", "glossy_reflection",
     "refraction",      "surface_targets",    "grid_crossing",     "observer_crossing",
-    "instancing",      "luminaire_choice",   "next_event_direct"};
+    "instancing",      "luminaire_choice",   "next_event_direct", "reflection_connection"};
 
 // Chance that a photon leaves a surface of this material at all (before any geometry). Glass
 // always reflects some light (Fresnel), so it always counts as returning light.
@@ -59,6 +59,9 @@ void set_luminaire_effects(SceneEffects& e, const PreparedScene& s) {
   const bool next_event = std::any_of(s.groups.begin(), s.groups.end(),
                                       [](const PreparedGroup& g) { return g.next_event; });
   e.set(Effect::NextEventDirect, next_event, s.next_event_off);
+  const bool connect = std::any_of(s.groups.begin(), s.groups.end(),
+                                   [](const PreparedGroup& g) { return g.connect; });
+  e.set(Effect::ReflectionConnection, connect, s.connect_off);
   for (const LuminaireType& row : luminaire_types()) {
     const bool used =
         std::any_of(s.luminaires.begin(), s.luminaires.end(),

@@ -27,6 +27,8 @@ enum class Effect : std::uint8_t {
   Instancing,         ///< movable meshes behind Embree instances
   LuminaireChoice,    ///< several luminaires: the flux CDF is searched per photon
   NextEventDirect,    ///< direct light at targets by shadow rays (estimate/next_event.hpp)
+  /// reflected light at grids by connections (estimate/reflection_connection.hpp)
+  ReflectionConnection,
   /// Then one emission effect per luminaire type, in the rows' order (emission_effect()):
   /// each row names its own (LuminaireType::effect).
   kFirstEmission

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "estimate/next_event.hpp"
+#include "estimate/reflection_connection.hpp"
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/statistics.hpp"
 #include "prepare/scene_effects.hpp"
@@ -66,7 +67,31 @@ bool Simulation::use_direct_parts(std::uint64_t seed, std::uint32_t scale,
     st.direct_strata_scale = scale;
     st.direct_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   }
+  if (st.connect_paths == 0) {
+    st.prepared.direct = st.direct;
+    return true;
+  }
+  // The groups' photons leave their far reflected crossings to the connections (the cap in
+  // cross_grids), so every direct part in use holds them: traced once per seed and paths.
+  if (!(st.connected_seed == seed && st.connected_paths == st.connect_paths)) {
+    if (stop && stop()) return false;
+    const auto start = Clock::now();
+    std::vector<detail::DirectPart> connected(st.direct.size());
+    tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+      detail::add_connected_reflection(st.prepared, *st.backend, seed, st.connect_paths, connected);
+    });
+    st.connected = std::move(connected);
+    st.connected_seed = seed;
+    st.connected_paths = st.connect_paths;
+    st.direct_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+  }
   st.prepared.direct = st.direct;
+  for (std::size_t i = 0; i < st.connected.size(); ++i) {
+    st.prepared.direct[i].lux += st.connected[i].lux;
+    st.prepared.direct[i].variance += st.connected[i].variance;
+    st.prepared.direct[i].lit += st.connected[i].lit;
+  }
   return true;
 }
 
@@ -78,8 +103,12 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
   detail::SimulationState& st = *state_;
   detail::PreparedScene& p = st.prepared;
   st.direct_final_scale = 0;
+  st.connect_paths = 0;
   // A sobol run shares these parts among its replicates (model/replicates.hpp).
   detail::plan_next_event(p, *st.backend, r.next_event);
+  // Connected reflected light (estimate/reflection_connection.hpp) builds on these groups.
+  const bool goal_run = r.target_accuracy.has_value() || r.decide;
+  detail::plan_connection(p, *st.backend, r.connect_reflections, goal_run, r.photons_requested);
   if (!std::any_of(p.groups.begin(), p.groups.end(),
                    [](const detail::PreparedGroup& g) { return g.next_event; })) {
     return;
@@ -89,9 +118,11 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
     detail::plan_next_event(p, *st.backend, "off");
     p.next_event_off = "its direct light would take " + std::to_string(fewest) +
                        " shadow rays, more than 4 per photon of the run (\"on\" traces them)";
+    detail::plan_connection(p, *st.backend, r.connect_reflections, false, 0);  // on: refused
     return;
   }
   p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
+  st.connect_paths = detail::connection_paths(p, r.photons_requested, goal_run);
   bool whole = true;
   if (r.target_accuracy) {
     for (std::uint32_t scale = 1;; scale *= 2) {
@@ -112,6 +143,7 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
     detail::plan_next_event(p, *st.backend, "off");
     p.next_event_off = "the run was stopped before its direct light was traced";
     st.direct_final_scale = 0;
+    st.connect_paths = 0;
   }
 }
 
@@ -120,6 +152,9 @@ double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photo
   // none, or the parts an accuracy goal or deciding reads before the photons
   if (st.direct_final_scale == 0) return 0.0;
   const std::uint32_t scale = strata_scale_for(st.prepared, photons);
+  // A plain run of `photons` connects the paths sized to them.
+  if (st.connect_paths > 0)
+    st.connect_paths = detail::connection_paths(st.prepared, photons, false);
   use_direct_parts(r.seed, scale, {});  // never stopped half-way: a row is a whole estimate
   return st.direct_seconds;
 }

@@ -407,6 +407,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   // before the direct parts (as many, and traced per group and bin).
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
   r.next_event = options.next_event.value_or(scene.settings.next_event);
+  r.connect_reflections =
+      options.connect_reflections.value_or(scene.settings.connect_reflections);
   r.contributions = options.contributions.value_or(scene.settings.contributions);
   // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
   // before any shadow ray is traced for it.

@@ -236,6 +236,7 @@ Results Simulation::combine(const std::vector<const GroupTrace*>& traces,
   detail::SceneEffects effects = detail::analyse_effects(p);
   effects.set(detail::Effect::NextEventDirect, !direct.empty(),
               next_event_off.empty() ? "no lit luminaire group traced" : next_event_off);
+  effects.set(detail::Effect::ReflectionConnection, false, "group traces have no connections yet");
   r.effects = detail::effects_report(effects);
   r.backend = state_->backend->name();
   r.judged = detail::judges_requirements(scene, false, false);

@@ -28,6 +28,13 @@ struct SimulationState {
   double direct_seconds = 0.0;  // the time `direct` took to trace
   // The strata scale the current run's parts end at (0: none, or fixed by an accuracy goal).
   std::uint32_t direct_final_scale = 0;
+  // Connected reflected light (estimate/reflection_connection.hpp), kept apart from `direct`
+  // (whose strata change between the coarse and the planned parts) and added to it in use:
+  // its paths (0: none) and seed, and the paths a run plans.
+  std::vector<DirectPart> connected;
+  std::uint64_t connected_paths = 0;
+  std::optional<std::uint64_t> connected_seed;
+  std::uint64_t connect_paths = 0;
 };
 
 }  // namespace lightsolver::detail

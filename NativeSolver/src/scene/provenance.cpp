@@ -199,6 +199,7 @@ OptionValue resolved_option(std::string_view name, const Results& r, const Scene
   if (name == "decide") return r.decide;
   if (name == "contributions") return r.contributions;
   if (name == "next_event") return r.next_event;
+  if (name == "connect_reflections") return r.connect_reflections;
   if (name == "max_bounces") return std::uint64_t{scene.settings.max_bounces};
   if (name == "sampler") return r.sampler;
   if (name == "replicates") {

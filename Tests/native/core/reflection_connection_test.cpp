@@ -1,0 +1,261 @@
+// Connected reflected light at grids (estimate/reflection_connection.hpp): a closed form of the
+// first reflection with the r0 partition crossed (near crossings by photons, far ones by
+// connections), the same box room as photons alone, honest intervals over 200 seeds, and the
+// setting's errors.
+#include <gtest/gtest.h>
+
+#include "lightsolver/rescale.hpp"
+#include "scene_builders.hpp"
+
+namespace lightsolver::test {
+namespace {
+
+Results run_connected(Scene s, std::uint64_t photons, std::uint64_t seed, const std::string& mode,
+                      double confidence = kCheckConfidence) {
+  validate(s);
+  SolveOptions o;
+  o.backend = "embree";
+  o.photons = photons;
+  o.seed = seed;
+  o.confidence = confidence;
+  o.next_event = "on";
+  o.connect_reflections = mode;
+  return solve(s, o);
+}
+
+// A point source of `flux` at height H over an (effectively infinite) diffuse floor of
+// reflectance rho, and grids facing DOWN at heights h: they count only the light the floor
+// reflects (the direct light crosses them from behind), which leaves to infinity after one
+// reflection. Floor 400 x 400 m: the light reflected beyond it is below 1e-9 of the total.
+constexpr double kH = 2.0, kRho = 0.6, kFlux = 6000.0, kFloor = 200.0;
+const dvec3 kSource(0.3, -0.2, kH);
+
+Scene floor_scene(const std::vector<double>& heights) {
+  Scene s;
+  add_material(s, "floor", Material::Type::Diffuse, kRho);
+  s.meshes.push_back(
+      quad_mesh("floor", 0, {-kFloor, -kFloor, 0}, {2 * kFloor, 0, 0}, {0, 2 * kFloor, 0}));
+  s.luminaires.push_back(point_light(kSource, kFlux));
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    // corner + e1 x e2 = -z: the front faces the floor. 2 x 2 m, 4 x 4 cells of 0.5 m.
+    s.targets.push_back(
+        grid("grid " + std::to_string(i), {-1, -1, heights[i]}, {0, 2, 0}, {2, 0, 0}, 4, 4));
+  }
+  return s;
+}
+
+// Irradiance at y (height h, facing down) from the floor lit by the source:
+// E = rho I H / pi * integral of h^2 / (D^3 r^4) over the plane (D: source to x, r: x to y),
+// in polar coordinates about y's foot with rho' = h tan(a): h^2 dA / r^4 = sin(a) cos(a) da dphi.
+double reflected_lux(dvec3 y) {
+  const double intensity = kFlux / (4.0 * std::numbers::pi);
+  const int na = 400, nphi = 128;
+  double sum = 0.0;
+  for (int i = 0; i < na; ++i) {
+    const double a = (i + 0.5) / na * 0.5 * std::numbers::pi;
+    const double radial = y.z * std::tan(a);
+    for (int j = 0; j < nphi; ++j) {
+      const double phi = (j + 0.5) / nphi * 2.0 * std::numbers::pi;
+      const dvec3 x(y.x + radial * std::cos(phi), y.y + radial * std::sin(phi), 0.0);
+      const double D = glm::length(kSource - x);
+      sum += std::sin(a) * std::cos(a) / (D * D * D);
+    }
+  }
+  const double da_dphi = (0.5 * std::numbers::pi / na) * (2.0 * std::numbers::pi / nphi);
+  return kRho * intensity * kH / std::numbers::pi * sum * da_dphi;
+}
+
+// A cell's mean: 3 x 3 Gauss-Legendre points.
+double cell_lux(double x0, double y0, double size, double h) {
+  const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const dvec3 y(x0 + 0.5 * size * (1 + g[i]), y0 + 0.5 * size * (1 + g[j]), h);
+      sum += w[i] * w[j] / 4.0 * reflected_lux(y);
+    }
+  }
+  return sum;
+}
+
+// Grid cell k of the grids above: edge1 along y, edge2 along x (front down).
+double exact_cell(std::size_t k, double h) {
+  const double iu = double(k % 4), iv = double(k / 4);
+  return cell_lux(-1.0 + 0.5 * iv, -1.0 + 0.5 * iu, 0.5, h);
+}
+
+// At h = 0.5 m three quarters of a cell's reflected light comes from closer than r0 (two cells,
+// 1 m): the photons' capped crossings; at 1.5 m all of it from farther: connections. Either
+// strategy missing, or both counting the same pairs, moves the cells by 25 % or more (0.5 m).
+TEST(ReflectionConnection, FirstReflectionOverAFloorMatchesTheClosedForm) {
+  const std::vector<double> heights{0.5, 1.5};
+  const Results r = run_connected(floor_scene(heights), 1'000'000, 7, "on");
+  for (std::size_t t = 0; t < heights.size(); ++t) {
+    ASSERT_EQ(r.targets[t].cells.size(), 16u);
+    const std::string where = "grid at " + std::to_string(heights[t]) + " m";
+    double whole = 0.0;
+    for (std::size_t k = 0; k < 16; ++k) {
+      const double exact = exact_cell(k, heights[t]);
+      whole += exact / 16.0;
+      // Near pairs are photon crossings: a cell's 5-sigma interval is wide at 0.5 m.
+      expect_in_ci(r.targets[t].cells[k], exact, t == 0 ? 0.3 : 0.1,
+                   where + ", cell " + std::to_string(k));
+    }
+    expect_in_ci(r.targets[t].estimate, whole, 0.06, where + ", whole grid");
+  }
+  const auto& effects = r.effects.simulated;
+  EXPECT_NE(std::find(effects.begin(), effects.end(), "reflection_connection"), effects.end());
+}
+
+// The same floor with the part off (photons count every reflected crossing): the closed form
+// holds there too, so the test above checks the connection and not a shared error.
+TEST(ReflectionConnection, PhotonsAloneMatchTheSameClosedForm) {
+  const Results r = run_connected(floor_scene({0.5}), 1'000'000, 7, "off");
+  double whole = 0.0;
+  for (std::size_t k = 0; k < 16; ++k) {
+    const double exact = exact_cell(k, 0.5);
+    whole += exact / 16.0;
+    expect_in_ci(r.targets[0].cells[k], exact, 0.3, "cell " + std::to_string(k));
+  }
+  expect_in_ci(r.targets[0].estimate, whole, 0.08, "whole grid");
+}
+
+// The box room (several reflections, walls just above the plane): every cell agrees
+// with photons alone within five combined sigma, and the intervals are narrower.
+TEST(ReflectionConnection, AgreesWithPhotonsAloneInTheBoxRoom) {
+  Scene s;
+  add_material(s, "grey", Material::Type::Diffuse, 0.5);
+  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 4, 3)));
+  s.luminaires.push_back(point_light({2, 2, 2.9}, 100.0 * 4.0 * std::numbers::pi));
+  s.targets.push_back(grid("work plane", {0, 0, 0.8}, {4, 0, 0}, {0, 4, 0}, 8, 8));
+  const Results on = run_connected(s, 200'000, 11, "on", 0.95);
+  const Results off = run_connected(s, 200'000, 12, "off", 0.95);
+  double width_on = 0.0, width_off = 0.0;
+  for (std::size_t k = 0; k < 64; ++k) {
+    expect_same_within(on.targets[0].cells[k], off.targets[0].cells[k],
+                       "cell " + std::to_string(k));
+    width_on += on.targets[0].cells[k].ci_high - on.targets[0].cells[k].ci_low;
+    width_off += off.targets[0].cells[k].ci_high - off.targets[0].cells[k].ci_low;
+  }
+  EXPECT_LT(width_on, 0.7 * width_off);
+  expect_same_within(on.targets[0].estimate, off.targets[0].estimate, "whole grid");
+}
+
+// The part is linear in the group's flux and travels in the direct parts: rescaling a result
+// by 0.5 gives the run traced at half the flux, cell for cell.
+TEST(ReflectionConnection, RescaleMatchesARunAtTheDimmedFlux) {
+  Scene s = floor_scene({0.5, 1.5});
+  s.settings.contributions = true;
+  const Results full = run_connected(s, 50'000, 4, "on", 0.95);
+  s.luminaires[0].flux_lm *= 0.5;
+  const Results traced = run_connected(s, 50'000, 4, "on", 0.95);
+  const Results half =
+      rescale_results(results_to_json(full), {{s.luminaires[0].group_name(), 0.5}});
+  for (std::size_t t = 0; t < 2; ++t) {
+    for (std::size_t k = 0; k < 16; ++k) {
+      const Estimate &a = half.targets[t].cells[k], &b = traced.targets[t].cells[k];
+      EXPECT_NEAR(a.mean, b.mean, 1e-12 * b.mean) << t << " " << k;
+      EXPECT_NEAR(a.ci_high - a.ci_low, b.ci_high - b.ci_low, 1e-12 * b.mean) << t << " " << k;
+    }
+  }
+}
+
+// Per-cell 95 % intervals over 200 seeds on the floor (h = 0.5 m: both strategies) cover the
+// closed form within binomial limits (4 sigma of 3200 intervals).
+TEST(ReflectionConnection, PerCellCoverageOver200Seeds) {
+  const Scene s = floor_scene({0.5});
+  std::vector<double> exact(16);
+  for (std::size_t k = 0; k < 16; ++k) exact[k] = exact_cell(k, 0.5);
+  int covered = 0, total = 0;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const Results r = run_connected(s, 20'000, seed, "on", 0.95);
+    for (std::size_t k = 0; k < 16; ++k) {
+      const Estimate& e = r.targets[0].cells[k];
+      covered += e.ci_low <= exact[k] && exact[k] <= e.ci_high;
+      ++total;
+    }
+  }
+  const double p = double(covered) / total, sd = std::sqrt(0.95 * 0.05 / total);
+  EXPECT_GT(p, 0.95 - 4 * sd) << covered << " of " << total;
+  EXPECT_LT(p, 0.95 + 4 * sd) << covered << " of " << total;
+}
+
+// Bad values name the setting; `on` where it cannot run says why.
+TEST(ReflectionConnection, BadSettingsAreInputErrorsNamingTheField) {
+  const Scene s = floor_scene({0.5});
+  auto message = [&](Scene scene, const std::string& mode, const std::string& next_event) {
+    try {
+      validate(scene);
+      SolveOptions o;
+      o.backend = "embree";
+      o.photons = 1000;
+      o.next_event = next_event;
+      o.connect_reflections = mode;
+      solve(scene, o);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(s, "sometimes", "on").find("connect_reflections"), std::string::npos);
+  const std::string no_nee = message(s, "on", "off");
+  EXPECT_NE(no_nee.find("connect_reflections"), std::string::npos) << no_nee;
+  EXPECT_NE(no_nee.find("next_event"), std::string::npos) << no_nee;
+  Scene mirror = s;
+  add_material(mirror, "mirror", Material::Type::Mirror, 0.9);
+  mirror.meshes.push_back(quad_mesh("mirror", 1, {5, 5, 0.01}, {1, 0, 0}, {0, 1, 0}));
+  const std::string glossy = message(mirror, "on", "on");
+  EXPECT_NE(glossy.find("connect_reflections"), std::string::npos) << glossy;
+  EXPECT_NE(glossy.find("mirror"), std::string::npos) << glossy;
+  // auto leaves it off there and says why; the scene settings' value is checked too.
+  validate(mirror);
+  SolveOptions o;
+  o.backend = "embree";
+  o.photons = 1000;
+  o.next_event = "on";
+  o.connect_reflections = "auto";
+  const Results r = solve(mirror, o);
+  const auto& skipped = r.effects.skipped;
+  EXPECT_TRUE(std::any_of(skipped.begin(), skipped.end(), [](const auto& e) {
+    return e.effect == "reflection_connection" && e.reason.find("mirror") != std::string::npos;
+  }));
+  Scene bad = s;
+  bad.settings.connect_reflections = "yes";
+  EXPECT_THROW(
+      {
+        try {
+          validate(bad);
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("connect_reflections"), std::string::npos);
+          throw;
+        }
+      },
+      InputError);
+}
+
+// auto leaves it to the photons, saying why, where its fewest paths would cost far more than
+// the run's photons, and in a run with an accuracy goal (a budget, not a photon count).
+TEST(ReflectionConnection, AutoLeavesTinyRunsAndAccuracyRunsToPhotons) {
+  Scene s = floor_scene({0.5});
+  validate(s);
+  const auto reason = [](const Results& r) {
+    for (const auto& e : r.effects.skipped) {
+      if (e.effect == "reflection_connection") return e.reason;
+    }
+    return std::string("simulated");
+  };
+  SolveOptions o;
+  o.backend = "embree";
+  o.next_event = "on";
+  o.connect_reflections = "auto";
+  o.photons = 200;  // 2 x 512 paths x 16 cells: 16384 rays, more than 24 per photon
+  EXPECT_NE(reason(solve(s, o)).find("per photon"), std::string::npos);
+  o.photons = 20'000;
+  EXPECT_EQ(reason(solve(s, o)), "simulated");
+  o.photons.reset();
+  o.target_accuracy = 0.5;
+  EXPECT_NE(reason(solve(s, o)).find("accuracy goal"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lightsolver::test
