@@ -148,7 +148,7 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
 }
 
 double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photons) {
-  const detail::SimulationState& st = *state_;
+  detail::SimulationState& st = *state_;
   // none, or the parts an accuracy goal or deciding reads before the photons
   if (st.direct_final_scale == 0) return 0.0;
   const std::uint32_t scale = strata_scale_for(st.prepared, photons);
