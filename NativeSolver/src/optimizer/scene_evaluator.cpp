@@ -303,10 +303,12 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
     // A group that depends on the whole configuration gets the request's own seed.
     const std::uint64_t seed =
         sub == r.cell_index ? r.seed : evaluation_seed(r.run_seed, sub, level);
-    // A staged refinement's first stage of this trace: continue it (same photons, bit for bit).
+    // A staged refinement's earlier stage of this trace: continue it (same photons, bit for
+    // bit). A stage's direct parts are its level's, which every later stage keeps: the level's
+    // estimate then continues the stage's (docs/optimization.md §6, "Staged refinement").
     const std::shared_ptr<const GroupTrace> prefix = k.cache.find_prefix(key);
     k.traces[g] = std::make_shared<const GroupTrace>(
-        simulation_.trace_group(g, r.photons, seed, processes_, prefix.get()));
+        simulation_.trace_group(g, r.photons, seed, processes_, prefix.get(), level));
     traced += k.traces[g]->photons - (prefix ? prefix->photons : 0);
     k.cache.insert(key, k.traces[g]);
   }

@@ -52,11 +52,11 @@ struct VnsOptions {
   std::uint64_t screening_photons = 32768;       ///< n (0 or >= N: always trace with N)
   std::uint64_t confirmation_photons = 2097152;  ///< N (paper: 2.66e6)
   PhotonStrategy strategy = PhotonStrategy::kConfirm;
-  /// Strategy B's end refinement in two stages (docs/optimization.md §6, "Staged refinement"):
-  /// every member is first traced with this many photons of its N-photon stream, and with N
-  /// only when the best member might not beat it; 0 (or >= N): every member with N at once, as
-  /// the paper refines. The final ISOC equals the unstaged one except with probability at most
-  /// 1 - confidence.
+  /// Strategy B's end refinement in stages (docs/optimization.md §6, "Staged refinement"):
+  /// every member is first traced with this many photons N1 of its N-photon stream, continued
+  /// to 2 N1, 4 N1, ... below N and to N only while the best member might not beat it; 0 (or
+  /// >= N): every member with N at once, as the paper refines. The final ISOC equals the
+  /// unstaged one except with probability at most 1 - confidence.
   std::uint64_t refine_stage_photons = 0;
   UncertainPolicy uncertain = UncertainPolicy::kReject;
   std::uint64_t max_iterations = 1000;  ///< over all starts (paper: 1000)
