@@ -13,7 +13,8 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
                              const std::string& device, int threads, int mpi_ranks,
                              const std::string& command,
                              std::chrono::system_clock::time_point started,
-                             std::chrono::system_clock::time_point finished) {
+                             std::chrono::system_clock::time_point finished,
+                             std::optional<double> width_factor) {
   Provenance p;
   if (problem.scene.source) {
     p.scene_sha256 = problem.scene.source->sha256;
@@ -36,6 +37,7 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
       {"kmax", U{s.kmax}},
       {"local_search",
        std::string(s.local_search == LocalSearch::kFirstImprovement ? "first" : "best")},
+      {"match_widths", width_factor.has_value()},
       {"max_bounces", U{problem.scene.settings.max_bounces}},
       {"max_evaluations", U{s.max_evaluations}},
       {"max_iterations", U{s.max_iterations}},
@@ -52,6 +54,7 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
        std::string(s.strategy == PhotonStrategy::kConfirm ? "confirm" : "refine_at_end")},
       {"uncertain", std::string(s.uncertain == UncertainPolicy::kReject ? "reject" : "accept")},
   };
+  if (width_factor) p.options.push_back({"width_factor", *width_factor});
   p.started_utc = lightsolver::detail::utc_text(started);
   p.finished_utc = lightsolver::detail::utc_text(finished);
   p.host = lightsolver::detail::host_name();

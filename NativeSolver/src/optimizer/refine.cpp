@@ -52,6 +52,7 @@ void Search::refine() {
   std::vector<std::uint64_t> keys;
   for (const IsocMember& m : isoc_.members()) keys.push_back(m.key);
   std::sort(keys.begin(), keys.end());
+  if (const IsocMember* best = isoc_.best()) match_confirmation(best->key);
   keys = staged_members(keys);
   if (stop_ == StopReason::kCancelled) return;  // keep the unrefined ISOC
   Isoc fresh(in_.goal, opt_.confidence);
@@ -131,7 +132,7 @@ bool Search::out_of_reach(const Estimate& x, const Estimate& b, std::uint64_t ph
 // one left out and so (transitivity of compare()) by b, or by a traced one. A cancelled run
 // returns every key (refine() keeps the unrefined ISOC).
 std::vector<std::uint64_t> Search::staged_members(const std::vector<std::uint64_t>& keys) {
-  const std::vector<std::uint64_t> stages = stage_schedule(opt_.refine_stage_photons, N_);
+  const std::vector<std::uint64_t> stages = stage_schedule(stage_photons_, N_);
   if (stages.empty() || keys.size() < 2) return keys;
   const std::optional<std::uint64_t> best = stage_best(keys, stages.front());
   if (!best) return keys;

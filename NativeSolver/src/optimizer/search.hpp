@@ -56,6 +56,7 @@ class Search {
   IterationStats snapshot() const;
   void report_evaluation();
   void refine();
+  void match_confirmation(std::uint64_t cell);
   OptimizationResult build_result(Clock::time_point t0);
 
   const Domain& d_;
@@ -65,6 +66,8 @@ class Search {
   const Control& ctl_;
   std::uint64_t n_ = 0, N_ = 0;
   bool two_levels_ = false;
+  std::uint64_t stage_photons_ = 0;  // the staged refinement's first stage, N1
+  bool matched_ = false;             // confirmation_factor has been asked
   std::uint32_t kmax_ = 1;
   std::mt19937_64 rng_;
   TabuCache cache_;

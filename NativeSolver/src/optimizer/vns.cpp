@@ -47,6 +47,21 @@ Search::Search(const Domain& d, const Intention& in, Evaluator& ev, const VnsOpt
   two_levels_ = o.screening_photons > 0 && o.screening_photons < N_;
   n_ = two_levels_ ? o.screening_photons : N_;
   kmax_ = o.kmax > 0 ? o.kmax : auto_kmax(d);
+  stage_photons_ = o.refine_stage_photons;
+}
+
+// Before the first trace with N: N (and the first stage) scaled by confirmation_factor at the
+// cell about to be traced (docs/optimization.md §6, "Equal widths").
+void Search::match_confirmation(std::uint64_t cell) {
+  if (matched_ || !opt_.confirmation_factor) return;
+  matched_ = true;
+  const double f = std::clamp(opt_.confirmation_factor(cell), 1e-9, 1.0);
+  const auto scaled = [f](std::uint64_t p) {
+    return std::max<std::uint64_t>(1, std::llround(double(p) * f));
+  };
+  if (!two_levels_) n_ = scaled(n_);
+  N_ = scaled(N_);
+  if (stage_photons_ > 0) stage_photons_ = scaled(stage_photons_);
 }
 
 bool Search::check_stop(bool ignore_limit) {
@@ -133,6 +148,7 @@ bool Search::visit(const Configuration& c) {
     if (judged_.insert(cell).second) ++counters_.inadmissible;
     return !stop_;
   }
+  if (!two_levels_) match_confirmation(cell);
   const Evaluation* screen = evaluate(cell, c, n_);
   if (!screen) return false;
   if (judged_.insert(cell).second) judge(cell, c, *screen);
@@ -157,6 +173,7 @@ void Search::judge(std::uint64_t cell, const Configuration& c, const Evaluation&
     if (!precise) return admit(cell, n_, screen);
   }
   if (!precise) return;
+  match_confirmation(cell);
   if (const Evaluation* e = evaluate(cell, c, N_)) admit(cell, N_, *e);
 }
 

@@ -281,6 +281,43 @@ TEST(OptimizerNextEvent, StagedRefinementContinuesTracesBitForBit) {
   }
 }
 
+// Equal widths (docs/optimization.md §6): with next-event estimation N is scaled by the
+// measured variance ratio (well below 1 over the desk, whose light is mostly direct), the
+// provenance says by how much, the same best cell is found, and its interval is no wider than
+// a photon-only search's at the unscaled N; where no direct part is traced nothing changes.
+TEST(OptimizerNextEvent, MatchedWidthsTraceFewerPhotonsForTheSameIntervals) {
+  const auto factor = [](const OptimizationResult& r) {
+    for (const auto& [key, value] : r.provenance->options) {
+      if (key == "width_factor") return std::get<double>(value);
+    }
+    return -1.0;  // not matched
+  };
+  const SceneProblem on = parse(desk_room(0.5, "on")), off = parse(desk_room(0.5, "off"));
+  RunOverrides o;
+  o.threads = 2;
+  o.backend = "embree";
+  const OptimizationResult photons = run_problem(off, o);
+  o.match_widths = true;
+  const OptimizationResult matched = run_problem(on, o);
+  const double f = factor(matched);
+  EXPECT_GT(f, 0.0);
+  EXPECT_LT(f, 0.8);
+  EXPECT_EQ(factor(photons), -1.0);
+  ASSERT_FALSE(matched.isoc.empty());
+  ASSERT_FALSE(photons.isoc.empty());
+  EXPECT_EQ(matched.isoc[0].cells, photons.isoc[0].cells);
+  EXPECT_EQ(matched.isoc[0].photons, std::uint64_t(std::llround(40'000 * f)));
+  const double width = matched.isoc[0].objective.ci_high - matched.isoc[0].objective.ci_low;
+  const double photon_width = photons.isoc[0].objective.ci_high - photons.isoc[0].objective.ci_low;
+  // Mostly direct light: the ratio is below 0.2, so N is scaled to the calibration's count,
+  // max(N/8, 2 n) = 8000 photons (not extrapolated below it), and the interval is no wider.
+  EXPECT_EQ(f, 0.2);
+  EXPECT_LE(width, 1.25 * photon_width) << width << " vs " << photon_width;
+  const OptimizationResult unchanged = run_problem(off, o);  // no direct part: factor 1
+  EXPECT_EQ(factor(unchanged), 1.0);
+  EXPECT_EQ(unchanged.isoc[0].photons, 40'000u);
+}
+
 // A next_event value outside auto/on/off is refused before the search, naming the setting.
 TEST(OptimizerNextEvent, BadSettingsAreRefused) {
   json j = desk_room(0.5, "on");

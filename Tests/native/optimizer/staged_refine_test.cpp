@@ -185,6 +185,39 @@ TEST(StagedRefinement, DropsOnlyMembersOutOfReachOfTheBest) {
   EXPECT_FALSE(u0.calls.count({3, kN / 2}));
 }
 
+// VnsOptions::confirmation_factor (docs/optimization.md §6, "Equal widths"): asked once, before
+// the refinement's first trace, with the best n-level member; N and the stages are scaled by
+// its answer (0.5: stages N/8, N/4, then N/2), and the members report the photons they had.
+TEST(StagedRefinement, ConfirmationFactorScalesNAndTheStagesOnce) {
+  Domain d;
+  d.add_rectangle("x", 0.0, 1.0, 25, 0.0, 1.0, 25);
+  std::set<std::uint64_t> refine_photons;
+  FunctionEvaluator ev([&](const EvaluationRequest& r) {
+    if (r.photons > kN / 64) refine_photons.insert(r.photons);
+    if (r.seed_photons) EXPECT_EQ(r.seed_photons, kN / 2);
+    Evaluation e;
+    e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, 1.96);
+    return e;
+  });
+  VnsOptions o;
+  o.seed = 3;
+  o.screening_photons = kN / 64;
+  o.confirmation_photons = kN;
+  o.strategy = PhotonStrategy::kRefineAtEnd;
+  o.refine_stage_photons = kN / 4;
+  o.max_iterations = 60;
+  int asked = 0;
+  o.confirmation_factor = [&](std::uint64_t) {
+    ++asked;
+    return 0.5;
+  };
+  const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o);
+  EXPECT_EQ(asked, 1);
+  ASSERT_FALSE(r.isoc.empty());
+  for (const ResultMember& m : r.isoc) EXPECT_EQ(m.photons, kN / 2);
+  EXPECT_EQ(refine_photons, (std::set<std::uint64_t>{kN / 8, kN / 4, kN / 2}));
+}
+
 // Cancelled during the first stage: the unrefined (n-level) ISOC is returned, as unstaged.
 TEST(StagedRefinement, CancelledFirstStageKeepsTheUnrefinedIsoc) {
   std::atomic<bool> cancel{false};

@@ -71,6 +71,11 @@ struct VnsOptions {
   /// non-rectangular placement face on its bounding grid, or lum0 <= lum1 to skip mirror
   /// images of interchangeable luminaires). Must be deterministic; initial cells must pass.
   std::function<bool(const Configuration&)> admissible;
+  /// Optional: called once, with the cell about to be traced, before the first trace with N
+  /// (strategy A's first confirmation, strategy B's refinement with the best n-level member,
+  /// or the first visit under a static N); N and refine_stage_photons are scaled by what it
+  /// returns, clamped to (0, 1] (docs/optimization.md §6, "Equal widths").
+  std::function<double(std::uint64_t cell)> confirmation_factor;
 };
 
 /// Observation and cancellation. The callback runs after every iteration on the calling
