@@ -180,10 +180,10 @@ def test_reused_traces_save_photons_and_can_be_turned_off(cli: str, tmp_path: Pa
                     ("update_seconds", "trace_seconds", "other_seconds", "total_seconds")}}
 
 
-def test_next_event_and_refine_stage_keywords_reach_the_search() -> None:
-    """next_event= and refine_stage_photons= override the scene's settings.next_event and
-    search.refine_stage_photons, as --next-event and --refine-stage-photons do; a bad value is
-    refused naming the setting."""
+def test_next_event_refine_stage_and_match_widths_keywords_reach_the_search() -> None:
+    """next_event=, refine_stage_photons= and match_widths= override the scene's
+    settings.next_event and search.refine_stage_photons / match_widths, as --next-event,
+    --refine-stage-photons and --match-widths do; a bad value is refused naming the setting."""
     small = dict(iterations=2, seed=3, threads=2, screening_photons=2000,
                  confirmation_photons=16000)
     on = lightsolver.optimize(CORNELL, next_event="on", refine_stage_photons=4000, **small)
@@ -197,3 +197,9 @@ def test_next_event_and_refine_stage_keywords_reach_the_search() -> None:
     assert off["counters"]["refine_stage"] == 0
     with pytest.raises(Exception, match="next_event"):
         lightsolver.optimize(CORNELL, next_event="sometimes", **small)
+    matched = lightsolver.optimize(CORNELL, next_event="on", match_widths=True, **small)
+    options = matched["provenance"]["options"]
+    assert options["match_widths"] is True and on["provenance"]["options"]["match_widths"] is False
+    assert 0.25 <= options["width_factor"] <= 1.0  # never below the calibration's 4000 photons
+    assert options["confirmation_photons"] == round(16000 * options["width_factor"])
+    assert all(m["photons"] == options["confirmation_photons"] for m in matched["isoc"])
