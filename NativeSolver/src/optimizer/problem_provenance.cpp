@@ -13,7 +13,7 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
                              const std::string& device, int threads, int mpi_ranks,
                              const std::string& command,
                              std::chrono::system_clock::time_point started,
-                             std::chrono::system_clock::time_point finished,
+                             std::chrono::system_clock::time_point finished, bool match_widths,
                              std::optional<double> width_factor) {
   Provenance p;
   if (problem.scene.source) {
@@ -37,7 +37,7 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
       {"kmax", U{s.kmax}},
       {"local_search",
        std::string(s.local_search == LocalSearch::kFirstImprovement ? "first" : "best")},
-      {"match_widths", width_factor.has_value()},
+      {"match_widths", match_widths},
       {"max_bounces", U{problem.scene.settings.max_bounces}},
       {"max_evaluations", U{s.max_evaluations}},
       {"max_iterations", U{s.max_iterations}},

@@ -362,10 +362,8 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
     };
   }
   OptimizationResult r = optimize(problem.domain, problem.intention, evaluator, opt, control);
+  const bool match = o.match_widths.value_or(problem.match_widths);
   if (factor) {  // the search's photon counts as it used them, for the provenance
-    if (opt.screening_photons >= opt.confirmation_photons || opt.screening_photons == 0) {
-      opt.screening_photons = scaled_photons(opt.screening_photons, *factor);
-    }
     opt.confirmation_photons = scaled_photons(opt.confirmation_photons, *factor);
     if (opt.refine_stage_photons > 0) {
       opt.refine_stage_photons = scaled_photons(opt.refine_stage_photons, *factor);
@@ -379,7 +377,7 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
   r.provenance = search_provenance(
       problem, opt, o.reuse_traces.value_or(problem.reuse_traces), r.next_event->setting,
       evaluator.backend_name(), evaluator.device(), threads, o.processes ? o.processes->size() : 1,
-      o.command, started, std::chrono::system_clock::now(), factor);
+      o.command, started, std::chrono::system_clock::now(), match, factor);
   return r;
 }
 
