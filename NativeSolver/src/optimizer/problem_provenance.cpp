@@ -37,7 +37,6 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
       {"kmax", U{s.kmax}},
       {"local_search",
        std::string(s.local_search == LocalSearch::kFirstImprovement ? "first" : "best")},
-      {"match_widths", match_widths},
       {"max_bounces", U{problem.scene.settings.max_bounces}},
       {"max_evaluations", U{s.max_evaluations}},
       {"max_iterations", U{s.max_iterations}},
@@ -54,7 +53,13 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
        std::string(s.strategy == PhotonStrategy::kConfirm ? "confirm" : "refine_at_end")},
       {"uncertain", std::string(s.uncertain == UncertainPolicy::kReject ? "reject" : "accept")},
   };
-  if (width_factor) p.options.push_back({"width_factor", *width_factor});
+  // Only where asked: outputs of searches that do not match widths stay as they were.
+  if (match_widths) {
+    p.options.push_back({"match_widths", true});
+    if (width_factor) p.options.push_back({"width_factor", *width_factor});
+    std::sort(p.options.begin(), p.options.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
   p.started_utc = lightsolver::detail::utc_text(started);
   p.finished_utc = lightsolver::detail::utc_text(finished);
   p.host = lightsolver::detail::host_name();
