@@ -58,6 +58,9 @@ def run(cli: str, scene: str, iterations: int | None, static: bool, threads: int
     c["isoc"] = [m.get("scene") for m in r["isoc"]]
     c["stop"] = r["stop"]
     c["next_event"] = r.get("next_event", {})
+    c["width_factor"] = r.get("provenance", {}).get("options", {}).get("width_factor")
+    c["best"] = r["isoc"][0]["objective"] if r["isoc"] else None
+    c["best_photons"] = r["isoc"][0]["photons"] if r["isoc"] else None
     return c
 
 

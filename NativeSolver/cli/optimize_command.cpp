@@ -132,6 +132,9 @@ void add_optimize_command(CLI::App& app) {
                   "Direct light at the targets by shadow rays: auto, on or off (overrides "
                   "settings.next_event)")
       ->check(CLI::IsMember({"auto", "on", "off"}));
+  cmd->add_option("--match-widths", args->overrides.match_widths,
+                  "true: with next-event estimation, scale n and N down to a photon-only "
+                  "search's interval widths (overrides search.match_widths)");
   cmd->add_flag("--quiet,-q", args->quiet, "No per-iteration lines");
   cmd->callback([args] {
     int rc = 1;

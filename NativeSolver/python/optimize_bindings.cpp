@@ -95,10 +95,15 @@ py::dict optimize_py(py::object scene, py::object optimization,
                      std::optional<std::uint64_t> screening_photons,
                      std::optional<std::uint64_t> confirmation_photons, int threads,
                      py::object progress, py::object cancel, const std::string& backend,
-                     std::optional<bool> reuse_traces) {
+                     std::optional<bool> reuse_traces, std::optional<std::string> next_event,
+                     std::optional<std::uint64_t> refine_stage_photons,
+                     std::optional<bool> match_widths) {
   const opt::SceneProblem problem = problem_from(scene, optimization);
   opt::RunOverrides o{iterations, seed, screening_photons, confirmation_photons, threads, backend};
   o.reuse_traces = reuse_traces;
+  o.next_event = std::move(next_event);
+  o.refine_stage_photons = refine_stage_photons;
+  o.match_widths = match_widths;
   o.command = python_command("optimize");
   std::atomic<bool> stop{false};
   opt::Control control;
@@ -144,6 +149,8 @@ void bind_optimizer(py::module_& m) {
         py::arg("screening_photons") = py::none(), py::arg("confirmation_photons") = py::none(),
         py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("cancel") = py::none(),
         py::arg("backend") = lightsolver::kAutoBackend, py::arg("reuse_traces") = py::none(),
+        py::arg("next_event") = py::none(), py::arg("refine_stage_photons") = py::none(),
+        py::arg("match_widths") = py::none(),
         R"(Search a scene's optimization block for the best configurations.
 
 scene: a scene file path (its "optimization" block is used unless `optimization` is given) or a
@@ -157,6 +164,12 @@ cancel: a CancelToken; cancel() from another thread stops the search within one 
 backend: a name from backends() ("auto": a real GPU when one is usable, else Embree).
 reuse_traces: overrides search.reuse_traces (default true: each luminaire group traced apart and
     its trace kept for configurations that do not change it; a flux level traces nothing).
+next_event: "auto", "on" or "off": overrides the scene's settings.next_event for every
+    evaluation (direct light at the targets by shadow rays, docs/optimization.md §9).
+refine_stage_photons: overrides search.refine_stage_photons (the staged end refinement's first
+    stage, N1 photons of each member's N stream; 0: unstaged).
+match_widths: overrides search.match_widths (True: with next-event estimation, n and N scaled
+    down to the interval widths a photon-only search has at them; provenance width_factor).
 Returns the result as a dict (format lightsolver.optimization/1): isoc members with cells,
 values, objective and constraint estimates and "scene" (world positions), siisoc, counters,
 history. The GIL is released while searching.)");

@@ -178,3 +178,28 @@ def test_reused_traces_save_photons_and_can_be_turned_off(cli: str, tmp_path: Pa
     assert json.loads(out.read_text())["counters"] == {
         **c_off, **{k: json.loads(out.read_text())["counters"][k] for k in
                     ("update_seconds", "trace_seconds", "other_seconds", "total_seconds")}}
+
+
+def test_next_event_refine_stage_and_match_widths_keywords_reach_the_search() -> None:
+    """next_event=, refine_stage_photons= and match_widths= override the scene's
+    settings.next_event and search.refine_stage_photons / match_widths, as --next-event,
+    --refine-stage-photons and --match-widths do; a bad value is refused naming the setting."""
+    small = dict(iterations=2, seed=3, threads=2, screening_photons=2000,
+                 confirmation_photons=16000)
+    on = lightsolver.optimize(CORNELL, next_event="on", refine_stage_photons=4000, **small)
+    off = lightsolver.optimize(CORNELL, next_event="off", refine_stage_photons=0, **small)
+    assert on["provenance"]["options"]["next_event"] == "on"
+    assert off["provenance"]["options"]["next_event"] == "off"
+    assert on["next_event"]["setting"] == "on" and on["next_event"]["direct"] is True
+    assert off["next_event"]["direct"] is False
+    assert on["provenance"]["options"]["refine_stage_photons"] == 4000
+    assert off["provenance"]["options"]["refine_stage_photons"] == 0
+    assert off["counters"]["refine_stage"] == 0
+    with pytest.raises(Exception, match="next_event"):
+        lightsolver.optimize(CORNELL, next_event="sometimes", **small)
+    matched = lightsolver.optimize(CORNELL, next_event="on", match_widths=True, **small)
+    options = matched["provenance"]["options"]
+    assert options["match_widths"] is True and "match_widths" not in on["provenance"]["options"]
+    assert 0.25 <= options["width_factor"] <= 1.0  # never below the calibration's 4000 photons
+    assert options["confirmation_photons"] == round(16000 * options["width_factor"])
+    assert all(m["photons"] == options["confirmation_photons"] for m in matched["isoc"])

@@ -121,10 +121,13 @@ class Simulation {
   /// photons are this trace's first ones, so only the rest are traced (the result is the trace
   /// from photon 0, bit for bit). Throws InputError for an unknown group or one without flux,
   /// for next_event "on" where no group can have it, and std::invalid_argument for a prefix of
-  /// another group, seed, next-event plan or a larger run.
+  /// another group, seed, next-event plan or a larger run. `direct_run_photons` (0: run_photons)
+  /// sizes the direct parts for a run of that many photons instead: a trace of the first photons
+  /// of a larger run (the optimizer's staged refinement) then has that run's direct parts, which
+  /// its continuation keeps, so the larger trace's estimate continues this one's.
   GroupTrace trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
                          const std::shared_ptr<ProcessGroup>& processes = nullptr,
-                         const GroupTrace* prefix = nullptr);
+                         const GroupTrace* prefix = nullptr, std::uint64_t direct_run_photons = 0);
 
   /// Results from groups traced apart: `traces[g]` for group g (null: the group is dark, and
   /// its flux must be 0) and
@@ -154,7 +157,7 @@ class Simulation {
   bool use_direct_parts(std::uint64_t seed, std::uint32_t scale, const std::function<bool()>& stop);
   double checkpoint_direct_light(const Results& r, std::uint64_t photons);
   std::string finish_direct_light(Results& r, const std::function<bool()>& stop);
-  void trace_direct_part(GroupTrace& trace, const GroupTrace* prefix);
+  void trace_direct_part(GroupTrace& trace, const GroupTrace* prefix, std::uint64_t run_photons);
   std::unique_ptr<detail::SimulationState> state_;
 };
 

@@ -141,9 +141,9 @@ void TraceCache::insert(const Key& k, std::shared_ptr<const GroupTrace> t) {
 }
 
 std::shared_ptr<const GroupTrace> TraceCache::find_prefix(const Key& k) {
-  const auto it = prefixes_.find(Key{k.group, k.sub, 0, k.photons});
+  const auto it = prefixes_.find(Key{k.group, k.sub, 0, k.level});
   if (it == prefixes_.end() || it->second >= k.photons) return nullptr;
-  return find(Key{k.group, k.sub, it->second, k.photons});  // null when dropped since
+  return find(Key{k.group, k.sub, it->second, k.level});  // null when dropped since
 }
 
 }  // namespace lightsolver::optimizer::reuse

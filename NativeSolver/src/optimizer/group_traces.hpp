@@ -63,7 +63,8 @@ class TraceCache {
   std::shared_ptr<const GroupTrace> find(const Key& k);
   void insert(const Key& k, std::shared_ptr<const GroupTrace> t);
   /// The kept trace with the most photons below `k.photons` that has k's group,
-  /// sub-configuration and seed level `k.photons`: the first part of k's trace (null: none).
+  /// sub-configuration and seed level `k.level`: the first part of k's trace (null: none), e.g.
+  /// a staged refinement's N/4 trace for its N/2 stage or its N trace.
   std::shared_ptr<const GroupTrace> find_prefix(const Key& k);
   std::size_t bytes() const { return bytes_; }
 

@@ -13,7 +13,8 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
                              const std::string& device, int threads, int mpi_ranks,
                              const std::string& command,
                              std::chrono::system_clock::time_point started,
-                             std::chrono::system_clock::time_point finished) {
+                             std::chrono::system_clock::time_point finished, bool match_widths,
+                             std::optional<double> width_factor) {
   Provenance p;
   if (problem.scene.source) {
     p.scene_sha256 = problem.scene.source->sha256;
@@ -52,6 +53,13 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
        std::string(s.strategy == PhotonStrategy::kConfirm ? "confirm" : "refine_at_end")},
       {"uncertain", std::string(s.uncertain == UncertainPolicy::kReject ? "reject" : "accept")},
   };
+  // Only where asked: outputs of searches that do not match widths stay as they were.
+  if (match_widths) {
+    p.options.push_back({"match_widths", true});
+    if (width_factor) p.options.push_back({"width_factor", *width_factor});
+    std::sort(p.options.begin(), p.options.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
   p.started_utc = lightsolver::detail::utc_text(started);
   p.finished_utc = lightsolver::detail::utc_text(finished);
   p.host = lightsolver::detail::host_name();

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lightsolver/optimizer/scene_problem.hpp"
+#include "optimizer/equal_widths.hpp"
 #include "optimizer/group_traces.hpp"
 #include "optimizer/problem_provenance.hpp"
 #include "types/luminaire_types.hpp"
@@ -303,10 +304,12 @@ Evaluation SceneEvaluator::evaluate(const EvaluationRequest& r) {
     // A group that depends on the whole configuration gets the request's own seed.
     const std::uint64_t seed =
         sub == r.cell_index ? r.seed : evaluation_seed(r.run_seed, sub, level);
-    // A staged refinement's first stage of this trace: continue it (same photons, bit for bit).
+    // A staged refinement's earlier stage of this trace: continue it (same photons, bit for
+    // bit). A stage's direct parts are its level's, which every later stage keeps: the level's
+    // estimate then continues the stage's (docs/optimization.md §6, "Staged refinement").
     const std::shared_ptr<const GroupTrace> prefix = k.cache.find_prefix(key);
     k.traces[g] = std::make_shared<const GroupTrace>(
-        simulation_.trace_group(g, r.photons, seed, processes_, prefix.get()));
+        simulation_.trace_group(g, r.photons, seed, processes_, prefix.get(), level));
     traced += k.traces[g]->photons - (prefix ? prefix->photons : 0);
     k.cache.insert(key, k.traces[g]);
   }
@@ -340,13 +343,41 @@ OptimizationResult run_problem(const SceneProblem& problem, const RunOverrides& 
   const auto started = std::chrono::system_clock::now();
   SceneEvaluator evaluator(problem, o.threads, o.backend, o.processes, o.reuse_traces,
                            o.next_event);
+  std::optional<double> factor;
+  double calibration_seconds = 0.0;
+  if (o.match_widths.value_or(problem.match_widths)) {
+    // docs/optimization.md §6, "Equal widths": measured with C = N/8 photons (at least 2 n)
+    // at the first configuration the search traces with N; never below C photons (the ratio
+    // is a large-count property, measured there), so N stays above n.
+    const std::uint64_t photons =
+        std::min(opt.confirmation_photons,
+                 std::max(opt.confirmation_photons / 8, 2 * opt.screening_photons));
+    opt.confirmation_factor = [&, photons](std::uint64_t cell) {
+      const auto t0 = Clock::now();
+      const double ratio =
+          width_factor(problem, evaluator, o, opt, photons, problem.domain.configuration(cell));
+      factor = std::max(ratio, double(photons) / double(opt.confirmation_photons));
+      calibration_seconds = seconds_since(t0);
+      return *factor;
+    };
+  }
   OptimizationResult r = optimize(problem.domain, problem.intention, evaluator, opt, control);
+  const bool match = o.match_widths.value_or(problem.match_widths);
+  if (factor) {  // the search's photon counts as it used them, for the provenance
+    opt.confirmation_photons = scaled_photons(opt.confirmation_photons, *factor);
+    if (opt.refine_stage_photons > 0) {
+      opt.refine_stage_photons = scaled_photons(opt.refine_stage_photons, *factor);
+    }
+  }
+  // The calibration's traces are the search's tracing too (they ran inside its total time).
+  r.counters.trace_seconds += calibration_seconds;
+  r.counters.other_seconds = std::max(0.0, r.counters.other_seconds - calibration_seconds);
   r.next_event = evaluator.next_event_use();
   const int threads = o.threads > 0 ? o.threads : tbb::this_task_arena::max_concurrency();
   r.provenance = search_provenance(
       problem, opt, o.reuse_traces.value_or(problem.reuse_traces), r.next_event->setting,
       evaluator.backend_name(), evaluator.device(), threads, o.processes ? o.processes->size() : 1,
-      o.command, started, std::chrono::system_clock::now());
+      o.command, started, std::chrono::system_clock::now(), match, factor);
   return r;
 }
 

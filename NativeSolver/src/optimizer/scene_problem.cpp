@@ -352,7 +352,7 @@ VnsOptions read_search(const JsonNode& n, const SceneProblem& p) {
   n.require_object({"seed", "confidence", "screening_photons", "confirmation_photons", "strategy",
                     "uncertain", "max_iterations", "max_evaluations", "starts", "kmax",
                     "local_search", "neighbourhood", "initial", "min_spacing_m", "reuse_traces",
-                    "refine_stage_photons"});
+                    "refine_stage_photons", "match_widths"});
   VnsOptions o;
   o.confidence = p.scene.settings.confidence;
   if (n.has("seed")) o.seed = n.at("seed").unsigned_integer();
@@ -422,6 +422,7 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
     p.search.confidence = p.scene.settings.confidence;
   }
   if (root.has("search")) p.reuse_traces = root.at("search").boolean_or("reuse_traces", true);
+  if (root.has("search")) p.match_widths = root.at("search").boolean_or("match_widths", false);
   if (root.has("search") && root.at("search").has("refine_stage_photons")) {
     p.refine_stage_photons = p.search.refine_stage_photons;
   }

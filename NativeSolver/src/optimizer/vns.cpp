@@ -8,15 +8,13 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "search.hpp"
+
 namespace lightsolver::optimizer {
 
+namespace detail {
+
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 void check_options(const Domain& d, const VnsOptions& o) {
   if (d.dimensions() == 0) throw std::invalid_argument("optimize: the domain has no variable");
@@ -40,73 +38,31 @@ std::uint32_t auto_kmax(const Domain& d) {
   return std::max<std::uint32_t>(1, largest - 1);
 }
 
-// Photons and time spent since the current iteration began.
-struct IterationAccumulator {
-  Clock::time_point t0 = Clock::now();
-  double update = 0.0, trace = 0.0;
-  std::uint64_t evaluations = 0, photons = 0;
-};
+}  // namespace
 
-class Search {
- public:
-  Search(const Domain& d, const Intention& in, Evaluator& ev, const VnsOptions& o,
-         const Control& ctl)
-      : d_(d), in_(in), ev_(ev), opt_(o), ctl_(ctl), rng_(o.seed), isoc_(in.goal, o.confidence) {
-    N_ = o.confirmation_photons;
-    two_levels_ = o.screening_photons > 0 && o.screening_photons < N_;
-    n_ = two_levels_ ? o.screening_photons : N_;
-    kmax_ = o.kmax > 0 ? o.kmax : auto_kmax(d);
-  }
+Search::Search(const Domain& d, const Intention& in, Evaluator& ev, const VnsOptions& o,
+               const Control& ctl)
+    : d_(d), in_(in), ev_(ev), opt_(o), ctl_(ctl), rng_(o.seed), isoc_(in.goal, o.confidence) {
+  N_ = o.confirmation_photons;
+  two_levels_ = o.screening_photons > 0 && o.screening_photons < N_;
+  n_ = two_levels_ ? o.screening_photons : N_;
+  kmax_ = o.kmax > 0 ? o.kmax : auto_kmax(d);
+  stage_photons_ = o.refine_stage_photons;
+}
 
-  OptimizationResult run();
-
- private:
-  const Evaluation* evaluate(std::uint64_t cell, const Configuration& c, std::uint64_t photons,
-                             bool ignore_limit = false);
-  const Evaluation* evaluate_stage(std::uint64_t cell, std::uint64_t photons);
-  const Evaluation* call_evaluator(std::uint64_t cell, const Configuration& c,
-                                   std::uint64_t photons, std::uint64_t seed_photons);
-  std::vector<std::uint64_t> staged_members(const std::vector<std::uint64_t>& keys);
-  bool acceptable(const Evaluation& e) const;
-  bool visit(const Configuration& c);
-  void judge(std::uint64_t cell, const Configuration& c, const Evaluation& screen);
-  void admit(std::uint64_t cell, std::uint64_t photons, const Evaluation& e);
-  void record(std::uint64_t cell, std::uint64_t photons, const IsocUpdate& u);
-  bool better(const Configuration& a, const Configuration& b) const;
-  bool admissible(const Configuration& c) const { return !opt_.admissible || opt_.admissible(c); }
-  Configuration random_start();
-  bool check_stop(bool ignore_limit = false);
-  void run_start(std::uint32_t s, std::uint64_t budget);
-  Configuration descend(Configuration x);
-  void begin_iteration() { it_ = {}; }
-  void end_iteration(std::uint32_t start, std::uint32_t k);
-  IterationStats snapshot() const;
-  void report_evaluation();
-  void refine();
-  OptimizationResult build_result(Clock::time_point t0);
-
-  const Domain& d_;
-  const Intention& in_;
-  Evaluator& ev_;
-  const VnsOptions& opt_;
-  const Control& ctl_;
-  std::uint64_t n_ = 0, N_ = 0;
-  bool two_levels_ = false;
-  std::uint32_t kmax_ = 1;
-  std::mt19937_64 rng_;
-  TabuCache cache_;
-  std::unordered_set<std::uint64_t> judged_;                // cells already offered (tabu)
-  std::unordered_map<std::uint64_t, std::uint64_t> level_;  // member -> photons of its estimate
-  // The staged refinement's first-stage estimates (their own level: not the tabu cache's).
-  std::unordered_map<std::uint64_t, Evaluation> stage_;
-  Evaluation latest_;  // the last evaluator call's result, before it is stored
-  Isoc isoc_;
-  Counters counters_;
-  IterationAccumulator it_;
-  std::vector<IterationStats> history_;
-  std::optional<StopReason> stop_;
-  Clock::time_point t0_ = Clock::now();
-};
+// Before the first trace with N: N (and the first stage) scaled by confirmation_factor at the
+// cell about to be traced (docs/optimization.md §6, "Equal widths").
+void Search::match_confirmation(std::uint64_t cell) {
+  if (matched_ || !opt_.confirmation_factor) return;
+  matched_ = true;
+  const double f = std::clamp(opt_.confirmation_factor(cell), 1e-9, 1.0);
+  const auto scaled = [f](std::uint64_t p) {
+    return std::max<std::uint64_t>(1, std::llround(double(p) * f));
+  };
+  if (!two_levels_) n_ = scaled(n_);
+  N_ = scaled(N_);
+  if (stage_photons_ > 0) stage_photons_ = scaled(stage_photons_);
+}
 
 bool Search::check_stop(bool ignore_limit) {
   if (stop_ == StopReason::kCancelled) return true;
@@ -127,17 +83,6 @@ const Evaluation* Search::evaluate(std::uint64_t cell, const Configuration& c,
   if (!call_evaluator(cell, c, photons, 0)) return nullptr;
   if (photons == N_) ++counters_.confirmations;
   const Evaluation* stored = &cache_.insert(cell, photons, std::move(latest_));
-  report_evaluation();
-  return stored;
-}
-
-// A first-stage trace of the staged refinement: `photons` of the cell's N-photon stream (its
-// N seed), kept apart from the tabu cache (the screening level may have as many photons).
-const Evaluation* Search::evaluate_stage(std::uint64_t cell, std::uint64_t photons) {
-  if (check_stop(true)) return nullptr;
-  if (!call_evaluator(cell, d_.configuration(cell), photons, N_)) return nullptr;
-  ++counters_.refine_stage;
-  const Evaluation* stored = &(stage_[cell] = std::move(latest_));
   report_evaluation();
   return stored;
 }
@@ -203,6 +148,7 @@ bool Search::visit(const Configuration& c) {
     if (judged_.insert(cell).second) ++counters_.inadmissible;
     return !stop_;
   }
+  if (!two_levels_) match_confirmation(cell);
   const Evaluation* screen = evaluate(cell, c, n_);
   if (!screen) return false;
   if (judged_.insert(cell).second) judge(cell, c, *screen);
@@ -227,6 +173,7 @@ void Search::judge(std::uint64_t cell, const Configuration& c, const Evaluation&
     if (!precise) return admit(cell, n_, screen);
   }
   if (!precise) return;
+  match_confirmation(cell);
   if (const Evaluation* e = evaluate(cell, c, N_)) admit(cell, N_, *e);
 }
 
@@ -340,95 +287,6 @@ void Search::end_iteration(std::uint32_t start, std::uint32_t k) {
   if (!stop_ && judged_.size() >= d_.cell_count()) stop_ = StopReason::kExhausted;
 }
 
-// Strategy B: trace every member with N and rebuild the ISOC from those estimates, in cell
-// order (the result does not depend on the order anyway, see isoc.hpp). The evaluation limit
-// does not apply here, because skipping the refinement would report n-photon members as final.
-void Search::refine() {
-  std::vector<std::uint64_t> keys;
-  for (const IsocMember& m : isoc_.members()) keys.push_back(m.key);
-  std::sort(keys.begin(), keys.end());
-  keys = staged_members(keys);
-  if (stop_ == StopReason::kCancelled) return;  // keep the unrefined ISOC
-  Isoc fresh(in_.goal, opt_.confidence);
-  std::unordered_map<std::uint64_t, std::uint64_t> levels;
-  for (std::uint64_t key : keys) {
-    const bool traced = cache_.find(key, N_) != nullptr;
-    const Evaluation* e = evaluate(key, d_.configuration(key), N_, /*ignore_limit=*/true);
-    if (!e) return;  // cancelled: keep the unrefined ISOC
-    if (!traced) ++counters_.refined;
-    if (!acceptable(*e)) {
-      ++counters_.infeasible;
-      continue;
-    }
-    const IsocUpdate u = fresh.update(key, e->objective);
-    record(key, N_, u);
-    if (u.admitted()) levels[key] = N_;
-    for (std::uint64_t k : u.removed) levels.erase(k);
-  }
-  isoc_ = std::move(fresh);
-  level_ = std::move(levels);
-}
-
-// A member the refinement may keep: its constraints met (or uncertain, where accepted).
-bool Search::acceptable(const Evaluation& e) const {
-  const Feasibility f = judge_all(e.constraints, in_);
-  return f == Feasibility::kMet ||
-         (f == Feasibility::kUncertain && opt_.uncertain == UncertainPolicy::kAccept);
-}
-
-// The staged refinement's first stage (docs/optimization.md §6, "Staged refinement"): the
-// members to trace with N. Every member without an N estimate is traced with N1 photons of
-// its N stream; b, the best of them by mean (N estimates where there are) among those whose
-// constraints are met, is traced with N; a member x is left out when
-//   E1(x) + k sqrt(2) s1(x) < E_N(b) - z sqrt(s_N(b)^2 + s1(x)^2)     (maximising; mirrored),
-// z the run's critical value and Phi(-k) = (1 - confidence) / M for M members. If b does not
-// beat a left-out x at N (compare(), with s_N(x) <= s1(x)), E_N(x) - E1(x) > k sqrt(2) s1(x);
-// both estimate x's value without bias and are independent or positively correlated (the N
-// trace continues the first stage's), so their difference has sd <= sqrt(s1^2 + s_N^2) <=
-// sqrt(2) s1: probability <= (1 - confidence) / M per member, 1 - confidence for all. When b
-// beats every left-out member the ISOC of the rest is the unstaged one: a member the unstaged
-// refinement keeps is not beaten by b, so it is traced; one it drops is beaten by a member,
-// by one left out and so (transitivity of compare()) by b, or by a traced one. A cancelled
-// run returns every key (refine() keeps the unrefined ISOC).
-std::vector<std::uint64_t> Search::staged_members(const std::vector<std::uint64_t>& keys) {
-  const std::uint64_t n1 = opt_.refine_stage_photons;
-  if (n1 == 0 || n1 >= N_ || keys.size() < 2) return keys;
-  const bool maximize = in_.goal == Goal::kMaximize;
-  const auto better = [&](double a, double b) { return maximize ? a > b : a < b; };
-  std::unordered_map<std::uint64_t, const Evaluation*> first;  // N estimate, else stage 1
-  std::optional<std::uint64_t> best;
-  for (std::uint64_t key : keys) {
-    const Evaluation* e = cache_.find(key, N_);
-    if (!e) e = evaluate_stage(key, n1);
-    if (!e) return keys;  // cancelled
-    first[key] = e;
-    if (judge_all(e->constraints, in_) != Feasibility::kMet) continue;
-    if (!best || better(e->objective.mean, first[*best]->objective.mean)) best = key;
-  }
-  if (!best) return keys;
-  const bool b_traced = cache_.find(*best, N_) != nullptr;
-  const Evaluation* b = evaluate(*best, d_.configuration(*best), N_, /*ignore_limit=*/true);
-  if (!b) return keys;
-  if (!b_traced) ++counters_.refined;
-  if (!acceptable(*b)) return keys;  // b may beat nothing at N: every member traced with N
-  const double z = z_for_confidence(opt_.confidence);
-  // Phi(-k) = (1 - confidence) / M: z_for_confidence is two-sided.
-  const double k = z_for_confidence(1.0 - 2.0 * (1.0 - opt_.confidence) / double(keys.size()));
-  std::vector<std::uint64_t> traced;
-  for (std::uint64_t key : keys) {
-    const Estimate& x = first[key]->objective;
-    const bool at_n = cache_.find(key, N_) != nullptr;
-    const double reach = z * std::hypot(b->objective.sigma, x.sigma) + k * std::sqrt(2.0) * x.sigma;
-    const double gap = maximize ? b->objective.mean - x.mean : x.mean - b->objective.mean;
-    if (!at_n && gap > reach) {
-      ++counters_.refine_dropped;
-      continue;
-    }
-    traced.push_back(key);
-  }
-  return traced;
-}
-
 OptimizationResult Search::build_result(Clock::time_point t0) {
   OptimizationResult r;
   r.goal = in_.goal;
@@ -474,7 +332,7 @@ OptimizationResult Search::run() {
   return build_result(t0);
 }
 
-}  // namespace
+}  // namespace detail
 
 const char* to_string(StopReason r) {
   switch (r) {
@@ -492,8 +350,8 @@ const char* to_string(StopReason r) {
 
 OptimizationResult optimize(const Domain& domain, const Intention& intention, Evaluator& evaluator,
                             const VnsOptions& options, const Control& control) {
-  check_options(domain, options);
-  Search search(domain, intention, evaluator, options, control);
+  detail::check_options(domain, options);
+  detail::Search search(domain, intention, evaluator, options, control);
   return search.run();
 }
 

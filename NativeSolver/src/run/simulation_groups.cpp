@@ -53,13 +53,14 @@ void Simulation::fix_photon_shares(const std::vector<double>& weights) {
 }
 
 // Group `t.group`'s direct parts (next-event estimation), its points sized as run() sizes
-// them for a run of t.run_photons photons (about one shadow ray per two photons over every
+// them for a run of `run_photons` photons (about one shadow ray per two photons over every
 // planned group: estimate/next_event.hpp), so that combining every group's trace equals run().
 // Only this group's points are traced: each group's points have their own random stream.
-void Simulation::trace_direct_part(GroupTrace& t, const GroupTrace* prefix) {
+void Simulation::trace_direct_part(GroupTrace& t, const GroupTrace* prefix,
+                                   std::uint64_t run_photons) {
   detail::PreparedScene& p = state_->prepared;
   const double rays = double(detail::direct_ray_count(p, 1));
-  const double fit = rays > 0.0 ? std::sqrt(0.5 * double(t.run_photons) / rays) : 1.0;
+  const double fit = rays > 0.0 ? std::sqrt(0.5 * double(run_photons) / rays) : 1.0;
   const auto scale = static_cast<std::uint32_t>(std::clamp(fit, 1.0, 16.0));
   std::vector<bool> planned;
   for (detail::PreparedGroup& g : p.groups) {
@@ -94,7 +95,7 @@ void Simulation::trace_direct_part(GroupTrace& t, const GroupTrace* prefix) {
 
 GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons, std::uint64_t seed,
                                    const std::shared_ptr<ProcessGroup>& processes,
-                                   const GroupTrace* prefix) {
+                                   const GroupTrace* prefix, std::uint64_t direct_run_photons) {
   detail::PreparedScene& p = state_->prepared;
   const Scene& scene = state_->scene;
   if (group >= p.groups.size()) {
@@ -125,7 +126,7 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
     throw std::invalid_argument("trace_group: the prefix was traced with another next_event");
   }
   if (p.groups[group].next_event) {
-    trace_direct_part(out, prefix);
+    trace_direct_part(out, prefix, std::max(run_photons, direct_run_photons));
   } else {
     out.next_event_off = p.next_event_off.empty()
                              ? "luminaire group \"" + p.groups[group].name +

@@ -164,8 +164,9 @@ TEST(GroupTraceNextEvent, PointOverSurfaceTargetIsTheClosedForm) {
 }
 
 // A trace continued from its first part (the staged refinement's first stage) is the trace
-// from photon 0, bit for bit, with and without next-event estimation; a prefix of another
-// seed, a larger run or another next-event plan is refused.
+// from photon 0, bit for bit, with and without next-event estimation, also when the first part
+// was given the whole run's direct parts; a prefix of another seed, a larger run or another
+// next-event plan is refused.
 TEST(GroupTraceNextEvent, ContinuedTraceIsTheWholeTraceBitForBit) {
   for (const std::string mode : {"off", "on"}) {
     Simulation sim(parse(desk_room(0.5, mode)).scene, Simulation::Options{"embree", 2, {}});
@@ -187,6 +188,22 @@ TEST(GroupTraceNextEvent, ContinuedTraceIsTheWholeTraceBitForBit) {
     }
     EXPECT_THROW(sim.trace_group(0, 80'000, 22, nullptr, &first), std::invalid_argument);
     EXPECT_THROW(sim.trace_group(0, 10'000, 21, nullptr, &first), std::invalid_argument);
+    // A first part with the whole run's direct parts (a staged refinement's stage): its
+    // continuation keeps them, so it is still the whole trace bit for bit.
+    const GroupTrace stage = sim.trace_group(0, 20'000, 21, nullptr, nullptr, 80'000);
+    const GroupTrace continued = sim.trace_group(0, 80'000, 21, nullptr, &stage);
+    EXPECT_EQ(stage.photons, first.photons);
+    if (mode == "on") {
+      EXPECT_LT(first.shadow_rays, whole.shadow_rays);  // sized apart otherwise
+    }
+    EXPECT_EQ(stage.shadow_rays, whole.shadow_rays);
+    ASSERT_EQ(stage.direct.size(), whole.direct.size());
+    for (std::size_t b = 0; b < whole.direct.size(); ++b) {
+      EXPECT_EQ(stage.direct[b].lux, whole.direct[b].lux);
+      EXPECT_EQ(continued.direct[b].variance_lx2, whole.direct[b].variance_lx2);
+    }
+    for (std::size_t b = 0; b < whole.bins.size(); ++b)
+      EXPECT_EQ(whole.bins[b].sum, continued.bins[b].sum) << mode;
   }
   Scene on = parse(desk_room(0.5, "on")).scene, off = on;
   off.settings.next_event = "off";
@@ -251,7 +268,10 @@ TEST(OptimizerNextEvent, StagedRefinementContinuesTracesBitForBit) {
     EXPECT_EQ(plain.counters.refine_stage, 0u);
     EXPECT_GT(staged.counters.refine_stage, 1u) << mode;
     EXPECT_EQ(staged.counters.refined + staged.counters.refine_dropped, plain.counters.refined);
-    EXPECT_LE(staged.counters.photons_traced, plain.counters.photons_traced) << mode;
+    EXPECT_LE(staged.counters.photons_traced, plain.counters.photons_traced)
+        << mode << ": stage traces " << staged.counters.refine_stage << ", left out "
+        << staged.counters.refine_dropped << ", refined " << staged.counters.refined << " of "
+        << plain.counters.refined;
     ASSERT_EQ(plain.isoc.size(), staged.isoc.size()) << mode;
     for (std::size_t i = 0; i < plain.isoc.size(); ++i) {
       EXPECT_EQ(plain.isoc[i].cells, staged.isoc[i].cells);
@@ -259,6 +279,43 @@ TEST(OptimizerNextEvent, StagedRefinementContinuesTracesBitForBit) {
       EXPECT_EQ(plain.isoc[i].objective.sigma, staged.isoc[i].objective.sigma);
     }
   }
+}
+
+// Equal widths (docs/optimization.md §6): with next-event estimation N is scaled by the
+// measured variance ratio (well below 1 over the desk, whose light is mostly direct), the
+// provenance says by how much, the same best cell is found, and its interval is no wider than
+// a photon-only search's at the unscaled N; where no direct part is traced nothing changes.
+TEST(OptimizerNextEvent, MatchedWidthsTraceFewerPhotonsForTheSameIntervals) {
+  const auto factor = [](const OptimizationResult& r) {
+    for (const auto& [key, value] : r.provenance->options) {
+      if (key == "width_factor") return std::get<double>(value);
+    }
+    return -1.0;  // not matched
+  };
+  const SceneProblem on = parse(desk_room(0.5, "on")), off = parse(desk_room(0.5, "off"));
+  RunOverrides o;
+  o.threads = 2;
+  o.backend = "embree";
+  const OptimizationResult photons = run_problem(off, o);
+  o.match_widths = true;
+  const OptimizationResult matched = run_problem(on, o);
+  const double f = factor(matched);
+  EXPECT_GT(f, 0.0);
+  EXPECT_LT(f, 0.8);
+  EXPECT_EQ(factor(photons), -1.0);
+  ASSERT_FALSE(matched.isoc.empty());
+  ASSERT_FALSE(photons.isoc.empty());
+  EXPECT_EQ(matched.isoc[0].cells, photons.isoc[0].cells);
+  EXPECT_EQ(matched.isoc[0].photons, std::uint64_t(std::llround(40'000 * f)));
+  const double width = matched.isoc[0].objective.ci_high - matched.isoc[0].objective.ci_low;
+  const double photon_width = photons.isoc[0].objective.ci_high - photons.isoc[0].objective.ci_low;
+  // Mostly direct light: the ratio is below 0.2, so N is scaled to the calibration's count,
+  // max(N/8, 2 n) = 8000 photons (not extrapolated below it), and the interval is no wider.
+  EXPECT_EQ(f, 0.2);
+  EXPECT_LE(width, 1.25 * photon_width) << width << " vs " << photon_width;
+  const OptimizationResult unchanged = run_problem(off, o);  // no direct part: factor 1
+  EXPECT_EQ(factor(unchanged), 1.0);
+  EXPECT_EQ(unchanged.isoc[0].photons, 40'000u);
 }
 
 // A next_event value outside auto/on/off is refused before the search, naming the setting.

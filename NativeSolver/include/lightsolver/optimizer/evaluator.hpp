@@ -29,8 +29,11 @@ struct EvaluationRequest {
   std::uint64_t run_seed = 0;
   /// The photon level whose seeds this trace uses (0: `photons`'s own). A trace of fewer photons
   /// than that level with its seeds is the first part of the level's trace (photon i is photon
-  /// i): the staged refinement's first stage, which an evaluator may later continue instead of
-  /// tracing those photons again (docs/optimization.md §6, "Staged refinement").
+  /// i): the staged refinement's stages, which an evaluator may later continue instead of
+  /// tracing those photons again (docs/optimization.md §6, "Staged refinement"). The level's
+  /// estimate must continue this one's: anything not traced photon by photon (a direct part)
+  /// is the level's own, so that E_level - E_this has sigma_this sqrt(1 - photons / level) for
+  /// a mean illuminance.
   std::uint64_t seed_photons = 0;
 };
 

@@ -76,6 +76,9 @@ struct SceneProblem {
   bool reuse_traces = true;
   /// `search.refine_stage_photons` where given (stage_photons(): N/4 otherwise under strategy B)
   std::optional<std::uint64_t> refine_stage_photons;
+  /// `search.match_widths` (default false): with next-event estimation, scale n and N (and the
+  /// stages) down to the interval widths a photon-only search has at them (width_factor()).
+  bool match_widths = false;
   /// `search.min_spacing_m`: no two luminaires closer than this (anchor to anchor) in any
   /// configuration searched; positions are always distinct (docs/optimization.md §10).
   double min_spacing_m = 0.0;
@@ -186,6 +189,8 @@ struct RunOverrides {
   std::optional<std::string> next_event;  ///< overrides the scene's settings.next_event
   /// Overrides search.refine_stage_photons (0: the unstaged end refinement).
   std::optional<std::uint64_t> refine_stage_photons;
+  /// Overrides search.match_widths (SceneProblem::match_widths).
+  std::optional<bool> match_widths;
 };
 
 /// The staged refinement's first-stage photons a search uses (VnsOptions::refine_stage_photons):

@@ -52,11 +52,11 @@ struct VnsOptions {
   std::uint64_t screening_photons = 32768;       ///< n (0 or >= N: always trace with N)
   std::uint64_t confirmation_photons = 2097152;  ///< N (paper: 2.66e6)
   PhotonStrategy strategy = PhotonStrategy::kConfirm;
-  /// Strategy B's end refinement in two stages (docs/optimization.md §6, "Staged refinement"):
-  /// every member is first traced with this many photons of its N-photon stream, and with N
-  /// only when the best member might not beat it; 0 (or >= N): every member with N at once, as
-  /// the paper refines. The final ISOC equals the unstaged one except with probability at most
-  /// 1 - confidence.
+  /// Strategy B's end refinement in stages (docs/optimization.md §6, "Staged refinement"):
+  /// every member is first traced with this many photons N1 of its N-photon stream, continued
+  /// to 2 N1, 4 N1, ... below N and to N only while the best member might not beat it; 0 (or
+  /// >= N): every member with N at once, as the paper refines. The final ISOC equals the
+  /// unstaged one except with probability at most 1 - confidence.
   std::uint64_t refine_stage_photons = 0;
   UncertainPolicy uncertain = UncertainPolicy::kReject;
   std::uint64_t max_iterations = 1000;  ///< over all starts (paper: 1000)
@@ -71,6 +71,11 @@ struct VnsOptions {
   /// non-rectangular placement face on its bounding grid, or lum0 <= lum1 to skip mirror
   /// images of interchangeable luminaires). Must be deterministic; initial cells must pass.
   std::function<bool(const Configuration&)> admissible;
+  /// Optional: called once, with the cell about to be traced, before the first trace with N
+  /// (strategy A's first confirmation, strategy B's refinement with the best n-level member,
+  /// or the first visit under a static N); N and refine_stage_photons are scaled by what it
+  /// returns, clamped to (0, 1] (docs/optimization.md §6, "Equal widths").
+  std::function<double(std::uint64_t cell)> confirmation_factor;
 };
 
 /// Observation and cancellation. The callback runs after every iteration on the calling
