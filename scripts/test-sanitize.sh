@@ -58,6 +58,8 @@ slow+='|Backends/ClosedForm\.MirrorAddsTheImageSource/vulkan'
 # repeat runs whose code the other NextEvent entries run under the sanitizers; the closed forms
 # with it on Vulkan (its shadow rays run in lavapipe) repeat the Embree ones' host code.
 slow+='|Backends/NextEvent\.(PerCellCoverageOver200Seeds|PhotometricFilesAgreeWithTheirPhotons)'
+# Connected reflected light: the 200-seed coverage repeats what its closed-form entries run.
+slow+='|ReflectionConnection\.PerCellCoverageOver200Seeds'
 # A glass slab (shadow rays blocked: no direct part) and a mirror (its image comes by photons)
 # with next-event estimation on trace what their plain Embree entries trace; the direct parts'
 # host code runs in the other embree_nee entries.
