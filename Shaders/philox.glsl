@@ -11,11 +11,13 @@ uvec2 rng_key;
 uvec4 rng_ctr;
 uvec4 rng_block;
 uint rng_index;
-// Quasi-random photons (trace.comp defines LS_SOBOL_PREFIX and includes sobol.glsl): blocks of
-// the path's scrambled Sobol' point still to be drawn before Philox, as PathRng's prefix.
+// Quasi-random photons (trace.comp defines LS_SOBOL_PREFIX and includes sobol.glsl): the
+// path's scrambled Sobol' point, made once at its start, and its blocks still to be drawn before
+// Philox, as PathRng's prefix. Only this copy sits in rng_u32: the compiler inlines rng_u32 at
+// every draw, and the point's making there made lavapipe's shader compile several times slower.
 uint rng_prefix_blocks = 0u;
 #ifdef LS_SOBOL_PREFIX
-uvec4 sobol_prefix_block(uint q);  // sobol.glsl: coordinates 4q .. 4q + 3 of the path's point
+uvec4 rng_prefix[4];
 #endif
 
 // `stream`: the luminaire group (counter word 3), PathRng's third argument.
@@ -29,7 +31,7 @@ void rng_init(uint64_t seed, uint64_t path_id, uint stream) {
 uint rng_u32() {
 #ifdef LS_SOBOL_PREFIX
   if (rng_index == 4u && rng_prefix_blocks != 0u) {
-    rng_block = sobol_prefix_block(4u - rng_prefix_blocks);
+    rng_block = rng_prefix[4u - rng_prefix_blocks];
     --rng_prefix_blocks;
     rng_index = 0u;
   }

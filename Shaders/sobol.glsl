@@ -8,8 +8,6 @@
 
 #include "shared/philox.h"
 
-uint rng_sobol_index;  // the path's photon index in its stream (its Sobol' point)
-
 // owen_scramble_reversed of sobol.hpp, four coordinates at once.
 uvec4 owen_scramble_reversed4(uvec4 y, uvec4 seed) {
   y += seed;
@@ -20,21 +18,19 @@ uvec4 owen_scramble_reversed4(uvec4 y, uvec4 seed) {
   return bitfieldReverse(y);
 }
 
-// Coordinates 4q .. 4q + 3 of the path's scrambled point: the reversed directions of the set
-// bits of its index XORed (unrolled: lavapipe's loop limit never sees it), then scrambled with
-// the seeds SobolScramble draws: Philox block (q, 0, 2^32 - 1, group) under the run's seed.
-uvec4 sobol_prefix_block(uint q) {
-  uvec4 x = uvec4(0u);
-  [[unroll]] for (uint j = 0u; j < 32u; ++j) {
-    if (((rng_sobol_index >> j) & 1u) != 0u) x ^= sobol_directions[j * 4u + q];
-  }
-  const uvec4 seeds = philox4x32_10(uvec4(q, 0u, 0xFFFFFFFFu, rng_ctr.w), rng_key);
-  return owen_scramble_reversed4(x, seeds);
-}
-
-// After rng_init: the path draws its point's 16 coordinates before Philox.
+// After rng_init: the path draws its point's 16 coordinates before Philox. Coordinates
+// 4q .. 4q + 3: the reversed directions of the set bits of its index XORed (loops, not unrolled:
+// their code is compiled once per pipeline; lavapipe's loop limit counts their at most 4 x 32
+// iterations, and a path it cuts is traced again: trace.comp), then scrambled with the seeds SobolScramble draws: Philox block
+// (q, 0, 2^32 - 1, group) under the run's seed.
 void rng_start_quasi_random(uint64_t photon) {
-  rng_sobol_index = uint(photon);  // 32-bit indices (kMaxSobolPoints)
+  const uint index = uint(photon);  // 32-bit indices (kMaxSobolPoints)
+  for (uint q = 0u; q < 4u; ++q) {
+    uvec4 x = uvec4(0u);
+    for (uint i = index; i != 0u; i &= i - 1u) x ^= sobol_directions[uint(findLSB(i)) * 4u + q];
+    const uvec4 seeds = philox4x32_10(uvec4(q, 0u, 0xFFFFFFFFu, rng_ctr.w), rng_key);
+    rng_prefix[q] = owen_scramble_reversed4(x, seeds);
+  }
   rng_prefix_blocks = 4u;
 }
 

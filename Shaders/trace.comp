@@ -56,7 +56,7 @@ bool blocked_outside(vec3 o, vec3 d, bool first_pass) {
 // One pass over the path. Statistics are counted on the first pass only.
 void trace_path(uint64_t id, bool first_pass) {
   rng_init(pc.seed, id, pc.group);
-  if (pc.quasi_random != 0u) rng_start_quasi_random(id);
+  if (QUASI_RANDOM) rng_start_quasi_random(id);
   vec3 o, d;
   g_opening_push = vec3(0.0);
   emit(luminaires[pick_luminaire()], o, d);

@@ -42,9 +42,10 @@
 #define LS_SPEC_HAS_SURFACE_BINS 6  // HAS_SURFACE_BINS
 #define LS_SPEC_MANY_LUMINAIRES 7   // MANY_LUMINAIRES
 #define LS_SPEC_HAS_INSTANCES 8     // HAS_INSTANCES: movable meshes
+#define LS_SPEC_QUASI_RANDOM 9      // QUASI_RANDOM: each path's Sobol' point first (sobol.glsl)
 // Then one per luminaire type, the last ids: LS_SPEC_FIRST_LUMINAIRE + the type's code, named
 // by its entry in LS_LUMINAIRE_TYPES (shared/luminaires.h), which lists the codes.
-#define LS_SPEC_FIRST_LUMINAIRE 9
+#define LS_SPEC_FIRST_LUMINAIRE 10
 
 // Type codes in the packed materials (Material::Type values; the C++ side asserts they agree,
 // vulkan/gpu_scene.cpp). The luminaires' are in shared/luminaires.h.

@@ -19,6 +19,9 @@ layout(constant_id = LS_SPEC_HAS_GLOSSY) const bool HAS_GLOSSY = true;
 layout(constant_id = LS_SPEC_HAS_GRIDS) const bool HAS_GRIDS = true;
 layout(constant_id = LS_SPEC_HAS_SURFACE_BINS) const bool HAS_SURFACE_BINS = true;
 layout(constant_id = LS_SPEC_MANY_LUMINAIRES) const bool MANY_LUMINAIRES = true;
+// Sampler "sobol": a path's first draws are its scrambled Sobol' point (sobol.glsl). A constant,
+// not a push constant, so the pipelines of random runs compile without that code.
+layout(constant_id = LS_SPEC_QUASI_RANDOM) const bool QUASI_RANDOM = false;
 // One per luminaire type (HAS_POINT ...), keeping its branch of emit() (emit.glsl).
 #define LS_LUMINAIRE_SWITCH(name, code, has, emission) \
   layout(constant_id = LS_SPEC_FIRST_LUMINAIRE + code) const bool has = true;
@@ -121,8 +124,6 @@ layout(push_constant) uniform Push {
   uint tally_offset;      // ... and its tallies: group * bins
   uint first_bounce;      // 1: the group's direct light is by next-event estimation: no
                           // deposit before the first scattering (bounce 0)
-  uint quasi_random;      // 1: a path's first draws are its scrambled Sobol' point (sobol.glsl)
-  uint pad_q0, pad_q1, pad_q2;
 } pc;
 
 #endif

@@ -104,8 +104,6 @@ struct TracePush {
   std::uint32_t luminaire_first;  // the group's luminaires: [first, first + luminaire_count)
   std::uint32_t tally_offset;     // group * bins
   std::uint32_t first_bounce;     // 1: no deposit at bounce 0 (PreparedGroup::next_event)
-  std::uint32_t quasi_random;     // 1: each path's first draws are its Sobol' point (sobol.glsl)
-  std::uint32_t pad[3];
 };
 
 /// visibility.comp's push constants.
@@ -121,7 +119,7 @@ struct VisibilityPush {
 static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
 static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
-static_assert(sizeof(TracePush) == 80 && sizeof(VisibilityPush) == 32);
+static_assert(sizeof(TracePush) == 64 && sizeof(VisibilityPush) == 32);
 // The shared record in C++ (glm::vec3 is three packed floats) at std430's offsets in GLSL, where
 // a vec3 is 16-byte aligned and the 4-byte field after it fills its last word.
 static_assert(std::is_trivially_copyable_v<Luminaire> && alignof(Luminaire) == 4);
@@ -148,6 +146,7 @@ enum SpecId : std::uint32_t {
   kHasSurfaceBins = LS_SPEC_HAS_SURFACE_BINS,
   kManyLuminaires = LS_SPEC_MANY_LUMINAIRES,
   kHasInstances = LS_SPEC_HAS_INSTANCES,
+  kQuasiRandom = LS_SPEC_QUASI_RANDOM,
   kFirstLuminaireSwitch = LS_SPEC_FIRST_LUMINAIRE,
   kSpecCount = LS_SPEC_FIRST_LUMINAIRE + kGpuLuminaireTypeCount
 };
@@ -241,6 +240,7 @@ inline constexpr SpecInfo kSpecConstants[] = {
     {kHasSurfaceBins, "HAS_SURFACE_BINS"},
     {kManyLuminaires, "MANY_LUMINAIRES"},
     {kHasInstances, "HAS_INSTANCES"},
+    {kQuasiRandom, "QUASI_RANDOM"},
 #define LS_SPEC_ROW(name, code, has, emission) {luminaire_switch(code), #has},
     LS_LUMINAIRE_TYPES(LS_SPEC_ROW)
 #undef LS_SPEC_ROW

@@ -117,7 +117,13 @@ class VulkanBackend final : public Backend {
 
   // Shaders/sobol.glsl: the CPU's points, scrambles and Philox tails, bit for bit.
   bool traces_quasi_random() const override { return true; }
-  void set_quasi_random(bool on) override { quasi_random_ = on; }
+  // A specialisation constant: the pipeline is built again when the sampler changes.
+  void set_quasi_random(bool on) override {
+    if (on == quasi_random_) return;
+    const std::lock_guard lock(submit_mutex_);
+    quasi_random_ = on;
+    build_pipeline();
+  }
 
   // Shaders/visibility.comp, its pipeline made on first use (and again after buffers changed).
   // Callers may call it from several threads (Embree's is thread-safe): one at a time here.
@@ -165,9 +171,7 @@ class VulkanBackend final : public Backend {
                             range.group,
                             lum_first,
                             static_cast<std::uint32_t>(range.group * s_.bins.size()),
-                            s_.groups[range.group].next_event ? 1u : 0u,
-                            quasi_random_ ? 1u : 0u,
-                            {0, 0, 0}};
+                            s_.groups[range.group].next_event ? 1u : 0u};
         trace_->record(cmd, groups(n), &push);
         record_retries(cmd, push);
         done += n;
@@ -264,6 +268,7 @@ class VulkanBackend final : public Backend {
     for (const auto& b : buffers_) bindings.push_back(&b);
     std::vector<vkw::SpecConstant> spec = data_.features;
     spec.push_back({gpu::kWorkgroupSize, kWorkgroupSize});
+    spec.push_back({gpu::kQuasiRandom, quasi_random_ ? 1u : 0u});
     trace_.emplace(ctx_, shaders::trace(), bindings, sizeof(gpu::TracePush), spec);
   }
 
