@@ -123,20 +123,11 @@ TEST(ReflectionConnection, PhotonsAloneMatchTheSameClosedForm) {
 // The box room (several reflections, walls just above the plane): every cell agrees
 // with photons alone within five combined sigma, and the intervals are narrower.
 TEST(ReflectionConnection, AgreesWithPhotonsAloneInTheBoxRoom) {
-  Scene s;
-  add_material(s, "grey", Material::Type::Diffuse, 0.5);
-  s.meshes.push_back(room_mesh("room", 0, dvec3(0), dvec3(4, 4, 3)));
-  s.luminaires.push_back(point_light({2, 2, 2.9}, 100.0 * 4.0 * std::numbers::pi));
-  s.targets.push_back(grid("work plane", {0, 0, 0.8}, {4, 0, 0}, {0, 4, 0}, 8, 8));
+  const Scene s = box_room(8);
   const Results on = run_connected(s, 200'000, 11, "on", 0.95);
   const Results off = run_connected(s, 200'000, 12, "off", 0.95);
-  double width_on = 0.0, width_off = 0.0;
-  for (std::size_t k = 0; k < 64; ++k) {
-    expect_same_within(on.targets[0].cells[k], off.targets[0].cells[k],
-                       "cell " + std::to_string(k));
-    width_on += on.targets[0].cells[k].ci_high - on.targets[0].cells[k].ci_low;
-    width_off += off.targets[0].cells[k].ci_high - off.targets[0].cells[k].ci_low;
-  }
+  ASSERT_EQ(on.targets[0].cells.size(), 64u);
+  const auto [width_on, width_off] = expect_cells_agree(on, off);
   EXPECT_LT(width_on, 0.7 * width_off);
   expect_same_within(on.targets[0].estimate, off.targets[0].estimate, "whole grid");
 }

@@ -9,6 +9,7 @@
 #include <glm/trigonometric.hpp>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lightsolver/backends.hpp"
@@ -141,6 +142,19 @@ inline void expect_same_within(const Estimate& a, const Estimate& b, const std::
 }
 
 // Solid angle of triangle abc seen from p (Van Oosterom & Strackee 1983).
+// Every cell of the first target of `a` agrees with `b`'s (expect_same_within); returns the two
+// runs' cell intervals' summed widths, for the caller's check of which is narrower.
+inline std::pair<double, double> expect_cells_agree(const Results& a, const Results& b) {
+  double width_a = 0.0, width_b = 0.0;
+  for (std::size_t k = 0; k < a.targets[0].cells.size(); ++k) {
+    const Estimate &x = a.targets[0].cells[k], &y = b.targets[0].cells[k];
+    expect_same_within(x, y, "cell " + std::to_string(k));
+    width_a += x.ci_high - x.ci_low;
+    width_b += y.ci_high - y.ci_low;
+  }
+  return {width_a, width_b};
+}
+
 inline double triangle_solid_angle(dvec3 p, dvec3 a, dvec3 b, dvec3 c) {
   a -= p;
   b -= p;
