@@ -68,13 +68,17 @@ uint deposits_flush() {
 // Virtual grids crossed from the front by o + t d, 0 <= t <= t_max (shared/grids.h, the text
 // model/path_deposits.hpp includes too). `bounce`: reflections before this segment;
 // indirect-only grids (observers) skip bounce 0, and so does every grid when pc.first_bounce is 1
-// (the group's direct light is by next-event estimation), as cross_grids in path_deposits.hpp.
+// (the group's direct light is by next-event estimation) but those whose direct light went back
+// to the photons (kGridDirectByPhotons), as cross_grids in path_deposits.hpp.
 void cross_grids(vec3 o, vec3 d, float t_max, uint bounce) {
-  if (bounce < pc.first_bounce) return;
+  const bool by_shadow_rays = bounce < pc.first_bounce;  // where not given back to photons
   const float t_end = grid_reach(t_max);
   for (uint k = 0u; k < pc.grid_count; ++k) {
     const GridGpu g = grids[k];
-    if ((g.flags & kGridIndirectOnly) != 0u && bounce == 0u) continue;
+    if (bounce == 0u && ((g.flags & kGridIndirectOnly) != 0u ||
+                         (by_shadow_rays && (g.flags & kGridDirectByPhotons) == 0u))) {
+      continue;
+    }
     uint cell;
     if (!grid_crossing(o, d, t_end, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) continue;
     deposit(g.bin);

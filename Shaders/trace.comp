@@ -68,9 +68,11 @@ void trace_path(uint64_t id, bool first_pass) {
     if (h.tri == kNone) return;
     const MeshInfo mesh = meshes[tris[h.tri].mesh];
     const vec3 n = hit_normal(h);
-    // Before the first scattering only without next-event estimation (pc.first_bounce 0), as
-    // continue_path in embree_backend.cpp.
-    if (HAS_SURFACE_BINS && mesh.bin >= 0 && bounce >= pc.first_bounce && dot(d, n) < 0.0) {
+    // Before the first scattering only without next-event estimation (pc.first_bounce 0) or
+    // where it gave the target back to the photons, as continue_path in embree_backend.cpp.
+    if (HAS_SURFACE_BINS && mesh.bin >= 0 &&
+        (bounce >= pc.first_bounce || (mesh.flags & kMeshDirectByPhotons) != 0u) &&
+        dot(d, n) < 0.0) {
       deposit(uint(mesh.bin));
     }
     if (!scatter(materials[mesh.material], n, d)) return;

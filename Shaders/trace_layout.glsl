@@ -34,8 +34,10 @@ const uint kGlass = LS_MATERIAL_GLASS, kGlossy = LS_MATERIAL_GLOSSY;
 struct MeshInfo {
   uint material;
   int bin;  // surface-target bin or -1
-  uint pad0, pad1;
+  uint flags;  // kMeshDirectByPhotons: next-event groups' bounce-0 hits deposit too
+  uint pad0;
 };
+const uint kMeshDirectByPhotons = 1u;
 
 // Probabilities as 24-bit integer thresholds: survive/choose when rng_u24() < threshold, which is
 // exactly the CPU's `uniform() < p` for the double p.
@@ -64,9 +66,10 @@ struct GridGpu {
   vec3 corner; uint nu;
   vec3 normal; uint nv;
   vec3 du; uint bin;
-  vec3 dv; uint flags;  // bit 0 (kGridIndirectOnly): count reflected light only (observers)
+  vec3 dv; uint flags;  // bit 0 (kGridIndirectOnly): count reflected light only (observers);
+                        // bit 1 (kGridDirectByPhotons): next-event groups' bounce 0 counts
 };
-const uint kGridIndirectOnly = 1u;
+const uint kGridIndirectOnly = 1u, kGridDirectByPhotons = 2u;
 
 layout(std430, set = 0, binding = LS_BINDING_MESHES) readonly buffer Meshes { MeshInfo meshes[]; };
 layout(std430, set = 0, binding = LS_BINDING_MATERIALS) readonly buffer Materials {

@@ -299,12 +299,20 @@ struct SkippedEffect {
   std::string reason;
 };
 
+/// How a simulated effect was applied where it was not applied everywhere, in words
+/// (next_event_direct under "auto": "floor: photons (shadow rays would be 3.1x wider)").
+struct EffectNote {
+  std::string effect;
+  std::string note;
+};
+
 /// What the run simulated (docs/scene-format.md, "effects"): the effect names a scene needs,
 /// and those skipped with the reason. The same analysis picks the Embree path kernel and the
-/// Vulkan specialisation.
+/// Vulkan specialisation. `notes`: details of simulated effects (usually none).
 struct EffectsReport {
   std::vector<std::string> simulated;
   std::vector<SkippedEffect> skipped;
+  std::vector<EffectNote> notes;
 };
 
 /// Daylight photons that left an opening (a sky's portal, a sun's opening): a photon whose way

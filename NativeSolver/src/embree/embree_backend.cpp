@@ -18,13 +18,13 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "embree/embree_scene.hpp"
+#include "embree/hit_triangles.hpp"
+#include "embree/path_kernel.hpp"
 #include "model/emitters.hpp"
 #include "model/path_deposits.hpp"
 #include "model/scatter.hpp"
 #include "model/sobol.hpp"
-#include "embree/embree_scene.hpp"
-#include "embree/hit_triangles.hpp"
-#include "embree/path_kernel.hpp"
 #include "shared/luminaires.h"
 
 namespace lightsolver::detail {
@@ -308,7 +308,9 @@ class EmbreeBackend final : public Backend {
     EmittedRay& ray = lane.ray;
     vec3 n = tri.n;
     if (instanced) n = glm::normalize(glm::mat3(m.transform) * n);  // rigid: no inverse needed
-    if (m.bin >= 0 && lane.bounce >= lane.first_bounce && glm::dot(ray.direction, n) < 0.0f) {
+    // Bounce 0 of a next-event group only where the target's direct light is by photons.
+    if (m.bin >= 0 && (lane.bounce >= lane.first_bounce || m.direct_by_photons) &&
+        glm::dot(ray.direction, n) < 0.0f) {
       lane.deposits.add(m.bin);
     }
     if constexpr (!F.reflects) return false;  // no surface returns light: absorbed

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "types/target_types.hpp"
 #include "lightsolver/accuracy.hpp"
+#include "types/target_types.hpp"
 
 namespace lightsolver {
 namespace {

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
+#include "estimate/direct_choice.hpp"
 #include "lightsolver/error.hpp"
 #include "model/sampling.hpp"
 #include "types/luminaire_types.hpp"
@@ -212,11 +213,12 @@ class Evaluator {
   std::vector<double> values_;  // per point of the pending jobs: its direct illuminance
 };
 
-// The surface targets' bins, each once (a target's meshes share its bin), in mesh order.
-std::vector<std::uint32_t> surface_bins(const PreparedScene& s) {
+// The surface targets' bins, each once (a target's meshes share its bin), in mesh order;
+// `shadow_rays_only`: not those given back to the photons (direct_by_photons).
+std::vector<std::uint32_t> surface_bins(const PreparedScene& s, bool shadow_rays_only = false) {
   std::vector<std::uint32_t> bins;
   for (const PreparedMesh& m : s.meshes) {
-    if (m.bin < 0 || m.normals.empty()) continue;
+    if (m.bin < 0 || m.normals.empty() || (shadow_rays_only && m.direct_by_photons)) continue;
     if (std::find(bins.begin(), bins.end(), std::uint32_t(m.bin)) == bins.end()) {
       bins.push_back(std::uint32_t(m.bin));
     }
@@ -242,6 +244,8 @@ bool samples_directly(const PreparedScene& s, const PreparedGroup& g) {
 void plan_next_event(PreparedScene& s, const Backend& backend, const std::string& mode) {
   for (PreparedGroup& g : s.groups) g.next_event = g.connect = false;  // connect needs it
   for (PreparedGrid& g : s.grids) g.connect_r0 = 0.0f;
+  clear_direct_by_photons(s);  // "auto" may give some back once it has judged them
+  s.next_event_targets.clear();
   s.connect_off = "needs next-event estimation (next_event)";
   s.direct.clear();
   const bool forced = mode == "on";
@@ -272,10 +276,12 @@ std::uint64_t direct_ray_count(const PreparedScene& s, std::uint32_t strata_scal
   std::uint64_t points = 0;
   const std::uint64_t side = kCellStrataSide * strata_scale;
   for (const PreparedGrid& grid : s.grids) {
-    if (!grid.indirect_only) points += std::uint64_t(grid.nu) * grid.nv * 2 * side * side;
+    if (!grid.indirect_only && !grid.direct_by_photons) {
+      points += std::uint64_t(grid.nu) * grid.nv * 2 * side * side;
+    }
   }
-  points +=
-      surface_bins(s).size() * 2 * std::uint64_t(kSurfaceStrata) * strata_scale * strata_scale;
+  points += surface_bins(s, true).size() * 2 * std::uint64_t(kSurfaceStrata) * strata_scale *
+            strata_scale;
   return points * luminaires;
 }
 
@@ -294,8 +300,9 @@ std::optional<std::vector<DirectPart>> direct_parts_unless(const PreparedScene& 
   }
   if (groups.empty()) return std::vector<DirectPart>{};
   Evaluator eval(s, backend, seed, stop);
+  // Targets given back to the photons keep zero parts (their photons deposit bounce 0).
   for (const PreparedGrid& grid : s.grids) {
-    if (grid.indirect_only) continue;
+    if (grid.indirect_only || grid.direct_by_photons) continue;
     for (std::uint32_t iv = 0; iv < grid.nv; ++iv) {
       for (std::uint32_t iu = 0; iu < grid.nu; ++iu) {
         Domain d = cell_domain(grid, iu, iv);
@@ -304,7 +311,7 @@ std::optional<std::vector<DirectPart>> direct_parts_unless(const PreparedScene& 
       }
     }
   }
-  const std::vector<std::uint32_t> bins = surface_bins(s);
+  const std::vector<std::uint32_t> bins = surface_bins(s, true);
   std::vector<Surface> surfaces;  // kept alive until finish(): the jobs point at them
   surfaces.reserve(bins.size());
   for (const std::uint32_t bin : bins) {
@@ -320,7 +327,7 @@ std::optional<std::vector<DirectPart>> direct_parts_unless(const PreparedScene& 
   if (eval.stopped()) return std::nullopt;
   // A whole grid's bin: the mean of its cells (equal areas), their variances over C^2.
   for (const PreparedGrid& grid : s.grids) {
-    if (grid.indirect_only) continue;
+    if (grid.indirect_only || grid.direct_by_photons) continue;
     const double cells = double(grid.nu) * grid.nv;
     for (const std::uint32_t g : groups) {
       const std::size_t base = g * s.bins.size();

@@ -23,17 +23,20 @@ inline constexpr std::uint32_t kCellStrataSide = 4;
 inline constexpr std::uint32_t kSurfaceStrata = 256;
 
 /// Sets every group's next_event flag for `mode` ("auto", "on", "off") and the scene's reason
-/// when none has it; clears `s.direct`. auto and on give it to every group whose luminaires all
-/// have a direct hook, when the scene has a grid or surface target and the backend traces
-/// shadow rays; `on` refuses (InputError naming next_event) where no group can have it.
+/// when none has it; clears `s.direct` and gives every target its shadow rays again
+/// (direct_by_photons false: auto's choice is made per run, estimate/direct_choice.hpp). auto and
+/// on give it to every group whose luminaires all have a direct hook, when the scene has a grid or
+/// surface target and the backend traces shadow rays; `on` refuses (InputError naming next_event)
+/// where no group can have it.
 void plan_next_event(PreparedScene& s, const Backend& backend, const std::string& mode);
 
 /// Shadow rays direct_parts() traces at most with `strata_scale` (every point to every luminaire
-/// of the planned groups).
+/// of the planned groups; none for targets given back to the photons, direct_by_photons).
 std::uint64_t direct_ray_count(const PreparedScene& s, std::uint32_t strata_scale);
 
 /// The direct parts (PreparedScene::direct) of the groups planned, for every grid (not the
-/// indirect-only ones), its cells and every surface target, with the points drawn from `seed`;
+/// indirect-only ones), its cells and every surface target, with the points drawn from `seed`
+/// (zero, untraced, at targets given back to the photons: direct_by_photons);
 /// `strata_scale` multiplies the strata per side (1: the defaults above). Empty when no group
 /// has next_event.
 std::vector<DirectPart> direct_parts(const PreparedScene& s, Backend& backend, std::uint64_t seed,

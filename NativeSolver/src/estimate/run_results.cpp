@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <string>
 
-#include "types/luminaire_types.hpp"
 #include "estimate/daylight_factor.hpp"
 #include "estimate/target_results.hpp"
+#include "types/luminaire_types.hpp"
 
 namespace lightsolver::detail {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "model/prepared_scene.hpp"
 #include "lightsolver/statistics.hpp"
+#include "model/prepared_scene.hpp"
 #include "shared/grids.h"
 
 namespace lightsolver::detail {
@@ -44,18 +44,19 @@ class PathDeposits {
 // on a surface still counts the photons arriving there (shared::grid_reach).
 // `bounce`: reflections before this segment (0: straight from the luminaire); indirect-only
 // grids (observers) skip direct segments, and so does every grid when `first_bounce` is 1 (the
-// path's group has its direct light by next-event estimation). `connected`: the path's group
+// path's group has its direct light by next-event estimation) but those whose direct light went
+// back to the photons (PreparedGrid::direct_by_photons). `connected`: the path's group
 // has its reflected light beyond each grid's connect_r0 by connection (PreparedGroup::connect),
 // so a reflected segment counts only crossings closer than that to its origin (d is unit: t is
 // the distance); together the two count every (vertex, grid point) pair exactly once.
 inline void cross_grids(const std::vector<PreparedGrid>& grids, const vec3& o, const vec3& d,
                         float t_max, std::uint32_t bounce, PathDeposits& deposits,
                         std::uint32_t first_bounce = 0, bool connected = false) {
-  if (bounce < first_bounce) return;
+  const bool by_shadow_rays = bounce < first_bounce;
   const float t_end = shared::grid_reach(t_max);
   const bool capped = connected && bounce >= 1;
   for (const auto& g : grids) {
-    if (g.indirect_only && bounce == 0) continue;
+    if (bounce == 0 && (g.indirect_only || (by_shadow_rays && !g.direct_by_photons))) continue;
     const float t_grid = capped && g.connect_r0 > 0.0f ? std::min(t_end, g.connect_r0) : t_end;
     std::uint32_t cell;
     if (!shared::grid_crossing(o, d, t_grid, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "model/coincident.hpp"
 #include "lightsolver/rng.hpp"
 #include "lightsolver/scene.hpp"
+#include "model/coincident.hpp"
 
 namespace lightsolver::detail {
 
@@ -33,6 +33,10 @@ struct PreparedMesh {
   std::int32_t bin = -1;      // surface-target bin, or -1
   bool movable = false;       // instanced so its transform can change cheaply
   glm::mat4 transform{1.0f};  // movable: prepared (local) coordinates -> local world
+  // Its surface target's direct light stays with the photons although its groups have
+  // next_event (next_event "auto" judged the shadow rays wider there: estimate/direct_choice.hpp):
+  // their bounce-0 hits deposit. Every mesh of the target's bin has the same value.
+  bool direct_by_photons = false;
 };
 
 struct PreparedGrid {
@@ -46,6 +50,9 @@ struct PreparedGrid {
   // PreparedGroup::connect, a reflected segment (bounce >= 1) counts its crossing only closer
   // than this to its origin; farther crossings come from connections. 0: none.
   float connect_r0 = 0.0f;
+  // Its direct light stays with the photons although their group has next_event (next_event
+  // "auto" judged the shadow rays wider there): next-event groups' bounce-0 crossings count.
+  bool direct_by_photons = false;
 };
 
 // Side of an observer's virtual square at the eye (m): small against a room (its mean over
@@ -148,6 +155,9 @@ struct PreparedScene {
   // a scene has none (the effects list's reason).
   std::vector<DirectPart> direct;
   std::string next_event_off = "not planned";
+  // next_event "auto": which targets kept shadow rays and which went back to the photons, in
+  // words (the effects list's note on next_event_direct); empty when every target kept them.
+  std::string next_event_targets;
   // Why no group has `connect` (the effects list's reason).
   std::string connect_off = "not planned";
   // Some surface returns light: a next-event group's photons can deposit (after a bounce). When

@@ -130,6 +130,11 @@ std::vector<DarkTarget> dark_targets(const Scene& scene, const PreparedScene& pr
 void report_effects(const Scene& scene, const PreparedScene& prepared, Results& results) {
   const SceneEffects effects = analyse_effects(prepared);
   results.effects = effects_report(effects);
+  // next_event "auto" gave some targets back to the photons: which, and why.
+  if (effects.has(Effect::NextEventDirect) && !prepared.next_event_targets.empty()) {
+    results.effects.notes.push_back(
+        {effect_name(Effect::NextEventDirect), prepared.next_event_targets});
+  }
   for (DarkTarget& d : dark_targets(scene, prepared, effects)) {
     results.warnings.push_back(std::move(d.message));
   }

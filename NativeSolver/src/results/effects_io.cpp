@@ -9,7 +9,12 @@ nlohmann::json effects_json(const EffectsReport& effects) {
   for (const SkippedEffect& s : effects.skipped) {
     skipped.push_back({{"effect", s.effect}, {"reason", s.reason}});
   }
-  return {{"simulated", effects.simulated}, {"skipped", std::move(skipped)}};
+  nlohmann::json out = {{"simulated", effects.simulated}, {"skipped", std::move(skipped)}};
+  // Only where a simulated effect was not applied everywhere (next_event_direct under auto).
+  for (const EffectNote& n : effects.notes) {
+    out["notes"].push_back({{"effect", n.effect}, {"note", n.note}});
+  }
+  return out;
 }
 
 namespace {
@@ -34,6 +39,7 @@ std::string effects_lines(const EffectsReport& effects, bool list_skipped) {
            " effects not needed by this scene, not simulated: --effects lists them)";
   }
   out += "\n";
+  for (const EffectNote& n : effects.notes) out += words(n.effect) + ": " + n.note + "\n";
   if (!list_skipped) return out;
   for (const SkippedEffect& s : effects.skipped) {
     out += s.reason + ": " + words(s.effect) + " not simulated\n";

@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "io/json_reader.hpp"
+#include "lightsolver/defaults.hpp"
+#include "lightsolver/results_io.hpp"
 #include "results/daylight_factor_io.hpp"
 #include "results/groups_io.hpp"
 #include "results/observer_grid_io.hpp"
 #include "scene/provenance.hpp"
 #include "scene/sunlight_json.hpp"
-#include "lightsolver/defaults.hpp"
-#include "lightsolver/results_io.hpp"
 
 namespace lightsolver {
 namespace {
@@ -244,6 +244,11 @@ void read_effects(const JsonNode& root, Results& r) {
   for (std::size_t i = 0; i < skipped.array_size(); ++i) {
     r.effects.skipped.push_back(
         {skipped[i].at("effect").string(), skipped[i].at("reason").string()});
+  }
+  if (!e.has("notes")) return;  // results written before notes, or with none
+  const JsonNode notes = e.at("notes");
+  for (std::size_t i = 0; i < notes.array_size(); ++i) {
+    r.effects.notes.push_back({notes[i].at("effect").string(), notes[i].at("note").string()});
   }
 }
 

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <string>
 
+#include "estimate/direct_choice.hpp"
 #include "estimate/next_event.hpp"
 #include "estimate/reflection_connection.hpp"
 #include "lightsolver/simulation.hpp"
@@ -48,6 +49,61 @@ bool too_wide(const std::vector<detail::DirectPart>& parts, const Results& r) {
   return std::any_of(parts.begin(), parts.end(), [&](const detail::DirectPart& d) {
     return d.lux > 0.0 && z * std::sqrt(d.variance) > half_goal * d.lux;
   });
+}
+
+// Points for the judging parts: every target's, at the default strata.
+constexpr std::uint32_t kJudgingScale = 1;
+
+// auto, per target (estimate/direct_choice.hpp): from parts of every target at the default
+// strata, drawn from their own seed (the choice must not depend on the parts the run keeps, nor
+// on its photons), against the photons planned: the run's, or for an accuracy goal those its
+// direct light would need from the photons alone (its shadow rays judged at the default strata,
+// where the goal's refinement starts). False when no target is left to the shadow rays or the
+// judging was stopped: then no group has next-event estimation, and the reason says why.
+bool choose_direct_targets(detail::SimulationState& st, const Results& r,
+                           const std::function<bool()>& stop) {
+  detail::PreparedScene& p = st.prepared;
+  std::optional<std::vector<detail::DirectPart>> judging;
+  tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    judging = detail::direct_parts_unless(p, *st.backend, detail::judging_seed(r.seed),
+                                          kJudgingScale, stop);
+  });
+  std::string why;
+  if (judging) {
+    std::uint64_t photons = r.photons_requested;
+    std::uint32_t scale = kJudgingScale;
+    if (r.target_accuracy) {
+      photons =
+          detail::goal_photons(p, *judging, *r.target_accuracy, z_for_confidence(r.confidence),
+                               r.accuracy_per_cell, r.photons_requested);
+    } else {
+      scale = strata_scale_for(p, r.photons_requested);  // every target's rays: no more strata
+    }
+    std::vector<std::string> names;
+    for (const Target& t : st.scene.targets) names.push_back(t.name);
+    p.next_event_targets = detail::choose_direct_targets(p, *judging, photons, scale, names);
+    const bool mixed = detail::any_target_by_photons(p) && detail::any_target_by_shadow_rays(p);
+    if (mixed && !detail::analyse_effects(p).has(detail::Effect::Interreflection)) {
+      // Where nothing reflects, the photons of a next-event group deposit nothing at the targets
+      // with shadow rays (exactly zero, no interval); one target by photons would give every
+      // other the photons' zero-hit bound, which the per-target rule does not weigh.
+      detail::clear_direct_by_photons(p);
+      p.next_event_targets =
+          "shadow rays at every target: nothing reflects, and a target left to "
+          "the photons would widen the others' intervals (" +
+          p.next_event_targets + ")";
+    }
+    if (detail::any_target_by_shadow_rays(p)) return true;
+    why = "auto: the photons are expected to be tighter at every target (" + p.next_event_targets +
+          ")";
+  } else {
+    why = "the run was stopped before its direct light was traced";
+  }
+  detail::plan_next_event(p, *st.backend, "off");
+  p.next_event_off = why;
+  detail::plan_connection(p, *st.backend, r.connect_reflections, false, 0);
+  return false;
 }
 
 }  // namespace
@@ -120,6 +176,12 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
                        " shadow rays, more than 4 per photon of the run (\"on\" traces them)";
     detail::plan_connection(p, *st.backend, r.connect_reflections, false, 0);  // on: refused
     return;
+  }
+  if (r.next_event == "auto" && !r.decide && !choose_direct_targets(st, r, stop)) return;
+  // Parts traced with other targets given back to the photons are not this run's.
+  if (st.direct_by_photons != detail::direct_by_photons_flags(p)) {
+    st.direct_seed.reset();
+    st.direct_by_photons = detail::direct_by_photons_flags(p);
   }
   p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
   st.connect_paths = detail::connection_paths(p, r.photons_requested, goal_run);

@@ -17,6 +17,7 @@
 
 #include "estimate/cell_accuracy.hpp"
 #include "estimate/decide.hpp"
+#include "estimate/direct_choice.hpp"
 #include "estimate/run_results.hpp"
 #include "estimate/target_results.hpp"
 #include "lightsolver/run_options.hpp"
@@ -407,8 +408,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   // before the direct parts (as many, and traced per group and bin).
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
   r.next_event = options.next_event.value_or(scene.settings.next_event);
-  r.connect_reflections =
-      options.connect_reflections.value_or(scene.settings.connect_reflections);
+  r.connect_reflections = options.connect_reflections.value_or(scene.settings.connect_reflections);
   r.contributions = options.contributions.value_or(scene.settings.contributions);
   // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
   // before any shadow ray is traced for it.
@@ -425,7 +425,8 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
                              (qmc ? qmc->replicates : 1));
   if (resume && state_->kept && state_->kept_seed == r.seed &&
       state_->kept_photons <= r.photons_requested &&
-      state_->kept->bins.size() == tallies.bins.size()) {
+      state_->kept->bins.size() == tallies.bins.size() &&
+      state_->kept_by_photons == detail::direct_by_photons_flags(prepared)) {
     tallies = *state_->kept;  // photons [0, kept_photons) are already traced
     r.photons = state_->kept_photons;
   }
@@ -465,6 +466,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   state_->kept = std::move(tallies);  // what refine() continues from
   state_->kept_photons = r.photons;
   state_->kept_seed = r.seed;
+  state_->kept_by_photons = detail::direct_by_photons_flags(prepared);
   detail::add_verdicts(r);
   detail::add_to_decide(r, tracing_s > 0.0 ? double(r.photons) / tracing_s : 0.0);
   detail::add_warnings(scene, r);

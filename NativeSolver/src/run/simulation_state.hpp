@@ -20,12 +20,15 @@ struct SimulationState {
   // The last run's tallies, for refine(); dropped by any change to the scene.
   std::optional<TallyBlock> kept;
   std::uint64_t kept_photons = 0, kept_seed = 0;
+  // The targets whose direct light the kept tallies' photons deposited (direct_by_photons).
+  std::vector<bool> kept_by_photons;
   // The last run's direct parts (next-event estimation), for the next run with the same seed
   // and points; dropped by any change to the scene.
   std::vector<DirectPart> direct;
   std::optional<std::uint64_t> direct_seed;
   std::uint32_t direct_strata_scale = 0;
-  double direct_seconds = 0.0;  // the time `direct` took to trace
+  std::vector<bool> direct_by_photons;  // the targets `direct` left to the photons (zero parts)
+  double direct_seconds = 0.0;          // the time `direct` took to trace
   // The strata scale the current run's parts end at (0: none, or fixed by an accuracy goal).
   std::uint32_t direct_final_scale = 0;
   // Connected reflected light (estimate/reflection_connection.hpp), kept apart from `direct`

@@ -39,8 +39,10 @@ struct Tri {  // triangle in leaf order
 struct MeshInfo {
   std::uint32_t material;
   std::int32_t bin;
-  std::uint32_t pad[2];
+  std::uint32_t flags;  ///< kMeshDirectByPhotons (PreparedMesh::direct_by_photons)
+  std::uint32_t pad;
 };
+inline constexpr std::uint32_t kMeshDirectByPhotons = 1u;  ///< Shaders/trace_layout.glsl
 
 struct Material {
   std::uint32_t type;     // Material::Type
@@ -85,9 +87,12 @@ struct Grid {
   float du[3];
   std::uint32_t bin;
   float dv[3];
-  std::uint32_t flags;  ///< kGridIndirectOnly: an observer's tally (reflected light only)
+  /// kGridIndirectOnly: an observer's tally (reflected light only); kGridDirectByPhotons:
+  /// next-event groups' bounce-0 crossings count (PreparedGrid::direct_by_photons)
+  std::uint32_t flags;
 };
-inline constexpr std::uint32_t kGridIndirectOnly = 1u;  ///< Shaders/trace_layout.glsl
+inline constexpr std::uint32_t kGridIndirectOnly = 1u;     ///< Shaders/trace_layout.glsl
+inline constexpr std::uint32_t kGridDirectByPhotons = 2u;  ///< Shaders/trace_layout.glsl
 
 struct TracePush {
   std::uint64_t first_path;

@@ -82,7 +82,8 @@ gpu::Grid pack_grid(const PreparedGrid& p) {
   put(g.du, p.du);
   g.bin = p.bin;
   put(g.dv, p.dv);
-  g.flags = p.indirect_only ? gpu::kGridIndirectOnly : 0u;
+  g.flags = (p.indirect_only ? gpu::kGridIndirectOnly : 0u) |
+            (p.direct_by_photons ? gpu::kGridDirectByPhotons : 0u);
   return g;
 }
 
@@ -268,14 +269,29 @@ void pack_luminaires(const PreparedScene& s, GpuSceneData& d) {
   d.features = features(s);
 }
 
+bool pack_target_records(const PreparedScene& s, GpuSceneData& d) {
+  std::vector<gpu::MeshInfo> meshes;
+  for (const auto& m : s.meshes) {
+    const std::uint32_t flags = m.direct_by_photons ? gpu::kMeshDirectByPhotons : 0u;
+    meshes.push_back({static_cast<std::uint32_t>(m.material), m.bin, flags, 0});
+  }
+  std::vector<gpu::Grid> grids;
+  for (const auto& g : s.grids) grids.push_back(pack_grid(g));
+  const auto same_bytes = [](const auto& a, const auto& b) {
+    return a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), a.size() * sizeof(a.front())) == 0;
+  };
+  if (same_bytes(meshes, d.meshes) && same_bytes(grids, d.grids)) return false;
+  d.meshes = std::move(meshes);
+  d.grids = std::move(grids);
+  return true;
+}
+
 GpuSceneData pack_scene(const PreparedScene& s) {
   GpuSceneData d;
   pack_luminaires(s, d);
   for (const auto& m : s.materials) d.materials.push_back(pack_material(m));
-  for (const auto& m : s.meshes) {
-    d.meshes.push_back({static_cast<std::uint32_t>(m.material), m.bin, {0, 0}});
-  }
-  for (const auto& g : s.grids) d.grids.push_back(pack_grid(g));
+  pack_target_records(s, d);
   d.geometry = build_gpu_geometry(s);
   d.instance_roots = d.geometry.instances;
   for (const auto& r : d.instance_roots) {

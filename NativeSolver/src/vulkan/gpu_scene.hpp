@@ -59,6 +59,10 @@ gpu::Instance pack_instance(const GpuInstanceRoot& root, const glm::mat4& transf
 /// photometric luminaire has no loaded file.
 GpuSceneData pack_scene(const PreparedScene& scene);
 
+/// Packs the mesh and grid records (their flags follow the next-event plan, which changes per
+/// run: PreparedMesh/PreparedGrid::direct_by_photons); true when they differ from `out`'s.
+bool pack_target_records(const PreparedScene& scene, GpuSceneData& out);
+
 /// Re-packs luminaires, their CDF, photometric tables and the feature switches.
 void pack_luminaires(const PreparedScene& scene, GpuSceneData& out);
 

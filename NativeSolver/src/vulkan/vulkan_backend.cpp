@@ -145,6 +145,12 @@ class VulkanBackend final : public Backend {
   // constants.
   void trace(const std::vector<GroupRange>& ranges, std::uint64_t seed, TallyBlock& out) override {
     const std::lock_guard lock(submit_mutex_);
+    // The records' direct_by_photons flags follow each run's next-event plan: same sizes,
+    // uploaded in place when they changed.
+    if (pack_target_records(s_, data_)) {
+      upload(gpu::kMeshes, contents(gpu::kMeshes));
+      upload(gpu::kGrids, contents(gpu::kGrids));
+    }
     bool cleared = false;
     for (std::size_t r = 0; r < ranges.size(); ++r) {
       const GroupRange& range = ranges[r];
