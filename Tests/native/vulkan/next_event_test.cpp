@@ -76,6 +76,47 @@ TEST_F(VulkanNextEventTest, SameTalliesAsEmbreeToTheBit) {
   expect_equal(trace(*vulkan, p, kPhotons, kSeed), off, "next_event off again");
 }
 
+// next_event "auto" gives some targets back to the photons (direct_by_photons, the mesh and grid
+// records' flags, uploaded again when they change): there group a deposits its bounce-0 light
+// again, so those bins hold exactly what they held without next-event estimation, the others
+// what they held with it; both backends to the bit.
+TEST_F(VulkanNextEventTest, TargetsGivenBackToThePhotonsDepositBounceZero) {
+  detail::PreparedScene p = detail::prepare(mirror_slab());
+  const std::size_t bins = p.bins.size();
+  const auto embree = detail::make_embree_backend(p);
+  const auto vulkan = detail::make_vulkan_backend(p);
+  constexpr std::uint64_t kPhotons = 20'000, kSeed = 5;
+  const detail::TallyBlock off = trace(*vulkan, p, kPhotons, kSeed);
+  p.groups[0].next_event = true;
+  const detail::TallyBlock on = trace(*vulkan, p, kPhotons, kSeed);
+  std::vector<bool> given(bins, false);
+  for (detail::PreparedMesh& m : p.meshes) {
+    if (m.bin < 0) continue;
+    m.direct_by_photons = true;
+    given[std::size_t(m.bin)] = true;
+  }
+  ASSERT_GE(p.grids.size(), 4u);
+  for (std::size_t k = 0; k < p.grids.size(); k += 2) {
+    detail::PreparedGrid& g = p.grids[k];
+    g.direct_by_photons = true;
+    for (std::uint32_t b = g.bin; b <= g.bin + g.nu * g.nv; ++b) given[b] = true;
+  }
+  const detail::TallyBlock mixed = trace(*vulkan, p, kPhotons, kSeed);
+  expect_equal(trace(*embree, p, kPhotons, kSeed), mixed, "targets given back");
+  std::size_t differ = 0;  // bins where group a's direct light mattered
+  for (std::size_t i = 0; i < bins; ++i) {
+    const detail::TallyBlock& want = given[i] ? off : on;
+    EXPECT_EQ(mixed.bins[i].sum, want.bins[i].sum) << i;
+    EXPECT_EQ(mixed.bins[i].sum_sq, want.bins[i].sum_sq) << i;
+    differ += given[i] && off.bins[i].sum != on.bins[i].sum;
+  }
+  EXPECT_GT(differ, 4u);
+  for (std::size_t i = bins; i < 2 * bins; ++i) EXPECT_EQ(mixed.bins[i].sum, off.bins[i].sum) << i;
+  for (detail::PreparedMesh& m : p.meshes) m.direct_by_photons = false;
+  for (detail::PreparedGrid& g : p.grids) g.direct_by_photons = false;
+  expect_equal(trace(*vulkan, p, kPhotons, kSeed), on, "every target by shadow rays again");
+}
+
 // A black room: all light is direct, so a group by next-event estimation deposits nothing at
 // all, on grids and surface targets alike, while the other group's tallies stay as they were.
 TEST_F(VulkanNextEventTest, DirectOnlyLightLeavesNothingForThePhotons) {
