@@ -70,18 +70,21 @@ std::uint64_t judging_seed(std::uint64_t seed) {
   return seed ^ 0xa5c3'5e1d'9b70'2f84ull;  // any fixed change: Philox keys the streams by it
 }
 
-DirectVariances direct_variances(const PreparedScene& s, const std::vector<DirectPart>& parts,
-                                 std::uint64_t photons, std::uint32_t strata_scale,
-                                 const PreparedTarget& target) {
-  DirectVariances v;
+DirectWidths direct_widths(const PreparedScene& s, const std::vector<DirectPart>& parts,
+                           std::uint64_t photons, std::uint32_t strata_scale,
+                           const PreparedTarget& target) {
+  DirectWidths w;
   const double scale2 = double(strata_scale) * strata_scale;
   for (const std::uint32_t b : judged_bins(s, target)) {
+    double shadow_rays = 0.0;
     for (std::size_t g = 0; g < s.groups.size(); ++g) {
-      if (s.groups[g].next_event) v.shadow_rays += parts[g * s.bins.size() + b].variance / scale2;
+      if (s.groups[g].next_event) shadow_rays += parts[g * s.bins.size() + b].variance / scale2;
     }
-    v.photons += unit_photon_variance(s, parts, b) / double(std::max<std::uint64_t>(photons, 1));
+    w.shadow_rays += std::sqrt(shadow_rays);
+    w.photons +=
+        std::sqrt(unit_photon_variance(s, parts, b) / double(std::max<std::uint64_t>(photons, 1)));
   }
-  return v;
+  return w;
 }
 
 std::string choose_direct_targets(PreparedScene& s, const std::vector<DirectPart>& parts,
@@ -91,15 +94,15 @@ std::string choose_direct_targets(PreparedScene& s, const std::vector<DirectPart
   for (std::size_t i = 0; i < s.targets.size(); ++i) {
     const PreparedTarget& t = s.targets[i];
     if (judged_bins(s, t).empty()) continue;  // observers: reflected light only
-    const DirectVariances v = direct_variances(s, parts, photons, strata_scale, t);
+    const DirectWidths w = direct_widths(s, parts, photons, strata_scale, t);
     const std::string& name = i < names.size() ? names[i] : std::to_string(i);
-    if (v.shadow_rays <= v.photons) {  // ties (an unlit target: both 0) keep the shadow rays
+    if (w.shadow_rays <= w.photons) {  // ties (an unlit target: both 0) keep the shadow rays
       kept.push_back(name);
       continue;
     }
     set_by_photons(s, t);
     char ratio[32];
-    std::snprintf(ratio, sizeof ratio, "%.1fx", std::sqrt(v.shadow_rays / v.photons));
+    std::snprintf(ratio, sizeof ratio, "%.1fx", w.shadow_rays / w.photons);
     given.push_back(name + " (" + ratio + ")");
   }
   if (given.empty()) return {};
