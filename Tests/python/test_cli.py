@@ -67,7 +67,10 @@ def test_a_bad_confidence_is_named(cli, room_scene):
 
 def test_ctrl_c_stops_cleanly_with_partial_results(cli, room_scene, tmp_path):
     out = tmp_path / "partial.json"
-    p = subprocess.Popen([cli, "run", str(room_scene), "--photons", "5000000000", "--out", str(out)],
+    # next_event "on": at 5e9 photons `auto` would leave every target's direct light to the
+    # photons (docs/statistics.md, "When shadow rays pay"); this checks a cancel with shadow rays.
+    p = subprocess.Popen([cli, "run", str(room_scene), "--photons", "5000000000", "--next-event",
+                          "on", "--out", str(out)],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     time.sleep(1.5)
     p.send_signal(signal.SIGINT)
@@ -78,7 +81,7 @@ def test_ctrl_c_stops_cleanly_with_partial_results(cli, room_scene, tmp_path):
     assert res["partial"] and 0 < res["photons"] < 5_000_000_000
     assert res["stop_reason"] == "cancelled"
     assert res["targets"][0]["mean_lux"] > 0
-    # Next-event estimation (the default): the default points' direct parts, traced before the
+    # Next-event estimation: the default points' direct parts, traced before the
     # photons, are whole; the finer ones planned for 5e9 photons were not traced.
     assert "next_event_direct" in res["effects"]["simulated"]
     assert any("direct light was sampled as planned" in w for w in res["warnings"])

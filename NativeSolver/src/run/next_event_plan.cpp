@@ -42,6 +42,9 @@ std::uint32_t strata_scale_for(const detail::PreparedScene& p, std::uint64_t pho
   return static_cast<std::uint32_t>(std::clamp(fit, 1.0, double(kMaxStrataScale)));
 }
 
+// Points for the judging parts: every target's, at the default strata.
+constexpr std::uint32_t kJudgingScale = 1;
+
 // A direct part whose interval is wider than half the accuracy goal.
 bool too_wide(const std::vector<detail::DirectPart>& parts, const Results& r) {
   if (!r.target_accuracy) return false;
@@ -51,8 +54,7 @@ bool too_wide(const std::vector<detail::DirectPart>& parts, const Results& r) {
   });
 }
 
-// Points for the judging parts: every target's, at the default strata.
-constexpr std::uint32_t kJudgingScale = 1;
+}  // namespace
 
 // auto, per target (estimate/direct_choice.hpp): from parts of every target at the default
 // strata, drawn from their own seed (the choice must not depend on the parts the run keeps, nor
@@ -60,15 +62,23 @@ constexpr std::uint32_t kJudgingScale = 1;
 // direct light would need from the photons alone (its shadow rays judged at the default strata,
 // where the goal's refinement starts). False when no target is left to the shadow rays or the
 // judging was stopped: then no group has next-event estimation, and the reason says why.
-bool choose_direct_targets(detail::SimulationState& st, const Results& r,
-                           const std::function<bool()>& stop) {
+bool detail::judge_direct_targets(detail::SimulationState& st, const Results& r,
+                                  const std::function<bool()>& stop) {
   detail::PreparedScene& p = st.prepared;
-  std::optional<std::vector<detail::DirectPart>> judging;
-  tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    judging = detail::direct_parts_unless(p, *st.backend, detail::judging_seed(r.seed),
+  if (st.judging_seed != r.seed) {  // traced once per seed: the choice needs no photons
+    std::optional<std::vector<detail::DirectPart>> parts;
+    tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+      parts = detail::direct_parts_unless(p, *st.backend, detail::judging_seed(r.seed),
                                           kJudgingScale, stop);
-  });
+    });
+    if (parts) {
+      st.judging = std::move(*parts);
+      st.judging_seed = r.seed;
+    }
+  }
+  const std::vector<detail::DirectPart>* judging =
+      st.judging_seed == r.seed ? &st.judging : nullptr;  // null: stopped
   std::string why;
   if (judging) {
     std::uint64_t photons = r.photons_requested;
@@ -105,8 +115,6 @@ bool choose_direct_targets(detail::SimulationState& st, const Results& r,
   detail::plan_connection(p, *st.backend, r.connect_reflections, false, 0);
   return false;
 }
-
-}  // namespace
 
 bool Simulation::use_direct_parts(std::uint64_t seed, std::uint32_t scale,
                                   const std::function<bool()>& stop) {
@@ -177,7 +185,7 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
     detail::plan_connection(p, *st.backend, r.connect_reflections, false, 0);  // on: refused
     return;
   }
-  if (r.next_event == "auto" && !r.decide && !choose_direct_targets(st, r, stop)) return;
+  if (r.next_event == "auto" && !r.decide && !detail::judge_direct_targets(st, r, stop)) return;
   // Parts traced with other targets given back to the photons are not this run's.
   if (st.direct_by_photons != detail::direct_by_photons_flags(p)) {
     st.direct_seed.reset();

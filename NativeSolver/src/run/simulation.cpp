@@ -338,6 +338,7 @@ void Simulation::set_luminaire(std::size_t index, const Luminaire& luminaire) {
   state_->backend->luminaires_changed();
   state_->kept.reset();
   state_->direct_seed.reset();
+  state_->judging_seed.reset();
   state_->pending_update_seconds += seconds_since(start);
 }
 
@@ -361,6 +362,7 @@ void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
   state_->backend->set_mesh_transform(mesh, p.meshes[mesh].transform);
   state_->kept.reset();
   state_->direct_seed.reset();
+  state_->judging_seed.reset();
   state_->pending_update_seconds += seconds_since(start);
 }
 

@@ -121,6 +121,15 @@ GroupTrace Simulation::trace_group(std::size_t group, std::uint64_t run_photons,
   // Its direct light by shadow rays where the setting plans it (the plan also tells the
   // backend to skip this group's bounce-0 deposits).
   detail::plan_next_event(p, *state_->backend, scene.settings.next_event);
+  if (scene.settings.next_event == "auto") {
+    // The targets a run of run_photons gives back to the photons (the same judging parts), so
+    // that combining equals run(); a continued trace keeps its prefix's choice, judged for the
+    // prefix's run: its tallies were deposited with it.
+    Results judged;
+    judged.seed = seed;
+    judged.photons_requested = prefix ? prefix->run_photons : run_photons;
+    detail::judge_direct_targets(*state_, judged, {});
+  }
   if (prefix && prefix->next_event_off.empty() != p.groups[group].next_event) {
     // Its photons deposited their bounce-0 light, or not, as this trace's must not.
     throw std::invalid_argument("trace_group: the prefix was traced with another next_event");

@@ -2,10 +2,12 @@
 // What a Simulation keeps between runs (simulation.cpp runs, simulation_groups.cpp traces one
 // group at a time for the optimizer).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 
 #include "lightsolver/scene.hpp"
+#include "lightsolver/solver.hpp"
 #include "model/backend.hpp"
 
 namespace lightsolver::detail {
@@ -38,6 +40,16 @@ struct SimulationState {
   std::uint64_t connected_paths = 0;
   std::optional<std::uint64_t> connected_seed;
   std::uint64_t connect_paths = 0;
+  // next_event "auto"'s judging parts (estimate/direct_choice.hpp) and their seed; dropped with
+  // `direct` by any change to the scene.
+  std::vector<DirectPart> judging;
+  std::optional<std::uint64_t> judging_seed;
 };
+
+/// next_event "auto": gives the targets where shadow rays would be wider back to the photons,
+/// judged for a run of `r` (its seed, photons, accuracy goal) from judging parts traced once per
+/// seed (run/next_event_plan.cpp). False when none is left to the shadow rays or the judging was
+/// stopped: then no group has next-event estimation and PreparedScene::next_event_off says why.
+bool judge_direct_targets(SimulationState& st, const Results& r, const std::function<bool()>& stop);
 
 }  // namespace lightsolver::detail

@@ -12,10 +12,10 @@
 #include <sstream>
 
 #include "io/json_reader.hpp"
-#include "types/target_types.hpp"
 #include "lightsolver/accuracy.hpp"
 #include "lightsolver/defaults.hpp"
 #include "lightsolver/simulation.hpp"
+#include "types/target_types.hpp"
 
 namespace lightsolver {
 namespace {
@@ -276,7 +276,7 @@ Study run_study(const Scene& scene, const StudyOptions& o,
   }
   opt.photons = opt.checkpoints.back();
   opt.target_accuracy.reset();  // every checkpoint is reached
-  opt.decide = false;            // even in a scene whose settings decide its requirements
+  opt.decide = false;           // even in a scene whose settings decide its requirements
   opt.checkpoint = [&](const Checkpoint& c) {
     st.rows.push_back(make_row(c, st.reference));
     if (on_row) on_row(st.rows.back());
