@@ -50,3 +50,18 @@ def test_the_general_kernel_gives_the_same_numbers(cli, room_scene, tmp_path):
         doc.pop("seconds")
     assert without_run_facts(special) == without_run_facts(general)
     assert "refraction" in special["effects"]["simulated"]  # the room's window is glass
+
+
+def test_auto_notes_which_targets_kept_shadow_rays_and_the_cli_prints_it(cli, tmp_path):
+    """The materials golden's scene: its large floor goes back to the photons, its grids and
+    small targets keep shadow rays (docs/statistics.md, "When shadow rays pay"); the note is
+    schema-valid, read back by the results reader, and printed under the simulated line."""
+    scene = SOURCE_DIR / "Tests" / "golden" / "scenes" / "materials.json"
+    stdout, results = run(cli, scene, tmp_path)
+    jsonschema.Draft202012Validator(SCHEMA).validate(results)
+    assert "next_event_direct" in results["effects"]["simulated"]
+    [note] = results["effects"]["notes"]
+    assert note["effect"] == "next_event_direct"
+    assert note["note"].startswith("photons where shadow rays would be wider: floor ("), note
+    assert "shadow rays: under block" in note["note"]
+    assert "next event direct: photons where shadow rays would be wider: floor (" in stdout
