@@ -2,27 +2,18 @@
 // (src/model/sobol.hpp): photon i of a (seed, group) stream draws the coordinates of Sobol'
 // point i first, each Owen-scrambled by Burley's hash with a seed per coordinate, then Philox.
 // Bit for bit the CPU's: the same direction numbers (uploaded from sobol_directions()), the same
-// integer scramble, the same Philox-drawn scramble seeds.
+// integer scramble (shared/sobol.h, one text with the CPU), the same Philox-drawn scramble seeds.
 #ifndef LIGHTSOLVER_SOBOL_GLSL
 #define LIGHTSOLVER_SOBOL_GLSL
 
 #include "shared/philox.h"
-
-// owen_scramble_reversed of sobol.hpp, four coordinates at once.
-uvec4 owen_scramble_reversed4(uvec4 y, uvec4 seed) {
-  y += seed;
-  y ^= y * 0x6c50b47cu;
-  y ^= y * 0xb82f1e52u;
-  y ^= y * 0xc7afe638u;
-  y ^= y * 0x8d22f6e6u;
-  return bitfieldReverse(y);
-}
+#include "shared/sobol.h"
 
 // After rng_init: the path draws its point's 16 coordinates before Philox. Coordinates
 // 4q .. 4q + 3: the reversed directions of the set bits of its index XORed (loops, not unrolled:
 // their code is compiled once per pipeline; lavapipe's loop limit counts their at most 4 x 32
-// iterations, and a path it cuts is traced again: trace.comp), then scrambled with the seeds SobolScramble draws: Philox block
-// (q, 0, 2^32 - 1, group) under the run's seed.
+// iterations, and a path it cuts is traced again: trace.comp), then scrambled with the seeds
+// SobolScramble draws: Philox block (q, 0, 2^32 - 1, group) under the run's seed.
 void rng_start_quasi_random(uint64_t photon) {
   const uint index = uint(photon);  // 32-bit indices (kMaxSobolPoints)
   for (uint q = 0u; q < 4u; ++q) {

@@ -133,8 +133,9 @@ void add_optimize_command(CLI::App& app) {
                   "settings.next_event)")
       ->check(CLI::IsMember({"auto", "on", "off"}));
   cmd->add_option("--match-widths", args->overrides.match_widths,
-                  "true: with next-event estimation, scale n and N down to a photon-only "
-                  "search's interval widths (overrides search.match_widths)");
+                  "true (the default): with next-event estimation, scale N down to a "
+                  "photon-only search's interval width; false: N as given (overrides "
+                  "search.match_widths)");
   cmd->add_flag("--quiet,-q", args->quiet, "No per-iteration lines");
   cmd->callback([args] {
     int rc = 1;

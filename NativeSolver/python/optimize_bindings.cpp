@@ -168,8 +168,9 @@ next_event: "auto", "on" or "off": overrides the scene's settings.next_event for
     evaluation (direct light at the targets by shadow rays, docs/optimization.md §9).
 refine_stage_photons: overrides search.refine_stage_photons (the staged end refinement's first
     stage, N1 photons of each member's N stream; 0: unstaged).
-match_widths: overrides search.match_widths (True: with next-event estimation, n and N scaled
-    down to the interval widths a photon-only search has at them; provenance width_factor).
+match_widths: overrides search.match_widths (default True: with next-event estimation, N and
+    the stages scaled down to the interval width a photon-only search has at N; provenance
+    width_factor; False keeps N as given).
 Returns the result as a dict (format lightsolver.optimization/1): isoc members with cells,
 values, objective and constraint estimates and "scene" (world positions), siisoc, counters,
 history. The GIL is released while searching.)");

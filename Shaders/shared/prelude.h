@@ -45,6 +45,7 @@ class PathRng;
 namespace shared {
 // GLSL's names for glm's types and functions, and std's float overloads of the scalar ones (the
 // using-declarations hide the C library's double-only ::sqrt, ::cos ...).
+using glm::bitfieldReverse;
 using glm::dot;
 using glm::floatBitsToInt;
 using glm::floatBitsToUint;

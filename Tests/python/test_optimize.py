@@ -186,7 +186,8 @@ def test_next_event_refine_stage_and_match_widths_keywords_reach_the_search() ->
     --refine-stage-photons and --match-widths do; a bad value is refused naming the setting."""
     small = dict(iterations=2, seed=3, threads=2, screening_photons=2000,
                  confirmation_photons=16000)
-    on = lightsolver.optimize(CORNELL, next_event="on", refine_stage_photons=4000, **small)
+    on = lightsolver.optimize(CORNELL, next_event="on", refine_stage_photons=4000,
+                              match_widths=False, **small)
     off = lightsolver.optimize(CORNELL, next_event="off", refine_stage_photons=0, **small)
     assert on["provenance"]["options"]["next_event"] == "on"
     assert off["provenance"]["options"]["next_event"] == "off"
@@ -197,9 +198,14 @@ def test_next_event_refine_stage_and_match_widths_keywords_reach_the_search() ->
     assert off["counters"]["refine_stage"] == 0
     with pytest.raises(Exception, match="next_event"):
         lightsolver.optimize(CORNELL, next_event="sometimes", **small)
-    matched = lightsolver.optimize(CORNELL, next_event="on", match_widths=True, **small)
+    # match_widths is the default (search.match_widths true): the same search as asking for it
+    matched = lightsolver.optimize(CORNELL, next_event="on", **small)
+    asked = lightsolver.optimize(CORNELL, next_event="on", match_widths=True, **small)
+    assert asked["provenance"]["options"]["width_factor"] == \
+        matched["provenance"]["options"]["width_factor"]
     options = matched["provenance"]["options"]
-    assert options["match_widths"] is True and "match_widths" not in on["provenance"]["options"]
+    assert options["match_widths"] is True and on["provenance"]["options"]["match_widths"] is False
+    assert "width_factor" not in on["provenance"]["options"]
     assert 0.25 <= options["width_factor"] <= 1.0  # never below the calibration's 4000 photons
     assert options["confirmation_photons"] == round(16000 * options["width_factor"])
     assert all(m["photons"] == options["confirmation_photons"] for m in matched["isoc"])

@@ -16,11 +16,13 @@
 #include <cstdint>
 
 #include "lightsolver/rng.hpp"
+#include "shared/sobol.h"
 
 namespace lightsolver::detail {
 
 /// Coordinates of a Sobol' point a path draws before its Philox stream.
 inline constexpr unsigned kSobolDims = PathRng::kPrefixWords;
+static_assert(kSobolDims % 4 == 0, "scrambled four coordinates at a time");
 
 /// Direction numbers by index bit, bit-reversed: directions()[j][d] is XORed into coordinate
 /// d for bit j of the point's index, and bit 0 of a stored number is the 1/2 digit (the
@@ -53,16 +55,10 @@ inline std::array<std::uint32_t, kSobolDims> sobol_point(std::uint32_t index) {
   return x;
 }
 
-/// Burley's nested uniform scramble of a bit-reversed fraction `y`, returned as a fraction:
-/// each step changes a bit of y depending on lower ones only (an add; XOR with a product by
-/// an even constant), i.e. each digit of the fraction depending on the digits before it.
+/// Burley's nested uniform scramble of a bit-reversed fraction `y`, returned as a fraction
+/// (Shaders/shared/sobol.h, the text the shaders include too).
 inline std::uint32_t owen_scramble_reversed(std::uint32_t y, std::uint32_t seed) {
-  y += seed;
-  y ^= y * 0x6c50b47cu;
-  y ^= y * 0xb82f1e52u;
-  y ^= y * 0xc7afe638u;
-  y ^= y * 0x8d22f6e6u;
-  return reverse_bits(y);
+  return shared::owen_scramble_reversed4(shared::uvec4(y), shared::uvec4(seed)).x;
 }
 
 /// The scramble of a fraction `x` (owen_scramble_reversed of its reversed bits).
@@ -82,7 +78,12 @@ struct SobolScramble {
     PathRng rng(seed, index, stream);
     std::array<std::uint32_t, kSobolDims> x =
         sobol_point_reversed(static_cast<std::uint32_t>(index));
-    for (unsigned d = 0; d < kSobolDims; ++d) x[d] = owen_scramble_reversed(x[d], seeds[d]);
+    for (unsigned q = 0; q < kSobolDims; q += 4) {
+      const shared::uvec4 y = shared::owen_scramble_reversed4(
+          shared::uvec4(x[q], x[q + 1], x[q + 2], x[q + 3]),
+          shared::uvec4(seeds[q], seeds[q + 1], seeds[q + 2], seeds[q + 3]));
+      for (unsigned k = 0; k < 4; ++k) x[q + k] = y[k];
+    }
     rng.set_prefix(x);
     return rng;
   }

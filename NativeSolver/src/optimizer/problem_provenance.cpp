@@ -53,13 +53,11 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& s, b
        std::string(s.strategy == PhotonStrategy::kConfirm ? "confirm" : "refine_at_end")},
       {"uncertain", std::string(s.uncertain == UncertainPolicy::kReject ? "reject" : "accept")},
   };
-  // Only where asked: outputs of searches that do not match widths stay as they were.
-  if (match_widths) {
-    p.options.push_back({"match_widths", true});
-    if (width_factor) p.options.push_back({"width_factor", *width_factor});
-    std::sort(p.options.begin(), p.options.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-  }
+  // Always, since it became the default: an output says whether its N was matched.
+  p.options.push_back({"match_widths", match_widths});
+  if (width_factor) p.options.push_back({"width_factor", *width_factor});
+  std::sort(p.options.begin(), p.options.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
   p.started_utc = lightsolver::detail::utc_text(started);
   p.finished_utc = lightsolver::detail::utc_text(finished);
   p.host = lightsolver::detail::host_name();

@@ -22,8 +22,7 @@ Provenance search_provenance(const SceneProblem& problem, const VnsOptions& sear
                              const std::string& backend, const std::string& device, int threads,
                              int mpi_ranks, const std::string& command,
                              std::chrono::system_clock::time_point started,
-                             std::chrono::system_clock::time_point finished,
-                             bool match_widths = false,
+                             std::chrono::system_clock::time_point finished, bool match_widths,
                              std::optional<double> width_factor = std::nullopt);
 
 /// The output's "provenance" object: the results' fields (provenance_json) with

@@ -422,7 +422,7 @@ SceneProblem read_block(Scene scene, const nlohmann::json& block, const std::str
     p.search.confidence = p.scene.settings.confidence;
   }
   if (root.has("search")) p.reuse_traces = root.at("search").boolean_or("reuse_traces", true);
-  if (root.has("search")) p.match_widths = root.at("search").boolean_or("match_widths", false);
+  if (root.has("search")) p.match_widths = root.at("search").boolean_or("match_widths", true);
   if (root.has("search") && root.at("search").has("refine_stage_photons")) {
     p.refine_stage_photons = p.search.refine_stage_photons;
   }

@@ -44,6 +44,17 @@ Estimate blocked_estimate(double truth, std::uint64_t photons, std::uint64_t see
 // A broad optimum (the hangar's case: many cells within reach of the best at n).
 double broad(const std::vector<double>& v) { return bump(v, 0.55, 0.45, 0.25, 100.0, 10.0); }
 
+// The searches of this file: n = N/64, refinement at the end, first stage `stage` photons.
+VnsOptions staged_options(std::uint64_t stage, std::uint64_t iterations) {
+  VnsOptions o;
+  o.screening_photons = kN / 64;
+  o.confirmation_photons = kN;
+  o.strategy = PhotonStrategy::kRefineAtEnd;
+  o.refine_stage_photons = stage;
+  o.max_iterations = iterations;
+  return o;
+}
+
 struct SearchRun {
   std::set<std::uint64_t> isoc;
   Counters counters;
@@ -68,14 +79,9 @@ SearchRun search(std::uint64_t seed, std::uint64_t stage, double confidence = 0.
     }
     return e;
   });
-  VnsOptions o;
+  VnsOptions o = staged_options(stage, 60);
   o.seed = seed;
   o.confidence = confidence;
-  o.screening_photons = kN / 64;
-  o.confirmation_photons = kN;
-  o.strategy = PhotonStrategy::kRefineAtEnd;
-  o.refine_stage_photons = stage;
-  o.max_iterations = 60;
   o.keep_history = false;
   const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o);
   for (const ResultMember& m : r.isoc) {
@@ -152,13 +158,8 @@ SetNumbers set_numbers(const Intention& in) {
       e.constraints.push_back({1000.0, 1.0, 998.0, 1002.0, 1});  // met
     return e;
   });
-  VnsOptions o;
+  VnsOptions o = staged_options(kN / 4, 4);
   o.confidence = 0.95;
-  o.screening_photons = kN / 64;
-  o.confirmation_photons = kN;
-  o.strategy = PhotonStrategy::kRefineAtEnd;
-  o.refine_stage_photons = kN / 4;
-  o.max_iterations = 4;
   o.initial = {{0}};
   out.counters = optimize(d, in, ev, o).counters;
   return out;
@@ -194,18 +195,15 @@ TEST(StagedRefinement, ConfirmationFactorScalesNAndTheStagesOnce) {
   std::set<std::uint64_t> refine_photons;
   FunctionEvaluator ev([&](const EvaluationRequest& r) {
     if (r.photons > kN / 64) refine_photons.insert(r.photons);
-    if (r.seed_photons) EXPECT_EQ(r.seed_photons, kN / 2);
+    if (r.seed_photons) {
+      EXPECT_EQ(r.seed_photons, kN / 2);
+    }
     Evaluation e;
     e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, 1.96);
     return e;
   });
-  VnsOptions o;
+  VnsOptions o = staged_options(kN / 4, 60);
   o.seed = 3;
-  o.screening_photons = kN / 64;
-  o.confirmation_photons = kN;
-  o.strategy = PhotonStrategy::kRefineAtEnd;
-  o.refine_stage_photons = kN / 4;
-  o.max_iterations = 60;
   int asked = 0;
   o.confirmation_factor = [&](std::uint64_t) {
     ++asked;
@@ -229,12 +227,7 @@ TEST(StagedRefinement, CancelledFirstStageKeepsTheUnrefinedIsoc) {
     e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, 1.96);
     return e;
   });
-  VnsOptions o;
-  o.screening_photons = kN / 64;
-  o.confirmation_photons = kN;
-  o.strategy = PhotonStrategy::kRefineAtEnd;
-  o.refine_stage_photons = kN / 4;
-  o.max_iterations = 20;
+  VnsOptions o = staged_options(kN / 4, 20);
   Control c;
   c.cancel = &cancel;
   const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o, c);

@@ -76,9 +76,10 @@ struct SceneProblem {
   bool reuse_traces = true;
   /// `search.refine_stage_photons` where given (stage_photons(): N/4 otherwise under strategy B)
   std::optional<std::uint64_t> refine_stage_photons;
-  /// `search.match_widths` (default false): with next-event estimation, scale n and N (and the
-  /// stages) down to the interval widths a photon-only search has at them (width_factor()).
-  bool match_widths = false;
+  /// `search.match_widths` (default true): with next-event estimation, scale N (and the
+  /// stages) down to the interval width a photon-only search has at N (width_factor()), so N
+  /// means the same resolution with shadow rays as without; false keeps N as given.
+  bool match_widths = true;
   /// `search.min_spacing_m`: no two luminaires closer than this (anchor to anchor) in any
   /// configuration searched; positions are always distinct (docs/optimization.md §10).
   double min_spacing_m = 0.0;
