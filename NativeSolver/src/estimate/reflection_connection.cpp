@@ -262,7 +262,10 @@ std::uint64_t connection_paths(const PreparedScene& s, std::uint64_t photons) {
                                  [](const PreparedGroup& g) { return g.connect; })) {
     return 0;
   }
-  const double fit = kConnectRaysPerPhoton * double(photons) / (2.0 * double(cells));
+  // A path is traced as a photon is: on a grid of few cells the shadow rays would ask for more
+  // paths than photons, so at most a quarter of the photons (their cost, not the rays', then).
+  const double fit = std::min(kConnectRaysPerPhoton * double(photons) / (2.0 * double(cells)),
+                              kConnectMaxPathShare * double(photons));
   return std::max<std::uint64_t>(kConnectMinPaths, std::uint64_t(std::min(fit, 1e12)));
 }
 

@@ -69,9 +69,13 @@ bool connection_pays(const PreparedScene& s, const std::vector<DirectPart>& dire
 /// "Connected reflected light").
 inline constexpr double kConnectRaysPerPhoton = 6.0;
 
+/// Most paths of a plain run per photon: each path is traced as a photon is.
+inline constexpr double kConnectMaxPathShare = 0.25;
+
 /// The paths per connected group for a plain run of `photons` photons: about
 /// kConnectRaysPerPhoton shadow rays per photon, counting two vertices per path and one ray per
-/// cell, at least kConnectMinPaths. 0 when no group is connected.
+/// cell, at most kConnectMaxPathShare x `photons`, at least kConnectMinPaths. 0 when no group is
+/// connected.
 std::uint64_t connection_paths(const PreparedScene& s, std::uint64_t photons);
 
 /// Adds each connected group's connected reflected light at every grid (its cells and the

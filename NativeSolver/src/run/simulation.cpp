@@ -337,6 +337,7 @@ void Simulation::set_luminaire(std::size_t index, const Luminaire& luminaire) {
   state_->backend->luminaires_changed();
   state_->kept.reset();
   state_->direct_seed.reset();
+  state_->connected_seed.reset();  // the connection too: it saw the old light
   state_->pending_update_seconds += seconds_since(start);
 }
 
@@ -360,6 +361,7 @@ void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
   state_->backend->set_mesh_transform(mesh, p.meshes[mesh].transform);
   state_->kept.reset();
   state_->direct_seed.reset();
+  state_->connected_seed.reset();  // the connection too: it saw the old geometry
   state_->pending_update_seconds += seconds_since(start);
 }
 
@@ -407,8 +409,7 @@ Results Simulation::run_from(const SolveOptions& options, const ProgressFn& prog
   // before the direct parts (as many, and traced per group and bin).
   detail::check_group_tallies(scene.source_file, prepared.groups.size(), prepared.bins.size());
   r.next_event = options.next_event.value_or(scene.settings.next_event);
-  r.connect_reflections =
-      options.connect_reflections.value_or(scene.settings.connect_reflections);
+  r.connect_reflections = options.connect_reflections.value_or(scene.settings.connect_reflections);
   r.contributions = options.contributions.value_or(scene.settings.contributions);
   // A quasi-random run: its replicates' blocks end to end (run/replicate_run.hpp); refused
   // before any shadow ray is traced for it.
