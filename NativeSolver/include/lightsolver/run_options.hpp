@@ -155,8 +155,9 @@ inline constexpr std::tuple kRunOptions{
               &Settings::next_event, &SolveOptions::next_event},
     RunOption{{"connect_reflections",
                "Reflected light at grids by shadow rays from the diffuse reflections of an "
-               "independent photon stream to every cell, beyond a cell size (auto: where every "
-               "surface is diffuse, with next-event estimation, on the Embree backend; on; "
+               "independent photon stream to every cell, beyond a cell size (auto, the "
+               "default: where every surface is diffuse, with next-event estimation, on the "
+               "Embree backend, and the connected light is at least 2 % of the direct; on; "
                "off: by photons)",
                "connect_reflections", "--connect-reflections", "connect_reflections", nullptr,
                nullptr, {}, true, false, "auto|on|off"},

@@ -218,9 +218,10 @@ struct Settings {
   std::string next_event = "auto";
   /// Reflected light at grids by connecting photon vertices to the cells: "auto", "on" or
   /// "off" (SolveOptions::connect_reflections; docs/statistics.md, "Connected reflected
-  /// light"). Its part is added to the groups' direct parts. Off by default (measured gain
-  /// only on diffuse rooms so far: docs/BENCHMARKS.md).
-  std::string connect_reflections = "off";
+  /// light"). Its part is added to the groups' direct parts. Default "auto": where it can run
+  /// (Embree, every surface diffuse, next-event estimation, a grid) and pays (enough connected
+  /// light, paths not costlier than the photons).
+  std::string connect_reflections = "auto";
 };
 
 /// A complete scene. Build it with load_scene(), from_json(), or field by field and validate().

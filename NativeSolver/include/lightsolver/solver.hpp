@@ -365,7 +365,7 @@ struct Results {
   std::string next_event = "off";
   /// The connect_reflections setting of the run; what it did is in `effects`
   /// (reflection_connection).
-  std::string connect_reflections = "off";
+  std::string connect_reflections = "auto";
   /// A result of `rescale`: the dimming factor of every group (1 where none was given).
   std::vector<std::pair<std::string, double>> rescaled;
   /// Every luminaire, in scene order, as traced: the flux it emitted in the calculation.

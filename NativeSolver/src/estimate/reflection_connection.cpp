@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <numbers>
 
@@ -18,15 +19,13 @@ using glm::dvec3;
 // grid points; no photon group (< 2^26) and no next-event stream (2^31 | group) uses them.
 constexpr std::uint32_t kPathStream = 0x40000000u;
 constexpr std::uint32_t kPointStream = 0x20000000u;
-// Per-path deposits kept per batch of paths (paths x cells doubles: 8 MiB).
+// Per-path deposits kept per batch of paths (paths x cells doubles: 8 MiB), and the shadow rays
+// of a batch (about two vertices per path): a batch is a cancellation point, as next_event.cpp's.
 constexpr std::size_t kBatchValues = std::size_t(1) << 20;
+constexpr std::size_t kBatchRays = std::size_t(1) << 18;
 // A shadow ray stops this fraction short of its grid point, which may lie on a surface (a
 // grid on the floor): the photons' crossing there counts too (shared::grid_reach).
 constexpr double kShortOfPoint = 1e-4;
-// Fewest paths per group: the sample variance over them is the part's interval.
-constexpr std::uint64_t kMinPaths = 512;
-// Paths of a run with an accuracy goal or decide (`on` only).
-constexpr std::uint64_t kGoalPaths = 16384;
 
 // A grid row the connections reach: its cells as parallelograms.
 struct GridCells {
@@ -102,21 +101,24 @@ struct Sums {
 };
 
 // One group's M paths in batches; each path's deposits per cell column and per whole grid
-// (the last columns: a grid's mean over its cells).
-Sums group_sums(const PreparedScene& s, Backend& backend, const std::vector<GridCells>& grids,
-                std::uint32_t group, std::uint64_t seed, std::uint64_t paths) {
+// (the last columns: a grid's mean over its cells). False when `stop` asked before a batch.
+bool group_sums(const PreparedScene& s, Backend& backend, const std::vector<GridCells>& grids,
+                std::uint32_t group, std::uint64_t seed, std::uint64_t paths,
+                const std::function<bool()>& stop, Sums& out) {
   const std::size_t cells =
       grids.empty()
           ? 0
           : grids.back().first + std::size_t(grids.back().grid->nu) * grids.back().grid->nv;
   const std::size_t columns = cells + grids.size();
-  Sums out{std::vector<double>(columns, 0.0), std::vector<double>(columns, 0.0),
-           std::vector<std::uint64_t>(columns, 0)};
-  const std::uint64_t batch = std::max<std::uint64_t>(1, kBatchValues / columns);
+  out = Sums{std::vector<double>(columns, 0.0), std::vector<double>(columns, 0.0),
+             std::vector<std::uint64_t>(columns, 0)};
+  const std::uint64_t batch =
+      std::max<std::size_t>(1, std::min(kBatchValues / columns, kBatchRays / (2 * cells)));
   const double flux = s.groups[group].flux_lm;
   std::vector<double> deposits;
   std::vector<PathVertex> vertices;
   for (std::uint64_t first = 0; first < paths; first += batch) {
+    if (stop && stop()) return false;
     const std::uint64_t count = std::min(batch, paths - first);
     vertices.clear();
     backend.path_vertices(group, first, count, seed, kPathStream | group, vertices);
@@ -147,7 +149,7 @@ Sums group_sums(const PreparedScene& s, Backend& backend, const std::vector<Grid
       }
     }
   }
-  return out;
+  return true;
 }
 
 // Whether every material a photon can hit is diffuse (the connection's lobe).
@@ -203,13 +205,12 @@ void plan_connection(PreparedScene& s, const Backend& backend, const std::string
   if (!backend.traces_path_vertices()) {
     return off("the " + backend.name() + " backend traces no path vertices");
   }
-  if (goal_run && !forced) {
-    s.connect_off = "a run with an accuracy goal or decide (\"on\" connects 16384 paths)";
-    return;
-  }
   std::uint64_t cells = 0;
   for (const PreparedGrid& g : s.grids) cells += g.indirect_only ? 0 : std::uint64_t(g.nu) * g.nv;
-  const double fewest_rays = 2.0 * double(kMinPaths) * double(cells);
+  // Every group with next-event estimation traces its own paths.
+  const auto groups = std::count_if(s.groups.begin(), s.groups.end(),
+                                    [](const PreparedGroup& g) { return g.next_event; });
+  const double fewest_rays = 2.0 * double(kConnectMinPaths) * double(cells) * double(groups);
   if (!goal_run && !forced && fewest_rays > 4.0 * kConnectRaysPerPhoton * double(photons)) {
     s.connect_off = "its fewest connections would take " +
                     std::to_string(std::uint64_t(fewest_rays)) + " shadow rays, more than " +
@@ -224,7 +225,35 @@ void plan_connection(PreparedScene& s, const Backend& backend, const std::string
   s.connect_off.clear();
 }
 
-std::uint64_t connection_paths(const PreparedScene& s, std::uint64_t photons, bool goal_run) {
+void drop_connection(PreparedScene& s, const std::string& why) {
+  for (PreparedGroup& g : s.groups) g.connect = false;
+  for (PreparedGrid& g : s.grids) g.connect_r0 = 0.0f;
+  s.connect_off = why;
+}
+
+bool connection_pays(const PreparedScene& s, const std::vector<DirectPart>& direct,
+                     const std::vector<DirectPart>& connected, std::string& why) {
+  double direct_lux = 0.0, connected_lux = 0.0;
+  for (std::uint32_t g = 0; g < s.groups.size(); ++g) {
+    if (!s.groups[g].connect) continue;
+    for (const PreparedGrid& grid : s.grids) {
+      if (!(grid.connect_r0 > 0.0f)) continue;
+      const std::size_t i = std::size_t(g) * s.bins.size() + grid.bin;  // the whole grid
+      if (i < direct.size()) direct_lux += direct[i].lux;
+      if (i < connected.size()) connected_lux += connected[i].lux;
+    }
+  }
+  if (connected_lux >= kConnectMinShare * direct_lux) return true;
+  char share[32];
+  std::snprintf(share, sizeof share, "%.2g",
+                direct_lux > 0.0 ? 100.0 * connected_lux / direct_lux : 0.0);
+  why = "the connected reflected light at the grids was " + std::string(share) +
+        " % of their direct light in its first paths, under " +
+        std::to_string(int(100 * kConnectMinShare)) + " % (\"on\" connects)";
+  return false;
+}
+
+std::uint64_t connection_paths(const PreparedScene& s, std::uint64_t photons) {
   std::uint64_t cells = 0;
   for (const PreparedGrid& g : s.grids) {
     if (!g.indirect_only && g.connect_r0 > 0.0f) cells += std::uint64_t(g.nu) * g.nv;
@@ -233,26 +262,31 @@ std::uint64_t connection_paths(const PreparedScene& s, std::uint64_t photons, bo
                                  [](const PreparedGroup& g) { return g.connect; })) {
     return 0;
   }
-  if (goal_run) return kGoalPaths;
-  const double fit = kConnectRaysPerPhoton * double(photons) / (2.0 * double(cells));
-  return std::max<std::uint64_t>(kMinPaths, std::uint64_t(std::min(fit, 1e12)));
+  // A path is traced as a photon is: on a grid of few cells the shadow rays would ask for more
+  // paths than photons, so at most a quarter of the photons (their cost, not the rays', then).
+  const double fit = std::min(kConnectRaysPerPhoton * double(photons) / (2.0 * double(cells)),
+                              kConnectMaxPathShare * double(photons));
+  return std::max<std::uint64_t>(kConnectMinPaths, std::uint64_t(std::min(fit, 1e12)));
 }
 
-void add_connected_reflection(const PreparedScene& s, Backend& backend, std::uint64_t seed,
-                              std::uint64_t paths, std::vector<DirectPart>& direct) {
+bool add_connected_reflection(const PreparedScene& s, Backend& backend, std::uint64_t seed,
+                              std::uint64_t paths, std::vector<DirectPart>& direct,
+                              const std::function<bool()>& stop) {
   const std::vector<GridCells> grids = connected_grids(s);
-  if (grids.empty() || paths < 2) return;
+  if (grids.empty() || paths < 2) return true;
   const double m = double(paths);
+  std::vector<DirectPart> out = direct;  // `direct` stays as it was if stopped
   for (std::uint32_t g = 0; g < s.groups.size(); ++g) {
     if (!s.groups[g].connect || !(s.groups[g].flux_lm > 0.0)) continue;
-    const Sums sums = group_sums(s, backend, grids, g, seed, paths);
+    Sums sums;
+    if (!group_sums(s, backend, grids, g, seed, paths, stop, sums)) return false;
     const std::size_t base = std::size_t(g) * s.bins.size();
     const std::size_t cells = sums.sum.size() - grids.size();
     const auto add = [&](std::uint32_t bin, std::size_t column) {
       const double mean = sums.sum[column] / m;
       // The sample variance over the paths, over M: the variance of their mean.
       const double spread = std::max(0.0, sums.sum_sq[column] - m * mean * mean);
-      DirectPart& part = direct[base + bin];
+      DirectPart& part = out[base + bin];
       part.lux += mean;
       part.variance += spread / (m - 1.0) / m;
       part.lit += sums.lit[column];
@@ -265,6 +299,8 @@ void add_connected_reflection(const PreparedScene& s, Backend& backend, std::uin
       add(grid.bin, cells + gi);
     }
   }
+  direct = std::move(out);
+  return true;
 }
 
 }  // namespace lightsolver::detail

@@ -7,6 +7,9 @@
 // photons and the parts planned for its photon count after them: a run stopped during its
 // photons still has whole direct parts, and the shadow rays it would have spent on the finer
 // ones are not spent. A checkpoint (cost, study) gets the parts a plain run of its photons has.
+// The connected reflected light (estimate/reflection_connection.hpp) follows the same plan: its
+// fewest paths before the photons (the photons leave it their far reflected crossings, so a run
+// stopped during them must have it whole), the planned paths after them.
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -52,6 +55,107 @@ bool too_wide(const std::vector<detail::DirectPart>& parts, const Results& r) {
   return std::any_of(parts.begin(), parts.end(), [&](const detail::DirectPart& d) {
     return d.lux > 0.0 && z * std::sqrt(d.variance) > half_goal * d.lux;
   });
+}
+
+// The parts in use: the direct parts plus, where the run connects, the connected ones.
+void use_parts(detail::SimulationState& st) {
+  st.prepared.direct = st.direct;
+  if (st.connect_paths == 0) return;
+  for (std::size_t i = 0; i < st.connected.size() && i < st.prepared.direct.size(); ++i) {
+    st.prepared.direct[i].lux += st.connected[i].lux;
+    st.prepared.direct[i].variance += st.connected[i].variance;
+    st.prepared.direct[i].lit += st.connected[i].lit;
+  }
+}
+
+// The connection of `paths` paths per group for `seed` in use (the one kept when it is already
+// traced); false, and the connection in use unchanged, when `stop` asked between two batches.
+bool use_connection(detail::SimulationState& st, std::uint64_t seed, std::uint64_t paths,
+                    const std::function<bool()>& stop) {
+  if (!(st.connected_seed == seed && st.connected_paths == paths)) {
+    const auto start = Clock::now();
+    std::vector<detail::DirectPart> connected(st.prepared.groups.size() * st.prepared.bins.size());
+    bool whole = false;
+    tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+      whole =
+          detail::add_connected_reflection(st.prepared, *st.backend, seed, paths, connected, stop);
+    });
+    if (!whole) return false;
+    st.connected = std::move(connected);
+    st.connected_seed = seed;
+    st.connected_paths = paths;
+    st.connected_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  st.connect_paths = paths;
+  use_parts(st);
+  return true;
+}
+
+// A connected part whose half-width passes half the accuracy goal of its group's light at the
+// bin (the direct and connected parts: the photons' near crossings only add to it).
+bool connection_too_wide(const detail::SimulationState& st, const Results& r) {
+  const double z = z_for_confidence(r.confidence), half_goal = 0.5 * *r.target_accuracy;
+  for (std::size_t i = 0; i < st.connected.size() && i < st.direct.size(); ++i) {
+    const detail::DirectPart& c = st.connected[i];
+    if (c.lux > 0.0 && z * std::sqrt(c.variance) > half_goal * (c.lux + st.direct[i].lux)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The connection before the photons, after the direct parts: an accuracy goal doubles its paths
+// from the fewest until no connected part is too wide (at most kConnectMaxGoalPaths), deciding
+// traces kConnectDecidePaths, a plain run the fewest (or the planned ones kept from the last run
+// with its seed) and plans the rest after its photons (st.connect_final). Stopped before any
+// connection was whole, or judged by `auto` not to pay: none, and the photons count every
+// reflected crossing.
+void plan_connected_light(detail::SimulationState& st, const Results& r,
+                          const std::function<bool()>& stop) {
+  detail::PreparedScene& p = st.prepared;
+  const std::uint64_t planned = detail::connection_paths(p, r.photons_requested);
+  if (planned == 0) return;
+  const bool plain = !r.target_accuracy && !r.decide;
+  std::uint64_t paths =
+      r.decide && !r.target_accuracy ? detail::kConnectDecidePaths : detail::kConnectMinPaths;
+  if (plain && st.connected_seed == r.seed && st.connected_paths == planned) paths = planned;
+  if (!use_connection(st, r.seed, paths, stop)) {
+    detail::drop_connection(p,
+                            "the run was stopped before its connected reflected light was traced");
+    return;
+  }
+  std::string why;
+  if (r.connect_reflections == "auto" &&
+      !detail::connection_pays(p, st.direct, st.connected, why)) {
+    st.connect_paths = 0;
+    detail::drop_connection(p, why);
+    use_parts(st);
+    return;
+  }
+  if (r.target_accuracy) {
+    // Stopped half-way: the last whole connection stays (the run is cancelled).
+    while (paths < detail::kConnectMaxGoalPaths && connection_too_wide(st, r) &&
+           use_connection(st, r.seed, 2 * paths, stop)) {
+      paths *= 2;
+    }
+  }
+  st.connect_final = plain ? planned : 0;
+}
+
+// A plain run's connection sized to the photons it traced (as its direct parts); stopped, the one
+// traced before the photons stays and the note says so.
+std::string finish_connection(detail::SimulationState& st, Results& r,
+                              const std::function<bool()>& stop) {
+  if (st.connect_final == 0 || st.connect_paths == 0) return {};
+  const std::uint64_t paths =
+      std::min(st.connect_final, detail::connection_paths(st.prepared, r.photons));
+  if (r.stop_reason != kStopCancelled && use_connection(st, r.seed, paths, stop)) return {};
+  if (st.connect_paths >= paths) return {};
+  r.stop_reason = kStopCancelled;
+  return "stopped before its reflected light was connected as planned: connected from " +
+         std::to_string(st.connect_paths) + " paths per luminaire group (" + std::to_string(paths) +
+         " planned), with wider intervals";
 }
 
 }  // namespace
@@ -131,31 +235,7 @@ bool Simulation::use_direct_parts(std::uint64_t seed, std::uint32_t scale,
     st.direct_strata_scale = scale;
     st.direct_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   }
-  if (st.connect_paths == 0) {
-    st.prepared.direct = st.direct;
-    return true;
-  }
-  // The groups' photons leave their far reflected crossings to the connections (the cap in
-  // cross_grids), so every direct part in use holds them: traced once per seed and paths.
-  if (!(st.connected_seed == seed && st.connected_paths == st.connect_paths)) {
-    if (stop && stop()) return false;
-    const auto start = Clock::now();
-    std::vector<detail::DirectPart> connected(st.direct.size());
-    tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-      detail::add_connected_reflection(st.prepared, *st.backend, seed, st.connect_paths, connected);
-    });
-    st.connected = std::move(connected);
-    st.connected_seed = seed;
-    st.connected_paths = st.connect_paths;
-    st.direct_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-  }
-  st.prepared.direct = st.direct;
-  for (std::size_t i = 0; i < st.connected.size(); ++i) {
-    st.prepared.direct[i].lux += st.connected[i].lux;
-    st.prepared.direct[i].variance += st.connected[i].variance;
-    st.prepared.direct[i].lit += st.connected[i].lit;
-  }
+  use_parts(st);  // the connection in use, if any, stays
   return true;
 }
 
@@ -167,7 +247,7 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
   detail::SimulationState& st = *state_;
   detail::PreparedScene& p = st.prepared;
   st.direct_final_scale = 0;
-  st.connect_paths = 0;
+  st.connect_paths = st.connect_final = 0;
   // A sobol run shares these parts among its replicates (model/replicates.hpp).
   detail::plan_next_event(p, *st.backend, r.next_event);
   // Connected reflected light (estimate/reflection_connection.hpp) builds on these groups.
@@ -192,7 +272,6 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
     st.direct_by_photons = detail::direct_by_photons_flags(p);
   }
   p.photons_reflect = detail::analyse_effects(p).has(detail::Effect::Interreflection);
-  st.connect_paths = detail::connection_paths(p, r.photons_requested, goal_run);
   bool whole = true;
   if (r.target_accuracy) {
     for (std::uint32_t scale = 1;; scale *= 2) {
@@ -213,8 +292,9 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
     detail::plan_next_event(p, *st.backend, "off");
     p.next_event_off = "the run was stopped before its direct light was traced";
     st.direct_final_scale = 0;
-    st.connect_paths = 0;
+    return;
   }
+  plan_connected_light(st, r, stop);
 }
 
 double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photons) {
@@ -222,11 +302,13 @@ double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photo
   // none, or the parts an accuracy goal or deciding reads before the photons
   if (st.direct_final_scale == 0) return 0.0;
   const std::uint32_t scale = strata_scale_for(st.prepared, photons);
-  // A plain run of `photons` connects the paths sized to them.
-  if (st.connect_paths > 0)
-    st.connect_paths = detail::connection_paths(st.prepared, photons, false);
-  use_direct_parts(r.seed, scale, {});  // never stopped half-way: a row is a whole estimate
-  return st.direct_seconds;
+  // Never stopped half-way: a row is a whole estimate. A plain run of `photons` connects the
+  // paths sized to them.
+  if (st.connect_final > 0 && st.connect_paths > 0) {
+    use_connection(st, r.seed, detail::connection_paths(st.prepared, photons), {});
+  }
+  use_direct_parts(r.seed, scale, {});
+  return st.direct_seconds + (st.connect_paths > 0 ? st.connected_seconds : 0.0);
 }
 
 std::string Simulation::finish_direct_light(Results& r, const std::function<bool()>& stop) {
@@ -236,14 +318,20 @@ std::string Simulation::finish_direct_light(Results& r, const std::function<bool
   // its photons (fewer than planned), not the shadow rays of the photons it did not trace.
   const std::uint32_t scale =
       std::min(st.direct_final_scale, strata_scale_for(st.prepared, r.photons));
-  const bool planned = r.stop_reason != kStopCancelled && use_direct_parts(r.seed, scale, stop);
-  if (planned) return {};
-  // Stopped: the coarsest parts, traced before the photons, stay (whole, and honest).
-  use_direct_parts(r.seed, 1, {});
-  if (st.direct_final_scale == 1) return {};
-  r.stop_reason = kStopCancelled;
-  return "stopped before its direct light was sampled as planned: direct parts from the "
-         "default points (32 per cell, 512 per surface target), with wider intervals";
+  std::string note;
+  if (!(r.stop_reason != kStopCancelled && use_direct_parts(r.seed, scale, stop))) {
+    // Stopped: the coarsest parts, traced before the photons, stay (whole, and honest).
+    use_direct_parts(r.seed, 1, {});
+    if (st.direct_final_scale > 1) {
+      r.stop_reason = kStopCancelled;
+      note =
+          "stopped before its direct light was sampled as planned: direct parts from the "
+          "default points (32 per cell, 512 per surface target), with wider intervals";
+    }
+  }
+  const std::string connected = finish_connection(st, r, stop);
+  if (!connected.empty()) note += (note.empty() ? "" : "; ") + connected;
+  return note;
 }
 
 }  // namespace lightsolver

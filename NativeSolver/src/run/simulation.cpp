@@ -339,6 +339,7 @@ void Simulation::set_luminaire(std::size_t index, const Luminaire& luminaire) {
   state_->kept.reset();
   state_->direct_seed.reset();
   state_->judging_seed.reset();
+  state_->connected_seed.reset();  // the connection too: it saw the old light
   state_->pending_update_seconds += seconds_since(start);
 }
 
@@ -363,6 +364,7 @@ void Simulation::set_mesh_transform(std::size_t mesh, const glm::dmat4& world) {
   state_->kept.reset();
   state_->direct_seed.reset();
   state_->judging_seed.reset();
+  state_->connected_seed.reset();  // the connection too: it saw the old geometry
   state_->pending_update_seconds += seconds_since(start);
 }
 

@@ -35,11 +35,15 @@ struct SimulationState {
   std::uint32_t direct_final_scale = 0;
   // Connected reflected light (estimate/reflection_connection.hpp), kept apart from `direct`
   // (whose strata change between the coarse and the planned parts) and added to it in use:
-  // its paths (0: none) and seed, and the paths a run plans.
+  // its paths and seed (the last whole connection traced, kept for the next run), the paths the
+  // run uses now (0: none) and the paths a plain run plans after its photons (0: none, or fixed
+  // before them by an accuracy goal or deciding), and the time the connection took.
   std::vector<DirectPart> connected;
   std::uint64_t connected_paths = 0;
   std::optional<std::uint64_t> connected_seed;
   std::uint64_t connect_paths = 0;
+  std::uint64_t connect_final = 0;
+  double connected_seconds = 0.0;
   // next_event "auto"'s judging parts (estimate/direct_choice.hpp) and their seed; dropped with
   // `direct` by any change to the scene.
   std::vector<DirectPart> judging;

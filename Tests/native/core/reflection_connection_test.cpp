@@ -1,9 +1,15 @@
 // Connected reflected light at grids (estimate/reflection_connection.hpp): a closed form of the
 // first reflection with the r0 partition crossed (near crossings by photons, far ones by
 // connections), the same box room as photons alone, honest intervals over 200 seeds, and the
-// setting's errors.
+// setting's errors, stops between its batches and during the photons, and goal runs.
+#include "estimate/reflection_connection.hpp"
+
 #include <gtest/gtest.h>
 
+#include <atomic>
+
+#include "embree/embree_backend.hpp"
+#include "estimate/next_event.hpp"
 #include "lightsolver/rescale.hpp"
 #include "scene_builders.hpp"
 
@@ -224,9 +230,16 @@ TEST(ReflectionConnection, BadSettingsAreInputErrorsNamingTheField) {
       InputError);
 }
 
+std::string connection_reason(const Results& r) {
+  for (const auto& e : r.effects.skipped) {
+    if (e.effect == "reflection_connection") return e.reason;
+  }
+  return "simulated";
+}
+
 // auto leaves it to the photons, saying why, where its fewest paths would cost far more than
-// the run's photons, and in a run with an accuracy goal (a budget, not a photon count).
-TEST(ReflectionConnection, AutoLeavesTinyRunsAndAccuracyRunsToPhotons) {
+// the run's photons; a run with an accuracy goal connects (its paths refined before the photons).
+TEST(ReflectionConnection, AutoLeavesTinyRunsToPhotonsAndConnectsAccuracyRuns) {
   Scene s = floor_scene({0.5});
   validate(s);
   const auto reason = [](const Results& r) {
@@ -245,7 +258,167 @@ TEST(ReflectionConnection, AutoLeavesTinyRunsAndAccuracyRunsToPhotons) {
   EXPECT_EQ(reason(solve(s, o)), "simulated");
   o.photons.reset();
   o.target_accuracy = 0.5;
-  EXPECT_NE(reason(solve(s, o)).find("accuracy goal"), std::string::npos);
+  EXPECT_EQ(reason(solve(s, o)), "simulated");
+}
+
+// auto judges from its first paths whether the connection pays: in a room of reflectance 0.01
+// the connected light is far under kConnectMinShare of the direct light, so the photons keep it
+// (`on` still connects); at 0.5 it pays.
+TEST(ReflectionConnection, AutoLeavesNegligibleReflectedLightToPhotons) {
+  Scene dark = box_room(8);
+  dark.materials[0].reflectance = 0.01;
+  const Results off = run_connected(dark, 100'000, 3, "auto");
+  EXPECT_NE(connection_reason(off).find("of their direct light"), std::string::npos)
+      << connection_reason(off);
+  EXPECT_EQ(connection_reason(run_connected(dark, 100'000, 3, "on")), "simulated");
+  EXPECT_EQ(connection_reason(run_connected(box_room(8), 100'000, 3, "auto")), "simulated");
+}
+
+// add_connected_reflection asks its stop between batches of about 2^18 shadow rays: stopped, it
+// leaves the parts as they were; never stopped, it gives the parts of a run without a stop.
+TEST(ReflectionConnection, AStoppedConnectionLeavesThePartsAsTheyWere) {
+  Scene s = floor_scene({0.5, 1.5});
+  validate(s);
+  detail::PreparedScene p = detail::prepare(s);
+  const auto backend = detail::make_embree_backend(p);
+  detail::plan_next_event(p, *backend, "on");
+  detail::plan_connection(p, *backend, "on", false, 1'000'000);
+  // 32 cells: 4096 paths (2^18 rays at two vertices a path) a batch, four batches.
+  const std::uint64_t paths = 16384;
+  const std::vector<detail::DirectPart> before(p.groups.size() * p.bins.size(),
+                                               detail::DirectPart{1.0, 2.0, 3});
+  int asked = 0;
+  std::vector<detail::DirectPart> stopped = before;
+  EXPECT_FALSE(detail::add_connected_reflection(p, *backend, 5, paths, stopped,
+                                                [&] { return ++asked == 3; }));
+  EXPECT_EQ(asked, 3);
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(stopped[i].lux, 1.0);
+    EXPECT_EQ(stopped[i].variance, 2.0);
+    EXPECT_EQ(stopped[i].lit, 3u);
+  }
+  asked = 0;
+  std::vector<detail::DirectPart> asking = before, plain = before;
+  EXPECT_TRUE(detail::add_connected_reflection(p, *backend, 5, paths, asking, [&] {
+    ++asked;
+    return false;
+  }));
+  EXPECT_EQ(asked, 4);
+  EXPECT_TRUE(detail::add_connected_reflection(p, *backend, 5, paths, plain));
+  double added = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(asking[i].lux, plain[i].lux);
+    EXPECT_EQ(asking[i].variance, plain[i].variance);
+    added += plain[i].lux - 1.0;
+  }
+  EXPECT_GT(added, 0.0);
+}
+
+// A run stopped during its photons keeps the fewest paths' connection, traced before them, and
+// says so: the grid at 1.5 m (all of its light connected, none direct) has the cells of a plain
+// run that plans the fewest paths, and every cell is honest against the closed form.
+TEST(ReflectionConnection, AStopDuringThePhotonsKeepsTheFewestPathsConnection) {
+  Scene s = floor_scene({0.5, 1.5});
+  validate(s);
+  SolveOptions o;
+  o.backend = "embree";
+  o.photons = 100'000'000;  // plans about 10^7 paths
+  o.seed = 9;
+  o.next_event = "on";
+  o.connect_reflections = "on";
+  const Results stopped = solve(s, o, [](std::uint64_t, std::uint64_t) { return false; });
+  EXPECT_TRUE(stopped.partial);
+  EXPECT_EQ(stopped.stop_reason, kStopCancelled);
+  EXPECT_TRUE(std::any_of(stopped.warnings.begin(), stopped.warnings.end(), [](const auto& w) {
+    return w.find("reflected light was connected as planned") != std::string::npos;
+  })) << "no warning";
+  EXPECT_EQ(connection_reason(stopped), "simulated");
+  o.photons = 4'000;  // plans the fewest paths, 512
+  const Results fewest = solve(s, o);
+  EXPECT_TRUE(std::none_of(fewest.warnings.begin(), fewest.warnings.end(), [](const auto& w) {
+    return w.find("as planned") != std::string::npos;
+  }));
+  for (std::size_t k = 0; k < 16; ++k) {
+    // The means only: the photons' empty tallies still widen the intervals by their count.
+    EXPECT_EQ(stopped.targets[1].cells[k].mean, fewest.targets[1].cells[k].mean) << k;
+  }
+  for (std::size_t t = 0; t < 2; ++t) {
+    for (std::size_t k = 0; k < 16; ++k) {
+      const Estimate& e = stopped.targets[t].cells[k];
+      const double exact = exact_cell(k, t == 0 ? 0.5 : 1.5);
+      EXPECT_TRUE(std::isfinite(e.ci_low) && std::isfinite(e.ci_high));
+      EXPECT_TRUE(e.ci_low <= e.mean && e.mean <= e.ci_high);
+      EXPECT_GT(e.sigma, 0.0);
+      EXPECT_LT(std::abs(e.mean - exact), 5.0 * e.sigma) << t << " " << k;
+    }
+  }
+}
+
+// Stopped before anything (the cancel flag set before the run): no direct parts, so no
+// connection, with the reason, and every interval contains its estimate.
+TEST(ReflectionConnection, AStopBeforeAnythingConnectsNothingAndSaysWhy) {
+  Scene s = floor_scene({0.5});
+  validate(s);
+  std::atomic<bool> cancel{true};
+  SolveOptions o;
+  o.backend = "embree";
+  o.photons = 1'000'000;
+  o.next_event = "on";
+  o.connect_reflections = "auto";
+  o.cancel = &cancel;
+  const Results r = solve(s, o);
+  EXPECT_TRUE(r.partial);
+  EXPECT_NE(connection_reason(r).find("next-event"), std::string::npos) << connection_reason(r);
+  for (const Estimate& e : r.targets[0].cells) {
+    EXPECT_TRUE(std::isfinite(e.ci_low) && std::isfinite(e.ci_high));
+    EXPECT_TRUE(e.ci_low <= e.mean && e.mean <= e.ci_high);
+  }
+}
+
+// A goal run connects: it reaches its goal, the grid at 1.5 m (connected light only) has every
+// cell's connected part within half the goal (the paths refined before the photons), and the 95 %
+// intervals of 20 seeds x 32 cells cover the closed form within binomial limits (4 sigma).
+TEST(ReflectionConnection, AGoalRunReachesItsGoalWithHonestIntervals) {
+  const std::vector<double> heights{0.5, 1.5};
+  Scene s = floor_scene(heights);
+  validate(s);
+  std::vector<double> exact;
+  for (double h : heights) {
+    for (std::size_t k = 0; k < 16; ++k) exact.push_back(exact_cell(k, h));
+  }
+  int covered = 0, total = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    SolveOptions o;
+    o.backend = "embree";
+    o.seed = seed;
+    o.confidence = 0.95;
+    o.target_accuracy = 0.1;
+    o.next_event = "on";
+    o.connect_reflections = "auto";
+    o.contributions = true;
+    const Results r = solve(s, o);
+    ASSERT_EQ(connection_reason(r), "simulated");
+    ASSERT_EQ(r.targets[1].contributions.size(), 1u);
+    const auto& connected = r.targets[1].contributions[0].direct;  // whole grid, then cells
+    ASSERT_EQ(connected.size(), 17u);
+    for (std::size_t k = 1; k < 17; ++k) {
+      EXPECT_GT(connected[k].lux, 0.0);
+      EXPECT_LE(1.96 * std::sqrt(connected[k].variance_lx2), 0.05 * connected[k].lux) << k;
+    }
+    EXPECT_EQ(r.stop_reason, kStopAccuracy) << seed;
+    for (std::size_t t = 0; t < 2; ++t) {
+      const Estimate& whole = r.targets[t].estimate;
+      EXPECT_LE(0.5 * (whole.ci_high - whole.ci_low), 0.1 * whole.mean) << seed << " " << t;
+      for (std::size_t k = 0; k < 16; ++k) {
+        const Estimate& e = r.targets[t].cells[k];
+        covered += e.ci_low <= exact[16 * t + k] && exact[16 * t + k] <= e.ci_high;
+        ++total;
+      }
+    }
+  }
+  const double p = double(covered) / total, sd = std::sqrt(0.95 * 0.05 / total);
+  EXPECT_GT(p, 0.95 - 4 * sd) << covered << " of " << total;
+  EXPECT_LT(p, 0.95 + 4 * sd) << covered << " of " << total;
 }
 
 }  // namespace

@@ -41,7 +41,9 @@ TEST(RunLimits, AccuracyWithoutAPhotonCountIsNotCappedByTheSceneDefault) {
   EXPECT_EQ(r.stop_reason, kStopAccuracy);
   EXPECT_TRUE(r.accuracy_met);
   EXPECT_FALSE(r.partial);
-  EXPECT_GT(r.photons, 100'000u);
+  // More than the scene's 10^4 (not capped by it); the connected reflected light (auto, the
+  // default) reaches the goal with fewer photons than the photons alone (about 10^5).
+  EXPECT_GT(r.photons, 10'000u);
   EXPECT_EQ(r.photons_requested, kAccuracyPhotonBudget);
   ASSERT_TRUE(r.max_seconds.has_value());
   EXPECT_EQ(*r.max_seconds, kDefaultAccuracySeconds);
