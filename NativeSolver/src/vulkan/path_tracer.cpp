@@ -44,25 +44,31 @@ PathVertexTracer::PathVertexTracer(const vkw::Context& ctx, const std::vector<vk
 void PathVertexTracer::trace(vkw::Sequence& seq, const PreparedScene& s, gpu::TracePush push,
                              std::uint64_t first, std::uint64_t count,
                              std::vector<PathVertex>& out) {
-  std::uint32_t chunk = kChunkPaths;
+  // The shader's 32-bit vertex count cannot wrap: at most max_bounces vertices per path.
+  std::uint32_t chunk = static_cast<std::uint32_t>(
+      std::clamp<std::uint64_t>((1ull << 32) / std::max(1u, s.max_bounces + 1), 1, kChunkPaths));
   for (std::uint64_t done = 0; done < count;) {
     const auto n = static_cast<std::uint32_t>(std::min<std::uint64_t>(chunk, count - done));
     const std::size_t before = out.size();
-    if (trace_chunk(seq, s, push, first + done, n, out)) {
+    const std::uint32_t appended = trace_chunk(seq, s, push, first + done, n, out);
+    if (appended <= kVertexCapacity) {
       for (std::size_t i = before; i < out.size(); ++i) out[i].path += std::uint32_t(done);
       done += n;
     } else if (n == 1) {
       throw std::runtime_error("Vulkan backend: a path has more than " +
                                std::to_string(kVertexCapacity) + " vertices");
     } else {
-      chunk = n / 2;  // deterministic: each path's draws depend on its index only
+      // Again in smaller parts, sized by what overflowed, with a margin (deterministic: each
+      // path's draws depend on its index only).
+      const std::uint64_t fits = std::uint64_t(n) * kVertexCapacity / appended * 3 / 4;
+      chunk = static_cast<std::uint32_t>(std::clamp<std::uint64_t>(fits, 1, n / 2));
     }
   }
 }
 
-bool PathVertexTracer::trace_chunk(vkw::Sequence& seq, const PreparedScene& s, gpu::TracePush push,
-                                   std::uint64_t first, std::uint32_t count,
-                                   std::vector<PathVertex>& out) {
+std::uint32_t PathVertexTracer::trace_chunk(vkw::Sequence& seq, const PreparedScene& s,
+                                            gpu::TracePush push, std::uint64_t first,
+                                            std::uint32_t count, std::vector<PathVertex>& out) {
   VkCommandBuffer cmd = seq.begin();
   vkCmdUpdateBuffer(cmd, control_.handle(), 0, sizeof(kControlHeader), kControlHeader);
   vkw::memory_barrier(cmd);
@@ -89,7 +95,7 @@ bool PathVertexTracer::trace_chunk(vkw::Sequence& seq, const PreparedScene& s, g
                              "embree");
   }
   const std::uint32_t appended = control[4];
-  if (appended > kVertexCapacity) return false;
+  if (appended > kVertexCapacity) return appended;
   const std::unordered_set<std::uint32_t> retried(control + 8, control + 8 + control[0]);
   const auto* records = static_cast<const gpu::PathVertexGpu*>(vertices_.mapped());
   std::vector<gpu::PathVertexGpu> kept;
@@ -110,7 +116,7 @@ bool PathVertexTracer::trace_chunk(vkw::Sequence& seq, const PreparedScene& s, g
                    float(s.materials[r.material].reflectance),
                    vec3(r.normal[0], r.normal[1], r.normal[2]), r.path});
   }
-  return true;
+  return appended;
 }
 
 }  // namespace lightsolver::detail

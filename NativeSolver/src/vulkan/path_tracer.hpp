@@ -33,9 +33,10 @@ class PathVertexTracer {
              std::uint64_t count, std::vector<PathVertex>& out);
 
  private:
-  // One chunk at path offset `first`; false when the vertex buffer overflowed (nothing added).
-  bool trace_chunk(vkw::Sequence& seq, const PreparedScene& s, gpu::TracePush push,
-                   std::uint64_t first, std::uint32_t count, std::vector<PathVertex>& out);
+  // One chunk at path offset `first`; returns the vertices the shader appended, and adds them
+  // to `out` unless that is more than the buffer holds (then nothing is added).
+  std::uint32_t trace_chunk(vkw::Sequence& seq, const PreparedScene& s, gpu::TracePush push,
+                            std::uint64_t first, std::uint32_t count, std::vector<PathVertex>& out);
 
   const vkw::Context& ctx_;
   vkw::Buffer vertices_;  // host-visible: written by the shader, read by the CPU in place
