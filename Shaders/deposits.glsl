@@ -69,18 +69,21 @@ uint deposits_flush() {
 // model/path_deposits.hpp includes too). `bounce`: reflections before this segment;
 // indirect-only grids (observers) skip bounce 0, and so does every grid when pc.first_bounce is 1
 // (the group's direct light is by next-event estimation) but those whose direct light went back
-// to the photons (kGridDirectByPhotons), as cross_grids in path_deposits.hpp.
+// to the photons (kGridDirectByPhotons), as cross_grids in path_deposits.hpp; a connected group's
+// reflected segments count crossings nearer than connect_r0 only (the connection counts the rest).
 void cross_grids(vec3 o, vec3 d, float t_max, uint bounce) {
   const bool by_shadow_rays = bounce < pc.first_bounce;  // where not given back to photons
   const float t_end = grid_reach(t_max);
+  const bool capped = pc.connected != 0u && bounce >= 1u;  // near crossings only (connected)
   for (uint k = 0u; k < pc.grid_count; ++k) {
     const GridGpu g = grids[k];
     if (bounce == 0u && ((g.flags & kGridIndirectOnly) != 0u ||
                          (by_shadow_rays && (g.flags & kGridDirectByPhotons) == 0u))) {
       continue;
     }
+    const float t_grid = capped && g.connect_r0 > 0.0 ? min(t_end, g.connect_r0) : t_end;
     uint cell;
-    if (!grid_crossing(o, d, t_end, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) continue;
+    if (!grid_crossing(o, d, t_grid, g.corner, g.normal, g.du, g.dv, g.nu, g.nv, cell)) continue;
     deposit(g.bin);
     deposit(g.bin + 1u + cell);
   }

@@ -31,6 +31,10 @@
 #define LS_BINDING_VISIBLE 17        // Visible: one word per ray
 #define LS_BINDING_VIS_RETRY 18      // VisRetry: rays to trace again (lavapipe's loop limit)
 #define LS_VISIBILITY_BINDING_COUNT 19
+// path_vertices.comp's own, after trace.comp's (it reads the scene and luminaires above).
+#define LS_BINDING_PATH_VERTICES 16  // PathVertices: the diffuse vertices of a chunk's paths
+#define LS_BINDING_PATH_CONTROL 17   // PathControl: retry dispatch, counts, paths to trace again
+#define LS_PATH_BINDING_COUNT 18
 
 // Specialisation constants (GLSL name). Ids 1.. switch features off for scenes without them.
 #define LS_SPEC_WORKGROUP_SIZE 0    // local_size_x

@@ -68,6 +68,8 @@ struct GridGpu {
   vec3 du; uint bin;
   vec3 dv; uint flags;  // bit 0 (kGridIndirectOnly): count reflected light only (observers);
                         // bit 1 (kGridDirectByPhotons): next-event groups' bounce 0 counts
+  float connect_r0;     // connected groups count reflected crossings only this near (0: all)
+  uint pad0, pad1, pad2;
 };
 const uint kGridIndirectOnly = 1u, kGridDirectByPhotons = 2u;
 
@@ -127,6 +129,10 @@ layout(push_constant) uniform Push {
   uint tally_offset;      // ... and its tallies: group * bins
   uint first_bounce;      // 1: the group's direct light is by next-event estimation: no
                           // deposit before the first scattering (bounce 0)
+  uint connected;         // 1: the group's far reflected light at grids is by connection
+                          // (PreparedGroup::connect): reflected crossings beyond connect_r0
+                          // are left to it (deposits.glsl, cross_grids)
+  uint pad0, pad1, pad2;
 } pc;
 
 #endif

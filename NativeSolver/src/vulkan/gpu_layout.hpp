@@ -90,6 +90,8 @@ struct Grid {
   /// kGridIndirectOnly: an observer's tally (reflected light only); kGridDirectByPhotons:
   /// next-event groups' bounce-0 crossings count (PreparedGrid::direct_by_photons)
   std::uint32_t flags;
+  float connect_r0;  ///< PreparedGrid::connect_r0: connected groups' near reflected crossings
+  std::uint32_t pad[3];
 };
 inline constexpr std::uint32_t kGridIndirectOnly = 1u;     ///< Shaders/trace_layout.glsl
 inline constexpr std::uint32_t kGridDirectByPhotons = 2u;  ///< Shaders/trace_layout.glsl
@@ -100,7 +102,7 @@ struct TracePush {
   std::uint32_t path_count;
   std::uint32_t max_bounces;
   std::uint32_t luminaire_count;
-  std::uint32_t grid_count;
+  std::uint32_t grid_count;  // path_vertices.comp: the vertex buffer's capacity (no grids)
   std::uint32_t instance_count;
   std::uint32_t retry;             // 1: trace the paths queued in the retry list, one per group
   std::uint32_t probe_iterations;  // lavapipe's loop limit probe (trace.comp)
@@ -109,6 +111,9 @@ struct TracePush {
   std::uint32_t luminaire_first;  // the group's luminaires: [first, first + luminaire_count)
   std::uint32_t tally_offset;     // group * bins
   std::uint32_t first_bounce;     // 1: no deposit at bounce 0 (PreparedGroup::next_event)
+  std::uint32_t connected;        // 1: reflected crossings beyond connect_r0 left to the
+                                  // connection (PreparedGroup::connect)
+  std::uint32_t pad[3];
 };
 
 /// visibility.comp's push constants.
@@ -121,10 +126,22 @@ struct VisibilityPush {
   std::uint32_t pad[3];
 };
 
+/// One diffuse vertex as path_vertices.comp writes it (the host makes a PathVertex of it).
+struct PathVertexGpu {
+  float origin[3];
+  std::uint32_t material;
+  float normal[3];
+  std::uint32_t path;    // offset in the dispatch
+  std::uint32_t vertex;  // 1, 2, ... along the path
+  std::uint32_t pass;    // 0, or 1 for a path traced again (lavapipe's loop limit)
+  std::uint32_t pad[2];
+};
+static_assert(sizeof(PathVertexGpu) == 48);
+
 static_assert(sizeof(Node) == 64 && sizeof(Tri) == 48 && sizeof(MeshInfo) == 16);
-static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 64);
+static_assert(sizeof(Material) == 32 && sizeof(Luminaire) == 80 && sizeof(Grid) == 80);
 static_assert(sizeof(Photometric) == 96 && sizeof(Instance) == 160);
-static_assert(sizeof(TracePush) == 64 && sizeof(VisibilityPush) == 32);
+static_assert(sizeof(TracePush) == 80 && sizeof(VisibilityPush) == 32);
 // The shared record in C++ (glm::vec3 is three packed floats) at std430's offsets in GLSL, where
 // a vec3 is 16-byte aligned and the 4-byte field after it fills its last word.
 static_assert(std::is_trivially_copyable_v<Luminaire> && alignof(Luminaire) == 4);
@@ -193,6 +210,15 @@ enum VisibilityBinding : std::uint32_t {
 };
 static_assert(std::uint32_t(kShadowRays) == std::uint32_t(kBindingCount) &&
               kVisibilityBindingCount == kVisRetry + 1);
+
+/// path_vertices.comp's own bindings, after trace.comp's (all of whose buffers it binds).
+enum PathBinding : std::uint32_t {
+  kPathVertices = LS_BINDING_PATH_VERTICES,
+  kPathControl = LS_BINDING_PATH_CONTROL,
+  kPathBindingCount = LS_PATH_BINDING_COUNT
+};
+static_assert(std::uint32_t(kPathVertices) == std::uint32_t(kBindingCount) &&
+              kPathBindingCount == kPathControl + 1);
 
 /// A storage buffer of trace.comp: its binding, the GLSL block bound there and the name that
 /// errors use.

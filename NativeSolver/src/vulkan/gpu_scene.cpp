@@ -84,6 +84,7 @@ gpu::Grid pack_grid(const PreparedGrid& p) {
   put(g.dv, p.dv);
   g.flags = (p.indirect_only ? gpu::kGridIndirectOnly : 0u) |
             (p.direct_by_photons ? gpu::kGridDirectByPhotons : 0u);
+  g.connect_r0 = p.connect_r0;
   return g;
 }
 

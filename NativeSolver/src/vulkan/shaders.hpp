@@ -8,5 +8,6 @@ namespace lightsolver::detail::shaders {
 
 std::span<const std::uint32_t> trace();
 std::span<const std::uint32_t> visibility();
+std::span<const std::uint32_t> path_vertices();
 
 }  // namespace lightsolver::detail::shaders

@@ -13,6 +13,7 @@
 #include "vulkan/buffer.hpp"
 #include "vulkan/context.hpp"
 #include "vulkan/gpu_scene.hpp"
+#include "vulkan/path_tracer.hpp"
 #include "vulkan/sequence.hpp"
 #include "vulkan/shaders.hpp"
 #include "vulkan/visibility.hpp"
@@ -137,6 +138,30 @@ class VulkanBackend final : public Backend {
     shadows_->visible(seq_, rays, static_cast<std::uint32_t>(data_.instances.size()), out);
   }
 
+  // Shaders/path_vertices.comp, its own small pipeline made on first use (and again after
+  // buffers or features changed), so ordinary traces never compile it.
+  bool traces_path_vertices() const override { return true; }
+  void path_vertices(std::uint32_t group, std::uint64_t first, std::uint64_t count,
+                     std::uint64_t seed, std::uint32_t stream,
+                     std::vector<PathVertex>& out) override {
+    const std::lock_guard lock(submit_mutex_);
+    if (count == 0) return;
+    if (!paths_) {
+      std::vector<vkw::SpecConstant> spec = data_.features;
+      spec.push_back({gpu::kWorkgroupSize, kWorkgroupSize});
+      paths_.emplace(ctx_, buffers_, spec);
+    }
+    const auto [lum_first, lum_count] = data_.group_luminaires.at(group);
+    gpu::TracePush push{};
+    push.seed = seed;
+    push.max_bounces = s_.max_bounces;
+    push.luminaire_count = lum_count;
+    push.instance_count = static_cast<std::uint32_t>(data_.instances.size());
+    push.group = stream;  // path_vertices.comp: the photon stream
+    push.luminaire_first = lum_first;
+    paths_->trace(seq_, s_, push, first, count, out);
+  }
+
   std::string device() const override { return ctx_.device_name(); }
 
   // Tallies reach `out` only after the whole range succeeded, so a caller may retry the same
@@ -177,7 +202,9 @@ class VulkanBackend final : public Backend {
                             range.group,
                             lum_first,
                             static_cast<std::uint32_t>(range.group * s_.bins.size()),
-                            s_.groups[range.group].next_event ? 1u : 0u};
+                            s_.groups[range.group].next_event ? 1u : 0u,
+                            s_.groups[range.group].connect ? 1u : 0u,
+                            {0, 0, 0}};
         trace_->record(cmd, groups(n), &push);
         record_retries(cmd, push);
         done += n;
@@ -266,6 +293,7 @@ class VulkanBackend final : public Backend {
   void drop_pipelines() {
     trace_.reset();
     shadows_.reset();
+    paths_.reset();
   }
 
   void build_pipeline() {
@@ -345,6 +373,7 @@ class VulkanBackend final : public Backend {
   std::size_t tally_bytes_ = 0;  // the tallies the buffers were made for
   std::optional<vkw::Algorithm> trace_;
   std::optional<ShadowRayTracer> shadows_;  // made by the first visible()
+  std::optional<PathVertexTracer> paths_;   // made by the first path_vertices()
   vkw::Sequence seq_;
   std::mutex submit_mutex_;  // trace() and visible() share seq_ and the buffers
   bool quasi_random_ = false;
