@@ -278,9 +278,10 @@ bool pack_target_records(const PreparedScene& s, GpuSceneData& d) {
   }
   std::vector<gpu::Grid> grids;
   for (const auto& g : s.grids) grids.push_back(pack_grid(g));
+  // Empty vectors may have null data(), which memcmp must not get (UBSan's nonnull check).
   const auto same_bytes = [](const auto& a, const auto& b) {
     return a.size() == b.size() &&
-           std::memcmp(a.data(), b.data(), a.size() * sizeof(a.front())) == 0;
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a.front())) == 0);
   };
   if (same_bytes(meshes, d.meshes) && same_bytes(grids, d.grids)) return false;
   d.meshes = std::move(meshes);
