@@ -2,6 +2,7 @@
 defaults.hpp): the module exposes them, the documentation and the written files agree, and the
 workbench's exporter uses them (its fallback, for machines without the solver, is the same)."""
 import json
+import os
 import re
 import sys
 
@@ -88,7 +89,12 @@ def test_a_changed_material_value_changes_the_numbers():
                                                               "reflectance": 0.8}))
 
 
-def test_workbench_export_uses_the_module_and_its_fallback_agrees():
+def test_workbench_export_uses_the_module_and_its_fallback_agrees(monkeypatch):
+    # The module under test, not the newest build folder's (run.candidate_dirs: a build-no-mpi
+    # beside build/ is often newer), and sys.path as it was afterwards: load_module prepends
+    # the folder it chose, which later tests' subprocesses would inherit (test_mpi.py).
+    monkeypatch.setenv("LIGHTSOLVER_PYTHONPATH", os.path.dirname(lightsolver.__file__))
+    monkeypatch.setattr(sys, "path", list(sys.path))
     sys.path.insert(0, str(SOURCE_DIR / "Workbench"))
     try:
         from lighting.export import defaults
