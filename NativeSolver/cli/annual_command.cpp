@@ -30,26 +30,20 @@ struct AnnualArgs {
   double blinds = 0.0;
 };
 
-template <class T>
-void add(NpzWriter& z, const std::string& name, const char* dtype, const std::vector<T>& v,
-         std::vector<std::size_t> shape) {
-  z.add(name, dtype, shape, v.data(), v.size() * sizeof(T));
-}
-
 // Arrays per grid i: g<i>_mean, g<i>_low, g<i>_high (hours × cells, lx, float32; the hour's
 // interval at the run's confidence) and g<i>_direct_sun (with a sun); month_day_hour.
 std::string npz(const AnnualResult& r) {
   NpzWriter z(true);
   const std::size_t hours = r.month_day_hour.size() / 3;
-  add(z, "month_day_hour", "<i4", r.month_day_hour, {hours, 3});
+  z.add("month_day_hour", "<i4", r.month_day_hour, {hours, 3});
   for (std::size_t i = 0; i < r.grids.size(); ++i) {
     const AnnualGrid& g = r.grids[i];
     const std::string p = "g" + std::to_string(i) + "_";
     const std::vector<std::size_t> shape{hours, static_cast<std::size_t>(g.hourly.cells)};
-    add(z, p + "mean", "<f4", g.hourly.mean, shape);
-    add(z, p + "low", "<f4", g.low, shape);
-    add(z, p + "high", "<f4", g.high, shape);
-    if (!g.direct_sun.empty()) add(z, p + "direct_sun", "<f4", g.direct_sun, shape);
+    z.add(p + "mean", "<f4", g.hourly.mean, shape);
+    z.add(p + "low", "<f4", g.low, shape);
+    z.add(p + "high", "<f4", g.high, shape);
+    if (!g.direct_sun.empty()) z.add(p + "direct_sun", "<f4", g.direct_sun, shape);
   }
   return z.finish();
 }

@@ -17,6 +17,12 @@ class NpzWriter {
   /// `data` the bytes in C order.
   void add(const std::string& name, const std::string& dtype, const std::vector<std::size_t>& shape,
            const void* data, std::size_t bytes);
+  /// Adds `name`.npy holding `v`, whose element type `dtype` describes.
+  template <class T>
+  void add(const std::string& name, const std::string& dtype, const std::vector<T>& v,
+           const std::vector<std::size_t>& shape) {
+    add(name, dtype, shape, v.data(), v.size() * sizeof(T));
+  }
   /// The whole archive (central directory appended).
   std::string finish() const;
 

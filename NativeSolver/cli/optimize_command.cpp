@@ -20,8 +20,8 @@ namespace {
 
 namespace opt = lightsolver::optimizer;
 
-std::atomic<bool> g_stop{false};
-void on_sigint(int) { g_stop.store(true); }
+std::atomic<bool> g_optimize_stop{false};
+void on_optimize_sigint(int) { g_optimize_stop.store(true); }
 
 struct OptimizeArgs {
   std::string scene, out;
@@ -86,19 +86,19 @@ int run_optimize(OptimizeArgs& a) {
   a.overrides.processes = processes();
   a.overrides.command = command_line();
   opt::Control control;
-  control.cancel = &g_stop;
+  control.cancel = &g_optimize_stop;
   if (!a.quiet)
     control.progress = [](const opt::IterationStats& s) {
       print_iteration(s);
       return true;
     };
-  g_stop.store(false);
-  std::signal(SIGINT, on_sigint);
+  g_optimize_stop.store(false);
+  std::signal(SIGINT, on_optimize_sigint);
   const opt::OptimizationResult r = opt::run_problem(problem, a.overrides, control);
   std::signal(SIGINT, SIG_DFL);
   print_summary(problem, r);
   if (!a.out.empty()) write_file_atomically(a.out, opt::problem_result_json(problem, r) + "\n");
-  return r.stop == opt::StopReason::kCancelled && g_stop.load() ? 130 : 0;
+  return r.stop == opt::StopReason::kCancelled && g_optimize_stop.load() ? 130 : 0;
 }
 
 }  // namespace

@@ -24,35 +24,29 @@ struct SkymtxArgs {
   SkyMatrixOptions options;
 };
 
-template <class T>
-void add(NpzWriter& z, const std::string& name, const char* dtype, const std::vector<T>& v,
-         std::vector<std::size_t> shape) {
-  z.add(name, dtype, shape, v.data(), v.size() * sizeof(T));
-}
-
 std::string npz(const SkyMatrix& m, const WeatherFile& w, const SkyPatches& p) {
   NpzWriter z;
   const auto h = static_cast<std::size_t>(m.hours), n = static_cast<std::size_t>(m.patch_count);
-  add(z, "sky", "<f4", m.sky, {h, n});
-  add(z, "sun_direction", "<f4", m.sun_direction, {h, 3});
-  add(z, "sun_direct_normal_lx", "<f4", m.sun_direct_normal_lx, {h});
-  add(z, "sun_altitude_deg", "<f4", m.sun_altitude_deg, {h});
-  add(z, "diffuse_horizontal_lx", "<f4", m.diffuse_horizontal_lx, {h});
-  add(z, "status", "|u1", m.status, {h});
+  z.add("sky", "<f4", m.sky, {h, n});
+  z.add("sun_direction", "<f4", m.sun_direction, {h, 3});
+  z.add("sun_direct_normal_lx", "<f4", m.sun_direct_normal_lx, {h});
+  z.add("sun_altitude_deg", "<f4", m.sun_altitude_deg, {h});
+  z.add("diffuse_horizontal_lx", "<f4", m.diffuse_horizontal_lx, {h});
+  z.add("status", "|u1", m.status, {h});
   std::vector<std::int32_t> stamp;  // month, day, hour per row
   for (const WeatherHour& x : w.hours) stamp.insert(stamp.end(), {x.month, x.day, x.hour});
-  add(z, "month_day_hour", "<i4", stamp, {h, 3});
+  z.add("month_day_hour", "<i4", stamp, {h, 3});
   std::vector<double> centre, omega, mean_cos;
   for (const SkyPatch& q : p.patches()) {
     centre.insert(centre.end(), {q.centre.x, q.centre.y, q.centre.z});
     omega.push_back(q.solid_angle_sr);
     mean_cos.push_back(q.mean_cos_zenith);
   }
-  add(z, "patch_centre", "<f8", centre, {n, 3});
-  add(z, "patch_solid_angle_sr", "<f8", omega, {n});
-  add(z, "patch_mean_cos_zenith", "<f8", mean_cos, {n});
+  z.add("patch_centre", "<f8", centre, {n, 3});
+  z.add("patch_solid_angle_sr", "<f8", omega, {n});
+  z.add("patch_mean_cos_zenith", "<f8", mean_cos, {n});
   const std::vector<double> meta{static_cast<double>(m.mf), p.north_deg(), m.max_quadrature_error};
-  add(z, "mf_north_deg_quadrature_error", "<f8", meta, {3});
+  z.add("mf_north_deg_quadrature_error", "<f8", meta, {3});
   return z.finish();
 }
 

@@ -28,8 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::atomic<bool> g_stop{false};
-void on_sigint(int) { g_stop.store(true); }
+std::atomic<bool> g_study_stop{false};
+void on_study_sigint(int) { g_study_stop.store(true); }
 
 struct StudyArgs {
   std::string scene, reference, csv, json, plot, out;
@@ -148,15 +148,15 @@ int run_study_command(const StudyArgs& a) {
   const Scene scene = load_scene(a.scene);
   StudyOptions o;
   o.solve = a.solve;
-  o.solve.cancel = &g_stop;
+  o.solve.cancel = &g_study_stop;
   o.solve.processes = processes();
   o.solve.command = command_line();
   o.max_photons = a.max_photons;
   o.reference_file = a.reference;
   const bool reference = !a.reference.empty();
   bool header = false;
-  g_stop.store(false);
-  std::signal(SIGINT, on_sigint);
+  g_study_stop.store(false);
+  std::signal(SIGINT, on_study_sigint);
   const Study st = run_study(scene, o, [&](const StudyRow& r) {
     if (!header) print_header(reference), header = true;
     print_row(r, reference);

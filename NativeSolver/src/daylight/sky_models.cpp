@@ -2,18 +2,17 @@
 // model's tables are in sky_perez.cpp).
 #include "daylight/sky_models.hpp"
 
-#include "daylight/gauss_legendre.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
 
+#include "daylight/gauss_legendre.hpp"
+#include "lightsolver/angles.hpp"
+
 namespace lightsolver::daylight {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // ISO 15469:2004 / CIE S 011/E:2003, Table 1: gradation group (a, b) and indicatrix group
 // (c, d, e) of each of the 15 standard general skies. Checked against two independent

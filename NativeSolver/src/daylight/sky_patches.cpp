@@ -8,14 +8,13 @@
 #include <numbers>
 #include <string>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/error.hpp"
 
 namespace lightsolver {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 // Tregenza's patches per row, horizon up (the zenith cap apart).
 constexpr int kTregenzaRow[7] = {30, 30, 24, 24, 18, 12, 6};
 

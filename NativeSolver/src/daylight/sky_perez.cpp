@@ -12,11 +12,11 @@
 #include <string>
 
 #include "daylight/sky_models.hpp"
+#include "lightsolver/angles.hpp"
 
 namespace lightsolver::daylight {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kSolarConstant_w_m2 = 1367.0;
 constexpr double kSolarConstant_lx = 127500.0;  // illuminance over irradiance of sunlight
 
@@ -90,7 +90,7 @@ void classify(const Conditions& k, double dhi, double dni, PerezState& s) {
       0.0, kb[0] + kb[1] * k.water_cm + kb[2] * std::exp(5.73 * k.zenith - 5.0) + kb[3] * s.delta);
 }
 
-void require(bool ok, const std::string& what) {
+void check_input(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
@@ -102,15 +102,15 @@ double shape_brightness(double epsilon, double delta) {
 }
 
 PerezState perez_inputs(const PerezInput& in, double sun_zenith_rad) {
-  require(std::isfinite(in.diffuse_horizontal) && in.diffuse_horizontal > 0.0,
-          "perez.diffuse_horizontal: must be a finite value > 0");
-  require(std::isfinite(in.direct_normal) && in.direct_normal >= 0.0,
-          "perez.direct_normal: must be a finite value >= 0");
-  require(in.day_of_year >= 1 && in.day_of_year <= 366, "perez.day_of_year: must be 1 to 366");
-  require(std::isfinite(in.dew_point_c) && in.dew_point_c > -90.0 && in.dew_point_c < 60.0,
-          "perez.dew_point_c: must be between -90 and 60 °C");
-  require(std::isfinite(sun_zenith_rad) && sun_zenith_rad >= 0.0 && sun_zenith_rad <= kPi / 2,
-          "sun: the Perez sky needs the sun at or above the horizon");
+  check_input(std::isfinite(in.diffuse_horizontal) && in.diffuse_horizontal > 0.0,
+              "perez.diffuse_horizontal: must be a finite value > 0");
+  check_input(std::isfinite(in.direct_normal) && in.direct_normal >= 0.0,
+              "perez.direct_normal: must be a finite value >= 0");
+  check_input(in.day_of_year >= 1 && in.day_of_year <= 366, "perez.day_of_year: must be 1 to 366");
+  check_input(std::isfinite(in.dew_point_c) && in.dew_point_c > -90.0 && in.dew_point_c < 60.0,
+              "perez.dew_point_c: must be between -90 and 60 °C");
+  check_input(std::isfinite(sun_zenith_rad) && sun_zenith_rad >= 0.0 && sun_zenith_rad <= kPi / 2,
+              "sun: the Perez sky needs the sun at or above the horizon");
   const Conditions k{sun_zenith_rad, air_mass(sun_zenith_rad),
                      kSolarConstant_w_m2 * eccentricity(in.day_of_year),
                      std::exp(0.07 * in.dew_point_c - 0.075)};

@@ -6,10 +6,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "lightsolver/angles.hpp"
+
 namespace lightsolver::daylight {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Gauss-Legendre on [0, 1].
 constexpr double kG2x[2] = {0.21132486540518713, 0.7886751345948129};

@@ -3,8 +3,6 @@
 // model is not smooth so that every kink lies on an edge.
 #include "daylight/sky_vector.hpp"
 
-#include "daylight/gauss_legendre.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,12 +10,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "daylight/gauss_legendre.hpp"
+#include "lightsolver/angles.hpp"
+
 namespace lightsolver::daylight {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 using Rule = GaussRule;
 

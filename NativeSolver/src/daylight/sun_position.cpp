@@ -26,13 +26,13 @@
 #include <numbers>
 #include <sstream>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/daylight.hpp"
 #include "lightsolver/error.hpp"
 
 namespace lightsolver {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kJ2000 = 2451545.0;
 constexpr double kObliquityJ2000Deg = 23.4392911;  // IAU 1980, 23°26'21.448"
 constexpr double kAberrationArcsec = 20.4898;      // Meeus ch. 25, divided by R in AU

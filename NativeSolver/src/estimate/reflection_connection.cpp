@@ -22,7 +22,7 @@ constexpr std::uint32_t kPointStream = 0x20000000u;
 // Per-path deposits kept per batch of paths (paths x cells doubles: 8 MiB), and the shadow rays
 // of a batch (about two vertices per path): a batch is a cancellation point, as next_event.cpp's.
 constexpr std::size_t kBatchValues = std::size_t(1) << 20;
-constexpr std::size_t kBatchRays = std::size_t(1) << 18;
+constexpr std::size_t kConnectBatchRays = std::size_t(1) << 18;
 // A shadow ray stops this fraction short of its grid point, which may lie on a surface (a
 // grid on the floor): the photons' crossing there counts too (shared::grid_reach).
 constexpr double kShortOfPoint = 1e-4;
@@ -113,7 +113,7 @@ bool group_sums(const PreparedScene& s, Backend& backend, const std::vector<Grid
   out = Sums{std::vector<double>(columns, 0.0), std::vector<double>(columns, 0.0),
              std::vector<std::uint64_t>(columns, 0)};
   const std::uint64_t batch =
-      std::max<std::size_t>(1, std::min(kBatchValues / columns, kBatchRays / (2 * cells)));
+      std::max<std::size_t>(1, std::min(kBatchValues / columns, kConnectBatchRays / (2 * cells)));
   const double flux = s.groups[group].flux_lm;
   std::vector<double> deposits;
   std::vector<PathVertex> vertices;

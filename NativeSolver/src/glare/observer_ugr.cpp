@@ -6,12 +6,12 @@
 #include <sstream>
 
 #include "glare/glare_terms.hpp"
+#include "lightsolver/angles.hpp"
 #include "lightsolver/glare.hpp"
 
 namespace lightsolver {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // CIE 117's formula holds for sources of 0.0003 to 0.1 sr (CIE 147 rates smaller and larger
 // ones); outside it the result is still computed but flagged.
 constexpr double kSmallSourceSr = 3e-4;

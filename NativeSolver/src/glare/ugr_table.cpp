@@ -9,12 +9,12 @@
 #include <numbers>
 #include <sstream>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/glare.hpp"
 
 namespace lightsolver {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kPhiSteps = 720;    // world azimuth, 0.5 degree cells (midpoints)
 constexpr int kGammaSteps = 360;  // 0.25 degree steps from nadir to horizontal
 

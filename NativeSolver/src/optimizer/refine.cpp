@@ -9,7 +9,7 @@
 
 #include "search.hpp"
 
-namespace lightsolver::optimizer::detail {
+namespace lightsolver::optimizer::search_detail {
 
 namespace {
 
@@ -164,4 +164,4 @@ std::vector<std::uint64_t> Search::staged_members(const std::vector<std::uint64_
   return traced;
 }
 
-}  // namespace lightsolver::optimizer::detail
+}  // namespace lightsolver::optimizer::search_detail

@@ -10,6 +10,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "optimizer/equal_widths.hpp"
 #include "optimizer/group_traces.hpp"
@@ -24,8 +25,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
-
-constexpr double kDeg = M_PI / 180.0;
 
 // Memory for kept group traces (least recently used dropped beyond it; results unchanged).
 constexpr std::size_t kTraceCacheBytes = std::size_t(256) << 20;
@@ -43,9 +42,6 @@ glm::dvec3 direction_from(double tilt_deg, double pan_deg) {
   const double t = tilt_deg * kDeg, p = pan_deg * kDeg;
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), -std::cos(t)};
 }
-
-// Where a luminaire "is": its position, or the centre of its parallelogram.
-glm::dvec3 anchor_of(const Luminaire& l) { return detail::luminaire_type(l.type).centre(l); }
 
 void place(Luminaire& l, const glm::dvec3& anchor) {
   detail::luminaire_type(l.type).move_to(l, anchor);
@@ -146,7 +142,7 @@ std::map<std::string, std::vector<double>> describe_values(const SceneProblem& p
     }
     for (std::size_t i : v.luminaires) {
       Luminaire l = changed(i);
-      if (v.type == SceneVariable::Type::kPosition) out[l.name] = vec(anchor_of(l));
+      if (v.type == SceneVariable::Type::kPosition) out[l.name] = vec(detail::anchor_of(l));
       if (v.type == SceneVariable::Type::kAim) out[l.name + ".direction"] = vec(aim_field(l));
       if (v.type == SceneVariable::Type::kFlux) out[l.name + ".flux_lm"] = {l.flux_lm};
     }

@@ -37,9 +37,6 @@ const Target* find_target(const Scene& s, const std::string& name) {
   return nullptr;
 }
 
-// Where a luminaire "is" for placement: its position, or the centre of its parallelogram.
-glm::dvec3 anchor_of(const Luminaire& l) { return detail::luminaire_type(l.type).centre(l); }
-
 std::uint32_t positive_count(const JsonNode& n) {
   const std::uint64_t c = n.unsigned_integer();
   if (c == 0 || c > (1u << 20)) n.fail("must be between 1 and 1048576 cells");
@@ -105,10 +102,10 @@ SceneVariable read_position(const JsonNode& n, SceneProblem& p, Claims& claims) 
   SceneVariable v;
   v.type = SceneVariable::Type::kPosition;
   v.luminaires = read_luminaires(n, p.scene);
-  const glm::dvec3 first = anchor_of(p.scene.luminaires[v.luminaires[0]]);
+  const glm::dvec3 first = detail::anchor_of(p.scene.luminaires[v.luminaires[0]]);
   for (std::size_t i : v.luminaires) {
     claims.claim(n, "the position of luminaire \"" + p.scene.luminaires[i].name + "\"");
-    v.offsets.push_back(anchor_of(p.scene.luminaires[i]) - first);
+    v.offsets.push_back(detail::anchor_of(p.scene.luminaires[i]) - first);
   }
   const std::string name =
       n.has("name") ? n.at("name").string() : joined_names(p.scene, v.luminaires);

@@ -9,7 +9,7 @@
 
 #include "lightsolver/optimizer/vns.hpp"
 
-namespace lightsolver::optimizer::detail {
+namespace lightsolver::optimizer::search_detail {
 
 using Clock = std::chrono::steady_clock;
 
@@ -84,4 +84,4 @@ class Search {
   Clock::time_point t0_ = Clock::now();
 };
 
-}  // namespace lightsolver::optimizer::detail
+}  // namespace lightsolver::optimizer::search_detail

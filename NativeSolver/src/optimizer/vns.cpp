@@ -12,7 +12,7 @@
 
 namespace lightsolver::optimizer {
 
-namespace detail {
+namespace search_detail {
 
 namespace {
 
@@ -332,7 +332,7 @@ OptimizationResult Search::run() {
   return build_result(t0);
 }
 
-}  // namespace detail
+}  // namespace search_detail
 
 const char* to_string(StopReason r) {
   switch (r) {
@@ -350,8 +350,8 @@ const char* to_string(StopReason r) {
 
 OptimizationResult optimize(const Domain& domain, const Intention& intention, Evaluator& evaluator,
                             const VnsOptions& options, const Control& control) {
-  detail::check_options(domain, options);
-  detail::Search search(domain, intention, evaluator, options, control);
+  search_detail::check_options(domain, options);
+  search_detail::Search search(domain, intention, evaluator, options, control);
   return search.run();
 }
 

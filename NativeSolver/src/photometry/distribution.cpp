@@ -5,6 +5,7 @@
 #include <functional>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "photometry_internal.hpp"
 
 namespace lightsolver::photometry_detail {
@@ -12,7 +13,6 @@ namespace lightsolver::photometry_detail {
 namespace {
 
 constexpr double kEps = 1e-6;  // degrees: angles closer than this are the same angle
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 double mod360(double a) {
   a = std::fmod(a, 360.0);

@@ -12,12 +12,12 @@ namespace lightsolver {
 namespace {
 
 using photometry_detail::fail;
+using photometry_detail::kAngleEps;
 using photometry_detail::Line;
 using photometry_detail::TokenStream;
 using photometry_detail::trim;
 
 constexpr double kFootToMetre = 0.3048;
-constexpr double kAngleEps = 1e-6;
 
 bool near(double a, double b) { return std::abs(a - b) < kAngleEps; }
 

@@ -10,10 +10,10 @@ namespace lightsolver {
 namespace {
 
 using photometry_detail::fail;
+using photometry_detail::kAngleEps;
 using photometry_detail::Line;
 using photometry_detail::trim;
 
-constexpr double kAngleEps = 1e-6;
 constexpr long kMaxPlanes = 100000;
 
 // Reads the file line by line; every field is one line (the format has no separators).

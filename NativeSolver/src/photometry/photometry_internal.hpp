@@ -11,6 +11,9 @@
 
 namespace lightsolver::photometry_detail {
 
+/// Angles closer than this (degrees) are one angle: the IES and LDT readers' tolerance.
+inline constexpr double kAngleEps = 1e-6;
+
 /// One line of a text file, without its terminator, with its 1-based number.
 struct Line {
   std::string_view text;

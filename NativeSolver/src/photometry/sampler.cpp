@@ -4,13 +4,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "photometry_internal.hpp"
 
 namespace lightsolver {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 // Acceptance per try is at least 1/12: I is bilinear (>= its largest corner times a product of
 // linear ramps) and sin t is concave over a cell (>= its maximum times a tent). 1000 rejections
 // in a row thus have probability below 1e-37; the cap only stops hostile input from looping.

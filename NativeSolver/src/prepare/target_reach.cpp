@@ -6,13 +6,13 @@
 #include <limits>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "types/luminaire_types.hpp"
 
 namespace lightsolver::detail {
 namespace {
 
 using glm::dvec3;
-constexpr double kPi = std::numbers::pi;
 // Angles closer than this to a cone's edge are not trusted (float directions in the tracer).
 constexpr double kAngleMargin_rad = 1e-3;
 // Target triangles x luminaires beyond which a target is not judged (the check must stay cheap).

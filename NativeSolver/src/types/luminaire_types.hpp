@@ -16,8 +16,8 @@
 #include <string_view>
 #include <vector>
 
-#include "model/prepared_scene.hpp"
 #include "lightsolver/scene.hpp"
+#include "model/prepared_scene.hpp"
 
 namespace lightsolver::detail {
 
@@ -138,6 +138,9 @@ std::span<const LuminaireType> luminaire_types();
 std::size_t luminaire_type_index(Luminaire::Type type);
 /// The row of `type`.
 const LuminaireType& luminaire_type(Luminaire::Type type);
+
+/// Where a luminaire "is" for placement: its type's centre() (position, or parallelogram centre).
+inline glm::dvec3 anchor_of(const Luminaire& l) { return luminaire_type(l.type).centre(l); }
 /// The row whose scene-file name is `name`, or nullptr.
 const LuminaireType* find_luminaire_type(std::string_view name);
 /// "point, spot, area, directional or photometric", for messages.

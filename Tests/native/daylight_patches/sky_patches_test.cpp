@@ -9,12 +9,14 @@
 #include <numbers>
 #include <random>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/error.hpp"
 
 namespace {
 
+using lightsolver::kPi;
+
 using lightsolver::SkyPatches;
-constexpr double kPi = std::numbers::pi;
 
 // reinhart.cal (Radiance, G. Ward 2009), in its own terms: Dx east, Dy north, Dz up.
 struct ReinhartCal {

@@ -9,13 +9,15 @@
 #include <numbers>
 
 #include "daylight/sky_models.hpp"
+#include "lightsolver/angles.hpp"
 #include "lightsolver/sky_patches.hpp"
 
 namespace {
 
+using lightsolver::kPi;
+
 using namespace lightsolver::daylight;
 using lightsolver::SkyPatches;
-constexpr double kPi = std::numbers::pi;
 
 Direction sun_at(double alt_deg, double azi_deg) {  // Radiance's frame: x east, y north
   const double a = alt_deg * kPi / 180, z = azi_deg * kPi / 180;

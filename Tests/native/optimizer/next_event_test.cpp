@@ -68,7 +68,7 @@ json desk_room(double rho, const std::string& next_event) {
               {"max_iterations", 30}}}}}};
 }
 
-SceneProblem parse(const json& s) { return problem_from_json(s.dump(), "desk.json", "."); }
+SceneProblem parse_desk(const json& s) { return problem_from_json(s.dump(), "desk.json", "."); }
 
 // The mean illuminance of a w x w square centred under an isotropic point source of I cd at
 // height h: I times the square's solid angle from the source over its area.
@@ -108,7 +108,7 @@ class GroupTraceNextEvent : public ::testing::TestWithParam<std::string> {};
 // Every group traced apart with next_event on and combined is run() with it, bit for bit (the
 // photons skip their bounce-0 deposits, the direct parts are the run's own points).
 TEST_P(GroupTraceNextEvent, CombinedTracesAreTheRunBitForBit) {
-  Scene scene = parse(desk_room(0.5, "on")).scene;
+  Scene scene = parse_desk(desk_room(0.5, "on")).scene;
   Simulation sim(scene, Simulation::Options{GetParam(), 2, {}});
   ASSERT_EQ(sim.groups().size(), 2u);
   SolveOptions o;
@@ -146,7 +146,7 @@ TEST(GroupTraceNextEvent, PointOverSurfaceTargetIsTheClosedForm) {
   json j = desk_room(0.0, "on");
   j["luminaires"][0]["position"] = {1.5, 1.5, 2.5};  // over the desk's centre
   j["luminaires"][1]["flux_lm"] = 0;
-  Simulation sim(parse(j).scene, Simulation::Options{"embree", 2, {}});
+  Simulation sim(parse_desk(j).scene, Simulation::Options{"embree", 2, {}});
   const GroupTrace t = sim.trace_group(0, 20'000, 5);
   ASSERT_FALSE(t.direct.empty());
   EXPECT_FALSE(t.photons_reflect);
@@ -169,7 +169,7 @@ TEST(GroupTraceNextEvent, PointOverSurfaceTargetIsTheClosedForm) {
 // next-event plan is refused.
 TEST(GroupTraceNextEvent, ContinuedTraceIsTheWholeTraceBitForBit) {
   for (const std::string mode : {"off", "on"}) {
-    Simulation sim(parse(desk_room(0.5, mode)).scene, Simulation::Options{"embree", 2, {}});
+    Simulation sim(parse_desk(desk_room(0.5, mode)).scene, Simulation::Options{"embree", 2, {}});
     const GroupTrace whole = sim.trace_group(0, 80'000, 21);
     const GroupTrace first = sim.trace_group(0, 20'000, 21);
     const GroupTrace rest = sim.trace_group(0, 80'000, 21, nullptr, &first);
@@ -205,7 +205,7 @@ TEST(GroupTraceNextEvent, ContinuedTraceIsTheWholeTraceBitForBit) {
     for (std::size_t b = 0; b < whole.bins.size(); ++b)
       EXPECT_EQ(whole.bins[b].sum, continued.bins[b].sum) << mode;
   }
-  Scene on = parse(desk_room(0.5, "on")).scene, off = on;
+  Scene on = parse_desk(desk_room(0.5, "on")).scene, off = on;
   off.settings.next_event = "off";
   Simulation with(on, Simulation::Options{"embree", 2, {}});
   Simulation without(off, Simulation::Options{"embree", 2, {}});
@@ -220,7 +220,7 @@ TEST(GroupTraceNextEvent, ContinuedTraceIsTheWholeTraceBitForBit) {
 TEST(OptimizerNextEvent, SearchKeepsTheClosedFormBestWithAndWithout) {
   std::size_t sizes[2] = {0, 0};
   for (const std::string mode : {"off", "on"}) {
-    const SceneProblem p = parse(desk_room(0.5, mode));
+    const SceneProblem p = parse_desk(desk_room(0.5, mode));
     RunOverrides o;
     o.threads = 2;
     o.backend = "embree";
@@ -240,7 +240,7 @@ TEST(OptimizerNextEvent, SearchKeepsTheClosedFormBestWithAndWithout) {
   }
   EXPECT_LE(sizes[1], sizes[0]);
   // The override wins over the scene's setting.
-  const SceneProblem p = parse(desk_room(0.5, "off"));
+  const SceneProblem p = parse_desk(desk_room(0.5, "off"));
   RunOverrides o;
   o.threads = 2;
   o.backend = "embree";
@@ -259,7 +259,7 @@ TEST(OptimizerNextEvent, StagedRefinementContinuesTracesBitForBit) {
   for (const std::string mode : {"off", "on"}) {
     json j = desk_room(0.5, mode);
     j["targets"][0]["mesh"] = "floor";
-    const SceneProblem p = parse(j);
+    const SceneProblem p = parse_desk(j);
     RunOverrides o;
     o.threads = 2;
     o.backend = "embree";
@@ -296,7 +296,7 @@ TEST(OptimizerNextEvent, MatchedWidthsTraceFewerPhotonsForTheSameIntervals) {
     }
     return -1.0;  // not matched
   };
-  const SceneProblem on = parse(desk_room(0.5, "on")), off = parse(desk_room(0.5, "off"));
+  const SceneProblem on = parse_desk(desk_room(0.5, "on")), off = parse_desk(desk_room(0.5, "off"));
   RunOverrides o;
   o.threads = 2;
   o.backend = "embree";
@@ -326,7 +326,7 @@ TEST(OptimizerNextEvent, MatchedWidthsTraceFewerPhotonsForTheSameIntervals) {
 // A next_event value outside auto/on/off is refused before the search, naming the setting.
 TEST(OptimizerNextEvent, BadSettingsAreRefused) {
   json j = desk_room(0.5, "on");
-  const SceneProblem p = parse(j);
+  const SceneProblem p = parse_desk(j);
   RunOverrides o;
   o.backend = "embree";
   o.next_event = "sometimes";

@@ -53,7 +53,7 @@ json two_lamps() {
             {"search", {{"seed", 5}}}}}};
 }
 
-SceneProblem parse(const json& s) { return problem_from_json(s.dump(), "reuse.json", "."); }
+SceneProblem parse_reuse(const json& s) { return problem_from_json(s.dump(), "reuse.json", "."); }
 
 Evaluation evaluate(SceneEvaluator& ev, const SceneProblem& p, const Configuration& cells,
                     std::uint64_t photons = 40'000) {
@@ -63,7 +63,7 @@ Evaluation evaluate(SceneEvaluator& ev, const SceneProblem& p, const Configurati
 }
 
 TEST(ReusedTraces, AFluxLevelTracesNothingAndAMoveTracesTheMovedGroupOnly) {
-  const SceneProblem p = parse(two_lamps());
+  const SceneProblem p = parse_reuse(two_lamps());
   SceneEvaluator ev(p, 2);
   const Evaluation first = evaluate(ev, p, {1, 1, 0});  // both groups traced
   EXPECT_EQ(*first.photons_traced, 40'000u);
@@ -83,7 +83,7 @@ TEST(ReusedTraces, AFluxLevelTracesNothingAndAMoveTracesTheMovedGroupOnly) {
 // Scaled and reused, an estimate still agrees with an independent run of that configuration
 // (another seed) within 4 standard deviations of the difference; U0 within its interval's.
 TEST(ReusedTraces, EstimatesAgreeWithIndependentRuns) {
-  const SceneProblem p = parse(two_lamps());
+  const SceneProblem p = parse_reuse(two_lamps());
   SceneEvaluator ev(p, 2);
   for (const Configuration& cells : {Configuration{0, 3, 0}, Configuration{3, 0, 1},
                                      Configuration{0, 3, 1}, Configuration{3, 0, 2}}) {
@@ -106,7 +106,7 @@ TEST(ReusedTraces, EstimatesAgreeWithIndependentRuns) {
 // A group's trace is a function of its own cells and the photon level: what was evaluated
 // before (kept, reused or dropped) changes no bit.
 TEST(ReusedTraces, AnEvaluationDoesNotDependOnTheOnesBefore) {
-  const SceneProblem p = parse(two_lamps());
+  const SceneProblem p = parse_reuse(two_lamps());
   SceneEvaluator fresh(p, 2), used(p, 2);
   for (const Configuration& c : {Configuration{0, 0, 2}, Configuration{3, 3, 1}}) {
     evaluate(used, p, c);
@@ -123,7 +123,7 @@ TEST(ReusedTraces, AnEvaluationDoesNotDependOnTheOnesBefore) {
 TEST(ReusedTraces, OffIsOnePlainRunPerEvaluation) {
   json scene = two_lamps();
   scene["optimization"]["search"]["reuse_traces"] = false;
-  const SceneProblem p = parse(scene);
+  const SceneProblem p = parse_reuse(scene);
   EXPECT_FALSE(p.reuse_traces);
   SceneEvaluator ev(p, 2);
   const Configuration cells{2, 1, 1};
@@ -179,7 +179,7 @@ TEST(ReusedTraces, ReportedMembersStayFeasibleOver100Seeds) {
           {"confirmation_photons", 400'000},
           {"max_iterations", 20},
           {"initial", {{14}}}}}}}};
-  const SceneProblem p = parse(s);
+  const SceneProblem p = parse_reuse(s);
   int infeasible = 0, runs_with_answer = 0;
   for (std::uint64_t seed = 1; seed <= 100; ++seed) {
     RunOverrides o;

@@ -98,10 +98,12 @@ json base_scene() {
         {"search", {{"seed", 3}, {"max_iterations", 5}, {"strategy", "refine_at_end"}}}}}};
 }
 
-SceneProblem parse(const json& scene) { return problem_from_json(scene.dump(), "t.json", "."); }
+SceneProblem parse_problem(const json& scene) {
+  return problem_from_json(scene.dump(), "t.json", ".");
+}
 
 TEST(SceneProblem, ParsesTheDocumentedBlock) {
-  const SceneProblem p = parse(base_scene());
+  const SceneProblem p = parse_problem(base_scene());
   ASSERT_EQ(p.domain.dimensions(), 6u);
   EXPECT_EQ(p.domain.variables()[0].name, "p.u");
   EXPECT_EQ(p.domain.variables()[2].name, "cube.u");
@@ -127,7 +129,7 @@ TEST_P(BadInput, NamesTheFileAndField) {
   json scene = base_scene();
   GetParam().edit(scene["optimization"]);
   try {
-    parse(scene);
+    parse_problem(scene);
     FAIL() << "accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "t.json");
@@ -292,7 +294,7 @@ TEST(SceneProblem, MissingBlockIsAnError) {
   json scene = base_scene();
   scene.erase("optimization");
   try {
-    parse(scene);
+    parse_problem(scene);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.where(), "optimization");
@@ -313,7 +315,7 @@ TEST(SceneProblem, ValuesMoveAimAndDimTheScene) {
                                                 {"min_deg", 0},
                                                 {"max_deg", 360},
                                                 {"cells", 4}});
-  const SceneProblem p = parse(scene);
+  const SceneProblem p = parse_problem(scene);
   // u = 0.125, v = 0.375 (cells 0, 1); cube to (1.5, 0.5); tilt 30; flux 375; pan 135.
   const std::vector<double> values = p.domain.values({0, 1, 1, 0, 1, 1, 1});
   const Scene s = apply_values(p, values);
@@ -336,7 +338,7 @@ TEST(SceneProblem, ValuesMoveAimAndDimTheScene) {
 }
 
 TEST(SceneEvaluator, SameRequestSameEstimatesAndMovedGeometryMatchesARebuiltScene) {
-  const SceneProblem p = parse(base_scene());
+  const SceneProblem p = parse_problem(base_scene());
   SceneEvaluator ev(p, 2, kAutoBackend, nullptr, /*reuse_traces=*/false);  // one run, one seed
   const Configuration cells{1, 2, 2, 0, 1, 2};
   const std::vector<double> values = p.domain.values(cells);
@@ -362,7 +364,7 @@ TEST(SceneEvaluator, SameRequestSameEstimatesAndMovedGeometryMatchesARebuiltScen
 TEST(SceneProblem, RotationTurnsAboutThePivotThenTranslates) {
   json alone = base_scene();
   var(alone["optimization"], 1) = cube_rotation();
-  const SceneProblem r = parse(alone);
+  const SceneProblem r = parse_problem(alone);
   EXPECT_EQ(r.domain.variables()[2].name, "cube.rotation_deg");
   EXPECT_EQ(r.movable_meshes(), std::vector<std::string>{"cube"});
   // Cells: p (0, 0), rotation 1 (90 degrees), tilt 0, flux 0.
@@ -376,7 +378,7 @@ TEST(SceneProblem, RotationTurnsAboutThePivotThenTranslates) {
 
   json both = base_scene();
   both["optimization"]["variables"].push_back(cube_rotation());
-  const SceneProblem t = parse(both);
+  const SceneProblem t = parse_problem(both);
   EXPECT_EQ(t.movable_meshes(), std::vector<std::string>{"cube"});  // listed once
   // Translation cells (1, 0): anchor (origin) onto (1.5, 0.5, 0); rotation cell 1: 90 degrees.
   s = apply_values(t, t.domain.values({0, 0, 1, 0, 0, 0, 1}));
@@ -386,7 +388,7 @@ TEST(SceneProblem, RotationTurnsAboutThePivotThenTranslates) {
   // origin to (0, 1, 1); translation cells (0, 0) then shift it by (0.5, 0.5, 0).
   var(both["optimization"], 4)["axis"] = {2, 0, 0};
   var(both["optimization"], 4)["pivot"] = {0, 0.5, 0.5};
-  const SceneProblem x = parse(both);
+  const SceneProblem x = parse_problem(both);
   s = apply_values(x, x.domain.values({0, 0, 0, 0, 0, 0, 2}));
   EXPECT_NEAR(glm::distance(s.meshes[1].vertices[0], glm::dvec3(0.5, 1.5, 1)), 0.0, 1e-12);
 }
@@ -397,7 +399,7 @@ TEST(SceneEvaluator, RotatedGeometryMatchesARebuiltScene) {
   json scene = base_scene();
   scene["optimization"]["variables"].push_back(cube_rotation());
   var(scene["optimization"], 4)["max_deg"] = 75;  // -30, 0, 30, 60: no symmetry helps
-  const SceneProblem p = parse(scene);
+  const SceneProblem p = parse_problem(scene);
   SceneEvaluator ev(p, 2, kAutoBackend, nullptr, /*reuse_traces=*/false);  // one run, one seed
   const Configuration cells{1, 2, 1, 1, 1, 2, 2};  // the cube turned 30 degrees
   const std::vector<double> values = p.domain.values(cells);
@@ -437,7 +439,7 @@ SceneProblem ceiling_within(const json& within, double x, double y, std::uint64_
                  {"max_iterations", 40},
                  {"screening_photons", 20000},
                  {"confirmation_photons", 200000}};
-  return parse(scene);
+  return parse_problem(scene);
 }
 
 // An L-shaped ceiling: the point light may not go over the room's missing quadrant (x, y > 2),
@@ -483,7 +485,7 @@ TEST(SceneEvaluator, InstalledFluxIsExact) {
                                         {"target", "wp"},
                                         {"min_mean_lux", 1},
                                         {"min_uniformity", 0.1}};
-  const SceneProblem p = parse(scene);
+  const SceneProblem p = parse_problem(scene);
   SceneEvaluator ev(p, 2);
   const Configuration cells{0, 0, 0, 0, 0, 2};  // p and a at 2000 lm
   const auto values = p.domain.values(cells);
@@ -500,7 +502,7 @@ TEST(SceneEvaluator, InstalledFluxIsExact) {
 TEST(Uniformity, IntervalCoversTheTruth) {
   json scene = base_scene();
   scene["luminaires"][3]["illuminance_lx"] = 0;  // keep it simple: point, spot, panel
-  const Scene s = parse(scene).scene;
+  const Scene s = parse_problem(scene).scene;
   Simulation sim(s, Simulation::Options{"auto", 2, {}});
   SolveOptions o;
   o.photons = 4'000'000;

@@ -29,10 +29,8 @@ json scene(int movers, double fixed_x, double fixed_y, double min_spacing_m) {
   json lights = json::array(), variables = json::array();
   for (int i = 0; i < movers; ++i) {
     const std::string name = "lum" + std::to_string(i);
-    lights.push_back({{"name", name},
-                      {"type", "point"},
-                      {"flux_lm", 1000},
-                      {"position", {0.5, 0.5, 2.9}}});
+    lights.push_back(
+        {{"name", name}, {"type", "point"}, {"flux_lm", 1000}, {"position", {0.5, 0.5, 2.9}}});
     variables.push_back({{"type", "position"},
                          {"luminaire", name},
                          {"corner", {0, 0, 2.9}},
@@ -40,8 +38,10 @@ json scene(int movers, double fixed_x, double fixed_y, double min_spacing_m) {
                          {"edge2", {0, 4, 0}},
                          {"cells", {kCells, kCells}}});
   }
-  lights.push_back(
-      {{"name", "fixed"}, {"type", "point"}, {"flux_lm", 10}, {"position", {fixed_x, fixed_y, 2.9}}});
+  lights.push_back({{"name", "fixed"},
+                    {"type", "point"},
+                    {"flux_lm", 10},
+                    {"position", {fixed_x, fixed_y, 2.9}}});
   return {{"format", "lightsolver.scene/1"},
           {"materials", {{"grey", {{"type", "diffuse"}, {"reflectance", 0.3}}}}},
           {"meshes", {floor}},
@@ -64,7 +64,9 @@ json scene(int movers, double fixed_x, double fixed_y, double min_spacing_m) {
               {"confirmation_photons", 40000}}}}}};
 }
 
-SceneProblem parse(const json& s) { return problem_from_json(s.dump(), "spacing.json", "."); }
+SceneProblem parse_spacing(const json& s) {
+  return problem_from_json(s.dump(), "spacing.json", ".");
+}
 
 // (x, y) of mover k in a configuration: cell centres are (i + 0.5) m.
 std::pair<double, double> place(const Configuration& c, int k) {
@@ -85,14 +87,14 @@ double smallest_distance(const Configuration& c, int movers, double fx, double f
 }
 
 TEST(Spacing, TwoLuminairesInOneCellAreNotAdmissible) {
-  const SceneProblem p = parse(scene(2, 0.0, 0.0, 0.0));
+  const SceneProblem p = parse_spacing(scene(2, 0.0, 0.0, 0.0));
   ASSERT_TRUE(p.search.admissible);
   EXPECT_FALSE(p.search.admissible({3, 3, 3, 3}));  // both at (3.5, 3.5)
   EXPECT_TRUE(p.search.admissible({3, 3, 2, 3}));   // neighbours, 1 m apart
 }
 
 TEST(Spacing, MinimumSpacingAndFixedLuminairesAreKept) {
-  const SceneProblem p = parse(scene(2, 1.5, 1.5, 1.2));
+  const SceneProblem p = parse_spacing(scene(2, 1.5, 1.5, 1.2));
   ASSERT_TRUE(p.search.admissible);
   EXPECT_DOUBLE_EQ(p.min_spacing_m, 1.2);
   EXPECT_FALSE(p.search.admissible({3, 3, 2, 3}));  // 1 m < 1.2 m
@@ -101,7 +103,7 @@ TEST(Spacing, MinimumSpacingAndFixedLuminairesAreKept) {
 }
 
 TEST(Spacing, NegativeSpacingIsAnError) {
-  EXPECT_THROW(parse(scene(2, 0.0, 0.0, -1.0)), std::exception);
+  EXPECT_THROW(parse_spacing(scene(2, 0.0, 0.0, -1.0)), std::exception);
 }
 
 // The search itself: all three lights want (3.5, 3.5); no member of the ISOC may hold two of
@@ -109,7 +111,7 @@ TEST(Spacing, NegativeSpacingIsAnError) {
 // refused (counted as inadmissible), not traced.
 TEST(Spacing, NoOptimumHasTwoLuminairesInOneCell) {
   for (const double spacing : {0.0, 1.2}) {
-    const SceneProblem p = parse(scene(3, 0.5, 0.5, spacing));
+    const SceneProblem p = parse_spacing(scene(3, 0.5, 0.5, spacing));
     const OptimizationResult r = run_problem(p, {});
     ASSERT_FALSE(r.isoc.empty()) << spacing;
     EXPECT_GT(r.counters.inadmissible, 0u) << spacing;

@@ -20,16 +20,16 @@ namespace {
 using testing::bump;
 using testing::standard_normal;
 
-constexpr std::uint64_t kN = 1u << 20;
-constexpr std::uint64_t kBlock = kN / 16;  // photons of one independent block of a stream
-constexpr double kSigmaN = 1.5;            // objective's sigma with N photons
+constexpr std::uint64_t kStagedN = 1u << 20;
+constexpr std::uint64_t kBlock = kStagedN / 16;  // photons of one independent block of a stream
+constexpr double kStagedSigmaN = 1.5;            // objective's sigma with N photons
 
 // A photon tracer's estimate in blocks: photons [j B, (j + 1) B) of the stream with seed s add
 // their own normal draw, so a trace of P photons is the first part of a trace of more with
 // the same seed (photon i is photon i), as the scene evaluator's traces are.
 Estimate blocked_estimate(double truth, std::uint64_t photons, std::uint64_t seed, double z) {
   const std::uint64_t blocks = std::max<std::uint64_t>(1, photons / kBlock);
-  const double sigma_block = kSigmaN * std::sqrt(double(kN / kBlock));
+  const double sigma_block = kStagedSigmaN * std::sqrt(double(kStagedN / kBlock));
   double sum = 0.0;
   for (std::uint64_t j = 0; j < blocks; ++j) sum += standard_normal(seed, j);
   Estimate e;
@@ -47,8 +47,8 @@ double broad(const std::vector<double>& v) { return bump(v, 0.55, 0.45, 0.25, 10
 // The searches of this file: n = N/64, refinement at the end, first stage `stage` photons.
 VnsOptions staged_options(std::uint64_t stage, std::uint64_t iterations) {
   VnsOptions o;
-  o.screening_photons = kN / 64;
-  o.confirmation_photons = kN;
+  o.screening_photons = kStagedN / 64;
+  o.confirmation_photons = kStagedN;
   o.strategy = PhotonStrategy::kRefineAtEnd;
   o.refine_stage_photons = stage;
   o.max_iterations = iterations;
@@ -71,7 +71,7 @@ SearchRun search(std::uint64_t seed, std::uint64_t stage, double confidence = 0.
   FunctionEvaluator ev([&](const EvaluationRequest& r) {
     Evaluation e;
     e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, z);
-    if (r.photons == kN || r.seed_photons == kN) {
+    if (r.photons == kStagedN || r.seed_photons == kStagedN) {
       std::uint64_t& done = streamed[{r.cell_index, r.seed}];
       EXPECT_GT(r.photons, done);  // stages grow
       run.n_photons += r.photons - done;
@@ -86,7 +86,7 @@ SearchRun search(std::uint64_t seed, std::uint64_t stage, double confidence = 0.
   const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o);
   for (const ResultMember& m : r.isoc) {
     run.isoc.insert(d.index(m.cells));
-    EXPECT_EQ(m.photons, kN);
+    EXPECT_EQ(m.photons, kStagedN);
   }
   run.counters = r.counters;
   return run;
@@ -99,7 +99,7 @@ TEST(StagedRefinement, SameIsocAsUnstagedOver200Seeds) {
   int differ = 0;
   std::uint64_t unstaged_photons = 0, staged_photons = 0, members = 0, dropped = 0;
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
-    const SearchRun plain = search(seed, 0), staged = search(seed, kN / 4);
+    const SearchRun plain = search(seed, 0), staged = search(seed, kStagedN / 4);
     differ += plain.isoc != staged.isoc;
     unstaged_photons += plain.n_photons;
     staged_photons += staged.n_photons;
@@ -145,20 +145,20 @@ SetNumbers set_numbers(const Intention& in) {
   FunctionEvaluator ev([&](const EvaluationRequest& r) {
     out.calls.insert({r.cell_index, r.photons});
     Evaluation e;
-    const double sigma = r.photons == kN       ? 0.5
-                         : r.photons == kN / 4 ? 1.0
-                         : r.photons == kN / 2 ? std::sqrt(0.5)
-                                               : 50.0;
-    double mean = r.photons == kN / 4   ? at_quarter[r.cell_index]
-                  : r.photons == kN / 2 ? at_half[r.cell_index]
-                                        : 90.0;
-    if (r.photons == kN && r.cell_index == 0) mean = 100.0;
+    const double sigma = r.photons == kStagedN       ? 0.5
+                         : r.photons == kStagedN / 4 ? 1.0
+                         : r.photons == kStagedN / 2 ? std::sqrt(0.5)
+                                                     : 50.0;
+    double mean = r.photons == kStagedN / 4   ? at_quarter[r.cell_index]
+                  : r.photons == kStagedN / 2 ? at_half[r.cell_index]
+                                              : 90.0;
+    if (r.photons == kStagedN && r.cell_index == 0) mean = 100.0;
     e.objective = {mean, sigma, mean - 1.96 * sigma, mean + 1.96 * sigma, 1};
     for (std::size_t c = 0; c < in.constraints.size(); ++c)
       e.constraints.push_back({1000.0, 1.0, 998.0, 1002.0, 1});  // met
     return e;
   });
-  VnsOptions o = staged_options(kN / 4, 4);
+  VnsOptions o = staged_options(kStagedN / 4, 4);
   o.confidence = 0.95;
   o.initial = {{0}};
   out.counters = optimize(d, in, ev, o).counters;
@@ -170,20 +170,20 @@ TEST(StagedRefinement, DropsOnlyMembersOutOfReachOfTheBest) {
   EXPECT_EQ(mean.counters.refine_stage, 5u);  // 4 at N/4, cell 1 at N/2
   EXPECT_EQ(mean.counters.refine_dropped, 3u);
   EXPECT_EQ(mean.counters.refined, 1u);
-  EXPECT_TRUE(mean.calls.count({0, kN}));
-  EXPECT_TRUE(mean.calls.count({1, kN / 2}));
-  EXPECT_FALSE(mean.calls.count({1, kN}));
-  EXPECT_FALSE(mean.calls.count({2, kN / 2}));
-  EXPECT_FALSE(mean.calls.count({3, kN / 2}));
+  EXPECT_TRUE(mean.calls.count({0, kStagedN}));
+  EXPECT_TRUE(mean.calls.count({1, kStagedN / 2}));
+  EXPECT_FALSE(mean.calls.count({1, kStagedN}));
+  EXPECT_FALSE(mean.calls.count({2, kStagedN / 2}));
+  EXPECT_FALSE(mean.calls.count({3, kStagedN / 2}));
 
   const SetNumbers u0 = set_numbers(maximize_uniformity("t", 0.0));
   EXPECT_EQ(u0.counters.refine_stage, 6u);  // 4 at N/4, cells 1 and 2 at N/2
   EXPECT_EQ(u0.counters.refine_dropped, 2u);
   EXPECT_EQ(u0.counters.refined, 2u);
-  EXPECT_TRUE(u0.calls.count({1, kN}));
-  EXPECT_TRUE(u0.calls.count({2, kN / 2}));
-  EXPECT_FALSE(u0.calls.count({2, kN}));
-  EXPECT_FALSE(u0.calls.count({3, kN / 2}));
+  EXPECT_TRUE(u0.calls.count({1, kStagedN}));
+  EXPECT_TRUE(u0.calls.count({2, kStagedN / 2}));
+  EXPECT_FALSE(u0.calls.count({2, kStagedN}));
+  EXPECT_FALSE(u0.calls.count({3, kStagedN / 2}));
 }
 
 // VnsOptions::confirmation_factor (docs/optimization.md §6, "Equal widths"): asked once, before
@@ -194,15 +194,15 @@ TEST(StagedRefinement, ConfirmationFactorScalesNAndTheStagesOnce) {
   d.add_rectangle("x", 0.0, 1.0, 25, 0.0, 1.0, 25);
   std::set<std::uint64_t> refine_photons;
   FunctionEvaluator ev([&](const EvaluationRequest& r) {
-    if (r.photons > kN / 64) refine_photons.insert(r.photons);
+    if (r.photons > kStagedN / 64) refine_photons.insert(r.photons);
     if (r.seed_photons) {
-      EXPECT_EQ(r.seed_photons, kN / 2);
+      EXPECT_EQ(r.seed_photons, kStagedN / 2);
     }
     Evaluation e;
     e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, 1.96);
     return e;
   });
-  VnsOptions o = staged_options(kN / 4, 60);
+  VnsOptions o = staged_options(kStagedN / 4, 60);
   o.seed = 3;
   int asked = 0;
   o.confirmation_factor = [&](std::uint64_t) {
@@ -212,8 +212,8 @@ TEST(StagedRefinement, ConfirmationFactorScalesNAndTheStagesOnce) {
   const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o);
   EXPECT_EQ(asked, 1);
   ASSERT_FALSE(r.isoc.empty());
-  for (const ResultMember& m : r.isoc) EXPECT_EQ(m.photons, kN / 2);
-  EXPECT_EQ(refine_photons, (std::set<std::uint64_t>{kN / 8, kN / 4, kN / 2}));
+  for (const ResultMember& m : r.isoc) EXPECT_EQ(m.photons, kStagedN / 2);
+  EXPECT_EQ(refine_photons, (std::set<std::uint64_t>{kStagedN / 8, kStagedN / 4, kStagedN / 2}));
 }
 
 // Cancelled during the first stage: the unrefined (n-level) ISOC is returned, as unstaged.
@@ -222,18 +222,18 @@ TEST(StagedRefinement, CancelledFirstStageKeepsTheUnrefinedIsoc) {
   Domain d;
   d.add_rectangle("x", 0.0, 1.0, 25, 0.0, 1.0, 25);
   FunctionEvaluator ev([&](const EvaluationRequest& r) {
-    if (r.seed_photons == kN) cancel = true;  // the first stage has begun
+    if (r.seed_photons == kStagedN) cancel = true;  // the first stage has begun
     Evaluation e;
     e.objective = blocked_estimate(broad(r.values), r.photons, r.seed, 1.96);
     return e;
   });
-  VnsOptions o = staged_options(kN / 4, 20);
+  VnsOptions o = staged_options(kStagedN / 4, 20);
   Control c;
   c.cancel = &cancel;
   const OptimizationResult r = optimize(d, maximize_mean_illuminance("t"), ev, o, c);
   EXPECT_EQ(r.stop, StopReason::kCancelled);
   ASSERT_FALSE(r.isoc.empty());
-  for (const ResultMember& m : r.isoc) EXPECT_EQ(m.photons, kN / 64);
+  for (const ResultMember& m : r.isoc) EXPECT_EQ(m.photons, kStagedN / 64);
 }
 
 }  // namespace

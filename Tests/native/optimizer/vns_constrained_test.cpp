@@ -15,14 +15,14 @@ namespace {
 using testing::NoisyMetric;
 using testing::SyntheticEvaluator;
 
-constexpr std::uint64_t kN = 1u << 20;
-constexpr std::uint64_t kn = kN / 16;
+constexpr std::uint64_t kConstrainedN = 1u << 20;
+constexpr std::uint64_t kConstrainedn = kConstrainedN / 16;
 
 VnsOptions options(std::uint64_t seed, PhotonStrategy strategy) {
   VnsOptions o;
   o.seed = seed;
-  o.screening_photons = kn;
-  o.confirmation_photons = kN;
+  o.screening_photons = kConstrainedn;
+  o.confirmation_photons = kConstrainedN;
   o.strategy = strategy;
   o.max_iterations = 150;
   o.starts = 2;
@@ -43,12 +43,13 @@ TEST_P(UniformityUnderIlluminance, MembersAreFeasibleAtNAndTheConstrainedOptimum
   d.add_rectangle("lum", 0.0, 1.0, 20, 0.0, 1.0, 20);
   const Intention in = maximize_uniformity("workplane", 400.0);
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    SyntheticEvaluator ev({u_truth, kSigmaU, kN}, {{em_truth, kSigmaEm, kN}}, 0.95);
+    SyntheticEvaluator ev({u_truth, kSigmaU, kConstrainedN}, {{em_truth, kSigmaEm, kConstrainedN}},
+                          0.95);
     const OptimizationResult r = optimize(d, in, ev, options(seed, GetParam()));
     ASSERT_FALSE(r.isoc.empty()) << "seed " << seed;
     double best_member_u = 0.0;
     for (const ResultMember& m : r.isoc) {
-      EXPECT_EQ(m.photons, kN);
+      EXPECT_EQ(m.photons, kConstrainedN);
       ASSERT_EQ(m.constraints.size(), 1u);
       EXPECT_EQ(m.feasibility[0], Feasibility::kMet);
       EXPECT_GE(m.constraints[0].ci_low, 400.0);
@@ -90,7 +91,8 @@ TEST(MinimiseFlux, IsocIsTheCheapestFeasibleConfiguration) {
   };
   const Intention in = minimize_installed_flux("workplane", 140.0, 0.6);
   for (PhotonStrategy s : {PhotonStrategy::kConfirm, PhotonStrategy::kRefineAtEnd}) {
-    SyntheticEvaluator ev({flux, 0.0, kN}, {{em, 1.0, kN}, {u0, 0.005, kN}}, 0.95);
+    SyntheticEvaluator ev({flux, 0.0, kConstrainedN},
+                          {{em, 1.0, kConstrainedN}, {u0, 0.005, kConstrainedN}}, 0.95);
     VnsOptions o = options(9, s);
     o.initial = {{4, 0}};  // most flux, worst position
     const OptimizationResult r = optimize(d, in, ev, o);
@@ -100,14 +102,15 @@ TEST(MinimiseFlux, IsocIsTheCheapestFeasibleConfiguration) {
     EXPECT_EQ(r.isoc[0].objective.sigma, 0.0);
     EXPECT_EQ(r.isoc[0].feasibility,
               (std::vector<Feasibility>{Feasibility::kMet, Feasibility::kMet}));
-    EXPECT_EQ(r.isoc[0].photons, kN);
+    EXPECT_EQ(r.isoc[0].photons, kConstrainedN);
   }
 }
 
 TEST(Infeasible, NoFeasibleCellGivesAnEmptyIsoc) {
   Domain d;
   d.add_rectangle("lum", 0.0, 1.0, 5, 0.0, 1.0, 5);
-  SyntheticEvaluator ev({u_truth, kSigmaU, kN}, {{em_truth, kSigmaEm, kN}}, 0.95);
+  SyntheticEvaluator ev({u_truth, kSigmaU, kConstrainedN}, {{em_truth, kSigmaEm, kConstrainedN}},
+                        0.95);
   const OptimizationResult r =
       optimize(d, maximize_uniformity("g", 10000.0), ev, options(1, PhotonStrategy::kConfirm));
   EXPECT_TRUE(r.isoc.empty());
@@ -140,7 +143,7 @@ TEST_P(UncertainPolicyTest, RejectKeepsUncertainCellsOutAcceptKeepsThem) {
   ASSERT_EQ(accepted.isoc.size(), 1u);
   EXPECT_EQ(accepted.isoc[0].cells, (Configuration{3}));
   EXPECT_EQ(accepted.isoc[0].feasibility[0], Feasibility::kUncertain);
-  EXPECT_EQ(accepted.isoc[0].photons, kN);
+  EXPECT_EQ(accepted.isoc[0].photons, kConstrainedN);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothStrategies, UncertainPolicyTest,

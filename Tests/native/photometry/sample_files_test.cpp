@@ -8,7 +8,7 @@ namespace {
 using test::kZLimit;
 using test::sample_file;
 
-constexpr long kSamples = 200000;
+constexpr long kFileSamples = 200000;
 const char* const kStems[] = {"downlight", "wallwasher", "batwing_panel", "linear_tube"};
 
 struct Pair {
@@ -34,10 +34,10 @@ TEST(SampleFiles, SampledHistogramsMatchTheIntensity) {
     for (const char* ext : {".ies", ".ldt"}) {
       const PhotometricSampler s(load_photometry(sample_file(std::string(stem) + ext)));
       const test::SphereBins bins;
-      const auto observed = test::sample_histogram(s, bins, kSamples, ++seed);
+      const auto observed = test::sample_histogram(s, bins, kFileSamples, ++seed);
       const auto p = test::expected_probabilities(
           bins, [&](glm::dvec3 d) { return s.intensity_cd(d); }, s.integrated_flux_lm());
-      EXPECT_LE(test::max_z_score(observed, p, kSamples), kZLimit) << stem << ext;
+      EXPECT_LE(test::max_z_score(observed, p, kFileSamples), kZLimit) << stem << ext;
     }
   }
 }
@@ -68,25 +68,25 @@ TEST(SampleFiles, IesAndLdtSampleTheSameStatistics) {
     const PhotometricSampler a(pair.ies), b(pair.ldt);
     // The LDT's samples against the IES's intensity...
     const test::SphereBins bins;
-    const auto observed = test::sample_histogram(b, bins, kSamples, 31);
+    const auto observed = test::sample_histogram(b, bins, kFileSamples, 31);
     const auto p = test::expected_probabilities(
         bins, [&](glm::dvec3 d) { return a.intensity_cd(d); }, a.integrated_flux_lm());
-    EXPECT_LE(test::max_z_score(observed, p, kSamples), kZLimit) << stem;
+    EXPECT_LE(test::max_z_score(observed, p, kFileSamples), kZLimit) << stem;
     // ...and the mean emission directions of both agree within their standard errors.
     glm::dvec3 mean[2], sq[2];
     const PhotometricSampler* samplers[2] = {&a, &b};
     for (int f = 0; f < 2; ++f) {
       mean[f] = sq[f] = glm::dvec3(0.0);
-      for (long k = 0; k < kSamples; ++k) {
+      for (long k = 0; k < kFileSamples; ++k) {
         PathRng rng(41 + f, static_cast<std::uint64_t>(k));
         const glm::dvec3 d = samplers[f]->sample_direction(rng);
-        mean[f] += d / double(kSamples);
-        sq[f] += d * d / double(kSamples);
+        mean[f] += d / double(kFileSamples);
+        sq[f] += d * d / double(kFileSamples);
       }
     }
     for (int c = 0; c < 3; ++c) {
-      const double se = std::sqrt((sq[0][c] - mean[0][c] * mean[0][c]) / kSamples +
-                                  (sq[1][c] - mean[1][c] * mean[1][c]) / kSamples);
+      const double se = std::sqrt((sq[0][c] - mean[0][c] * mean[0][c]) / kFileSamples +
+                                  (sq[1][c] - mean[1][c] * mean[1][c]) / kFileSamples);
       EXPECT_LE(std::abs(mean[0][c] - mean[1][c]), kZLimit * se + 1e-12) << stem << " axis " << c;
     }
   }
@@ -101,27 +101,27 @@ TEST(SampleFiles, WallWasherSendsItsLightTowardC0) {
               20 * s.intensity_cd({-std::sin(r35), 0, -std::cos(r35)}));
     long toward_c0 = 0;
     double mean_x = 0, mean_y = 0;
-    for (long k = 0; k < kSamples; ++k) {
+    for (long k = 0; k < kFileSamples; ++k) {
       PathRng rng(51, static_cast<std::uint64_t>(k));
       const glm::dvec3 d = s.sample_direction(rng);
       toward_c0 += d.x > 0;
-      mean_x += d.x / kSamples;
-      mean_y += d.y / kSamples;
+      mean_x += d.x / kFileSamples;
+      mean_y += d.y / kFileSamples;
       ASSERT_LE(d.z, 1e-12) << "no uplight in this file";
     }
-    EXPECT_GT(toward_c0, 0.85 * kSamples) << ext;
+    EXPECT_GT(toward_c0, 0.85 * kFileSamples) << ext;
     EXPECT_GT(mean_x, 0.4) << ext;
-    EXPECT_LT(std::abs(mean_y), kZLimit * std::sqrt(0.5 / kSamples)) << ext;  // |y| <= 1
+    EXPECT_LT(std::abs(mean_y), kZLimit * std::sqrt(0.5 / kFileSamples)) << ext;  // |y| <= 1
     // Not vacuous: the samples contradict the same file turned by 180 degrees about z.
     const test::SphereBins bins;
-    const auto observed = test::sample_histogram(s, bins, kSamples, 52);
+    const auto observed = test::sample_histogram(s, bins, kFileSamples, 52);
     const auto turned = test::expected_probabilities(
         bins,
         [&](glm::dvec3 d) {
           return s.intensity_cd({-d.x, -d.y, d.z});
         },
         s.integrated_flux_lm());
-    EXPECT_GT(test::max_z_score(observed, turned, kSamples), 50.0);
+    EXPECT_GT(test::max_z_score(observed, turned, kFileSamples), 50.0);
   }
 }
 

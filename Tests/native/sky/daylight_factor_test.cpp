@@ -43,7 +43,7 @@ std::string df_target(const std::string& requirements,
          (requirements.empty() ? "" : ", \"requirements\": " + requirements) + "}";
 }
 
-std::string error_of(const std::string& text) {
+std::string df_error_of(const std::string& text) {
   try {
     scene_from_json(text, "scene.json", "");
   } catch (const InputError& e) {
@@ -122,11 +122,11 @@ TEST(DaylightFactorScene, EveryBadInputIsNamed) {
        "targets[0].requirements.df_target_percent"},
   };
   for (const auto& c : cases) {
-    const std::string e = error_of(c.text);
+    const std::string e = df_error_of(c.text);
     EXPECT_NE(e.find(c.field), std::string::npos) << c.field << " | " << e;
   }
   // The same sky with a lamp in a group of its own is fine.
-  EXPECT_EQ(error_of(df_scene(ok, kLamp)), "<no error>");
+  EXPECT_EQ(df_error_of(df_scene(ok, kLamp)), "<no error>");
 }
 
 TEST(DaylightFactorScene, NanMedianAndTaskAreNamed) {

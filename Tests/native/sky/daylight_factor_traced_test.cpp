@@ -11,14 +11,13 @@
 #include <functional>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/simulation.hpp"
 #include "scene_builders.hpp"
 #include "sky_rooms.hpp"
 
 namespace lightsolver::test {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Target df_grid(const std::string& name, dvec3 corner, dvec3 e1, dvec3 e2, unsigned nu,
                unsigned nv) {

@@ -12,12 +12,12 @@
 #include <functional>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "sky_rooms.hpp"
 
 namespace lightsolver::test {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kIor = 1.52;
 
 // Fresnel reflectances of an air/glass interface in the trigonometric form (Born & Wolf), not
@@ -313,7 +313,7 @@ std::string sun_with_glazing(const std::string& glazing) {
          glazing + "}";
 }
 
-std::string error_of(const std::string& text) {
+std::string glazing_error_of(const std::string& text) {
   try {
     Scene s = scene_from_json(text, "scene.json", ".");
     validate(s);
@@ -352,11 +352,11 @@ TEST(GlazingScene, BadValuesAreNamed) {
       {R"({"transmittance": 0.7, "tint": 3})", "tint"},
       {R"({"panes": 2})", "transmittance"}};
   for (const auto& [glazing, expected] : cases) {
-    const std::string e = error_of(scene_with(sky_with_glazing(glazing)));
+    const std::string e = glazing_error_of(scene_with(sky_with_glazing(glazing)));
     EXPECT_NE(e.find(expected), std::string::npos) << glazing << " -> " << e;
     EXPECT_NE(e.find("luminaires[0]"), std::string::npos) << e;
   }
-  const std::string e = error_of(scene_with(sun_with_glazing(R"({"transmittance": 2})")));
+  const std::string e = glazing_error_of(scene_with(sun_with_glazing(R"({"transmittance": 2})")));
   EXPECT_NE(e.find("luminaires[0].glazing.transmittance"), std::string::npos) << e;
 }
 

@@ -9,13 +9,12 @@
 #include <numbers>
 
 #include "daylight/sky_models.hpp"
+#include "lightsolver/angles.hpp"
 #include "scene_builders.hpp"
 #include "sky_rooms.hpp"
 
 namespace lightsolver::test {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Luminaire site_sky(Luminaire l, dvec3 centre, double radius) {
   l.sky.site_centre = centre;

@@ -9,10 +9,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "lightsolver/angles.hpp"
+
 namespace lightsolver::daylight {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Direction sun_at(double altitude_deg, double azimuth_deg) {
   const double a = altitude_deg * kPi / 180.0, z = azimuth_deg * kPi / 180.0;

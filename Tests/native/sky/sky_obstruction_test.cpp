@@ -10,13 +10,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "scene_builders.hpp"
 #include "sky_rooms.hpp"
 
 namespace lightsolver::test {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 class SkyObstructed : public ::testing::TestWithParam<std::string> {
  protected:

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <string>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/sky_patches.hpp"
 #include "scene_builders.hpp"
@@ -15,8 +16,6 @@
 
 namespace lightsolver::test {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Luminaire patch_of(Luminaire l, int mf, int index, double north_deg = 0.0) {
   l.name = "patch " + std::to_string(index);

@@ -8,12 +8,12 @@
 #include <memory>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
+
 namespace lightsolver::daylight {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-Direction sun_at(double altitude_deg, double azimuth_deg) {
+Direction sampler_sun_at(double altitude_deg, double azimuth_deg) {
   const double a = altitude_deg * kPi / 180.0, z = azimuth_deg * kPi / 180.0;
   return {std::cos(a) * std::sin(z), std::cos(a) * std::cos(z), std::sin(a)};
 }
@@ -22,7 +22,7 @@ std::shared_ptr<const Sky> make_sky(SkyModel model, int type, double alt, double
   SkySpec spec;
   spec.model = model;
   spec.cie_type = type;
-  spec.sun = sun_at(alt, 200.0);
+  spec.sun = sampler_sun_at(alt, 200.0);
   spec.normalisation = SkyNormalisation::ZenithLuminance;
   spec.level = 1000.0;
   spec.ground_reflectance = ground;
@@ -65,7 +65,7 @@ TEST(SkySampler, DiscFluxCoversSkyAndGround) {
 TEST(SkySampler, MajorantBoundsTheWeight) {
   SkySpec perez;
   perez.model = SkyModel::Perez;
-  perez.sun = sun_at(20.0, 120.0);
+  perez.sun = sampler_sun_at(20.0, 120.0);
   perez.perez.diffuse_horizontal = 90.0;
   perez.perez.direct_normal = 700.0;
   const std::shared_ptr<const Sky> skies[] = {

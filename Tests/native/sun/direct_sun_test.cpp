@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "daylight/sky_glazing.hpp"
+#include "lightsolver/angles.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/scene.hpp"
 #include "lightsolver/sky_patches.hpp"
@@ -27,7 +28,6 @@
 namespace lightsolver {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const glm::dvec3 kUp(0, 0, 1);
 
 Mesh quad(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d, int material = 0) {

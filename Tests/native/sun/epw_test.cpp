@@ -78,7 +78,7 @@ TEST(Epw, MedianOfTheBrighterHalf) {
 }
 
 // The message of the InputError `text` raises, with its line checked.
-std::string error_of(const std::string& text, const std::string& where) {
+std::string epw_error_of(const std::string& text, const std::string& where) {
   try {
     parse_epw(text, "syn.epw");
   } catch (const InputError& e) {
@@ -119,60 +119,61 @@ TEST(Epw, MissingValuesAreAbsentAndStopTheMedian) {
 TEST(Epw, MalformedFilesNameFileAndLine) {
   const std::string year = synthetic_year();
   // Truncated: whole rows gone, or the last row cut in the middle.
-  EXPECT_NE(error_of(synthetic_year(8000), "line 8008").find("8000 hourly rows"),
+  EXPECT_NE(epw_error_of(synthetic_year(8000), "line 8008").find("8000 hourly rows"),
             std::string::npos);
-  EXPECT_NE(error_of(year.substr(0, year.size() - 40), "line 8768").find("fields"),
+  EXPECT_NE(epw_error_of(year.substr(0, year.size() - 40), "line 8768").find("fields"),
             std::string::npos);
   // Wrong field count on a row.
-  EXPECT_NE(error_of(replace_line(year, 20, "2001,1,1,12,0,flags,10"), "line 20").find("7"),
+  EXPECT_NE(epw_error_of(replace_line(year, 20, "2001,1,1,12,0,flags,10"), "line 20").find("7"),
             std::string::npos);
   // A value that is not a number, named by its EPW column.
-  EXPECT_NE(error_of(replace_line(year, 12,
-                                  "2001,1,1,4,0,flags,10,5,70,101300,0,0,300,0,100,50,9000,"
-                                  "4000,abc,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
-                     "line 12")
+  EXPECT_NE(epw_error_of(replace_line(year, 12,
+                                      "2001,1,1,4,0,flags,10,5,70,101300,0,0,300,0,100,50,9000,"
+                                      "4000,abc,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
+                         "line 12")
                 .find("diffuse horizontal illuminance: 'abc'"),
             std::string::npos);
   // Negative irradiance is out of the dictionary's range.
-  EXPECT_NE(error_of(replace_line(year, 12,
-                                  "2001,1,1,4,0,flags,10,5,70,101300,0,0,300,0,-5,50,9000,"
-                                  "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
-                     "line 12")
+  EXPECT_NE(epw_error_of(replace_line(year, 12,
+                                      "2001,1,1,4,0,flags,10,5,70,101300,0,0,300,0,-5,50,9000,"
+                                      "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
+                         "line 12")
                 .find("direct normal radiation -5"),
             std::string::npos);
   // Rows out of order (an hour skipped).
-  EXPECT_NE(error_of(replace_line(year, 12,
-                                  "2001,1,1,5,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
-                                  "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
-                     "line 12")
+  EXPECT_NE(epw_error_of(replace_line(year, 12,
+                                      "2001,1,1,5,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
+                                      "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
+                         "line 12")
                 .find("expected month 1, day 1, hour 4"),
             std::string::npos);
   // A year no int holds.
-  EXPECT_NE(error_of(replace_line(year, 12,
-                                  "1e300,1,1,4,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
-                                  "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
-                     "line 12")
+  EXPECT_NE(epw_error_of(replace_line(year, 12,
+                                      "1e300,1,1,4,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
+                                      "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
+                         "line 12")
                 .find("year 1e+300"),
             std::string::npos);
   // Month 13.
-  EXPECT_NE(error_of(replace_line(year, 12,
-                                  "2001,13,1,4,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
-                                  "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
-                     "line 12")
+  EXPECT_NE(epw_error_of(replace_line(year, 12,
+                                      "2001,13,1,4,0,flags,10,5,70,101300,0,0,300,0,5,50,9000,"
+                                      "4000,4,0,0,0,0,0,0,0,9,0,0,0,0,0,0,0,0"),
+                         "line 12")
                 .find("month 13"),
             std::string::npos);
   // The LOCATION line: missing, too short, a latitude beyond 90°.
-  EXPECT_NE(error_of(replace_line(year, 1, "COMMENTS,x"), "line 1").find("LOCATION"),
+  EXPECT_NE(epw_error_of(replace_line(year, 1, "COMMENTS,x"), "line 1").find("LOCATION"),
             std::string::npos);
-  EXPECT_NE(error_of(replace_line(year, 1, "LOCATION,a,b,c"), "line 1").find("10"),
+  EXPECT_NE(epw_error_of(replace_line(year, 1, "LOCATION,a,b,c"), "line 1").find("10"),
             std::string::npos);
-  EXPECT_NE(
-      error_of(replace_line(year, 1, "LOCATION,a,,c,d,1,95,0,0,0"), "line 1").find("latitude 95"),
-      std::string::npos);
+  EXPECT_NE(epw_error_of(replace_line(year, 1, "LOCATION,a,,c,d,1,95,0,0,0"), "line 1")
+                .find("latitude 95"),
+            std::string::npos);
   // No DATA PERIODS, an empty file.
-  EXPECT_NE(error_of("LOCATION,a,,c,d,1,45,0,0,0\nCOMMENTS 1,x\n", "line 2").find("DATA PERIODS"),
-            std::string::npos);
-  EXPECT_NE(error_of("", "").find("empty"), std::string::npos);
+  EXPECT_NE(
+      epw_error_of("LOCATION,a,,c,d,1,45,0,0,0\nCOMMENTS 1,x\n", "line 2").find("DATA PERIODS"),
+      std::string::npos);
+  EXPECT_NE(epw_error_of("", "").find("empty"), std::string::npos);
 }
 
 TEST(Epw, AFileThatCannotBeOpenedIsNamed) {

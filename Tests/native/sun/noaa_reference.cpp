@@ -3,9 +3,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
+
 namespace lightsolver::test {
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 double sin_d(double a) { return std::sin(a * kDeg); }
 double cos_d(double a) { return std::cos(a * kDeg); }
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/rng.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "model/prepared_scene.hpp"
@@ -17,7 +18,6 @@ namespace lightsolver::test {
 namespace {
 
 constexpr double kLux = 100'000.0;
-constexpr double kDeg = std::numbers::pi / 180.0;
 const double kAlpha = 0.265 * kDeg;  // the disc's angular radius
 
 Luminaire sun_beam(dvec3 direction, dvec3 corner, dvec3 e1, dvec3 e2) {
@@ -153,7 +153,7 @@ std::string sun_scene(const std::string& keys) {
     "targets": [{"name": "floor", "type": "surface", "mesh": "floor"}]})";
 }
 
-std::string error_of(const std::string& keys) {
+std::string sun_error_of(const std::string& keys) {
   try {
     Scene s = scene_from_json(sun_scene(keys), "sun.json", ".");
     validate(s);
@@ -191,33 +191,33 @@ TEST(SunScene, BelowTheHorizonIsSwitchedOff) {
 }
 
 TEST(SunScene, ErrorsNameTheKey) {
-  EXPECT_NE(error_of(R"("direction": [0,0,-1], "time": "2026-01-01T12:00Z")")
+  EXPECT_NE(sun_error_of(R"("direction": [0,0,-1], "time": "2026-01-01T12:00Z")")
                 .find("luminaires[0]: a sun gives either"),
             std::string::npos);
-  EXPECT_NE(error_of("").find("a sun gives either"), std::string::npos);
-  EXPECT_NE(
-      error_of(R"("site": {"latitude_deg": 95, "longitude_deg": 0}, "time": "2026-06-01T12:00Z")")
-          .find("luminaires[0].site.latitude_deg: must be a number from -90 to 90"),
-      std::string::npos);
-  EXPECT_NE(
-      error_of(R"("site": {"latitude_deg": 45, "longitude_deg": 0}, "time": "2026-13-01T12:00Z")")
-          .find("luminaires[0].time: '2026-13-01T12:00Z' is not an ISO 8601"),
-      std::string::npos);
-  EXPECT_NE(
-      error_of(R"("site": {"latitude_deg": 45, "longitude_deg": 0}, "time": "2026-06-01T12:00")")
-          .find("luminaires[0].time:"),
-      std::string::npos);
-  EXPECT_NE(error_of(R"("site": {"latitude_deg": 45}, "time": "2026-06-01T12:00Z")")
+  EXPECT_NE(sun_error_of("").find("a sun gives either"), std::string::npos);
+  EXPECT_NE(sun_error_of(
+                R"("site": {"latitude_deg": 95, "longitude_deg": 0}, "time": "2026-06-01T12:00Z")")
+                .find("luminaires[0].site.latitude_deg: must be a number from -90 to 90"),
+            std::string::npos);
+  EXPECT_NE(sun_error_of(
+                R"("site": {"latitude_deg": 45, "longitude_deg": 0}, "time": "2026-13-01T12:00Z")")
+                .find("luminaires[0].time: '2026-13-01T12:00Z' is not an ISO 8601"),
+            std::string::npos);
+  EXPECT_NE(sun_error_of(
+                R"("site": {"latitude_deg": 45, "longitude_deg": 0}, "time": "2026-06-01T12:00")")
+                .find("luminaires[0].time:"),
+            std::string::npos);
+  EXPECT_NE(sun_error_of(R"("site": {"latitude_deg": 45}, "time": "2026-06-01T12:00Z")")
                 .find("longitude_deg"),
             std::string::npos);
   EXPECT_NE(
-      error_of(
+      sun_error_of(
           R"("site": {"latitude_deg": 45, "longitude_deg": 0, "height": 3}, "time": "2026-06-01T12:00Z")")
           .find("height"),
       std::string::npos);
   // A beam within the disc's radius of its opening's plane is traced (sun_straddling_test.cpp).
-  EXPECT_EQ(error_of(R"("direction": [1, 0, -0.001])"), "(no error)");
-  EXPECT_EQ(error_of(R"("direction": [1, 0, -0.01])"), "(no error)");
+  EXPECT_EQ(sun_error_of(R"("direction": [1, 0, -0.001])"), "(no error)");
+  EXPECT_EQ(sun_error_of(R"("direction": [1, 0, -0.01])"), "(no error)");
 }
 
 }  // namespace

@@ -9,14 +9,14 @@
 #include <numbers>
 
 #include "daylight/sky_glazing.hpp"
+#include "lightsolver/angles.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "scene_builders.hpp"
 
 namespace lightsolver::test {
 namespace {
 
-constexpr double kLux = 100'000.0;
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kPortalLux = 100'000.0;
 
 // The beam 30° from the zenith, travelling toward −x; three 1 m² portals: a double-glazed roof
 // opening (n = −z), an open window facing the sun (n = −x, n·d = 1/2) and one facing away.
@@ -28,7 +28,7 @@ Scene three_portals() {
   l.name = "sun";
   l.type = Luminaire::Type::Sun;
   l.direction = glm::normalize(dvec3(-std::sin(30 * kDeg), 0, -std::cos(30 * kDeg)));
-  l.illuminance_lx = kLux;
+  l.illuminance_lx = kPortalLux;
   l.sky.portals.push_back({{-1, -1, 3}, {0, 1, 0}, {1, 0, 0}, GlazingDefinition{0.7, 2, 0.8, 0.9}});
   l.sky.portals.push_back({{6, -1, 0.5}, {0, 0, 1}, {0, 1, 0}, std::nullopt});
   l.sky.portals.push_back({{-6, -1, 0.5}, {0, 1, 0}, {0, 0, 1}, std::nullopt});
@@ -51,15 +51,16 @@ TEST_P(SunPortals, FluxAndEachPortalsBeam) {
   const double cos30 = std::cos(30 * kDeg);
   Scene s = three_portals();
   validate(s);
-  EXPECT_NEAR(s.luminaires[0].flux_lm, kLux * (cos30 * roof_factor() + 0.5), 1e-9 * kLux);
+  EXPECT_NEAR(s.luminaires[0].flux_lm, kPortalLux * (cos30 * roof_factor() + 0.5),
+              1e-9 * kPortalLux);
   const Results r = run_on_backend(GetParam(), s, 400'000, 11);
-  expect_in_ci(r.targets[0].estimate, kLux * cos30 * roof_factor(), 0.04, "under the roof");
-  expect_in_ci(r.targets[1].estimate, kLux * cos30, 0.03, "under the window");
+  expect_in_ci(r.targets[0].estimate, kPortalLux * cos30 * roof_factor(), 0.04, "under the roof");
+  expect_in_ci(r.targets[1].estimate, kPortalLux * cos30, 0.03, "under the window");
   EXPECT_EQ(r.openings.photons, r.photons);
   EXPECT_EQ(r.openings.blocked, 0u);
   std::printf("[ sun      ] roof %.6g (exact %.6g), window %.6g (exact %.6g)\n",
-              r.targets[0].estimate.mean, kLux * cos30 * roof_factor(), r.targets[1].estimate.mean,
-              kLux * cos30);
+              r.targets[0].estimate.mean, kPortalLux * cos30 * roof_factor(),
+              r.targets[1].estimate.mean, kPortalLux * cos30);
 }
 
 // A plate outside the window, between it and the sun, blocks the window's beam: its probe reads
@@ -70,7 +71,7 @@ TEST_P(SunPortals, AnOutsidePlateBlocksAPortalsBeam) {
   const double cos30 = std::cos(30 * kDeg);
   const Results r = run_on_backend(GetParam(), s, 400'000, 12);
   EXPECT_EQ(r.targets[1].estimate.hits, 0u);
-  expect_in_ci(r.targets[0].estimate, kLux * cos30 * roof_factor(), 0.04, "under the roof");
+  expect_in_ci(r.targets[0].estimate, kPortalLux * cos30 * roof_factor(), 0.04, "under the roof");
   const double share = 0.5 / (cos30 * roof_factor() + 0.5);  // the window's part of the flux
   const double n = double(r.openings.photons), blocked = double(r.openings.blocked);
   EXPECT_NEAR(blocked / n, share, 5.0 * std::sqrt(share * (1 - share) / n));
@@ -89,7 +90,7 @@ std::string portal_scene(const std::string& sun_keys) {
     "targets": [{"name": "floor", "type": "surface", "mesh": "floor"}]})";
 }
 
-std::string error_of(const std::string& keys) {
+std::string portal_error_of(const std::string& keys) {
   try {
     Scene s = scene_from_json(portal_scene(keys), "sun.json", ".");
     validate(s);
@@ -107,19 +108,23 @@ TEST(SunPortalsScene, ReadsThePortalsAndNamesErrors) {
                       "sun.json", ".");
   validate(s);
   EXPECT_NEAR(s.luminaires[0].flux_lm, 2e5, 1e-6);  // the second faces away (n = +z)
-  EXPECT_NE(error_of(R"("direction": [0,0,-1], "corner": [0,0,3], "portals": [)" + roof + "]")
-                .find("luminaires[0].corner: a sun through `portals` takes no opening"),
-            std::string::npos);
-  EXPECT_NE(error_of(R"("direction": [0,0,-1], "portals": [])").find("luminaires[0].portals:"),
-            std::string::npos);
   EXPECT_NE(
-      error_of(
+      portal_error_of(R"("direction": [0,0,-1], "corner": [0,0,3], "portals": [)" + roof + "]")
+          .find("luminaires[0].corner: a sun through `portals` takes no opening"),
+      std::string::npos);
+  EXPECT_NE(
+      portal_error_of(R"("direction": [0,0,-1], "portals": [])").find("luminaires[0].portals:"),
+      std::string::npos);
+  EXPECT_NE(
+      portal_error_of(
           R"("direction": [0,0,-1], "portals": [{"corner": [0,0,3], "edge1": [0,2,0], "edge2": [1,0,0], "glazing": {"transmittance": 1.5}}])")
           .find("luminaires[0].portals[0].glazing.transmittance"),
       std::string::npos);
   // A disc straddling the portal's plane is traced (sun_straddling_test.cpp), not refused.
-  EXPECT_EQ(error_of(R"("direction": [1,0,-0.001], "portals": [)" + roof + "]"), "(no error)");
-  EXPECT_NE(error_of(R"("direction": [0,0,-1], "portals": [{"corner": [0,0,3], "edge1": [0,2,0]}])")
+  EXPECT_EQ(portal_error_of(R"("direction": [1,0,-0.001], "portals": [)" + roof + "]"),
+            "(no error)");
+  EXPECT_NE(portal_error_of(
+                R"("direction": [0,0,-1], "portals": [{"corner": [0,0,3], "edge1": [0,2,0]}])")
                 .find("edge2"),
             std::string::npos);
 }

@@ -8,14 +8,13 @@
 #include <glm/geometric.hpp>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/daylight.hpp"
 #include "lightsolver/error.hpp"
 #include "noaa_reference.hpp"
 
 namespace lightsolver {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Reda & Andreas 2004 (NREL/TP-560-34302, revised 2008), the example of Tables A4.1/A5.1:
 // Golden, Colorado, 2003-10-17 12:30:30 at UTC−7, ΔT 67 s, 820 mbar, 11 °C.

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/rng.hpp"
 #include "model/prepared_scene.hpp"
 #include "scene_builders.hpp"
@@ -17,11 +18,9 @@
 namespace lightsolver::test {
 namespace {
 
-constexpr double kLux = 100'000.0;
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-const double kAlpha = 0.265 * kDeg;  // the disc's angular radius
-const double kSinA = std::sin(kAlpha);
+constexpr double kStraddleLux = 100'000.0;
+const double kStraddleAlpha = 0.265 * kDeg;  // the disc's angular radius
+const double kSinA = std::sin(kStraddleAlpha);
 
 // ∫_0^{2π} max(0, c − s cos φ)^k dφ for k = 1, 2 (s ≥ 0), elementary.
 double ring(double c, double s, int k) {
@@ -39,7 +38,7 @@ double ring(double c, double s, int k) {
 double cap_moment(double t, int k) {
   const double st = std::sqrt(1 - t * t);
   const int m = 20'000;
-  const double h = kAlpha / m;
+  const double h = kStraddleAlpha / m;
   double sum = 0.0;
   for (int i = 0; i < m; ++i) {
     const double b = (i + 0.5) * h;
@@ -49,9 +48,9 @@ double cap_moment(double t, int k) {
 }
 
 TEST(SunDiscShare, AxisInThePlaneIsTheHalfDisc) {
-  const double half = (kAlpha - kSinA * std::cos(kAlpha)) / (kPi * kSinA * kSinA);
+  const double half = (kStraddleAlpha - kSinA * std::cos(kStraddleAlpha)) / (kPi * kSinA * kSinA);
   EXPECT_NEAR(detail::sun_disc_share(0.0), half, 1e-9 * half);
-  EXPECT_NEAR(half, 2 * kAlpha / (3 * kPi), 1e-4 * half);  // ≈ 0.001: (2/3)α³ / (π α²)
+  EXPECT_NEAR(half, 2 * kStraddleAlpha / (3 * kPi), 1e-4 * half);  // ≈ 0.001: (2/3)α³ / (π α²)
 }
 
 TEST(SunDiscShare, MatchesQuadratureAndIsContinuous) {
@@ -74,7 +73,7 @@ TEST(SunDiscShare, MatchesQuadratureAndIsContinuous) {
 // with room to spare: its projected measure sin²(e_c + α) ψ_h over the cap's, ≥ 0.5 across the
 // straddling range, so 64 tries all fail with probability < 2⁻⁶⁴.
 TEST(SunDiscShare, TheSamplersBoxAcceptsAtLeastHalf) {
-  const double ca = std::cos(kAlpha);
+  const double ca = std::cos(kStraddleAlpha);
   double worst = 1.0;
   for (int i = -999; i < 1000; ++i) {
     const double t = kSinA * i / 1000.0, cc = std::sqrt(1 - t * t);
@@ -106,13 +105,14 @@ TEST(SunStraddlingEmission, InFrontInTheDiscWeightedByTheOpening) {
   l.name = "sun";
   l.type = Luminaire::Type::Sun;
   l.direction = d;
-  l.illuminance_lx = kLux;
+  l.illuminance_lx = kStraddleLux;
   l.sky.portals.push_back({{5, -1, 0}, {0, 0, 2}, {0, 2, 0}, std::nullopt});  // n = −x
   s.luminaires.push_back(l);
   s.targets.push_back(surface("ground", 0));
   validate(s);
   const double t = std::sin(e);
-  EXPECT_NEAR(s.luminaires[0].flux_lm, kLux * 4 * detail::sun_disc_share(t), 1e-9 * kLux);
+  EXPECT_NEAR(s.luminaires[0].flux_lm, kStraddleLux * 4 * detail::sun_disc_share(t),
+              1e-9 * kStraddleLux);
   const detail::PreparedScene p = detail::prepare(s);
   const detail::PreparedLuminaire& pl = p.luminaires[0];
   const dvec3 n(-1, 0, 0);
@@ -128,7 +128,7 @@ TEST(SunStraddlingEmission, InFrontInTheDiscWeightedByTheOpening) {
     sum2 += f * f;
   }
   EXPECT_GE(min_front, 0.0);
-  EXPECT_LE(max_angle, kAlpha * 1.001);
+  EXPECT_LE(max_angle, kStraddleAlpha * 1.001);
   const double mean = sum / count, sigma = std::sqrt((sum2 / count - mean * mean) / count);
   const double expected = cap_moment(t, 2) / cap_moment(t, 1);
   std::printf("[ sun      ] mean n·ω %.6g (exact %.6g, σ %.2g)\n", mean, expected, sigma);
@@ -149,7 +149,7 @@ Scene grazing_window(const dvec3& d, bool portal) {
   l.name = "sun";
   l.type = Luminaire::Type::Sun;
   l.direction = d;
-  l.illuminance_lx = kLux;
+  l.illuminance_lx = kStraddleLux;
   if (portal) {
     l.sky.portals.push_back({corner, e1, e2, std::nullopt});
   } else {
@@ -169,7 +169,7 @@ class SunStraddling : public ::testing::TestWithParam<std::string> {};
 TEST_P(SunStraddling, AxisInTheWindowsPlane) {
   const dvec3 d(0, -0.5, -std::sqrt(0.75));
   const Results r = run_on_backend(GetParam(), grazing_window(d, false), 2'000'000, 11);
-  const double exact = kLux * detail::sun_disc_share(0.0);
+  const double exact = kStraddleLux * detail::sun_disc_share(0.0);
   std::printf("[ sun      ] axis in the plane: %.6g [%.6g, %.6g] exact %.6g\n",
               r.targets[0].estimate.mean, r.targets[0].estimate.ci_low,
               r.targets[0].estimate.ci_high, exact);
@@ -182,7 +182,7 @@ TEST_P(SunStraddling, CentreATenthOfADegreeBehindAPortal) {
   const dvec3 d = std::cos(e) * dvec3(0, -0.5, -std::sqrt(0.75)) + std::sin(e) * dvec3(-1, 0, 0);
   const Scene s = grazing_window(d, true);
   const Results r = run_on_backend(GetParam(), s, 2'000'000, 11);
-  const double exact = kLux * detail::sun_disc_share(std::sin(e));
+  const double exact = kStraddleLux * detail::sun_disc_share(std::sin(e));
   std::printf("[ sun      ] 0.1° behind: %.6g [%.6g, %.6g] exact %.6g\n",
               r.targets[0].estimate.mean, r.targets[0].estimate.ci_low,
               r.targets[0].estimate.ci_high, exact);

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "lightsolver/angles.hpp"
 #include "lightsolver/error.hpp"
 #include "lightsolver/results_io.hpp"
 #include "lightsolver/scene.hpp"
@@ -20,8 +21,6 @@
 
 namespace lightsolver {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Paris on the 2026 March equinox (20 March), UTC+1: the sun rises almost due east, so a
 // south-facing window sees it from sunrise to sunset.
@@ -89,9 +88,9 @@ double noaa_minute_at_azimuth(const SunlightExposureSpec& s, double azimuth_deg)
   return 0.5 * (lo + hi);
 }
 
-Mesh quad(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d, int material = 0) {
+Mesh exposure_quad(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d, int material = 0) {
   Mesh m;
-  m.name = "quad";
+  m.name = "exposure_quad";
   m.material = material;
   m.vertices = {a, b, c, d};
   m.triangles = {{0, 1, 2}, {0, 2, 3}};
@@ -134,7 +133,8 @@ TEST(SunlightExposure, EmbreeWithNothingOpaqueEqualsTheUnobstructedSun) {
   const SunlightExposureSpec s = paris(kSouth);
   Scene scene = scene_with(s);
   // A glass pane right in front of the point does not hide the sun (docs: glass is let through).
-  scene.meshes.push_back(quad({-1, -0.01, -1}, {1, -0.01, -1}, {1, -0.01, 1}, {-1, -0.01, 1}, 1));
+  scene.meshes.push_back(
+      exposure_quad({-1, -0.01, -1}, {1, -0.01, -1}, {1, -0.01, 1}, {-1, -0.01, 1}, 1));
   const SunlightExposureResult traced = sunlight_exposure(scene);
   const SunlightExposureResult free = sunlight_exposure(s, [](auto&, auto&) { return true; });
   EXPECT_EQ(traced.points[0].hours, free.points[0].hours);
@@ -150,7 +150,7 @@ TEST(SunlightExposure, EastWallCutsTheMorningAtTheAzimuthOfItsEdge) {
   const SunlightExposureSpec s = paris(kSouth);
   Scene scene = scene_with(s);
   const double h = 1000.0;  // tall enough for any sun: only the azimuth matters
-  scene.meshes.push_back(quad({1, 0, -h}, {1, -1, -h}, {1, -1, h}, {1, 0, h}));
+  scene.meshes.push_back(exposure_quad({1, 0, -h}, {1, -1, -h}, {1, -1, h}, {1, 0, h}));
   const SunlightExposureResult r = sunlight_exposure(scene);
   const SunlightExposureResult free = sunlight_exposure(s, [](auto&, auto&) { return true; });
   const double edge = noaa_minute_at_azimuth(s, 135.0);
@@ -173,10 +173,10 @@ TEST(SunlightExposure, WindowRevealsNarrowTheDay) {
   const SunlightExposureSpec s = paris(kSouth);
   Scene scene = scene_with(s);
   const double w = 0.6, d = 0.3, h = 1.0;
-  scene.meshes = {quad({-w, 0, -h}, {-w, -d, -h}, {-w, -d, h}, {-w, 0, h}),
-                  quad({w, 0, -h}, {w, -d, -h}, {w, -d, h}, {w, 0, h}),
-                  quad({-w, 0, h}, {w, 0, h}, {w, -d, h}, {-w, -d, h}),
-                  quad({-w, 0, -h}, {w, 0, -h}, {w, -d, -h}, {-w, -d, -h})};
+  scene.meshes = {exposure_quad({-w, 0, -h}, {-w, -d, -h}, {-w, -d, h}, {-w, 0, h}),
+                  exposure_quad({w, 0, -h}, {w, -d, -h}, {w, -d, h}, {w, 0, h}),
+                  exposure_quad({-w, 0, h}, {w, 0, h}, {w, -d, h}, {-w, -d, h}),
+                  exposure_quad({-w, 0, -h}, {w, 0, -h}, {w, -d, -h}, {-w, -d, -h})};
   const double limit = std::atan(w / d) / kDeg;
   const SunlightPointResult p = sunlight_exposure(scene).points[0];
   const Reference ref = noaa_minutes(
@@ -197,12 +197,12 @@ TEST(SunlightExposure, PointInsideAClosedBoxGetsNoSun) {
   const glm::dvec3 c = s.points[0].position;
   const double a = 0.5;
   auto v = [&](double x, double y, double z) { return c + a * glm::dvec3(x, y, z); };
-  scene.meshes = {quad(v(-1, -1, -1), v(1, -1, -1), v(1, 1, -1), v(-1, 1, -1)),
-                  quad(v(-1, -1, 1), v(1, -1, 1), v(1, 1, 1), v(-1, 1, 1)),
-                  quad(v(-1, -1, -1), v(1, -1, -1), v(1, -1, 1), v(-1, -1, 1)),
-                  quad(v(-1, 1, -1), v(1, 1, -1), v(1, 1, 1), v(-1, 1, 1)),
-                  quad(v(-1, -1, -1), v(-1, 1, -1), v(-1, 1, 1), v(-1, -1, 1)),
-                  quad(v(1, -1, -1), v(1, 1, -1), v(1, 1, 1), v(1, -1, 1))};
+  scene.meshes = {exposure_quad(v(-1, -1, -1), v(1, -1, -1), v(1, 1, -1), v(-1, 1, -1)),
+                  exposure_quad(v(-1, -1, 1), v(1, -1, 1), v(1, 1, 1), v(-1, 1, 1)),
+                  exposure_quad(v(-1, -1, -1), v(1, -1, -1), v(1, -1, 1), v(-1, -1, 1)),
+                  exposure_quad(v(-1, 1, -1), v(1, 1, -1), v(1, 1, 1), v(-1, 1, 1)),
+                  exposure_quad(v(-1, -1, -1), v(-1, 1, -1), v(-1, 1, 1), v(-1, -1, 1)),
+                  exposure_quad(v(1, -1, -1), v(1, 1, -1), v(1, 1, 1), v(1, -1, 1))};
   const SunlightExposureResult r = sunlight_exposure(scene);
   EXPECT_EQ(r.points[0].hours, 0.0);
   EXPECT_EQ(r.points[0].level, "none");
