@@ -3,10 +3,8 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -14,6 +12,7 @@
 
 #include "annual_command.hpp"
 #include "command_line.hpp"
+#include "interrupt.hpp"
 #include "lightsolver/backends.hpp"
 #include "lightsolver/cost.hpp"
 #include "lightsolver/glare.hpp"
@@ -37,10 +36,6 @@
 #include "verify_command.hpp"
 
 namespace {
-
-std::atomic<bool> g_interrupted{false};
-
-void on_sigint(int) { g_interrupted.store(true); }
 
 // Draws a bar on stderr once a run has lasted a second (short runs stay quiet), only on a
 // terminal so logs are not filled with carriage returns.
@@ -96,7 +91,7 @@ struct RunArgs {
 // The options of a run from the command line: a flag left out leaves the scene's setting.
 lightsolver::SolveOptions options_from(const RunArgs& a) {
   lightsolver::SolveOptions opt = a.options;
-  opt.cancel = &g_interrupted;
+  opt.cancel = &lightsolver::cli::interrupted();
   opt.processes = lightsolver::cli::processes();
   opt.command = lightsolver::cli::command_line();
   return opt;
@@ -177,9 +172,9 @@ int run(const RunArgs& a) {
     return lightsolver::load_scene(a.scene);
   }();
   lightsolver::SolveOptions opt = options_from(a);
-  std::signal(SIGINT, on_sigint);
   lightsolver::Results results;
   {
+    const lightsolver::cli::InterruptScope ctrl_c;
     ProgressBar bar;
     opt.forecast = [&](const lightsolver::RunForecast& f) {
       bar.expect(f);
@@ -188,7 +183,6 @@ int run(const RunArgs& a) {
     const lightsolver::timings::Scope phase("solve");
     results = solve_loaded(std::move(scene), opt, std::ref(bar));
   }
-  std::signal(SIGINT, SIG_DFL);
   {
     const lightsolver::timings::Scope phase("write results (table, --out)");
     if (!a.quiet) std::cout << lightsolver::results_table(results, a.effects) << std::flush;
@@ -228,16 +222,16 @@ int cost(const RunArgs& a, std::uint64_t max_photons) {
   lightsolver::CostOptions o;
   o.solve = options_from(a);
   o.max_photons = max_photons;
-  std::signal(SIGINT, on_sigint);
   std::printf("%14s %10s %16s %14s\n", "photons", "seconds", "worst ±/E [%]", "photons/s");
-  const lightsolver::Cost c =
-      lightsolver::run_cost(scene, o, [](const lightsolver::Checkpoint& row) {
-        std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(row.photons),
-                    row.seconds, 100.0 * row.worst_relative_half_width,
-                    double(row.photons) / std::max(row.seconds, 1e-9));
-        std::fflush(stdout);
-      });
-  std::signal(SIGINT, SIG_DFL);
+  const lightsolver::Cost c = [&] {
+    const lightsolver::cli::InterruptScope ctrl_c;
+    return lightsolver::run_cost(scene, o, [](const lightsolver::Checkpoint& row) {
+      std::printf("%14llu %10.3f %16.3f %14.3g\n", static_cast<unsigned long long>(row.photons),
+                  row.seconds, 100.0 * row.worst_relative_half_width,
+                  double(row.photons) / std::max(row.seconds, 1e-9));
+      std::fflush(stdout);
+    });
+  }();
   if (!a.out.empty())
     lightsolver::write_file_atomically(a.out, lightsolver::results_to_json(c.results));
   if (c.rows.empty()) {

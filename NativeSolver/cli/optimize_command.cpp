@@ -3,14 +3,13 @@
 // ISOC. Ctrl-C stops the search; the ISOC found so far is reported.
 #include "optimize_command.hpp"
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 
 #include "backend_option.hpp"
 #include "command_line.hpp"
+#include "interrupt.hpp"
 #include "lightsolver/optimizer/scene_problem.hpp"
 #include "lightsolver/output_file.hpp"
 #include "processes.hpp"
@@ -19,9 +18,6 @@ namespace lightsolver::cli {
 namespace {
 
 namespace opt = lightsolver::optimizer;
-
-std::atomic<bool> g_optimize_stop{false};
-void on_optimize_sigint(int) { g_optimize_stop.store(true); }
 
 struct OptimizeArgs {
   std::string scene, out;
@@ -86,19 +82,19 @@ int run_optimize(OptimizeArgs& a) {
   a.overrides.processes = processes();
   a.overrides.command = command_line();
   opt::Control control;
-  control.cancel = &g_optimize_stop;
+  control.cancel = &interrupted();
   if (!a.quiet)
     control.progress = [](const opt::IterationStats& s) {
       print_iteration(s);
       return true;
     };
-  g_optimize_stop.store(false);
-  std::signal(SIGINT, on_optimize_sigint);
-  const opt::OptimizationResult r = opt::run_problem(problem, a.overrides, control);
-  std::signal(SIGINT, SIG_DFL);
+  const opt::OptimizationResult r = [&] {
+    const InterruptScope ctrl_c;
+    return opt::run_problem(problem, a.overrides, control);
+  }();
   print_summary(problem, r);
   if (!a.out.empty()) write_file_atomically(a.out, opt::problem_result_json(problem, r) + "\n");
-  return r.stop == opt::StopReason::kCancelled && g_optimize_stop.load() ? 130 : 0;
+  return r.stop == opt::StopReason::kCancelled && interrupted().load() ? 130 : 0;
 }
 
 }  // namespace

@@ -8,8 +8,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +15,7 @@
 #include <memory>
 
 #include "command_line.hpp"
+#include "interrupt.hpp"
 #include "lightsolver/output_file.hpp"
 #include "lightsolver/scene_io.hpp"
 #include "lightsolver/study.hpp"
@@ -27,9 +26,6 @@ namespace lightsolver::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<bool> g_study_stop{false};
-void on_study_sigint(int) { g_study_stop.store(true); }
 
 struct StudyArgs {
   std::string scene, reference, csv, json, plot, out;
@@ -148,20 +144,20 @@ int run_study_command(const StudyArgs& a) {
   const Scene scene = load_scene(a.scene);
   StudyOptions o;
   o.solve = a.solve;
-  o.solve.cancel = &g_study_stop;
+  o.solve.cancel = &interrupted();
   o.solve.processes = processes();
   o.solve.command = command_line();
   o.max_photons = a.max_photons;
   o.reference_file = a.reference;
   const bool reference = !a.reference.empty();
   bool header = false;
-  g_study_stop.store(false);
-  std::signal(SIGINT, on_study_sigint);
-  const Study st = run_study(scene, o, [&](const StudyRow& r) {
-    if (!header) print_header(reference), header = true;
-    print_row(r, reference);
-  });
-  std::signal(SIGINT, SIG_DFL);
+  const Study st = [&] {
+    const InterruptScope ctrl_c;
+    return run_study(scene, o, [&](const StudyRow& r) {
+      if (!header) print_header(reference), header = true;
+      print_row(r, reference);
+    });
+  }();
   print_summary(st);
   const std::string json = study_to_json(st);
   if (!a.csv.empty()) write_file_atomically(a.csv, study_to_csv(st));
