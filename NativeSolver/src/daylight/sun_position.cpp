@@ -23,7 +23,6 @@
 #include <libnova/transform.h>
 
 #include <cmath>
-#include <numbers>
 #include <sstream>
 
 #include "lightsolver/angles.hpp"

@@ -2,7 +2,6 @@
 // position-weighted sum.
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <numbers>
 #include <sstream>
 
 #include "glare/glare_terms.hpp"

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/geometric.hpp>
-#include <numbers>
 #include <sstream>
 
 #include "lightsolver/angles.hpp"

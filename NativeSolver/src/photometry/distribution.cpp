@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 #include "photometry_internal.hpp"

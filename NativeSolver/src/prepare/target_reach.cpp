@@ -4,7 +4,6 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 #include "types/luminaire_types.hpp"

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 #include "lightsolver/simulation.hpp"

@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <functional>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 #include "sky_rooms.hpp"

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "daylight/sky_models.hpp"
 #include "lightsolver/angles.hpp"

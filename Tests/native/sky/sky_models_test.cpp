@@ -6,7 +6,6 @@
 
 #include <boost/math/special_functions/expint.hpp>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include "lightsolver/angles.hpp"

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 #include "scene_builders.hpp"

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <memory>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 

@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <numbers>
 #include <string>
 #include <vector>
 

@@ -1,7 +1,6 @@
 #include "noaa_reference.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 

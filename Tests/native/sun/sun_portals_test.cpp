@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 
 #include "daylight/sky_glazing.hpp"
 #include "lightsolver/angles.hpp"

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 #include "lightsolver/daylight.hpp"

@@ -8,7 +8,6 @@
 #include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
 #include "lightsolver/angles.hpp"
 #include "lightsolver/error.hpp"
