@@ -89,7 +89,7 @@ double noaa_minute_at_azimuth(const SunlightExposureSpec& s, double azimuth_deg)
 
 Mesh exposure_quad(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d, int material = 0) {
   Mesh m;
-  m.name = "exposure_quad";
+  m.name = "quad";
   m.material = material;
   m.vertices = {a, b, c, d};
   m.triangles = {{0, 1, 2}, {0, 2, 3}};
