@@ -15,6 +15,13 @@
 
 namespace lightsolver::detail {
 
+/// A device limit (lavapipe's loop limit) cut work even when it was traced again alone: this
+/// device cannot do it, though another backend can. Callers that can do without the work (the
+/// connection of reflected light under "auto") catch this type and say why; others pass it on.
+struct DeviceLimitError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 struct TallyBlock {
   std::vector<Tally> bins;
   std::uint64_t ray_segments = 0;
@@ -83,7 +90,8 @@ class Backend {
   /// traced by photons).
   virtual bool traces_shadow_rays() const { return false; }
   /// out[i] = 1 when nothing of the scene (at its current transforms) lies on rays[i], else 0.
-  /// Runs in the caller's TBB arena.
+  /// Runs in the caller's TBB arena. Throws DeviceLimitError where a device limit leaves a ray
+  /// undecided even traced alone.
   virtual void visible(std::span<const ShadowRay> rays, std::vector<std::uint8_t>& out) {
     (void)rays;
     (void)out;
@@ -95,7 +103,8 @@ class Backend {
   /// from PathRng(seed, i, stream) and emitted as trace() emits them, each surviving a
   /// reflection with probability of its reflectance (the photon keeps its power) and leaving
   /// with a cosine lobe, in photon order. For scenes whose every material is diffuse: a path
-  /// ends at any other. Runs in the caller's TBB arena.
+  /// ends at any other. Runs in the caller's TBB arena. Throws DeviceLimitError where a device
+  /// limit cuts a path even traced alone.
   virtual void path_vertices(std::uint32_t group, std::uint64_t first, std::uint64_t count,
                              std::uint64_t seed, std::uint32_t stream,
                              std::vector<PathVertex>& out) {

@@ -22,6 +22,7 @@
 #include "estimate/reflection_connection.hpp"
 #include "lightsolver/simulation.hpp"
 #include "lightsolver/statistics.hpp"
+#include "model/backend.hpp"  // DeviceLimitError
 #include "prepare/scene_effects.hpp"
 #include "run/simulation_state.hpp"
 
@@ -68,28 +69,49 @@ void use_parts(detail::SimulationState& st) {
   }
 }
 
-// The connection of `paths` paths per group for `seed` in use (the one kept when it is already
-// traced); false, and the connection in use unchanged, when `stop` asked between two batches.
-bool use_connection(detail::SimulationState& st, std::uint64_t seed, std::uint64_t paths,
-                    const std::function<bool()>& stop) {
-  if (!(st.connected_seed == seed && st.connected_paths == paths)) {
+// What use_connection() did: the connection asked for is in use; `stop` asked between two
+// batches; or a device limit cut its paths (lavapipe's loop limit: model/backend.hpp).
+enum class Connection { kUsed, kStopped, kCut };
+
+// The connection of `paths` paths per group for the run's seed in use (the one kept when it is
+// already traced); otherwise the connection in use stays unchanged. A device limit is passed on
+// under "on" and, under "auto" (which can do without the connection), said in `why`.
+Connection use_connection(detail::SimulationState& st, const Results& r, std::uint64_t paths,
+                          const std::function<bool()>& stop, std::string& why) {
+  if (!(st.connected_seed == r.seed && st.connected_paths == paths)) {
     const auto start = Clock::now();
     std::vector<detail::DirectPart> connected(st.prepared.groups.size() * st.prepared.bins.size());
     bool whole = false;
-    tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-      whole =
-          detail::add_connected_reflection(st.prepared, *st.backend, seed, paths, connected, stop);
-    });
-    if (!whole) return false;
+    try {
+      tbb::task_arena arena(st.threads > 0 ? st.threads : tbb::task_arena::automatic);
+      arena.execute([&] {
+        whole = detail::add_connected_reflection(st.prepared, *st.backend, r.seed, paths, connected,
+                                                 stop);
+      });
+    } catch (const detail::DeviceLimitError& e) {
+      if (r.connect_reflections != "auto") {
+        throw detail::DeviceLimitError(std::string(e.what()) +
+                                       ", or connect_reflections \"auto\" or \"off\"");
+      }
+      why = std::string("auto: ") + e.what();
+      return Connection::kCut;
+    }
+    if (!whole) return Connection::kStopped;
     st.connected = std::move(connected);
-    st.connected_seed = seed;
+    st.connected_seed = r.seed;
     st.connected_paths = paths;
     st.connected_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   }
   st.connect_paths = paths;
   use_parts(st);
-  return true;
+  return Connection::kUsed;
+}
+
+// The warning of a run whose connection a device limit kept at fewer paths than it wanted.
+std::string connected_short(std::uint64_t paths, std::uint64_t wanted, const std::string& why) {
+  return "reflected light connected from " + std::to_string(paths) +
+         " paths per luminaire group (" + std::to_string(wanted) +
+         " wanted), with wider intervals: " + why;
 }
 
 // A connected part whose half-width passes half the accuracy goal of its group's light at the
@@ -120,12 +142,15 @@ void plan_connected_light(detail::SimulationState& st, const Results& r,
   std::uint64_t paths =
       r.decide && !r.target_accuracy ? detail::kConnectDecidePaths : detail::kConnectMinPaths;
   if (plain && st.connected_seed == r.seed && st.connected_paths == planned) paths = planned;
-  if (!use_connection(st, r.seed, paths, stop)) {
-    detail::drop_connection(p,
-                            "the run was stopped before its connected reflected light was traced");
+  std::string why;
+  const Connection first = use_connection(st, r, paths, stop, why);
+  if (first != Connection::kUsed) {
+    detail::drop_connection(
+        p, first == Connection::kCut
+               ? why
+               : "the run was stopped before its connected reflected light was traced");
     return;
   }
-  std::string why;
   if (r.connect_reflections == "auto" &&
       !detail::connection_pays(p, st.direct, st.connected, why)) {
     st.connect_paths = 0;
@@ -134,9 +159,12 @@ void plan_connected_light(detail::SimulationState& st, const Results& r,
     return;
   }
   if (r.target_accuracy) {
-    // Stopped half-way: the last whole connection stays (the run is cancelled).
-    while (paths < detail::kConnectMaxGoalPaths && connection_too_wide(st, r) &&
-           use_connection(st, r.seed, 2 * paths, stop)) {
+    // Stopped half-way: the last whole connection stays (the run is cancelled); cut by a
+    // device limit, it stays too and the warnings say why.
+    while (paths < detail::kConnectMaxGoalPaths && connection_too_wide(st, r)) {
+      const Connection more = use_connection(st, r, 2 * paths, stop, why);
+      if (more == Connection::kCut) st.connect_note = connected_short(paths, 2 * paths, why);
+      if (more != Connection::kUsed) break;
       paths *= 2;
     }
   }
@@ -150,7 +178,12 @@ std::string finish_connection(detail::SimulationState& st, Results& r,
   if (st.connect_final == 0 || st.connect_paths == 0) return {};
   const std::uint64_t paths =
       std::min(st.connect_final, detail::connection_paths(st.prepared, r.photons));
-  if (r.stop_reason != kStopCancelled && use_connection(st, r.seed, paths, stop)) return {};
+  std::string why;
+  if (r.stop_reason != kStopCancelled) {
+    const Connection planned = use_connection(st, r, paths, stop, why);
+    if (planned == Connection::kUsed) return {};
+    if (planned == Connection::kCut) return connected_short(st.connect_paths, paths, why);
+  }
   if (st.connect_paths >= paths) return {};
   r.stop_reason = kStopCancelled;
   return "stopped before its reflected light was connected as planned: connected from " +
@@ -248,6 +281,7 @@ void Simulation::plan_direct_light(const Results& r, const std::function<bool()>
   detail::PreparedScene& p = st.prepared;
   st.direct_final_scale = 0;
   st.connect_paths = st.connect_final = 0;
+  st.connect_note.clear();
   // A sobol run shares these parts among its replicates (model/replicates.hpp).
   detail::plan_next_event(p, *st.backend, r.next_event);
   // Connected reflected light (estimate/reflection_connection.hpp) builds on these groups.
@@ -305,7 +339,8 @@ double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photo
   // Never stopped half-way: a row is a whole estimate. A plain run of `photons` connects the
   // paths sized to them.
   if (st.connect_final > 0 && st.connect_paths > 0) {
-    use_connection(st, r.seed, detail::connection_paths(st.prepared, photons), {});
+    std::string why;  // cut by a device limit: the connection traced before the photons stays
+    use_connection(st, r, detail::connection_paths(st.prepared, photons), {}, why);
   }
   use_direct_parts(r.seed, scale, {});
   return st.direct_seconds + (st.connect_paths > 0 ? st.connected_seconds : 0.0);
@@ -313,20 +348,21 @@ double Simulation::checkpoint_direct_light(const Results& r, std::uint64_t photo
 
 std::string Simulation::finish_direct_light(Results& r, const std::function<bool()>& stop) {
   detail::SimulationState& st = *state_;
-  if (st.direct_final_scale == 0) return {};
+  if (st.direct_final_scale == 0)
+    return st.connect_note;  // a goal's parts are fixed before the photons
   // Sized to the photons traced: a run its time limit ended gets the parts of a plain run of
   // its photons (fewer than planned), not the shadow rays of the photons it did not trace.
   const std::uint32_t scale =
       std::min(st.direct_final_scale, strata_scale_for(st.prepared, r.photons));
-  std::string note;
+  std::string note = st.connect_note;
   if (!(r.stop_reason != kStopCancelled && use_direct_parts(r.seed, scale, stop))) {
     // Stopped: the coarsest parts, traced before the photons, stay (whole, and honest).
     use_direct_parts(r.seed, 1, {});
     if (st.direct_final_scale > 1) {
       r.stop_reason = kStopCancelled;
-      note =
-          "stopped before its direct light was sampled as planned: direct parts from the "
-          "default points (32 per cell, 512 per surface target), with wider intervals";
+      note += std::string(note.empty() ? "" : "; ") +
+              "stopped before its direct light was sampled as planned: direct parts from the "
+              "default points (32 per cell, 512 per surface target), with wider intervals";
     }
   }
   const std::string connected = finish_connection(st, r, stop);

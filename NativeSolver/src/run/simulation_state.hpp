@@ -44,6 +44,9 @@ struct SimulationState {
   std::uint64_t connect_paths = 0;
   std::uint64_t connect_final = 0;
   double connected_seconds = 0.0;
+  // Why an accuracy goal's connection stopped short of its paths (a device limit cut the next
+  // ones); the run's warnings carry it. Empty when it did not.
+  std::string connect_note;
   // next_event "auto"'s judging parts (estimate/direct_choice.hpp) and their seed; dropped with
   // `direct` by any change to the scene.
   std::vector<DirectPart> judging;

@@ -88,11 +88,9 @@ std::uint32_t PathVertexTracer::trace_chunk(vkw::Sequence& seq, const PreparedSc
 
   const auto* control = static_cast<const std::uint32_t*>(control_.mapped());
   if (control[5] > 0) {
-    throw std::runtime_error("Vulkan backend: " + std::to_string(control[5]) +
-                             " paths need more loop iterations than this device (" +
-                             ctx_.device_name() +
-                             ") allows even traced alone; use --backend "
-                             "embree");
+    throw DeviceLimitError("Vulkan backend: " + std::to_string(control[5]) +
+                           " connection paths need more loop iterations than this device (" +
+                           ctx_.device_name() + ") allows even traced alone; use --backend embree");
   }
   const std::uint32_t appended = control[4];
   if (appended > kVertexCapacity) return appended;

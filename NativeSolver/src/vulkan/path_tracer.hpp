@@ -27,7 +27,7 @@ class PathVertexTracer {
 
   /// Appends the vertices of paths [first, first + count) to `out` in Backend::path_vertices's
   /// order. `push` carries the group's fields (seed, stream in `group`, luminaires, max_bounces,
-  /// instance_count); the rest is set here. Throws std::runtime_error when the device's loop
+  /// instance_count); the rest is set here. Throws DeviceLimitError when the device's loop
   /// limit cuts a path even traced alone (lavapipe, pathological scenes only).
   void trace(vkw::Sequence& seq, const PreparedScene& s, gpu::TracePush push, std::uint64_t first,
              std::uint64_t count, std::vector<PathVertex>& out);

@@ -78,10 +78,10 @@ void ShadowRayTracer::visible(vkw::Sequence& seq, std::span<const ShadowRay> ray
       out[first + i] = results[i] == 1 ? 1 : 0;
     }
     if (cut > 0) {
-      throw std::runtime_error("Vulkan backend: " + std::to_string(cut) +
-                               " shadow rays need more loop iterations than this device (" +
-                               ctx_.device_name() +
-                               ") allows even traced alone; use --backend embree");
+      throw DeviceLimitError("Vulkan backend: " + std::to_string(cut) +
+                             " shadow rays need more loop iterations than this device (" +
+                             ctx_.device_name() +
+                             ") allows even traced alone; use --backend embree");
     }
   }
 }

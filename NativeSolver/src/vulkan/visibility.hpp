@@ -34,7 +34,7 @@ class ShadowRayTracer {
   ShadowRayTracer(const vkw::Context& ctx, const std::vector<vkw::Buffer>& scene,
                   bool has_instances);
 
-  /// Backend::visible with `instance_count` movable meshes. Throws std::runtime_error when the
+  /// Backend::visible with `instance_count` movable meshes. Throws DeviceLimitError when the
   /// device's loop limit leaves a ray undecided even traced alone (lavapipe, pathological
   /// scenes only), so no answer is ever a guess.
   void visible(vkw::Sequence& seq, std::span<const ShadowRay> rays, std::uint32_t instance_count,

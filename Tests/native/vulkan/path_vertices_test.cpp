@@ -105,7 +105,7 @@ TEST_F(VulkanPathVerticesTest, PathsOfThousandsOfBouncesMatchAcrossTheLoopLimit)
   // (Mesa 22.3) runs into its loop limit (trace.comp) for most paths: they are traced again
   // alone, and what they gave in the first pass is dropped (without that, 330 of these 400
   // paths differed), so the vertex counts still match Embree's path for path. Much longer
-  // paths (reflectance 0.9995, max_bounces 6000) are cut even alone: the call throws.
+  // paths are cut even alone (PathsCutEvenAlone... below).
   Scene s = box_room(4);
   s.materials[0].reflectance = 0.9995;
   s.settings.max_bounces = 3500;
@@ -152,6 +152,71 @@ TEST_F(VulkanPathVerticesTest, ConnectedRunAgreesWithEmbree) {
   for (std::size_t k = 0; k < 64; ++k) {
     const Estimate& c = v.targets[0].cells[k];
     EXPECT_TRUE(std::isfinite(c.mean) && c.ci_low <= c.mean && c.mean <= c.ci_high) << k;
+  }
+}
+
+// The box room at reflectance 0.9995 with max_bounces 6000: about 2000 vertices per path, and
+// on lavapipe (Mesa 22.3) a path of that length runs past its loop limit even traced alone.
+Scene nearly_white_box() {
+  Scene s = box_room(4);
+  s.materials[0].reflectance = 0.9995;
+  s.settings.max_bounces = 6000;
+  validate(s);
+  return s;
+}
+
+bool loop_limited(const detail::Backend& vulkan) {
+  return vulkan.device().find("llvmpipe") != std::string::npos;
+}
+
+// Such paths cannot be traced on this device: the call says so with its own error type (which
+// the connection's "auto" catches), never with vertices missing. A real GPU has no such limit.
+TEST_F(VulkanPathVerticesTest, PathsCutEvenAloneThrowADeviceLimitError) {
+  const detail::PreparedScene p = detail::prepare(nearly_white_box());
+  const auto vulkan = detail::make_vulkan_backend(p);
+  std::vector<PathVertex> v;
+  if (!loop_limited(*vulkan)) {
+    vulkan->path_vertices(0, 0, 64, 4, 2, v);
+    GTEST_SKIP() << "no loop limit on " << vulkan->device();
+  }
+  EXPECT_THROW(vulkan->path_vertices(0, 0, 64, 4, 2, v), detail::DeviceLimitError);
+}
+
+Results run_nearly_white(const std::string& connect) {
+  SolveOptions o;
+  o.backend = "vulkan";
+  o.photons = 1000;  // the fewest connections (16 cells x 512 paths x 2 rays) are within auto's
+  o.seed = 5;
+  o.next_event = "on";
+  o.connect_reflections = connect;
+  return solve(nearly_white_box(), o);
+}
+
+// Where the loop limit cuts connection paths even alone, "auto" does without the connection
+// (the photons carry every reflected crossing, as with "off") and its effects list says why;
+// "on" stops with an error that names both ways out.
+TEST_F(VulkanPathVerticesTest, AutoDoesWithoutTheConnectionWhereTheLoopLimitCutsItsPaths) {
+  const Results r = run_nearly_white("auto");
+  const auto skipped =
+      std::find_if(r.effects.skipped.begin(), r.effects.skipped.end(),
+                   [](const SkippedEffect& e) { return e.effect == "reflection_connection"; });
+  for (const Estimate& c : r.targets[0].cells) {
+    EXPECT_TRUE(std::isfinite(c.mean) && c.ci_low <= c.mean && c.mean <= c.ci_high);
+  }
+  if (!r.provenance || r.provenance->device.find("llvmpipe") == std::string::npos) {
+    EXPECT_EQ(skipped, r.effects.skipped.end()) << "connected on a device without a loop limit";
+    GTEST_SKIP() << "no loop limit on this device";
+  }
+  ASSERT_NE(skipped, r.effects.skipped.end()) << "auto connected paths the device cut";
+  EXPECT_NE(skipped->reason.find("auto: Vulkan backend:"), std::string::npos) << skipped->reason;
+  EXPECT_NE(skipped->reason.find("even traced alone"), std::string::npos) << skipped->reason;
+  try {
+    run_nearly_white("on");
+    ADD_FAILURE() << "\"on\" connected paths the device cut";
+  } catch (const detail::DeviceLimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("--backend embree, or connect_reflections"),
+              std::string::npos)
+        << e.what();
   }
 }
 
