@@ -38,17 +38,6 @@ Scene lamp_over_floor(bool desk, bool ground = true) {
   return s;
 }
 
-Results run(const std::string& backend, const Scene& s, const std::string& next_event,
-            std::uint64_t photons, std::uint64_t seed) {
-  SolveOptions o;
-  o.backend = backend;
-  o.photons = photons;
-  o.seed = seed;
-  o.confidence = kCheckConfidence;
-  o.next_event = next_event;
-  return solve(s, o);
-}
-
 bool simulated(const Results& r, const std::string& effect) {
   const auto& s = r.effects.simulated;
   return std::find(s.begin(), s.end(), effect) != s.end();
@@ -88,9 +77,9 @@ class NextEventChoice : public ::testing::TestWithParam<std::string> {};
 // list says why; "on" traces its shadow rays, several times wider.
 TEST_P(NextEventChoice, LargeFloorGoesBackToThePhotons) {
   const Scene s = lamp_over_floor(false);
-  const Results automatic = run(GetParam(), s, "auto", 50'000, 3);
-  const Results off = run(GetParam(), s, "off", 50'000, 3);
-  const Results on = run(GetParam(), s, "on", 50'000, 3);
+  const Results automatic = run_next_event(GetParam(), s, 50'000, 3, "auto");
+  const Results off = run_next_event(GetParam(), s, 50'000, 3, "off");
+  const Results on = run_next_event(GetParam(), s, 50'000, 3, "on");
   EXPECT_FALSE(simulated(automatic, "next_event_direct"));
   const std::string why = next_event_words(automatic);
   EXPECT_NE(why.find("auto"), std::string::npos) << why;
@@ -115,12 +104,12 @@ TEST_P(NextEventChoice, SmallTargetsKeepShadowRays) {
   add_material(s, "black", Material::Type::Diffuse, 0.0);
   s.meshes.push_back(quad_mesh("tilted", 0, pc, pe1, pe2));
   s.targets.push_back(surface("tilted", 0));
-  const Results patch = run(GetParam(), s, "auto", 50'000, 5);
+  const Results patch = run_next_event(GetParam(), s, 50'000, 5, "auto");
   EXPECT_TRUE(simulated(patch, "next_event_direct"));
   EXPECT_TRUE(patch.effects.notes.empty()) << next_event_words(patch);
   expect_in_ci(patch.targets[0].estimate, point_source_patch_lux(src, kFlux, pc, pe1, pe2), 0.01,
                "tilted patch");
-  const Results room = run(GetParam(), box_room(4), "auto", 20'000, 6);
+  const Results room = run_next_event(GetParam(), box_room(4), 20'000, 6, "auto");
   EXPECT_TRUE(simulated(room, "next_event_direct"));
   EXPECT_TRUE(room.effects.notes.empty()) << next_event_words(room);
 }
@@ -130,7 +119,7 @@ TEST_P(NextEventChoice, SmallTargetsKeepShadowRays) {
 // note names each. "on" keeps the floor's shadow rays: its interval is wider than auto's.
 TEST_P(NextEventChoice, MixedSceneAgreesWithClosedFormAndPhotons) {
   const Scene s = lamp_over_floor(true);
-  const Results automatic = run(GetParam(), s, "auto", 50'000, 7);
+  const Results automatic = run_next_event(GetParam(), s, 50'000, 7, "auto");
   ASSERT_TRUE(simulated(automatic, "next_event_direct"));
   const std::string note = next_event_words(automatic);
   EXPECT_NE(note.find("photons where shadow rays would be wider: floor ("), std::string::npos)
@@ -140,14 +129,14 @@ TEST_P(NextEventChoice, MixedSceneAgreesWithClosedFormAndPhotons) {
   // The desk's photons, reflected light only, have no hit: their zero-hit bound (about
   // z^2 / N of flux / cell area, 5 lx) is most of a corner cell's interval.
   expect_desk_exact(automatic, 0.05);
-  const Results off = run(GetParam(), s, "off", 50'000, 8);
+  const Results off = run_next_event(GetParam(), s, 50'000, 8, "off");
   expect_same_within(automatic.targets[0].estimate, off.targets[0].estimate, "floor");
   for (std::size_t k = 0; k < kDeskCells * kDeskCells; ++k) {
     expect_same_within(automatic.targets[1].cells[k], off.targets[1].cells[k],
                        "desk cell " + std::to_string(k));
     EXPECT_LT(width(automatic.targets[1].cells[k]), width(off.targets[1].cells[k]));
   }
-  const Results on = run(GetParam(), s, "on", 50'000, 7);
+  const Results on = run_next_event(GetParam(), s, 50'000, 7, "on");
   EXPECT_TRUE(on.effects.notes.empty()) << next_event_words(on);
   expect_in_ci(on.targets[0].estimate, kFloorExact, 0.2, "floor (on)");
   expect_desk_exact(on, 0.05);
@@ -159,13 +148,13 @@ TEST_P(NextEventChoice, MixedSceneAgreesWithClosedFormAndPhotons) {
 // keeps shadow rays everywhere and says why; the desk's intervals stay as narrow as "on"'s.
 TEST_P(NextEventChoice, NothingReflectsKeepsShadowRaysEverywhere) {
   const Scene s = lamp_over_floor(true, false);
-  const Results automatic = run(GetParam(), s, "auto", 50'000, 7);
+  const Results automatic = run_next_event(GetParam(), s, 50'000, 7, "auto");
   ASSERT_TRUE(simulated(automatic, "next_event_direct"));
   const std::string note = next_event_words(automatic);
   EXPECT_NE(note.find("nothing reflects"), std::string::npos) << note;
   EXPECT_NE(note.find("floor ("), std::string::npos) << note;
   expect_desk_exact(automatic, 0.01);
-  const Results on = run(GetParam(), s, "on", 50'000, 7);
+  const Results on = run_next_event(GetParam(), s, 50'000, 7, "on");
   EXPECT_EQ(automatic.targets[0].estimate.ci_high, on.targets[0].estimate.ci_high);
 }
 

@@ -9,18 +9,6 @@
 namespace lightsolver::test {
 namespace {
 
-Results run_with(const std::string& backend, const Scene& s, std::uint64_t photons,
-                 std::uint64_t seed, const std::string& next_event,
-                 double confidence = kCheckConfidence) {
-  SolveOptions o;
-  o.backend = backend;
-  o.photons = photons;
-  o.seed = seed;
-  o.confidence = confidence;
-  o.next_event = next_event;
-  return solve(s, o);
-}
-
 class NextEvent : public ::testing::TestWithParam<std::string> {};
 
 // Direct light only (no surface): the cells' exact means lie in narrow intervals; the photons
@@ -30,7 +18,7 @@ TEST_P(NextEvent, PointSourceOverPlaneExactFromShadowRays) {
   const dvec3 src(0.3, -0.2, 2.0), c(-2, -2, 0), e1(4, 0, 0), e2(0, 4, 0);
   s.luminaires.push_back(point_light(src, 5000.0));
   s.targets.push_back(grid("floor", c, e1, e2, 8, 8));
-  const Results r = run_with(GetParam(), s, 200'000, 3, "on");
+  const Results r = run_next_event(GetParam(), s, 200'000, 3, "on");
   for (unsigned k = 0; k < 64; ++k) {
     const dvec3 cc = c + double(k % 8) / 8.0 * e1 + double(k / 8) / 8.0 * e2;
     const double exact = point_source_patch_lux(src, 5000.0, cc, e1 / 8.0, e2 / 8.0);
@@ -46,7 +34,7 @@ TEST_P(NextEvent, SurfaceTargetFromShadowRays) {
   add_material(s, "black", Material::Type::Diffuse, 0.0);
   s.meshes.push_back(quad_mesh("tilted", 0, pc, pe1, pe2));
   s.targets.push_back(surface("tilted", 0));
-  const Results r = run_with(GetParam(), s, 200'000, 5, "on");
+  const Results r = run_next_event(GetParam(), s, 200'000, 5, "on");
   expect_in_ci(r.targets[0].estimate, point_source_patch_lux(src, 5000.0, pc, pe1, pe2), 0.01,
                "tilted patch");
 }
@@ -55,8 +43,8 @@ TEST_P(NextEvent, SurfaceTargetFromShadowRays) {
 // within five combined sigma, and the intervals are narrower.
 TEST_P(NextEvent, AgreesWithPhotonsAloneInABoxRoomWithShadows) {
   const Scene s = box_room(8, true);
-  const Results on = run_with(GetParam(), s, 400'000, 11, "on", 0.95);
-  const Results off = run_with(GetParam(), s, 400'000, 12, "off", 0.95);
+  const Results on = run_next_event(GetParam(), s, 400'000, 11, "on", 0.95);
+  const Results off = run_next_event(GetParam(), s, 400'000, 12, "off", 0.95);
   ASSERT_EQ(on.targets[0].cells.size(), 64u);
   const auto [width_on, width_off] = expect_cells_agree(on, off);
   EXPECT_LT(width_on, width_off);
@@ -148,8 +136,8 @@ TEST_P(NextEvent, PhotometricFilesAgreeWithTheirPhotons) {
                      std::nullopt, "flux_lm");
     s.luminaires.push_back(l);
     s.targets.push_back(grid("floor", {0, 0, 0}, {3, 0, 0}, {0, 3, 0}, 6, 6));
-    const Results on = run_with(GetParam(), s, 2'000'000, 21, "on");
-    const Results off = run_with(GetParam(), s, 2'000'000, 22, "off");
+    const Results on = run_next_event(GetParam(), s, 2'000'000, 21, "on");
+    const Results off = run_next_event(GetParam(), s, 2'000'000, 22, "off");
     for (std::size_t k = 0; k < 36; ++k) {
       expect_same_within(on.targets[0].cells[k], off.targets[0].cells[k],
                          file + " cell " + std::to_string(k));

@@ -41,6 +41,17 @@ inline Mesh quad_mesh(const std::string& name, int material, dvec3 corner, dvec3
   return m;
 }
 
+// The quadrilateral a, b, c, d (corners in order; front by the right-hand rule), named "quad":
+// for corners that need not form a parallelogram.
+inline Mesh corner_quad(dvec3 a, dvec3 b, dvec3 c, dvec3 d, int material = 0) {
+  Mesh m;
+  m.name = "quad";
+  m.material = material;
+  m.vertices = {a, b, c, d};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
 // Axis-aligned box [lo, hi] with faces whose fronts point INTO the box (a room), each face
 // split into n x n quads so walls share many edges (a watertightness test).
 inline Mesh room_mesh(const std::string& name, int material, dvec3 lo, dvec3 hi, int n = 1) {
@@ -225,6 +236,20 @@ inline Results run_on_backend(const std::string& backend, Scene s, std::uint64_t
     o.backend = backend.substr(0, plus);
     o.next_event = "auto";
   }
+  return solve(s, o);
+}
+
+// One run of `s` on `backend` with next-event estimation `next_event` ("auto", "on", "off"):
+// the next-event suites' common call.
+inline Results run_next_event(const std::string& backend, const Scene& s, std::uint64_t photons,
+                              std::uint64_t seed, const std::string& next_event,
+                              double confidence = kCheckConfidence) {
+  SolveOptions o;
+  o.backend = backend;
+  o.photons = photons;
+  o.seed = seed;
+  o.confidence = confidence;
+  o.next_event = next_event;
   return solve(s, o);
 }
 

@@ -9,14 +9,12 @@
 #include <stdexcept>
 
 #include "lightsolver/angles.hpp"
+#include "sky_directions.hpp"
 
 namespace lightsolver::daylight {
 namespace {
 
-Direction sun_at(double altitude_deg, double azimuth_deg) {
-  const double a = altitude_deg * kPi / 180.0, z = azimuth_deg * kPi / 180.0;
-  return {std::cos(a) * std::sin(z), std::cos(a) * std::cos(z), std::sin(a)};
-}
+using test::sun_at;
 
 // ISO 15469 Table 1 as a second transcription (Darula & Kittler's gradation groups I-VI and
 // indicatrix groups 1-6, combined per type as the standard lists them).

@@ -8,20 +8,18 @@
 #include <memory>
 
 #include "lightsolver/angles.hpp"
+#include "sky_directions.hpp"
 
 namespace lightsolver::daylight {
 namespace {
 
-Direction sampler_sun_at(double altitude_deg, double azimuth_deg) {
-  const double a = altitude_deg * kPi / 180.0, z = azimuth_deg * kPi / 180.0;
-  return {std::cos(a) * std::sin(z), std::cos(a) * std::cos(z), std::sin(a)};
-}
+using test::sun_at;
 
 std::shared_ptr<const Sky> make_sky(SkyModel model, int type, double alt, double ground = 0.2) {
   SkySpec spec;
   spec.model = model;
   spec.cie_type = type;
-  spec.sun = sampler_sun_at(alt, 200.0);
+  spec.sun = sun_at(alt, 200.0);
   spec.normalisation = SkyNormalisation::ZenithLuminance;
   spec.level = 1000.0;
   spec.ground_reflectance = ground;
@@ -64,7 +62,7 @@ TEST(SkySampler, DiscFluxCoversSkyAndGround) {
 TEST(SkySampler, MajorantBoundsTheWeight) {
   SkySpec perez;
   perez.model = SkyModel::Perez;
-  perez.sun = sampler_sun_at(20.0, 120.0);
+  perez.sun = sun_at(20.0, 120.0);
   perez.perez.diffuse_horizontal = 90.0;
   perez.perez.direct_normal = 700.0;
   const std::shared_ptr<const Sky> skies[] = {

@@ -29,18 +29,9 @@ namespace {
 
 const glm::dvec3 kUp(0, 0, 1);
 
-Mesh quad(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d, int material = 0) {
-  Mesh m;
-  m.name = "quad";
-  m.material = material;
-  m.vertices = {a, b, c, d};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  return m;
-}
-
 // An axis-aligned rectangle in the plane y = y0: x in [x0, x1], z in [z0, z1].
 Mesh wall_y(double y0, double x0, double x1, double z0, double z1, int material = 0) {
-  return quad({x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1}, material);
+  return test::corner_quad({x0, y0, z0}, {x1, y0, z0}, {x1, y0, z1}, {x0, y0, z1}, material);
 }
 
 Scene empty_scene() {
@@ -55,14 +46,14 @@ Scene empty_scene() {
 Scene box_with_window() {
   Scene s = empty_scene();
   auto& m = s.meshes;
-  m.push_back(quad({0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}));  // floor
-  m.push_back(quad({0, 0, 3}, {4, 0, 3}, {4, 4, 3}, {0, 4, 3}));  // ceiling
-  m.push_back(quad({0, 0, 0}, {0, 4, 0}, {0, 4, 3}, {0, 0, 3}));  // west
-  m.push_back(quad({4, 0, 0}, {4, 4, 0}, {4, 4, 3}, {4, 0, 3}));  // east
-  m.push_back(wall_y(4, 0, 4, 0, 3));                             // north
-  m.push_back(wall_y(0, 0, 4, 0, 1));                             // south: below the sill
-  m.push_back(wall_y(0, 0, 4, 2, 3));                             // above the head
-  m.push_back(wall_y(0, 0, 1, 1, 2));                             // beside the window
+  m.push_back(test::corner_quad({0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}));  // floor
+  m.push_back(test::corner_quad({0, 0, 3}, {4, 0, 3}, {4, 4, 3}, {0, 4, 3}));  // ceiling
+  m.push_back(test::corner_quad({0, 0, 0}, {0, 4, 0}, {0, 4, 3}, {0, 0, 3}));  // west
+  m.push_back(test::corner_quad({4, 0, 0}, {4, 4, 0}, {4, 4, 3}, {4, 0, 3}));  // east
+  m.push_back(wall_y(4, 0, 4, 0, 3));                                          // north
+  m.push_back(wall_y(0, 0, 4, 0, 1));  // south: below the sill
+  m.push_back(wall_y(0, 0, 4, 2, 3));  // above the head
+  m.push_back(wall_y(0, 0, 1, 1, 2));  // beside the window
   m.push_back(wall_y(0, 3, 4, 1, 2));
   return s;
 }
@@ -187,7 +178,7 @@ TEST(DirectSun, ARayLeavingThroughAWallIsDark) {
 // (x, y, 0) meets z = 2 at y − 2, under the plate for y in [1, 2].
 TEST(DirectSun, PointsBehindAnOverhangAreShadowed) {
   Scene s = empty_scene();
-  s.meshes.push_back(quad({-5, -1, 2}, {5, -1, 2}, {5, 0, 2}, {-5, 0, 2}));
+  s.meshes.push_back(test::corner_quad({-5, -1, 2}, {5, -1, 2}, {5, 0, 2}, {-5, 0, 2}));
   Hours h;
   h.add(sun(45.0, 180.0), 60000.0);
   const std::vector<float> e = run(s, {}, {{0, 1.5, 0}, {0, 0.5, 0}, {0, 2.5, 0}, {0, 1.02, 0}}, h);
@@ -200,13 +191,13 @@ TEST(DirectSun, PointsBehindAnOverhangAreShadowed) {
   // leaves the window at z 1.5 and passes z = 2.2 at y = -0.7 (clear); (2, 1.8) at y = -0.4
   // (under the overhang: dark, though the window itself passes it).
   Scene box = box_with_window();
-  box.meshes.push_back(quad({0, -0.6, 2.2}, {4, -0.6, 2.2}, {4, 0, 2.2}, {0, 0, 2.2}));
+  box.meshes.push_back(test::corner_quad({0, -0.6, 2.2}, {4, -0.6, 2.2}, {4, 0, 2.2}, {0, 0, 2.2}));
   const std::vector<float> b = run(box, {window()}, {{2, 1.5, 0}, {2, 1.8, 0}}, h);
   EXPECT_NEAR(b[0], exact, 0.05);
   EXPECT_EQ(b[1], 0.0f);
   // A partition inside the room between the point and the window blocks too.
   Scene inner = box_with_window();
-  inner.meshes.push_back(quad({0, 1, 0}, {4, 1, 0}, {4, 1, 0.5}, {0, 1, 0.5}));
+  inner.meshes.push_back(test::corner_quad({0, 1, 0}, {4, 1, 0}, {4, 1, 0.5}, {0, 1, 0.5}));
   const std::vector<float> p = run(inner, {window()}, {{2, 1.5, 0}}, h);
   EXPECT_EQ(p[0], 0.0f);
 }

@@ -17,6 +17,7 @@
 #include "lightsolver/solver.hpp"
 #include "lightsolver/sunlight.hpp"
 #include "noaa_reference.hpp"
+#include "scene_builders.hpp"
 
 namespace lightsolver {
 namespace {
@@ -87,15 +88,6 @@ double noaa_minute_at_azimuth(const SunlightExposureSpec& s, double azimuth_deg)
   return 0.5 * (lo + hi);
 }
 
-Mesh exposure_quad(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c, glm::dvec3 d, int material = 0) {
-  Mesh m;
-  m.name = "quad";
-  m.material = material;
-  m.vertices = {a, b, c, d};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  return m;
-}
-
 Scene scene_with(const SunlightExposureSpec& spec) {
   Scene scene;
   scene.materials = {default_material("wall", Material::Type::Diffuse),
@@ -133,7 +125,7 @@ TEST(SunlightExposure, EmbreeWithNothingOpaqueEqualsTheUnobstructedSun) {
   Scene scene = scene_with(s);
   // A glass pane right in front of the point does not hide the sun (docs: glass is let through).
   scene.meshes.push_back(
-      exposure_quad({-1, -0.01, -1}, {1, -0.01, -1}, {1, -0.01, 1}, {-1, -0.01, 1}, 1));
+      test::corner_quad({-1, -0.01, -1}, {1, -0.01, -1}, {1, -0.01, 1}, {-1, -0.01, 1}, 1));
   const SunlightExposureResult traced = sunlight_exposure(scene);
   const SunlightExposureResult free = sunlight_exposure(s, [](auto&, auto&) { return true; });
   EXPECT_EQ(traced.points[0].hours, free.points[0].hours);
@@ -149,7 +141,7 @@ TEST(SunlightExposure, EastWallCutsTheMorningAtTheAzimuthOfItsEdge) {
   const SunlightExposureSpec s = paris(kSouth);
   Scene scene = scene_with(s);
   const double h = 1000.0;  // tall enough for any sun: only the azimuth matters
-  scene.meshes.push_back(exposure_quad({1, 0, -h}, {1, -1, -h}, {1, -1, h}, {1, 0, h}));
+  scene.meshes.push_back(test::corner_quad({1, 0, -h}, {1, -1, -h}, {1, -1, h}, {1, 0, h}));
   const SunlightExposureResult r = sunlight_exposure(scene);
   const SunlightExposureResult free = sunlight_exposure(s, [](auto&, auto&) { return true; });
   const double edge = noaa_minute_at_azimuth(s, 135.0);
@@ -172,10 +164,10 @@ TEST(SunlightExposure, WindowRevealsNarrowTheDay) {
   const SunlightExposureSpec s = paris(kSouth);
   Scene scene = scene_with(s);
   const double w = 0.6, d = 0.3, h = 1.0;
-  scene.meshes = {exposure_quad({-w, 0, -h}, {-w, -d, -h}, {-w, -d, h}, {-w, 0, h}),
-                  exposure_quad({w, 0, -h}, {w, -d, -h}, {w, -d, h}, {w, 0, h}),
-                  exposure_quad({-w, 0, h}, {w, 0, h}, {w, -d, h}, {-w, -d, h}),
-                  exposure_quad({-w, 0, -h}, {w, 0, -h}, {w, -d, -h}, {-w, -d, -h})};
+  scene.meshes = {test::corner_quad({-w, 0, -h}, {-w, -d, -h}, {-w, -d, h}, {-w, 0, h}),
+                  test::corner_quad({w, 0, -h}, {w, -d, -h}, {w, -d, h}, {w, 0, h}),
+                  test::corner_quad({-w, 0, h}, {w, 0, h}, {w, -d, h}, {-w, -d, h}),
+                  test::corner_quad({-w, 0, -h}, {w, 0, -h}, {w, -d, -h}, {-w, -d, -h})};
   const double limit = std::atan(w / d) / kDeg;
   const SunlightPointResult p = sunlight_exposure(scene).points[0];
   const Reference ref = noaa_minutes(
@@ -196,12 +188,12 @@ TEST(SunlightExposure, PointInsideAClosedBoxGetsNoSun) {
   const glm::dvec3 c = s.points[0].position;
   const double a = 0.5;
   auto v = [&](double x, double y, double z) { return c + a * glm::dvec3(x, y, z); };
-  scene.meshes = {exposure_quad(v(-1, -1, -1), v(1, -1, -1), v(1, 1, -1), v(-1, 1, -1)),
-                  exposure_quad(v(-1, -1, 1), v(1, -1, 1), v(1, 1, 1), v(-1, 1, 1)),
-                  exposure_quad(v(-1, -1, -1), v(1, -1, -1), v(1, -1, 1), v(-1, -1, 1)),
-                  exposure_quad(v(-1, 1, -1), v(1, 1, -1), v(1, 1, 1), v(-1, 1, 1)),
-                  exposure_quad(v(-1, -1, -1), v(-1, 1, -1), v(-1, 1, 1), v(-1, -1, 1)),
-                  exposure_quad(v(1, -1, -1), v(1, 1, -1), v(1, 1, 1), v(1, -1, 1))};
+  scene.meshes = {test::corner_quad(v(-1, -1, -1), v(1, -1, -1), v(1, 1, -1), v(-1, 1, -1)),
+                  test::corner_quad(v(-1, -1, 1), v(1, -1, 1), v(1, 1, 1), v(-1, 1, 1)),
+                  test::corner_quad(v(-1, -1, -1), v(1, -1, -1), v(1, -1, 1), v(-1, -1, 1)),
+                  test::corner_quad(v(-1, 1, -1), v(1, 1, -1), v(1, 1, 1), v(-1, 1, 1)),
+                  test::corner_quad(v(-1, -1, -1), v(-1, 1, -1), v(-1, 1, 1), v(-1, -1, 1)),
+                  test::corner_quad(v(1, -1, -1), v(1, 1, -1), v(1, 1, 1), v(1, -1, 1))};
   const SunlightExposureResult r = sunlight_exposure(scene);
   EXPECT_EQ(r.points[0].hours, 0.0);
   EXPECT_EQ(r.points[0].level, "none");
