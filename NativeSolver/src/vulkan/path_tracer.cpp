@@ -5,8 +5,8 @@
 #include <string>
 #include <unordered_set>
 
+#include "vulkan/loop_limit.hpp"
 #include "vulkan/shaders.hpp"
-#include "vulkan/visibility.hpp"  // kProbeIterations, probe_hash()
 
 namespace lightsolver::detail {
 namespace {
@@ -79,11 +79,7 @@ std::uint32_t PathVertexTracer::trace_chunk(vkw::Sequence& seq, const PreparedSc
   push.probe_iterations = kProbeIterations;
   push.probe_hash = probe_hash();
   kernel_->record(cmd, (count + kWorkgroupSize - 1) / kWorkgroupSize, &push);
-  // The paths the loop limit cut, each alone in its workgroup (none on other devices).
-  vkw::memory_barrier(cmd);
-  push.retry = 1;
-  kernel_->record_indirect(cmd, control_, 0, &push);
-  vkw::memory_barrier(cmd);
+  record_retry_pass(cmd, *kernel_, control_, push);  // the paths the loop limit cut
   seq.submit_and_wait("tracing path vertices");
 
   const auto* control = static_cast<const std::uint32_t*>(control_.mapped());

@@ -65,12 +65,7 @@ void ShadowRayTracer::visible(vkw::Sequence& seq, std::span<const ShadowRay> ray
     vkw::memory_barrier(cmd);
     gpu::VisibilityPush push{count, instance_count, 0, kProbeIterations, probe_hash(), {0, 0, 0}};
     kernel_->record(cmd, (count + kWorkgroupSize - 1) / kWorkgroupSize, &push);
-    // The rays the loop limit left undecided, each alone in its workgroup (zero workgroups on
-    // devices without the limit).
-    vkw::memory_barrier(cmd);
-    push.retry = 1;
-    kernel_->record_indirect(cmd, retry_, 0, &push);
-    vkw::memory_barrier(cmd);
+    record_retry_pass(cmd, *kernel_, retry_, push);  // the rays the loop limit left undecided
     seq.submit_and_wait("tracing shadow rays");
     std::size_t cut = 0;
     for (std::uint32_t i = 0; i < count; ++i) {

@@ -10,18 +10,10 @@
 #include "vulkan/algorithm.hpp"
 #include "vulkan/buffer.hpp"
 #include "vulkan/context.hpp"
+#include "vulkan/loop_limit.hpp"
 #include "vulkan/sequence.hpp"
 
 namespace lightsolver::detail {
-
-/// Iterations of lavapipe's loop-limit probe (trace.comp, visibility.comp: loop_limit_reached)
-/// and the hash they give, a 32-bit LCG from 0, when every one of them ran.
-inline constexpr std::uint32_t kProbeIterations = 4;
-constexpr std::uint32_t probe_hash() {
-  std::uint32_t h = 0;
-  for (std::uint32_t i = 0; i < kProbeIterations; ++i) h = h * 1664525u + 1013904223u;
-  return h;
-}
 
 /// Shadow rays per submission: 8 MiB of rays, 4096 workgroups of 64.
 inline constexpr std::uint32_t kShadowRaysPerSubmit = 1u << 18;

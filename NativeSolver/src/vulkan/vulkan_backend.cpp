@@ -13,6 +13,7 @@
 #include "vulkan/buffer.hpp"
 #include "vulkan/context.hpp"
 #include "vulkan/gpu_scene.hpp"
+#include "vulkan/loop_limit.hpp"
 #include "vulkan/path_tracer.hpp"
 #include "vulkan/sequence.hpp"
 #include "vulkan/shaders.hpp"
@@ -325,10 +326,7 @@ class VulkanBackend final : public Backend {
   // limit; then the queue is emptied.
   // Zero groups on devices without the limit.
   void record_retries(VkCommandBuffer cmd, gpu::TracePush push) {
-    vkw::memory_barrier(cmd);
-    push.retry = 1;
-    trace_->record_indirect(cmd, buffers_[gpu::kRetry], 0, &push);
-    vkw::memory_barrier(cmd);
+    record_retry_pass(cmd, *trace_, buffers_[gpu::kRetry], push);
     vkCmdFillBuffer(cmd, buffers_[gpu::kRetry].handle(), 0, sizeof(std::uint32_t), 0);
   }
 
