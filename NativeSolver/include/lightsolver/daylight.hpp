@@ -61,7 +61,8 @@ struct SunPosition {
 };
 
 /// The sun's topocentric position. Throws InputError naming the field (`latitude_deg`,
-/// `time.month`, `pressure_mbar`, ...) for a value out of range or not finite.
+/// `time.month`, `pressure_mbar`, ...) for a value out of range or not finite. Thread-safe
+/// (libnova's calls are serialised).
 SunPosition sun_position(const Site& site, const CivilTime& time, const SunOptions& options = {});
 
 /// The unit vector toward the sun in a scene's frame (z up), whose true north is `north_deg`

@@ -128,7 +128,8 @@ struct SkyMatrix {
 /// local standard time: row hour h → h − 0.5), the Perez all-weather sky from the hour's
 /// direct normal and diffuse horizontal values. InputError naming the file, line and column
 /// where an hour with the sun up has a missing value the sky needs, and naming the option
-/// (`mf`, `points`, `ground_reflectance`) when one is out of range.
+/// (`mf`, `points`, `ground_reflectance`) when one is out of range. The hours' skies are
+/// computed in parallel (in the caller's TBB arena); the result does not depend on the threads.
 SkyMatrix sky_matrix(const WeatherFile& weather, const SkyMatrixOptions& options = {});
 
 }  // namespace lightsolver

@@ -1,5 +1,7 @@
 // A year of sky vectors from a weather file (include/lightsolver/sky_patches.hpp, sky_matrix):
 // the sun at the middle of each hour, the Perez sky of the hour, its sky vector.
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -46,8 +48,10 @@ constexpr std::size_t kCheckEvery = 50;
 
 // Row i of the matrix: the Perez sky of `spec`, normalised by its own patches (the Sky class'
 // fine horizontal integral would cost ~0.1 s an hour), as the Sky class builds it otherwise.
-void hour_sky(const daylight::SkySpec& spec, const SkyPatches& patches, const SkyMatrixOptions& o,
-              bool check, SkyMatrix& m, std::size_t i) {
+// Writes row i only; returns the patches' relative quadrature error of the horizontal
+// illuminance where `check` asks for it, else 0.
+double hour_sky(const daylight::SkySpec& spec, const SkyPatches& patches, const SkyMatrixOptions& o,
+                bool check, SkyMatrix& m, std::size_t i) {
   const daylight::Direction& sun = *spec.sun;
   const double zenith = std::acos(sun.z);
   daylight::PerezState st = daylight::perez_state(spec.perez, zenith);
@@ -62,9 +66,10 @@ void hour_sky(const daylight::SkySpec& spec, const SkyPatches& patches, const Sk
   }
   if (!(raw_h > 0.0) || !std::isfinite(raw_h))
     throw std::invalid_argument("the sky model gives no light above the horizon");
+  double error = 0.0;
   if (check) {
     const double fine = daylight::horizontal_integral(shape, sun);
-    m.max_quadrature_error = std::max(m.max_quadrature_error, std::abs(raw_h - fine) / fine);
+    error = std::abs(raw_h - fine) / fine;
   }
   const double scale = st.diffuse_horizontal_lx / raw_h;
   for (double& x : v) x *= scale;
@@ -83,6 +88,35 @@ void hour_sky(const daylight::SkySpec& spec, const SkyPatches& patches, const Sk
   m.sun_direct_normal_lx[i] = sun_lx;
   m.diffuse_horizontal_lx[i] = static_cast<float>(st.diffuse_horizontal_lx);
   m.status[i] = 2;
+  return error;
+}
+
+// An hour with diffuse light: its row and its Perez sky.
+struct DaylightHour {
+  std::size_t row = 0;
+  int line = 0;
+  daylight::SkySpec spec;
+};
+
+// Every daylight hour's sky, in parallel: each writes its own row, and a failure is reported
+// for the first such hour in file order, whatever order the threads finished in.
+void daylight_hours(const std::vector<DaylightHour>& hours, const SkyPatches& patches,
+                    const SkyMatrixOptions& o, const std::string& file, SkyMatrix& m) {
+  std::vector<double> errors(hours.size(), 0.0);
+  std::vector<std::string> failed(hours.size());
+  tbb::parallel_for(std::size_t(0), hours.size(), [&](std::size_t k) {
+    const DaylightHour& h = hours[k];
+    try {
+      errors[k] = hour_sky(h.spec, patches, o, h.row % kCheckEvery == 0, m, h.row);
+    } catch (const std::invalid_argument& e) {
+      failed[k] = e.what();
+    }
+  });
+  for (std::size_t k = 0; k < hours.size(); ++k) {
+    if (!failed[k].empty())
+      throw InputError(file, "line " + std::to_string(hours[k].line), failed[k]);
+  }
+  for (double e : errors) m.max_quadrature_error = std::max(m.max_quadrature_error, e);
 }
 
 }  // namespace
@@ -104,6 +138,8 @@ SkyMatrix sky_matrix(const WeatherFile& weather, const SkyMatrixOptions& options
   const WeatherLocation& loc = weather.location;
   const Site site{loc.latitude_deg, loc.longitude_deg, loc.elevation_m};
   const bool leap = hours == 8784;
+  // The sun of every hour in order (libnova is not thread-safe), the skies then in parallel.
+  std::vector<DaylightHour> daylight;
   for (std::size_t i = 0; i < hours; ++i) {
     const WeatherHour& h = weather.hours[i];
     // The row describes the hour ending at its stamp (standard time): its middle is h − 0.5.
@@ -136,12 +172,9 @@ SkyMatrix sky_matrix(const WeatherFile& weather, const SkyMatrixOptions& options
     }
     m.status[i] = 1;
     if (!(spec.perez.diffuse_horizontal > 0.0)) continue;  // no diffuse light: gendaymtx's zero
-    try {
-      hour_sky(spec, patches, options, i % kCheckEvery == 0, m, i);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(weather.file, "line " + std::to_string(h.line), e.what());
-    }
+    daylight.push_back({i, h.line, spec});
   }
+  daylight_hours(daylight, patches, options, weather.file, m);
   return m;
 }
 

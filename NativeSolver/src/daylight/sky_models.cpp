@@ -73,6 +73,19 @@ double integrate(const SkyShape& s, const Direction& sun, int nz, int nphi, cons
     }
   }
   const std::vector<double> pe = edges(0.0, kPi, -1.0, nphi);
+  // Every ring has the same azimuths: their weights, cosines and sines once.
+  struct Azimuth {
+    double w, c, s;
+  };
+  std::vector<Azimuth> az;
+  az.reserve((pe.size() - 1) * g.x.size());
+  for (std::size_t j = 0; j + 1 < pe.size(); ++j) {
+    const double p0 = pe[j], dp = pe[j + 1] - pe[j];
+    for (std::size_t gj = 0; gj < g.x.size(); ++gj) {
+      const double phi = sun_az + p0 + dp * g.x[gj];
+      az.push_back({g.w[gj] * dp, std::cos(phi), std::sin(phi)});
+    }
+  }
   double total = 0.0;
   for (std::size_t i = 0; i + 1 < ze.size(); ++i) {
     const double z0 = ze[i], dz = ze[i + 1] - ze[i];
@@ -80,13 +93,7 @@ double integrate(const SkyShape& s, const Direction& sun, int nz, int nphi, cons
       const double zen = z0 + dz * g.x[gi];
       const double sz = std::sin(zen), cz = std::cos(zen);
       double ring = 0.0;
-      for (std::size_t j = 0; j + 1 < pe.size(); ++j) {
-        const double p0 = pe[j], dp = pe[j + 1] - pe[j];
-        for (std::size_t gj = 0; gj < g.x.size(); ++gj) {
-          const double phi = sun_az + p0 + dp * g.x[gj];
-          ring += g.w[gj] * dp * s.raw({sz * std::cos(phi), sz * std::sin(phi), cz}, sun);
-        }
-      }
+      for (const Azimuth& a : az) ring += a.w * s.raw({sz * a.c, sz * a.s, cz}, sun);
       total += g.w[gi] * dz * ring * cz * sz;
     }
   }

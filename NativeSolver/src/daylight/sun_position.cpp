@@ -23,6 +23,7 @@
 #include <libnova/transform.h>
 
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "lightsolver/angles.hpp"
@@ -126,6 +127,10 @@ SunPosition sun_position(const Site& site, const CivilTime& time, const SunOptio
   p.delta_t_s = options.delta_t_s.value_or(default_delta_t_s(time, p.julian_day));
   const double jde = p.julian_day + p.delta_t_s / 86400.0;
 
+  // libnova keeps its last nutation in static variables (read again by ln_get_parallax): one
+  // caller at a time, so that positions may be asked for from any thread.
+  static std::mutex libnova;
+  const std::lock_guard<std::mutex> one_at_a_time(libnova);
   // Geometric sun in VSOP87's J2000 ecliptic, precessed to the mean equinox of date.
   ln_helio_posn sun;
   ln_get_solar_geom_coords(jde, &sun);

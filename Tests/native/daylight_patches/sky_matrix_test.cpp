@@ -2,11 +2,14 @@
 // zero rows, and the horizontal illuminance rebuilt from the sky vectors plus the sun against the
 // file's own global horizontal illuminance column.
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "daylight/sky_vector.hpp"
 #include "lightsolver/daylight.hpp"
@@ -148,6 +151,33 @@ TEST(SkyMatrix, SunAtTheMiddleOfTheHour) {
                      {h.year, h.month, h.day, h.hour - 1, 30, 0.0, l.utc_offset_h});
     EXPECT_NEAR(m.sun_altitude_deg[i], s.elevation_deg, 1e-4) << i;
   }
+}
+
+// The hours' skies are computed in parallel and the suns asked for from any thread: one thread
+// and many give the same matrix to the bit, and suns asked for at once from many threads are
+// those asked for one at a time (libnova caches its last nutation: without the lock, positions
+// depended on what another thread had asked for).
+TEST(SkyMatrix, TheSameWhateverTheThreads) {
+  SkyMatrix one;
+  tbb::task_arena single(1);
+  single.execute([&] { one = sky_matrix(chicago(), {}); });
+  const SkyMatrix& many = chicago_mf1();
+  EXPECT_EQ(one.sky, many.sky);
+  EXPECT_EQ(one.sun_direction, many.sun_direction);
+  EXPECT_EQ(one.status, many.status);
+  EXPECT_EQ(one.max_quadrature_error, many.max_quadrature_error);
+  const WeatherLocation& l = chicago().location;
+  const Site site{l.latitude_deg, l.longitude_deg, l.elevation_m};
+  auto sun = [&](std::size_t i) {
+    const WeatherHour& h = chicago().hours[i];
+    return sun_position(site, {h.year, h.month, h.day, h.hour - 1, 30, 0.0, l.utc_offset_h});
+  };
+  constexpr std::size_t kHours = 2000;
+  std::vector<double> serial(kHours), parallel(kHours);
+  for (std::size_t i = 0; i < kHours; ++i) serial[i] = sun(i * 4).elevation_deg;
+  tbb::parallel_for(std::size_t(0), kHours,
+                    [&](std::size_t i) { parallel[i] = sun(i * 4).elevation_deg; });
+  EXPECT_EQ(serial, parallel);
 }
 
 TEST(SkyMatrix, RadianceSunAndIlluminanceColumnsKeepTheTotals) {
