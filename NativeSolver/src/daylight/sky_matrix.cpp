@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -119,6 +120,44 @@ void daylight_hours(const std::vector<DaylightHour>& hours, const SkyPatches& pa
   for (double e : errors) m.max_quadrature_error = std::max(m.max_quadrature_error, e);
 }
 
+// Hour i's sun (row i's altitude and status) and, where it has diffuse light, its sky to
+// compute; InputError naming the file and line where its inputs fail.
+std::optional<DaylightHour> hour_inputs(const WeatherFile& weather, std::size_t i,
+                                        const SkyMatrixOptions& options, SkyMatrix& m) {
+  const WeatherLocation& loc = weather.location;
+  const Site site{loc.latitude_deg, loc.longitude_deg, loc.elevation_m};
+  const WeatherHour& h = weather.hours[i];
+  // The row describes the hour ending at its stamp (standard time): its middle is h − 0.5.
+  const CivilTime t{h.year, h.month, h.day, h.hour - 1, 30, 0.0, loc.utc_offset_h};
+  SunPosition pos;
+  try {
+    pos = sun_position(site, t, options.sun);
+  } catch (const InputError& e) {  // a date the calendar lacks (29 February of a plain year)
+    throw InputError(weather.file, "line " + std::to_string(h.line), e.what());
+  }
+  const glm::dvec3 sun = sun_direction(pos, options.north_deg);
+  m.sun_altitude_deg[i] = static_cast<float>(pos.elevation_deg);
+  if (!(sun.z > 0.0)) return std::nullopt;  // status 0: night
+  daylight::SkySpec spec;
+  spec.model = daylight::SkyModel::Perez;
+  spec.sun = daylight::Direction{sun.x, sun.y, sun.z};
+  spec.ground_reflectance = options.ground_reflectance;
+  spec.perez.illuminance = options.use_illuminance;
+  spec.perez.day_of_year = day_of_year(h.month, h.day, weather.hours.size() == 8784);
+  if (options.use_illuminance) {
+    spec.perez.diffuse_horizontal =
+        needed(h.diffuse_horizontal_lx, weather, h, "Diffuse Horizontal Illuminance");
+    spec.perez.direct_normal = needed(h.direct_normal_lx, weather, h, "Direct Normal Illuminance");
+  } else {
+    spec.perez.diffuse_horizontal =
+        needed(h.diffuse_horizontal_w_m2, weather, h, "Diffuse Horizontal Radiation");
+    spec.perez.direct_normal = needed(h.direct_normal_w_m2, weather, h, "Direct Normal Radiation");
+  }
+  m.status[i] = 1;
+  if (!(spec.perez.diffuse_horizontal > 0.0)) return std::nullopt;  // gendaymtx's zero
+  return DaylightHour{i, h.line, spec};
+}
+
 }  // namespace
 
 SkyMatrix sky_matrix(const WeatherFile& weather, const SkyMatrixOptions& options) {
@@ -135,46 +174,21 @@ SkyMatrix sky_matrix(const WeatherFile& weather, const SkyMatrixOptions& options
   m.sun_altitude_deg.assign(hours, 0.0f);
   m.diffuse_horizontal_lx.assign(hours, 0.0f);
   m.status.assign(hours, 0);
-  const WeatherLocation& loc = weather.location;
-  const Site site{loc.latitude_deg, loc.longitude_deg, loc.elevation_m};
-  const bool leap = hours == 8784;
-  // The sun of every hour in order (libnova is not thread-safe), the skies then in parallel.
+  // The suns in order (sun_position serialises libnova anyway), the skies then in parallel. An
+  // hour whose inputs fail ends the list; a sky before it that fails is reported first.
   std::vector<DaylightHour> daylight;
-  for (std::size_t i = 0; i < hours; ++i) {
-    const WeatherHour& h = weather.hours[i];
-    // The row describes the hour ending at its stamp (standard time): its middle is h − 0.5.
-    const CivilTime t{h.year, h.month, h.day, h.hour - 1, 30, 0.0, loc.utc_offset_h};
-    SunPosition pos;
+  std::exception_ptr failed_inputs;
+  for (std::size_t i = 0; i < hours && !failed_inputs; ++i) {
     try {
-      pos = sun_position(site, t, options.sun);
-    } catch (const InputError& e) {  // a date the calendar lacks (29 February of a plain year)
-      throw InputError(weather.file, "line " + std::to_string(h.line), e.what());
+      if (std::optional<DaylightHour> d = hour_inputs(weather, i, options, m)) {
+        daylight.push_back(std::move(*d));
+      }
+    } catch (const InputError&) {
+      failed_inputs = std::current_exception();
     }
-    const glm::dvec3 sun = sun_direction(pos, options.north_deg);
-    m.sun_altitude_deg[i] = static_cast<float>(pos.elevation_deg);
-    if (!(sun.z > 0.0)) continue;  // status 0: night
-    daylight::SkySpec spec;
-    spec.model = daylight::SkyModel::Perez;
-    spec.sun = daylight::Direction{sun.x, sun.y, sun.z};
-    spec.ground_reflectance = options.ground_reflectance;
-    spec.perez.illuminance = options.use_illuminance;
-    spec.perez.day_of_year = day_of_year(h.month, h.day, leap);
-    if (options.use_illuminance) {
-      spec.perez.diffuse_horizontal =
-          needed(h.diffuse_horizontal_lx, weather, h, "Diffuse Horizontal Illuminance");
-      spec.perez.direct_normal =
-          needed(h.direct_normal_lx, weather, h, "Direct Normal Illuminance");
-    } else {
-      spec.perez.diffuse_horizontal =
-          needed(h.diffuse_horizontal_w_m2, weather, h, "Diffuse Horizontal Radiation");
-      spec.perez.direct_normal =
-          needed(h.direct_normal_w_m2, weather, h, "Direct Normal Radiation");
-    }
-    m.status[i] = 1;
-    if (!(spec.perez.diffuse_horizontal > 0.0)) continue;  // no diffuse light: gendaymtx's zero
-    daylight.push_back({i, h.line, spec});
   }
   daylight_hours(daylight, patches, options, weather.file, m);
+  if (failed_inputs) std::rethrow_exception(failed_inputs);
   return m;
 }
 
