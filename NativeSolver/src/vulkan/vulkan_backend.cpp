@@ -177,13 +177,18 @@ class VulkanBackend final : public Backend {
       upload(gpu::kMeshes, contents(gpu::kMeshes));
       upload(gpu::kGrids, contents(gpu::kGrids));
     }
+    // Ranges share a submission up to kPathsPerSubmit paths: a sky of 2306 patch groups traced
+    // in a batch is not 2306 submissions, each waited for (on lavapipe most of such a run's
+    // time went to waking its threads for them).
     bool cleared = false;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    std::uint64_t recorded = 0;  // paths in `cmd`
     for (std::size_t r = 0; r < ranges.size(); ++r) {
       const GroupRange& range = ranges[r];
       const auto [lum_first, lum_count] = data_.group_luminaires.at(range.group);
       for (std::uint64_t done = 0; done < range.count;) {
-        const std::uint64_t n = std::min(kPathsPerSubmit, range.count - done);
-        VkCommandBuffer cmd = seq_.begin();
+        if (cmd == VK_NULL_HANDLE) cmd = seq_.begin(), recorded = 0;
+        const std::uint64_t n = std::min(kPathsPerSubmit - recorded, range.count - done);
         if (!cleared) {
           vkCmdFillBuffer(cmd, buffers_[gpu::kTallies].handle(), 0, VK_WHOLE_SIZE, 0);
           vkCmdFillBuffer(cmd, buffers_[gpu::kCounters].handle(), 0, VK_WHOLE_SIZE, 0);
@@ -209,11 +214,18 @@ class VulkanBackend final : public Backend {
         trace_->record(cmd, groups(n), &push);
         record_retries(cmd, push);
         done += n;
-        if (done == range.count && r + 1 == ranges.size()) record_readback(cmd);
-        seq_.submit_and_wait("tracing photons");
+        recorded += n;
+        if (recorded == kPathsPerSubmit) {
+          seq_.submit_and_wait("tracing photons");
+          cmd = VK_NULL_HANDLE;
+        }
       }
     }
-    if (cleared) add_readback(out);
+    if (!cleared) return;
+    if (cmd == VK_NULL_HANDLE) cmd = seq_.begin();
+    record_readback(cmd);
+    seq_.submit_and_wait("tracing photons");
+    add_readback(out);
   }
 
  private:
