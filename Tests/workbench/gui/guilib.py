@@ -99,8 +99,7 @@ def _paint_3d_views(picture) -> None:
     from PySide import QtCore, QtGui
 
     window = main_window()
-    shown = [w for w in window.findChildren(QtGui.QWidget)
-             if w.metaObject().className() == "Gui::View3DInventor" and w.isVisible()]
+    shown = [w for w in window.findChildren(QtGui.QWidget) if _shown_3d_view(w)]
     view = FreeCADGui.activeView() if FreeCADGui.ActiveDocument is not None else None
     if len(shown) != 1 or view is None or "View3DInventor" not in str(type(view)):
         return  # MDI tabs show one view at a time; none shown: nothing to paint
@@ -111,6 +110,17 @@ def _paint_3d_views(picture) -> None:
         painter = QtGui.QPainter(picture)
         painter.drawImage(widget.mapTo(window, QtCore.QPoint(0, 0)), QtGui.QImage(image))
         painter.end()
+
+
+def _shown_3d_view(widget) -> bool:
+    """Whether ``widget`` is a shown 3D view. A widget can be deleted while the window's
+    children are walked (a closing task panel's, when the garbage collector takes the Python
+    object that owned it: the coexist scenario met "Internal C++ object already deleted"):
+    that one is not a view."""
+    try:
+        return widget.metaObject().className() == "Gui::View3DInventor" and widget.isVisible()
+    except RuntimeError:
+        return False
 
 
 def visible_in_window(widget) -> bool:
