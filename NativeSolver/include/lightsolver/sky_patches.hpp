@@ -69,10 +69,15 @@ class SkyPatches {
                         double& azimuth_deg) const;
   /// The scene direction at an altitude and azimuth (degrees).
   glm::dvec3 direction(double altitude_deg, double azimuth_deg) const;
+  /// The same from the altitude's and the azimuth's cosines and sines, for callers that share
+  /// them between many directions (a quadrature's rows and columns); the same bits as above.
+  glm::dvec3 direction(double cos_altitude, double sin_altitude, double cos_azimuth,
+                       double sin_azimuth) const;
 
  private:
   int mf_ = 1;
   double north_deg_ = 0.0;
+  double cos_north_ = 1.0, sin_north_ = 0.0;  ///< of north_deg_, for the rotations
   double alpha_deg_ = 0.0;
   std::vector<int> row_start_;  ///< first index of each row (rows() + 1 entries)
   std::vector<SkyPatch> patches_;

@@ -19,7 +19,11 @@ constexpr int kTregenzaRow[7] = {30, 30, 24, 24, 18, 12, 6};
 
 }  // namespace
 
-SkyPatches::SkyPatches(int mf, double north_deg) : mf_(mf), north_deg_(north_deg) {
+SkyPatches::SkyPatches(int mf, double north_deg)
+    : mf_(mf),
+      north_deg_(north_deg),
+      cos_north_(std::cos(north_deg * kDeg)),
+      sin_north_(std::sin(north_deg * kDeg)) {
   if (mf < 1 || mf > 64)
     throw InputError(
         "", "mf",
@@ -73,9 +77,8 @@ void SkyPatches::altitude_azimuth(const glm::dvec3& d, double& altitude_deg,
   const double len = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
   if (!(len > 0.0) || !std::isfinite(len))
     throw InputError("", "direction", "must be a finite, non-zero vector");
-  const double n = north_deg_ * kDeg;
-  const double north = -std::sin(n) * d.x + std::cos(n) * d.y;
-  const double east = std::cos(n) * d.x + std::sin(n) * d.y;
+  const double north = -sin_north_ * d.x + cos_north_ * d.y;
+  const double east = cos_north_ * d.x + sin_north_ * d.y;
   altitude_deg = std::asin(std::clamp(d.z / len, -1.0, 1.0)) / kDeg;
   double azi = std::atan2(east, north) / kDeg;
   if (azi < 0.0) azi += 360.0;
@@ -84,10 +87,15 @@ void SkyPatches::altitude_azimuth(const glm::dvec3& d, double& altitude_deg,
 }
 
 glm::dvec3 SkyPatches::direction(double altitude_deg, double azimuth_deg) const {
-  const double n = north_deg_ * kDeg, a = altitude_deg * kDeg, z = azimuth_deg * kDeg;
-  const double north = std::cos(a) * std::cos(z), east = std::cos(a) * std::sin(z);
-  return {-std::sin(n) * north + std::cos(n) * east, std::cos(n) * north + std::sin(n) * east,
-          std::sin(a)};
+  const double a = altitude_deg * kDeg, z = azimuth_deg * kDeg;
+  return direction(std::cos(a), std::sin(a), std::cos(z), std::sin(z));
+}
+
+glm::dvec3 SkyPatches::direction(double cos_altitude, double sin_altitude, double cos_azimuth,
+                                 double sin_azimuth) const {
+  const double north = cos_altitude * cos_azimuth, east = cos_altitude * sin_azimuth;
+  return {-sin_north_ * north + cos_north_ * east, cos_north_ * north + sin_north_ * east,
+          sin_altitude};
 }
 
 int SkyPatches::index(const glm::dvec3& direction) const {

@@ -43,13 +43,12 @@ struct PatchIntegral {
 
 // ∫ over altitude [a0, a1] × azimuth [z0, z1] (radians, azimuth from north toward east).
 // The directions are SkyPatches::direction(alt / kDeg, azimuth / kDeg)'s to the bit, with the
-// trigonometry of the north rotation and of each azimuth computed once, not per point.
+// trigonometry of each altitude and azimuth computed once, not per point.
 template <class Luminance>
 PatchIntegral integrate(const Luminance& lum, const SkyPatches& patches, double a0, double a1,
                         double z0, double z1, const Rule& g) {
   PatchIntegral s;
   const double da = a1 - a0, dz = z1 - z0;
-  const double n = patches.north_deg() * kDeg, cn = std::cos(n), sn = std::sin(n);
   std::array<double, 32> cz, sz;
   for (std::size_t j = 0; j < g.x.size(); ++j) {
     const double z = (z0 + dz * g.x[j]) / kDeg * kDeg;
@@ -60,8 +59,7 @@ PatchIntegral integrate(const Luminance& lum, const SkyPatches& patches, double 
     const double wa = g.w[i] * da * std::cos(alt);
     const double a = alt / kDeg * kDeg, ca = std::cos(a), sa = std::sin(a);
     for (std::size_t j = 0; j < g.x.size(); ++j) {
-      const double north = ca * cz[j], east = ca * sz[j];
-      const glm::dvec3 d{-sn * north + cn * east, cn * north + sn * east, sa};
+      const glm::dvec3 d = patches.direction(ca, sa, cz[j], sz[j]);
       const double l = lum(Direction{d.x, d.y, d.z}) * wa * g.w[j] * dz;
       s.l += l;
       s.lcos += l * d.z;
