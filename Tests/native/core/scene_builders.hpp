@@ -218,29 +218,8 @@ inline double corner_factor_perpendicular(double a, double depth, double y) {
 // single check with probability 6e-7 (the seeds are fixed anyway) while a wrong one cannot hide.
 constexpr double kCheckConfidence = 0.9999994;
 
-// One run of `s` on `backend` at `confidence`: the closed-form suites' common call.
-// `backend` may end in "+nee": that backend with next-event estimation on (backends_and_nee()).
-inline Results run_on_backend(const std::string& backend, Scene s, std::uint64_t photons,
-                              std::uint64_t seed, double confidence = kCheckConfidence) {
-  validate(s);
-  SolveOptions o;
-  o.photons = photons;
-  o.seed = seed;
-  o.confidence = confidence;
-  o.backend = backend;
-  // A plain backend name traces direct light by photons (the default is next-event estimation
-  // where it applies): the "+nee" names run the same checks with it.
-  o.next_event = "off";
-  const auto plus = backend.find("+nee");
-  if (plus != std::string::npos) {
-    o.backend = backend.substr(0, plus);
-    o.next_event = "auto";
-  }
-  return solve(s, o);
-}
-
 // One run of `s` on `backend` with next-event estimation `next_event` ("auto", "on", "off"):
-// the next-event suites' common call.
+// the next-event suites' common call, and run_on_backend's.
 inline Results run_next_event(const std::string& backend, const Scene& s, std::uint64_t photons,
                               std::uint64_t seed, const std::string& next_event,
                               double confidence = kCheckConfidence) {
@@ -251,6 +230,19 @@ inline Results run_next_event(const std::string& backend, const Scene& s, std::u
   o.confidence = confidence;
   o.next_event = next_event;
   return solve(s, o);
+}
+
+// One run of `s` on `backend` at `confidence`: the closed-form suites' common call.
+// `backend` may end in "+nee": that backend with next-event estimation on (backends_and_nee()).
+inline Results run_on_backend(const std::string& backend, Scene s, std::uint64_t photons,
+                              std::uint64_t seed, double confidence = kCheckConfidence) {
+  validate(s);
+  // A plain backend name traces direct light by photons (the default is next-event estimation
+  // where it applies): the "+nee" names run the same checks with it.
+  const auto plus = backend.find("+nee");
+  if (plus == std::string::npos)
+    return run_next_event(backend, s, photons, seed, "off", confidence);
+  return run_next_event(backend.substr(0, plus), s, photons, seed, "auto", confidence);
 }
 
 // The exact value lies inside the reported interval AND the interval is narrow (half-width

@@ -141,15 +141,18 @@ TEST(SkyMatrix, RowsAreTheSkyVectorsOfTheirHours) {
 }
 
 // EPW rows describe the hour ending at their stamp: the sun is placed at its middle.
+// The sun at the middle of Chicago's hour i (the row's stamp ends the hour).
+SunPosition middle_of_hour(std::size_t i) {
+  const WeatherLocation& l = chicago().location;
+  const WeatherHour& h = chicago().hours[i];
+  return sun_position({l.latitude_deg, l.longitude_deg, l.elevation_m},
+                      {h.year, h.month, h.day, h.hour - 1, 30, 0.0, l.utc_offset_h});
+}
+
 TEST(SkyMatrix, SunAtTheMiddleOfTheHour) {
   const SkyMatrix& m = chicago_mf1();
-  const WeatherLocation& l = chicago().location;
   for (std::size_t i : {4000u, 4012u, 100u}) {
-    const WeatherHour& h = chicago().hours[i];
-    const SunPosition s =
-        sun_position({l.latitude_deg, l.longitude_deg, l.elevation_m},
-                     {h.year, h.month, h.day, h.hour - 1, 30, 0.0, l.utc_offset_h});
-    EXPECT_NEAR(m.sun_altitude_deg[i], s.elevation_deg, 1e-4) << i;
+    EXPECT_NEAR(m.sun_altitude_deg[i], middle_of_hour(i).elevation_deg, 1e-4) << i;
   }
 }
 
@@ -166,17 +169,11 @@ TEST(SkyMatrix, TheSameWhateverTheThreads) {
   EXPECT_EQ(one.sun_direction, many.sun_direction);
   EXPECT_EQ(one.status, many.status);
   EXPECT_EQ(one.max_quadrature_error, many.max_quadrature_error);
-  const WeatherLocation& l = chicago().location;
-  const Site site{l.latitude_deg, l.longitude_deg, l.elevation_m};
-  auto sun = [&](std::size_t i) {
-    const WeatherHour& h = chicago().hours[i];
-    return sun_position(site, {h.year, h.month, h.day, h.hour - 1, 30, 0.0, l.utc_offset_h});
-  };
   constexpr std::size_t kHours = 2000;
   std::vector<double> serial(kHours), parallel(kHours);
-  for (std::size_t i = 0; i < kHours; ++i) serial[i] = sun(i * 4).elevation_deg;
+  for (std::size_t i = 0; i < kHours; ++i) serial[i] = middle_of_hour(i * 4).elevation_deg;
   tbb::parallel_for(std::size_t(0), kHours,
-                    [&](std::size_t i) { parallel[i] = sun(i * 4).elevation_deg; });
+                    [&](std::size_t i) { parallel[i] = middle_of_hour(i * 4).elevation_deg; });
   EXPECT_EQ(serial, parallel);
 }
 
